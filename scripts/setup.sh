@@ -1,0 +1,27 @@
+#!/usr/bin/env bash
+# Installs every Debian package the project needs (idempotent: apt runs only when something is missing),
+# then configures and builds in Release. Usage: scripts/setup.sh [BUILD_DIR]
+set -euo pipefail
+
+PACKAGES=(
+  build-essential cmake ninja-build pkg-config clang
+  libfastrtps-dev fastddsgen fastdds-tools
+  cyclonedds-dev cyclonedds-tools
+  libompl-dev libeigen3-dev
+  libboost-serialization-dev libboost-filesystem-dev libboost-system-dev
+  libpaho-mqtt-dev mosquitto mosquitto-clients
+  libglfw3-dev libimgui-dev libgl-dev libgl1-mesa-dri xvfb xauth
+  libgtest-dev libgmock-dev libbenchmark-dev
+  libsqlite3-dev libcli11-dev libspdlog-dev nlohmann-json3-dev libyaml-cpp-dev libstb-dev
+)
+
+missing=()
+for p in "${PACKAGES[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]})); then
+  echo "setup: installing ${#missing[@]} Debian packages: ${missing[*]}"
+  SUDO=""; [ "$(id -u)" -eq 0 ] || SUDO="sudo"
+  $SUDO apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi

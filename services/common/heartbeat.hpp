@@ -1,0 +1,45 @@
+#pragma once
+// Publishes the service's Heartbeat (name, instance, pid, host, uptime, counters) once a period
+// from its own thread, so a busy service loop still reports; its counters show whether it makes progress.
+#include <atomic>
+#include <chrono>
+#include <memory>
+#include <string>
+#include <thread>
+
+#include "common/counters.hpp"
+#include "common/fast_topics.hpp"
+
+namespace slam {
+
+class HeartbeatPublisher {
+ public:
+  static Result<std::unique_ptr<HeartbeatPublisher>> start(dds::Participant& participant, std::string service,
+                                                           const Counters& counters,
+                                                           std::chrono::milliseconds period = std::chrono::seconds(1));
+  ~HeartbeatPublisher();
+
+  // Marks the service running (after activation) or stopping (during shutdown); sent at once.
+  void set_state(ServiceState state);
+  const std::string& instance_id() const { return instance_id_; }
+
+ private:
+  HeartbeatPublisher() = default;
+  void publish();
+  void run();
+
+  std::unique_ptr<dds::Writer<Heartbeat>> writer_;
+  const Counters* counters_ = nullptr;
+  std::string service_;
+  std::string instance_id_;
+  std::string host_;
+  std::chrono::milliseconds period_{1000};
+  std::chrono::steady_clock::time_point started_;
+  std::atomic<ServiceState> state_{SERVICE_STARTING};
+  std::atomic<bool> stop_{false};
+  std::mutex publish_mutex_;
+  Heartbeat sample_;
+  std::thread thread_;
+};
+
+}  // namespace slam

@@ -1,0 +1,49 @@
+#pragma once
+// Errors as values at boundaries: Status (ok or a message) and Result<T> (a value or a message).
+#include <string>
+#include <utility>
+#include <variant>
+
+namespace slam {
+
+struct Error {
+  std::string message;
+};
+
+class [[nodiscard]] Status {
+ public:
+  Status() = default;
+  Status(Error e) : error_(std::move(e.message)), failed_(true) {}  // NOLINT: implicit by design
+  static Status ok() { return {}; }
+
+  bool is_ok() const { return !failed_; }
+  explicit operator bool() const { return !failed_; }
+  const std::string& message() const { return error_; }
+
+ private:
+  std::string error_;
+  bool failed_ = false;
+};
+
+template <class T>
+class [[nodiscard]] Result {
+ public:
+  Result(T value) : v_(std::move(value)) {}  // NOLINT: implicit by design
+  Result(Error e) : v_(std::move(e)) {}      // NOLINT: implicit by design
+
+  bool is_ok() const { return v_.index() == 0; }
+  explicit operator bool() const { return is_ok(); }
+  T& value() { return std::get<0>(v_); }
+  const T& value() const { return std::get<0>(v_); }
+  T& operator*() { return value(); }
+  const T& operator*() const { return value(); }
+  T* operator->() { return &value(); }
+  const T* operator->() const { return &value(); }
+  const std::string& message() const { return std::get<1>(v_).message; }
+  Status status() const { return is_ok() ? Status{} : Status{std::get<1>(v_)}; }
+
+ private:
+  std::variant<T, Error> v_;
+};
+
+}  // namespace slam

@@ -1,0 +1,41 @@
+#include "common/service_options.hpp"
+
+#include <iostream>
+
+#include "common/config_file.hpp"
+#include "common/log.hpp"
+
+namespace slam {
+
+void add_service_options(CLI::App& app, ServiceOptions& options) {
+  app.add_option("--domain", options.domain, "DDS domain id")->check(CLI::Range(0, 232))->capture_default_str();
+  app.add_option("--log-level", options.log_level, "trace, debug, info, warn, error or off")
+      ->capture_default_str();
+  app.config_formatter(std::make_shared<YamlConfig>());
+  app.set_config("--config", "", "YAML file of option: value pairs (command-line flags win)");
+}
+
+std::optional<int> parse_command_line(CLI::App& app, int argc, char** argv) {
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp&) {
+    std::cout << app.help();
+    return 0;
+  } catch (const CLI::CallForAllHelp&) {
+    std::cout << app.help("", CLI::AppFormatMode::All);
+    return 0;
+  } catch (const CLI::ParseError& e) {
+    std::cerr << app.get_name() << ": error: " << e.what() << " (see --help)\n";
+    return 2;
+  }
+  return std::nullopt;
+}
+
+bool start_logging(const std::string& service, const ServiceOptions& options) {
+  if (setup_logging(service, options.log_level)) return true;
+  std::cerr << service << ": error: --log-level " << options.log_level
+            << " is not one of trace, debug, info, warn, error, off\n";
+  return false;
+}
+
+}  // namespace slam

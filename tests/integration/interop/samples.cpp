@@ -1,0 +1,279 @@
+#include "samples.hpp"
+
+namespace slam::interop {
+namespace {
+
+Point2 point(double x, double y) {
+  Point2 p;
+  p.x(x);
+  p.y(y);
+  return p;
+}
+
+Pose2 pose(double x, double y, double theta) {
+  Pose2 p;
+  p.x(x);
+  p.y(y);
+  p.theta(theta);
+  return p;
+}
+
+std::vector<Point2> points(size_t n, double scale) {
+  std::vector<Point2> out;
+  for (size_t i = 0; i < n; ++i) out.push_back(point(scale * static_cast<double>(i) + 0.125, -scale * static_cast<double>(i) - 1e-9));
+  return out;
+}
+
+std::vector<uint8_t> bytes(size_t n) {
+  std::vector<uint8_t> out(n);
+  for (size_t i = 0; i < n; ++i) out[i] = static_cast<uint8_t>((i * 37 + 11) & 0xff);
+  return out;
+}
+
+}  // namespace
+
+RobotObservation sample_robot_observation() {
+  RobotObservation s;
+  s.robot_id("robot-ä7");
+  s.seq(123456789012ULL);
+  s.stamp_ns(1763800000123456789LL);
+  s.protocol(PROTOCOL_V2);
+  s.pose(pose(1.5, -2.25, 3.0));
+  s.has_heading(true);
+  s.hits(points(500, 0.05));
+  s.misses(points(300, -0.02));
+  return s;
+}
+
+RobotState sample_robot_state() {
+  RobotState s;
+  s.robot_id("r2");
+  s.protocol(PROTOCOL_V2);
+  s.presence(PRESENCE_OFFLINE);
+  s.pose(pose(-1, 2, -0.5));
+  s.has_heading(true);
+  s.first_seen_ns(-5);
+  s.last_seen_ns(1763800000000000000LL);
+  s.messages(1ULL << 40);
+  s.points(77);
+  s.rejected(3);
+  s.battery(0.75f);
+  s.status("exploring");
+  return s;
+}
+
+GridSnapshot sample_grid_snapshot() {
+  GridSnapshot s;
+  s.layout_id(7);
+  s.version(99);
+  s.stamp_ns(42);
+  s.info().width(400);
+  s.info().height(300);
+  s.info().resolution(0.05);
+  s.info().origin(point(-10, -7.5));
+  s.info().inflation_radius(0.2);
+  s.cells(bytes(400 * 300));
+  return s;
+}
+
+GridPatch sample_grid_patch() {
+  GridPatch s;
+  s.layout_id(7);
+  s.version(100);
+  s.stamp_ns(43);
+  s.x0(10);
+  s.y0(20);
+  s.width(33);
+  s.height(17);
+  s.cells(bytes(33 * 17));
+  return s;
+}
+
+GridConfig sample_grid_config() {
+  GridConfig s;
+  s.request_id(5);
+  s.resolution(0.1);
+  s.origin(point(-3, -4));
+  s.width_m(30);
+  s.height_m(40);
+  s.inflation_radius(0.25);
+  s.legacy_mode(true);
+  return s;
+}
+
+MapEdit sample_map_edit() {
+  MapEdit s;
+  s.request_id(9);
+  s.kind(EDIT_RESET_ROBOT);
+  s.point(point(1.25, 2.5));
+  s.robot_id("robot-1");
+  return s;
+}
+
+MapFileRequest sample_map_file_request() {
+  MapFileRequest s;
+  s.request_id(11);
+  s.action(MAP_IMPORT);
+  s.yaml_path("/tmp/maps/office floor/map.yaml");
+  return s;
+}
+
+MapReply sample_map_reply() {
+  MapReply s;
+  s.request_id(11);
+  s.result(MAP_BAD_FILE);
+  s.message("map.yaml: resolution must be positive");
+  return s;
+}
+
+NavGoal sample_nav_goal() {
+  NavGoal s;
+  s.robot_id("*");
+  s.goal_id(3);
+  s.mode(GOAL_SQUARE);
+  s.target(point(2, 3));
+  s.square_size(1.5);
+  s.square_anchor(SQUARE_CENTRED);
+  return s;
+}
+
+RobotPath sample_robot_path() {
+  RobotPath s;
+  s.robot_id("r1");
+  s.goal_id(3);
+  s.mode(GOAL_PLANNED);
+  s.status(GOAL_STATUS_FAILED);
+  s.target(point(9, 9));
+  s.waypoints(points(64, 0.3));
+  s.current(12);
+  s.reason("goal blocked");
+  return s;
+}
+
+WaypointCommand sample_waypoint_command() {
+  WaypointCommand s;
+  s.robot_id("r1");
+  s.seq(77);
+  s.waypoint(point(0.5, -0.5));
+  s.remaining(points(20, 0.5));
+  return s;
+}
+
+PathRequest sample_path_request() {
+  PathRequest s;
+  s.request_id(1234);
+  s.client_id("slamctl:99");
+  s.start(point(0, 0));
+  s.goal(point(5, 5));
+  s.algorithm("rrtconnect");
+  s.time_budget_s(0.25);
+  return s;
+}
+
+PathReply sample_path_reply() {
+  PathReply s;
+  s.request_id(1234);
+  s.client_id("slamctl:99");
+  s.status(PLAN_NO_PATH);
+  s.reason("goal enclosed");
+  s.path(points(100, 0.1));
+  s.length_m(12.5);
+  s.planning_time_s(0.0125);
+  return s;
+}
+
+MqttTraffic sample_mqtt_traffic() {
+  MqttTraffic s;
+  s.seq(8);
+  s.stamp_ns(1);
+  s.direction(MQTT_OUTBOUND);
+  s.topic("v1/server/r1/cmd");
+  s.payload(bytes(1024));
+  s.payload_size(4096);
+  return s;
+}
+
+MqttRequest sample_mqtt_request() {
+  MqttRequest s;
+  s.request_id(4);
+  s.kind(MQTT_UNSUBSCRIBE);
+  s.topic("v1/robot/+/adv");
+  s.payload(bytes(5000));
+  s.qos(1);
+  s.retain(true);
+  return s;
+}
+
+MqttSubscriptions sample_mqtt_subscriptions() {
+  MqttSubscriptions s;
+  s.connected(true);
+  s.broker("tcp://127.0.0.1:1883");
+  s.filters().push_back("v1/robot/+/adv");
+  s.filters().push_back("v2/robot/#");
+  s.filters().push_back("site/ä/#");
+  return s;
+}
+
+SimControl sample_sim_control() {
+  SimControl s;
+  s.command_id(6);
+  s.kind(SIM_SET_NOISE);
+  s.count(3);
+  s.poses().push_back(pose(1, 1, 0.5));
+  s.poses().push_back(pose(2, 1, -0.5));
+  s.robot_id("sim-2");
+  s.world("office");
+  s.range_noise_sd(0.02);
+  s.dropout(0.05);
+  s.odometry_drift(0.01);
+  s.speed_factor(2);
+  return s;
+}
+
+SimWorld sample_sim_world() {
+  SimWorld s;
+  s.name("maze");
+  s.width_m(20);
+  s.height_m(15);
+  for (int i = 0; i < 200; ++i) {
+    Segment2 w;
+    w.a(point(i, 0));
+    w.b(point(i, 1.5 * i));
+    s.walls().push_back(w);
+  }
+  return s;
+}
+
+SimGroundTruth sample_sim_ground_truth() {
+  SimGroundTruth s;
+  s.stamp_ns(99);
+  s.paused(true);
+  for (int i = 0; i < 50; ++i) {
+    SimRobotTruth r;
+    r.robot_id("sim-" + std::to_string(i));
+    r.true_pose(pose(i, -i, 0.1 * i));
+    r.reported_pose(pose(i + 0.01, -i, 0.1 * i));
+    s.robots().push_back(r);
+  }
+  return s;
+}
+
+Heartbeat sample_heartbeat() {
+  Heartbeat s;
+  s.service("mapper");
+  s.instance_id("host:123");
+  s.pid(123);
+  s.host("host");
+  s.stamp_ns(5);
+  s.uptime_s(12.5);
+  s.state(SERVICE_STOPPING);
+  for (int i = 0; i < 10; ++i) {
+    Counter c;
+    c.name("counter_" + std::to_string(i));
+    c.value(-i * 1000000007LL);
+    s.counters().push_back(c);
+  }
+  return s;
+}
+
+}  // namespace slam::interop

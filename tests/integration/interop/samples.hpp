@@ -1,0 +1,29 @@
+#pragma once
+// One non-trivial sample per IDL topic type (Fast DDS types): long sequences, non-ASCII strings,
+// every enum away from its first value, keys set, so a lost or misaligned field shows.
+#include "common/fast_topics.hpp"
+
+namespace slam::interop {
+
+RobotObservation sample_robot_observation();
+RobotState sample_robot_state();
+GridSnapshot sample_grid_snapshot();
+GridPatch sample_grid_patch();
+GridConfig sample_grid_config();
+MapEdit sample_map_edit();
+MapFileRequest sample_map_file_request();
+MapReply sample_map_reply();
+NavGoal sample_nav_goal();
+RobotPath sample_robot_path();
+WaypointCommand sample_waypoint_command();
+PathRequest sample_path_request();
+PathReply sample_path_reply();
+MqttTraffic sample_mqtt_traffic();
+MqttRequest sample_mqtt_request();
+MqttSubscriptions sample_mqtt_subscriptions();
+SimControl sample_sim_control();
+SimWorld sample_sim_world();
+SimGroundTruth sample_sim_ground_truth();
+Heartbeat sample_heartbeat();
+
+}  // namespace slam::interop

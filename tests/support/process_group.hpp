@@ -1,0 +1,81 @@
+#pragma once
+// Process-group harness for integration tests: starts real processes (mosquitto, service binaries)
+// with their output in per-test log files, waits for readiness, and at teardown kills every process
+// and its children, even when the test failed. Logs are printed when the test failed.
+#include <sys/types.h>
+
+#include <chrono>
+#include <functional>
+#include <map>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace slam::testkit {
+
+using namespace std::chrono_literals;
+
+// A DDS domain id held exclusively by this process (flock on a file in /tmp) for its lifetime, so
+// parallel tests never share a domain.
+class DomainLease {
+ public:
+  DomainLease();
+  ~DomainLease();
+  DomainLease(const DomainLease&) = delete;
+  DomainLease& operator=(const DomainLease&) = delete;
+  int id() const { return id_; }
+
+ private:
+  int id_ = -1;
+  int fd_ = -1;
+};
+
+// A loopback TCP port that was free a moment ago.
+int free_tcp_port();
+bool wait_port_open(int port, std::chrono::milliseconds timeout);
+
+// Polls `pred` every `poll` until it is true or `timeout` passes.
+bool wait_until(const std::function<bool()>& pred, std::chrono::milliseconds timeout,
+                std::chrono::milliseconds poll = 10ms);
+
+// Path of a project binary (service, tool) in the build tree.
+std::string bin_path(const std::string& name);
+
+class ProcessGroup {
+ public:
+  ProcessGroup();
+  ~ProcessGroup();
+  ProcessGroup(const ProcessGroup&) = delete;
+  ProcessGroup& operator=(const ProcessGroup&) = delete;
+
+  // Starts argv[0] (a path, or a name searched in PATH) as `name`; stdout+stderr go to dir()/name.log.
+  pid_t start(const std::string& name, const std::vector<std::string>& argv);
+  // Starts mosquitto on a free loopback port with a generated config; returns the port once it accepts.
+  int start_mosquitto(const std::string& name = "mosquitto");
+  // Same config and port as an earlier start_mosquitto (for broker-restart tests).
+  void restart_mosquitto(const std::string& name, int port);
+
+  bool running(const std::string& name);
+  // Sends `sig` to the process's whole group and, for SIGKILL/SIGTERM, waits for it to exit.
+  void stop(const std::string& name, int sig = 15);
+  // Waits for the process to exit by itself; returns its exit code, or -1 on timeout / signal.
+  int wait_exit(const std::string& name, std::chrono::milliseconds timeout);
+  std::string log(const std::string& name) const;
+  const std::string& dir() const { return dir_; }
+  std::vector<pid_t> pids() const;
+  pid_t pid(const std::string& name) const { return children_.at(name).pid; }
+
+ private:
+  struct Child {
+    pid_t pid = -1;
+    bool reaped = false;
+    int status = 0;
+  };
+  bool reap(Child& c, bool block);
+  void write_mosquitto_config(const std::string& name, int port);
+
+  std::string dir_;
+  std::map<std::string, Child> children_;
+};
+
+}  // namespace slam::testkit
