@@ -25,3 +25,11 @@ if ((${#missing[@]})); then
   $SUDO apt-get update -qq
   DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
 fi
+
+# Configure once, then build incrementally (Ninja). SLAM_CMAKE_ARGS adds options, e.g. -DSLAM_SANITIZE=ON.
+BUILD_DIR="${1:-build}"
+cd "$(dirname "$0")/.."
+if [ ! -f "$BUILD_DIR/build.ninja" ]; then
+  cmake -S . -B "$BUILD_DIR" -G Ninja -DCMAKE_BUILD_TYPE=Release ${SLAM_CMAKE_ARGS:-}
+fi
+cmake --build "$BUILD_DIR" -j "$(nproc)"

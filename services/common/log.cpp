@@ -5,6 +5,7 @@
 namespace slam {
 
 bool setup_logging(std::string_view service, std::string_view level) {
+  spdlog::drop(std::string(service));  // set up again (tests, reconfiguration): replace, do not throw
   auto logger = spdlog::stderr_color_mt(std::string(service));
   logger->set_pattern("%Y-%m-%d %H:%M:%S.%e [%n] [%l] %v");
   spdlog::set_default_logger(logger);

@@ -13,6 +13,7 @@ void add_service_options(CLI::App& app, ServiceOptions& options) {
       ->capture_default_str();
   app.config_formatter(std::make_shared<YamlConfig>());
   app.set_config("--config", "", "YAML file of option: value pairs (command-line flags win)");
+  app.allow_config_extras(CLI::config_extras_mode::error);  // a misspelt key is an error, not ignored
 }
 
 std::optional<int> parse_command_line(CLI::App& app, int argc, char** argv) {

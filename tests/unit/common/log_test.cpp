@@ -1,0 +1,51 @@
+// Rate-limited logging and counters: what keeps a flood of bad input from flooding the log.
+#include <gtest/gtest.h>
+
+#include <thread>
+
+#include "common/counters.hpp"
+#include "common/log.hpp"
+
+namespace slam {
+namespace {
+
+TEST(RateLimiterTest, OneLinePerKeyPerIntervalAndCountsTheRest) {
+  RateLimiter limiter(std::chrono::milliseconds(50));
+  uint64_t suppressed = 99;
+  EXPECT_TRUE(limiter.allow("r1:bad_length", &suppressed));
+  EXPECT_EQ(suppressed, 0u);
+  EXPECT_FALSE(limiter.allow("r1:bad_length", &suppressed));
+  EXPECT_FALSE(limiter.allow("r1:bad_length", &suppressed));
+  EXPECT_TRUE(limiter.allow("r2:bad_length", &suppressed)) << "keys are independent";
+  std::this_thread::sleep_for(std::chrono::milliseconds(60));
+  EXPECT_TRUE(limiter.allow("r1:bad_length", &suppressed));
+  EXPECT_EQ(suppressed, 2u);
+}
+
+TEST(RateLimiterTest, ManyDistinctKeysStayBounded) {
+  RateLimiter limiter(std::chrono::hours(1));
+  uint64_t suppressed = 0;
+  for (int i = 0; i < 20000; ++i) EXPECT_TRUE(limiter.allow("robot-" + std::to_string(i), &suppressed));
+}
+
+TEST(CountersTest, SameNameSameCounterAndSnapshotInOrder) {
+  Counters counters;
+  auto& a = counters.get("messages_in");
+  auto& b = counters.get("rejected_bad_length");
+  bump(a, 3);
+  bump(counters.get("messages_in"));
+  bump(b);
+  const auto snap = counters.snapshot();
+  ASSERT_EQ(snap.size(), 2u);
+  EXPECT_EQ(snap[0].first, "messages_in");
+  EXPECT_EQ(snap[0].second, 4);
+  EXPECT_EQ(snap[1].second, 1);
+}
+
+TEST(LoggingTest, RejectsUnknownLevel) {
+  EXPECT_TRUE(setup_logging("test_ok", "debug"));
+  EXPECT_FALSE(setup_logging("test_bad", "loud"));
+}
+
+}  // namespace
+}  // namespace slam

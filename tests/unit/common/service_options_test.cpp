@@ -1,0 +1,84 @@
+// Command-line parsing shared by every service: flags, YAML config files and their precedence,
+// and the exit codes for --help and bad input.
+#include "common/service_options.hpp"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+namespace slam {
+namespace {
+
+struct Parsed {
+  std::optional<int> exit;
+  ServiceOptions options;
+  double rate = 10.0;
+  std::string broker = "tcp://127.0.0.1:1883";
+};
+
+Parsed parse(std::vector<std::string> args) {
+  Parsed p;
+  CLI::App app{"test"};
+  add_service_options(app, p.options);
+  app.add_option("--rate", p.rate);
+  app.add_option("--mqtt-broker", p.broker);
+  args.insert(args.begin(), "prog");
+  std::vector<char*> argv;
+  for (auto& a : args) argv.push_back(a.data());
+  p.exit = parse_command_line(app, static_cast<int>(argv.size()), argv.data());
+  return p;
+}
+
+std::string write_config(const std::string& text) {
+  const auto path = std::filesystem::temp_directory_path() / ("slam_options_test_" + std::to_string(::getpid()) + ".yaml");
+  std::ofstream(path) << text;
+  return path.string();
+}
+
+TEST(ServiceOptionsTest, DefaultsWithoutArguments) {
+  const Parsed p = parse({});
+  EXPECT_FALSE(p.exit);
+  EXPECT_EQ(p.options.domain, 0);
+  EXPECT_EQ(p.options.log_level, "info");
+}
+
+TEST(ServiceOptionsTest, HelpExitsZero) { EXPECT_EQ(parse({"--help"}).exit, 0); }
+
+TEST(ServiceOptionsTest, BadValuesExitTwo) {
+  EXPECT_EQ(parse({"--domain", "500"}).exit, 2);
+  EXPECT_EQ(parse({"--domain", "x"}).exit, 2);
+  EXPECT_EQ(parse({"--no-such-flag"}).exit, 2);
+}
+
+TEST(ServiceOptionsTest, YamlConfigSetsOptionsWithUnderscoresAndNesting) {
+  const std::string path = write_config("domain: 7\nrate: 2.5\nmqtt:\n  broker: tcp://10.0.0.1:1883\n");
+  const Parsed p = parse({"--config", path});
+  EXPECT_FALSE(p.exit);
+  EXPECT_EQ(p.options.domain, 7);
+  EXPECT_DOUBLE_EQ(p.rate, 2.5);
+  EXPECT_EQ(p.broker, "tcp://10.0.0.1:1883");
+  std::filesystem::remove(path);
+}
+
+TEST(ServiceOptionsTest, CommandLineWinsOverConfigFile) {
+  const std::string path = write_config("log_level: debug\ndomain: 7\n");
+  const Parsed p = parse({"--config", path, "--domain", "9"});
+  EXPECT_EQ(p.options.domain, 9);
+  EXPECT_EQ(p.options.log_level, "debug");
+  std::filesystem::remove(path);
+}
+
+TEST(ServiceOptionsTest, BadConfigFilesAreRejected) {
+  const std::string unknown = write_config("no_such_option: 1\n");
+  EXPECT_EQ(parse({"--config", unknown}).exit, 2);
+  const std::string broken = write_config("domain: [1, \n");
+  EXPECT_EQ(parse({"--config", broken}).exit, 2);
+  const std::string scalar = write_config("just text\n");
+  EXPECT_EQ(parse({"--config", scalar}).exit, 2);
+  EXPECT_EQ(parse({"--config", "/nonexistent/config.yaml"}).exit, 2);
+  std::filesystem::remove(unknown);
+}
+
+}  // namespace
+}  // namespace slam
