@@ -6,4 +6,4 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh build
 # Each integration test owns a DDS domain and broker port, so tests run in parallel.
-ctest --test-dir build --output-on-failure --timeout 600 -j "$(nproc)" "$@"
+ctest --test-dir build --output-on-failure --timeout 600 -j "$(nproc)" -LE bench "$@"

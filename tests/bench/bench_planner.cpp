@@ -1,0 +1,245 @@
+// bench_planner: the planner's speed targets on one deterministic 1024x1024 map (0.05 m cells):
+// A* corner to corner (<= 20 ms), RRTConnect + simplification (<= 50 ms, length within 10% of A*),
+// frontier extraction (<= 5 ms), and re-plans per second for a fleet of 100 robots.
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <random>
+
+#include "planner/frontiers.hpp"
+#include "planner/grid_astar.hpp"
+#include "planner/path_planner.hpp"
+
+namespace slam::planner {
+namespace {
+
+constexpr uint32_t kSize = 1024;
+constexpr double kResolution = 0.05;
+
+void fill(std::vector<uint8_t>& cells, int x0, int y0, int x1, int y1, uint8_t v) {
+  for (int y = std::max(0, y0); y <= std::min<int>(kSize - 1, y1); ++y) {
+    for (int x = std::max(0, x0); x <= std::min<int>(kSize - 1, x1); ++x) {
+      cells[static_cast<size_t>(y) * kSize + static_cast<size_t>(x)] = v;
+    }
+  }
+}
+
+// Seven long vertical walls, each with three 1.2 m doors, and random blocks up to 25% of the
+// area that are cleared again around doors and corners so the map stays connected corner to
+// corner; then inflation by two cells (0.1 m) as the mapper would flag it.
+PlanningGrid make_map() {
+  std::mt19937 rng(20240601);
+  std::vector<uint8_t> cells(static_cast<size_t>(kSize) * kSize, kCellFree);
+  struct Door {
+    int x;
+    int y;
+  };
+  std::vector<Door> doors;
+  for (int i = 1; i <= 7; ++i) {
+    const int x = i * 128;
+    fill(cells, x, 0, x + 3, kSize - 1, kCellOccupied);
+    for (int d = 0; d < 3; ++d) {
+      doors.push_back({x, 40 + static_cast<int>(rng() % (kSize - 80))});
+    }
+  }
+  const size_t target = cells.size() / 4;
+  size_t occupied = static_cast<size_t>(std::count(cells.begin(), cells.end(), kCellOccupied));
+  while (occupied < target) {
+    const int w = 3 + static_cast<int>(rng() % 14);
+    const int h = 3 + static_cast<int>(rng() % 14);
+    const int x = static_cast<int>(rng() % kSize);
+    const int y = static_cast<int>(rng() % kSize);
+    for (int yy = y; yy < std::min<int>(kSize, y + h); ++yy) {
+      for (int xx = x; xx < std::min<int>(kSize, x + w); ++xx) {
+        uint8_t& c = cells[static_cast<size_t>(yy) * kSize + static_cast<size_t>(xx)];
+        if (c != kCellOccupied) ++occupied;
+        c = kCellOccupied;
+      }
+    }
+  }
+  // Doors: a 24-cell opening with a cleared apron so blocks cannot seal it.
+  for (const Door& d : doors) fill(cells, d.x - 12, d.y - 12, d.x + 15, d.y + 12, kCellFree);
+  fill(cells, 0, 0, 20, 20, kCellFree);
+  fill(cells, kSize - 21, kSize - 21, kSize - 1, kSize - 1, kCellFree);
+  std::vector<uint8_t> inflated = cells;
+  for (int y = 0; y < static_cast<int>(kSize); ++y) {
+    for (int x = 0; x < static_cast<int>(kSize); ++x) {
+      if (cells[static_cast<size_t>(y) * kSize + static_cast<size_t>(x)] != kCellOccupied) continue;
+      for (int dy = -2; dy <= 2; ++dy) {
+        for (int dx = -2; dx <= 2; ++dx) {
+          const int nx = x + dx;
+          const int ny = y + dy;
+          if (nx < 0 || ny < 0 || nx >= static_cast<int>(kSize) || ny >= static_cast<int>(kSize) ||
+              dx * dx + dy * dy > 4) {
+            continue;
+          }
+          uint8_t& c = inflated[static_cast<size_t>(ny) * kSize + static_cast<size_t>(nx)];
+          if ((c & kCellStateMask) == kCellFree) c |= kCellInflated;
+        }
+      }
+    }
+  }
+  PlanningGrid grid;
+  if (!grid.reset(GridGeometry{kSize, kSize, kResolution, {0.0, 0.0}}, 1, 0, std::move(inflated))) {
+    return {};
+  }
+  return grid;
+}
+
+const PlanningGrid& bench_map() {
+  static const PlanningGrid grid = make_map();
+  return grid;
+}
+
+double blocked_fraction(const PlanningGrid& g) {
+  const auto n = std::count_if(g.cells().begin(), g.cells().end(), cell_blocked);
+  return static_cast<double>(n) / static_cast<double>(g.cells().size());
+}
+
+const Vec2 kStart{0.25, 0.25};
+const Vec2 kGoal{kSize * kResolution - 0.25, kSize* kResolution - 0.25};
+
+double astar_length() {
+  static const double length = [] {
+    PathPlanner p({});
+    return p.plan(bench_map(), {kStart, kGoal, "astar", 10.0}).length_m;
+  }();
+  return length;
+}
+
+void BM_AstarCornerToCorner(benchmark::State& state) {
+  const PlanningGrid& g = bench_map();
+  PathPlanner planner({});
+  PlanResult r;
+  for (auto _ : state) {
+    r = planner.plan(g, {kStart, kGoal, "astar", 10.0});
+    benchmark::DoNotOptimize(r.path.data());
+  }
+  if (!r.ok()) state.SkipWithError(r.reason.c_str());
+  state.counters["length_m"] = r.length_m;
+  state.counters["waypoints"] = static_cast<double>(r.path.size());
+  state.counters["blocked_fraction"] = blocked_fraction(g);
+}
+
+void BM_AstarSearchOnly(benchmark::State& state) {
+  const PlanningGrid& g = bench_map();
+  GridAstar astar;
+  std::vector<Cell> cells;
+  const Cell s = *g.cell_at(kStart);
+  const Cell t = *g.cell_at(kGoal);
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(astar.search(g, s, t, {}, cells));
+  }
+  state.counters["expanded"] = static_cast<double>(astar.last_expanded());
+  state.counters["cost_m"] = astar.last_cost() * kResolution;
+}
+
+void BM_OmplCornerToCorner(benchmark::State& state, const char* algorithm, double budget_s) {
+  const PlanningGrid& g = bench_map();
+  PathPlanner planner({});
+  const double reference = astar_length();
+  double ratio_sum = 0.0;
+  int found = 0;
+  int runs = 0;
+  for (auto _ : state) {
+    const PlanResult r = planner.plan(g, {kStart, kGoal, algorithm, budget_s});
+    ++runs;
+    if (r.ok()) {
+      ++found;
+      ratio_sum += r.length_m / reference;
+    }
+  }
+  state.counters["success_rate"] = runs > 0 ? static_cast<double>(found) / runs : 0.0;
+  state.counters["length_ratio_to_astar"] = found > 0 ? ratio_sum / found : 0.0;
+}
+
+void BM_FrontierExtraction(benchmark::State& state) {
+  // Explored: everything within 20 m of the map centre; the rest unknown.
+  std::vector<uint8_t> cells = bench_map().cells();
+  for (uint32_t y = 0; y < kSize; ++y) {
+    for (uint32_t x = 0; x < kSize; ++x) {
+      const double dx = (x - 512.0) * kResolution;
+      const double dy = (y - 512.0) * kResolution;
+      if (dx * dx + dy * dy > 400.0) cells[static_cast<size_t>(y) * kSize + x] = kCellUnknown;
+    }
+  }
+  PlanningGrid g;
+  if (!g.reset(GridGeometry{kSize, kSize, kResolution, {}}, 1, 0, std::move(cells))) {
+    state.SkipWithError("bad grid");
+    return;
+  }
+  FrontierMap frontiers;
+  std::vector<FrontierCluster> clusters;
+  for (auto _ : state) {
+    frontiers.rebuild(g);
+    frontiers.cluster(g, 4, clusters);
+    benchmark::DoNotOptimize(clusters.data());
+  }
+  state.counters["frontier_cells"] = static_cast<double>(frontiers.count());
+  state.counters["clusters"] = static_cast<double>(clusters.size());
+}
+
+void BM_FrontierPatchUpdate(benchmark::State& state) {
+  PlanningGrid g = bench_map();
+  FrontierMap frontiers;
+  frontiers.rebuild(g);
+  std::vector<FrontierCluster> clusters;
+  const CellBox box{500, 500, 64, 64};
+  for (auto _ : state) {
+    frontiers.update(g, box);
+    frontiers.cluster(g, 4, clusters);
+    benchmark::DoNotOptimize(clusters.data());
+  }
+}
+
+// One iteration = every one of 100 robots re-plans (A* + reduction) to its own random goal.
+void BM_Replans100Robots(benchmark::State& state) {
+  const PlanningGrid& g = bench_map();
+  const double max_leg_m = static_cast<double>(state.range(0));
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> any(0.0, kSize * kResolution);
+  auto free_point = [&](Vec2 near, double radius) {
+    for (;;) {
+      Vec2 p = radius > 0 ? Vec2{near.x + (any(rng) / (kSize * kResolution) * 2 - 1) * radius,
+                                 near.y + (any(rng) / (kSize * kResolution) * 2 - 1) * radius}
+                          : Vec2{any(rng), any(rng)};
+      const auto c = g.cell_at(p);
+      if (c && !g.blocked(*c)) return p;
+    }
+  };
+  std::vector<PathQuery> queries;
+  for (int i = 0; i < 100; ++i) {
+    const Vec2 s = free_point({}, 0.0);
+    queries.push_back({s, free_point(s, max_leg_m), "astar", 10.0});
+  }
+  PathPlanner planner({});
+  int ok = 0;
+  for (auto _ : state) {
+    for (const PathQuery& q : queries) ok += planner.plan(g, q).ok() ? 1 : 0;
+  }
+  state.SetItemsProcessed(static_cast<int64_t>(state.iterations()) * 100);
+  state.counters["replans_per_s"] =
+      benchmark::Counter(static_cast<double>(state.iterations()) * 100, benchmark::Counter::kIsRate);
+  state.counters["ok_fraction"] = static_cast<double>(ok) / (static_cast<double>(state.iterations()) * 100.0);
+}
+
+BENCHMARK(BM_AstarCornerToCorner)->Unit(benchmark::kMillisecond)->Repetitions(5)->ReportAggregatesOnly(true);
+BENCHMARK(BM_AstarSearchOnly)->Unit(benchmark::kMillisecond)->Repetitions(5)->ReportAggregatesOnly(true);
+BENCHMARK_CAPTURE(BM_OmplCornerToCorner, rrtconnect, "rrtconnect", 1.0)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(20)
+    ->Repetitions(3)
+    ->ReportAggregatesOnly(true);
+BENCHMARK_CAPTURE(BM_OmplCornerToCorner, prmstar_200ms, "prmstar", 0.2)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(5)
+    ->Repetitions(1);
+BENCHMARK(BM_FrontierExtraction)->Unit(benchmark::kMillisecond)->Repetitions(5)->ReportAggregatesOnly(true);
+BENCHMARK(BM_FrontierPatchUpdate)->Unit(benchmark::kMillisecond);
+// Legs up to 10 m (typical goal and frontier trips) and anywhere on the map (worst case).
+BENCHMARK(BM_Replans100Robots)->Arg(10)->Arg(0)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+}  // namespace slam::planner
+
+BENCHMARK_MAIN();
