@@ -1,0 +1,92 @@
+// Frontier assignment, blacklist and progress watch.
+#include "planner/frontier_assignment.hpp"
+
+#include <cmath>
+#include <queue>
+
+namespace slam::planner {
+
+Status validate(const ExplorerConfig& config) {
+  if (config.min_cluster_cells == 0) return Error{"explore.min_cluster_cells must be at least 1"};
+  if (!std::isfinite(config.gain_weight) || config.gain_weight < 0.0) {
+    return Error{"explore.gain_weight must be a finite number >= 0"};
+  }
+  if (!std::isfinite(config.progress_timeout_s) || config.progress_timeout_s <= 0.0) {
+    return Error{"explore.progress_timeout_s must be positive"};
+  }
+  if (!std::isfinite(config.progress_min_m) || config.progress_min_m <= 0.0) {
+    return Error{"explore.progress_min_m must be positive"};
+  }
+  if (!std::isfinite(config.blacklist_radius_m) || config.blacklist_radius_m < 0.0) {
+    return Error{"explore.blacklist_radius_m must be a finite number >= 0"};
+  }
+  return Status::ok();
+}
+
+std::vector<FrontierAssignment> assign_frontiers(std::span<const ExploringRobot> robots,
+                                                 std::span<const FrontierCluster> clusters,
+                                                 std::span<const uint8_t> eligible, const PlanningGrid& grid,
+                                                 double gain_weight, const PathCost& cost) {
+  struct Candidate {
+    double utility;  // exact when `exact`, otherwise an upper bound
+    size_t robot;    // index into robots
+    size_t cluster;
+    double cost;
+    bool exact;
+    bool operator<(const Candidate& o) const { return utility < o.utility; }
+  };
+  std::priority_queue<Candidate> queue;
+  for (size_t r = 0; r < robots.size(); ++r) {
+    for (size_t c = 0; c < clusters.size(); ++c) {
+      if (c < eligible.size() && eligible[c] == 0) continue;
+      const double gain = gain_weight * clusters[c].size * grid.resolution();
+      const double lower = distance(robots[r].position, grid.centre(clusters[c].target));
+      queue.push(Candidate{gain - lower, r, c, lower, false});
+    }
+  }
+  std::vector<bool> robot_done(robots.size(), false);
+  std::vector<bool> cluster_done(clusters.size(), false);
+  std::vector<FrontierAssignment> out;
+  while (!queue.empty() && out.size() < robots.size()) {
+    Candidate top = queue.top();
+    queue.pop();
+    if (robot_done[top.robot] || cluster_done[top.cluster]) continue;
+    if (top.exact) {
+      robot_done[top.robot] = true;
+      cluster_done[top.cluster] = true;
+      out.push_back(FrontierAssignment{robots[top.robot].robot, top.cluster,
+                                       grid.centre(clusters[top.cluster].target), top.cost});
+      continue;
+    }
+    const auto exact = cost(robots[top.robot].position, grid.centre(clusters[top.cluster].target));
+    if (!exact) continue;  // unreachable from this robot
+    const double gain = gain_weight * clusters[top.cluster].size * grid.resolution();
+    queue.push(Candidate{gain - *exact, top.robot, top.cluster, *exact, true});
+  }
+  return out;
+}
+
+bool FrontierBlacklist::contains(Vec2 p, double radius_m) const {
+  for (const Vec2& q : points_) {
+    if (distance(p, q) <= radius_m) return true;
+  }
+  return false;
+}
+
+void ProgressWatch::start(Vec2 target, Vec2 position, int64_t now_ns) {
+  target_ = target;
+  best_distance_ = distance(target, position);
+  last_progress_ns_ = now_ns;
+}
+
+bool ProgressWatch::stalled(Vec2 position, int64_t now_ns, const ExplorerConfig& config) {
+  const double d = distance(target_, position);
+  if (d <= best_distance_ - config.progress_min_m) {
+    best_distance_ = d;
+    last_progress_ns_ = now_ns;
+    return false;
+  }
+  return static_cast<double>(now_ns - last_progress_ns_) > config.progress_timeout_s * 1e9;
+}
+
+}  // namespace slam::planner

@@ -1,0 +1,138 @@
+// PathPlanner: request validation, dispatch and status reasons.
+#include "planner/path_planner.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <exception>
+
+#include "planner/path_reduction.hpp"
+
+namespace slam::planner {
+
+namespace {
+
+bool finite(Vec2 p) {
+  return std::isfinite(p.x) && std::isfinite(p.y);
+}
+
+std::string describe(Vec2 p) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "(%.3f, %.3f)", p.x, p.y);
+  return buf;
+}
+
+PlanResult failure(PlanStatus status, std::string reason) {
+  PlanResult r;
+  r.status = status;
+  r.reason = std::move(reason);
+  return r;
+}
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+}  // namespace
+
+Status validate(const PlannerConfig& config) {
+  if (!std::isfinite(config.unknown_cost_factor) || config.unknown_cost_factor < 1.0) {
+    return Error{"planner.unknown_cost_factor must be a finite number >= 1"};
+  }
+  if (!std::isfinite(config.max_time_budget_s) || config.max_time_budget_s <= 0.0) {
+    return Error{"planner.max_time_budget_s must be positive"};
+  }
+  return Status::ok();
+}
+
+PathPlanner::PathPlanner(const PlannerConfig& config) : config_(config), ompl_(config.ompl_seed) {}
+
+std::optional<PlanResult> PathPlanner::reject(const PlanningGrid& grid, const PathQuery& query) const {
+  if (!finite(query.start)) return failure(PlanStatus::InvalidRequest, "start is not finite");
+  if (!finite(query.goal)) return failure(PlanStatus::InvalidRequest, "goal is not finite");
+  if (query.algorithm != "astar" && !is_ompl_algorithm(query.algorithm)) {
+    return failure(PlanStatus::InvalidRequest, "unknown algorithm '" + query.algorithm +
+                                                   "' (expected astar, rrtconnect, rrtstar or prmstar)");
+  }
+  if (!std::isfinite(query.time_budget_s) || query.time_budget_s <= 0.0) {
+    return failure(PlanStatus::InvalidRequest, "time budget must be a positive number of seconds");
+  }
+  if (query.time_budget_s > config_.max_time_budget_s) {
+    return failure(PlanStatus::InvalidRequest, "time budget " + std::to_string(query.time_budget_s) +
+                                                   " s exceeds the limit " +
+                                                   std::to_string(config_.max_time_budget_s) + " s");
+  }
+  if (grid.empty()) return failure(PlanStatus::NoMap, "no map received yet");
+  const auto start = grid.cell_at(query.start);
+  if (!start) {
+    return failure(PlanStatus::InvalidRequest, "start " + describe(query.start) + " is outside the map");
+  }
+  const auto goal = grid.cell_at(query.goal);
+  if (!goal) {
+    return failure(PlanStatus::InvalidRequest, "goal " + describe(query.goal) + " is outside the map");
+  }
+  if (grid.impassable(*start, config_.unknown)) {
+    return failure(
+        PlanStatus::StartBlocked,
+        "start " + describe(query.start) +
+            (grid.unknown(*start) ? " is in unexplored space" : " is in an obstacle or too close to one"));
+  }
+  if (grid.impassable(*goal, config_.unknown)) {
+    return failure(
+        PlanStatus::GoalBlocked,
+        "goal " + describe(query.goal) +
+            (grid.unknown(*goal) ? " is in unexplored space" : " is in an obstacle or too close to one"));
+  }
+  return std::nullopt;
+}
+
+PlanResult PathPlanner::run_astar(const PlanningGrid& grid, Vec2 start, Vec2 goal) {
+  const AstarOptions options{config_.unknown, config_.unknown_cost_factor};
+  const PlanStatus status = astar_.search(grid, *grid.cell_at(start), *grid.cell_at(goal), options, cells_);
+  if (status != PlanStatus::Ok) {
+    return failure(status, status == PlanStatus::NoPath
+                               ? "no path from " + describe(start) + " to " + describe(goal)
+                               : std::string(to_string(status)));
+  }
+  PlanResult result;
+  result.status = PlanStatus::Ok;
+  result.path = reduce_cell_path(grid, cells_, start, goal, config_.unknown);
+  result.length_m = path_length(result.path);
+  return result;
+}
+
+PlanResult PathPlanner::plan_astar(const PlanningGrid& grid, Vec2 start, Vec2 goal) {
+  return plan(grid, PathQuery{start, goal, "astar", config_.max_time_budget_s});
+}
+
+PlanResult PathPlanner::plan(const PlanningGrid& grid, const PathQuery& query) {
+  const auto t0 = std::chrono::steady_clock::now();
+  if (auto rejected = reject(grid, query)) return std::move(*rejected);
+  PlanResult result;
+  if (query.algorithm == "astar") {
+    result = run_astar(grid, query.start, query.goal);
+  } else {
+    try {
+      OmplOutcome outcome =
+          ompl_.plan(grid, query.start, query.goal, query.algorithm, query.time_budget_s, config_.unknown);
+      if (outcome.status == PlanStatus::Ok) {
+        result.status = PlanStatus::Ok;
+        result.path = shortcut(grid, drop_collinear(outcome.path), config_.unknown);
+        result.length_m = path_length(result.path);
+      } else if (outcome.status == PlanStatus::Timeout &&
+                 run_astar(grid, query.start, query.goal).status == PlanStatus::NoPath) {
+        // OMPL cannot tell "no path" from "not found yet"; an exhaustive A* can.
+        result = failure(PlanStatus::NoPath,
+                         "no path from " + describe(query.start) + " to " + describe(query.goal));
+      } else {
+        result = failure(outcome.status, std::move(outcome.reason));
+      }
+    } catch (const std::exception& e) {
+      result = failure(PlanStatus::InvalidRequest, std::string("OMPL failed: ") + e.what());
+    }
+  }
+  result.planning_time_s = seconds_since(t0);
+  return result;
+}
+
+}  // namespace slam::planner

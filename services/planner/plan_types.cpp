@@ -1,0 +1,48 @@
+// Small geometry helpers behind plan_types.hpp.
+#include "planner/plan_types.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace slam::planner {
+
+double distance(Vec2 a, Vec2 b) {
+  return std::hypot(a.x - b.x, a.y - b.y);
+}
+
+double path_length(const std::vector<Vec2>& path) {
+  double total = 0.0;
+  for (size_t i = 1; i < path.size(); ++i) total += distance(path[i - 1], path[i]);
+  return total;
+}
+
+double distance_to_segment(Vec2 p, Vec2 a, Vec2 b) {
+  const double dx = b.x - a.x;
+  const double dy = b.y - a.y;
+  const double len2 = dx * dx + dy * dy;
+  if (len2 <= 0.0) return distance(p, a);
+  const double t = std::clamp(((p.x - a.x) * dx + (p.y - a.y) * dy) / len2, 0.0, 1.0);
+  return distance(p, Vec2{a.x + t * dx, a.y + t * dy});
+}
+
+std::string_view to_string(PlanStatus status) {
+  switch (status) {
+    case PlanStatus::Ok:
+      return "OK";
+    case PlanStatus::StartBlocked:
+      return "START_BLOCKED";
+    case PlanStatus::GoalBlocked:
+      return "GOAL_BLOCKED";
+    case PlanStatus::NoPath:
+      return "NO_PATH";
+    case PlanStatus::Timeout:
+      return "TIMEOUT";
+    case PlanStatus::NoMap:
+      return "NO_MAP";
+    case PlanStatus::InvalidRequest:
+      return "INVALID_REQUEST";
+  }
+  return "UNKNOWN";
+}
+
+}  // namespace slam::planner

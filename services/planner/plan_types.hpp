@@ -1,0 +1,56 @@
+#pragma once
+// Value types shared by every part of the planner core: points, cells and plan results.
+// They mirror the IDL (Point2, PlanStatus) so the service edge converts field by field.
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace slam::planner {
+
+struct Vec2 {
+  double x = 0.0;
+  double y = 0.0;
+};
+
+inline bool operator==(const Vec2& a, const Vec2& b) {
+  return a.x == b.x && a.y == b.y;
+}
+
+double distance(Vec2 a, Vec2 b);
+double path_length(const std::vector<Vec2>& path);
+// Distance from p to the segment [a, b].
+double distance_to_segment(Vec2 p, Vec2 a, Vec2 b);
+
+// Integer cell coordinates; (0, 0) is the lowest-left cell, y grows with rows.
+struct Cell {
+  int32_t x = 0;
+  int32_t y = 0;
+};
+
+inline bool operator==(const Cell& a, const Cell& b) {
+  return a.x == b.x && a.y == b.y;
+}
+
+// Mirrors slam::PlanStatus in nav.idl, one to one and in the same order.
+enum class PlanStatus : uint8_t { Ok, StartBlocked, GoalBlocked, NoPath, Timeout, NoMap, InvalidRequest };
+
+std::string_view to_string(PlanStatus status);
+
+// What to do with cells nobody has observed yet.
+enum class UnknownPolicy : uint8_t {
+  Blocked,  // never plan through unknown space
+  Allowed   // plan through it, each step costing `unknown_cost_factor` times more
+};
+
+struct PlanResult {
+  PlanStatus status = PlanStatus::NoMap;
+  std::string reason;      // empty when status is Ok
+  std::vector<Vec2> path;  // start .. goal in map coordinates, reduced to waypoints
+  double length_m = 0.0;
+  double planning_time_s = 0.0;
+
+  bool ok() const { return status == PlanStatus::Ok; }
+};
+
+}  // namespace slam::planner

@@ -1,0 +1,56 @@
+#pragma once
+// What the DDS reader callbacks hand to the planner loop: copies of the samples behind one mutex.
+// Callbacks only push (short, never blocking on planning); the loop waits here for work and takes
+// everything in one go. Grid messages keep their order: a snapshot discards the patches queued
+// before it, since it already contains them.
+#include <slam/fastdds/map.h>
+#include <slam/fastdds/nav.h>
+#include <slam/fastdds/robot.h>
+
+#include <chrono>
+#include <condition_variable>
+#include <map>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace slam::planner {
+
+struct IntakeBatch {
+  std::optional<slam::GridSnapshot> snapshot;  // the latest one, applied before `patches`
+  std::vector<slam::GridPatch> patches;        // in arrival order
+  bool patches_dropped = false;                // the queue overflowed: wait for the next snapshot
+  std::vector<slam::RobotState> states;        // the latest per robot
+  std::vector<slam::NavGoal> goals;            // in arrival order
+  std::vector<slam::PathRequest> requests;     // in arrival order
+
+  void clear();
+};
+
+class PlannerIntake {
+ public:
+  // Patches beyond this between two loop passes mean the loop cannot keep up; they are dropped
+  // and the grid waits for the next snapshot rather than growing memory without bound.
+  static constexpr size_t kMaxQueuedPatches = 10000;
+
+  void push_snapshot(const slam::GridSnapshot& sample);
+  void push_patch(const slam::GridPatch& sample);
+  void push_state(const slam::RobotState& sample);
+  void push_goal(const slam::NavGoal& sample);
+  void push_request(const slam::PathRequest& sample);
+
+  // Sleeps until `timeout` passes or a goal or path request arrives (they deserve an answer now).
+  void wait(std::chrono::milliseconds timeout);
+  // Moves everything queued into `out` (cleared first).
+  void drain(IntakeBatch& out);
+
+ private:
+  std::mutex mutex_;
+  std::condition_variable wake_;
+  bool urgent_ = false;
+  IntakeBatch pending_;
+  std::map<std::string, size_t> state_index_;  // robot_id -> index in pending_.states
+};
+
+}  // namespace slam::planner

@@ -1,0 +1,49 @@
+#pragma once
+// Conversions between the IDL types (Fast DDS generated classes, nav.idl / map.idl / robot.idl)
+// and the planner core's types. Only the service edge includes this; the core never sees IDL.
+// Incoming values are checked here (enums in range, strings non-empty) so the core gets only
+// values it can represent; geometry checks (NaN, outside the map) stay with the core.
+#include <slam/fastdds/map.h>
+#include <slam/fastdds/nav.h>
+#include <slam/fastdds/robot.h>
+
+#include <string>
+#include <vector>
+
+#include "common/result.hpp"
+#include "planner/goal_tracker.hpp"
+#include "planner/path_planner.hpp"
+#include "planner/planning_grid.hpp"
+
+namespace slam::planner {
+
+inline Vec2 to_vec2(const slam::Point2& p) { return Vec2{p.x(), p.y()}; }
+slam::Point2 to_point(Vec2 v);
+void to_points(const std::vector<Vec2>& in, std::vector<slam::Point2>& out);
+
+// Replaces `grid` with the snapshot; its cells are moved out of `snapshot`.
+Status apply_snapshot(slam::GridSnapshot& snapshot, PlanningGrid& grid);
+// Applies the patch when it follows the grid's version; returns the changed box.
+Result<CellBox> apply_patch(const slam::GridPatch& patch, PlanningGrid& grid);
+
+struct GoalCommand {
+  std::string robot_id;  // one robot or kAllRobots
+  Goal goal;
+};
+Result<GoalCommand> to_goal(const slam::NavGoal& sample);
+
+struct PathJob {
+  uint64_t request_id = 0;
+  std::string client_id;
+  PathQuery query;
+};
+PathJob to_job(const slam::PathRequest& sample);
+
+// A reply to `job` from `result` (reasons longer than the IDL bound are cut).
+void fill_reply(const PathJob& job, const PlanResult& result, slam::PathReply& out);
+slam::PlanStatus to_idl(PlanStatus status);
+
+// The robot's path as the viewer shows it.
+void fill_path(const std::string& robot_id, const GoalTracker& tracker, slam::RobotPath& out);
+
+}  // namespace slam::planner

@@ -1,0 +1,302 @@
+// PlannerNode: configure, and the loop pass that turns intake into core calls and samples.
+#include "planner/planner_node.hpp"
+
+#include <cctype>
+#include <cmath>
+#include <exception>
+#include <utility>
+
+#include "common/clock.hpp"
+#include "planner/planner_msgs.hpp"
+
+namespace slam::planner {
+
+namespace {
+
+std::string counter_name(PlanStatus status) {
+  std::string name = "replies_";
+  for (char c : to_string(status)) name += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return name;
+}
+
+}  // namespace
+
+PlannerNode::Metrics::Metrics(Counters& c)
+    : path_requests(c.get("path_requests")),
+      replies{},
+      goals_accepted(c.get("goals_accepted")),
+      goals_rejected(c.get("goals_rejected")),
+      goals_reached(c.get("goals_reached")),
+      goals_failed(c.get("goals_failed")),
+      replans(c.get("replans")),
+      waypoints_sent(c.get("waypoints_sent")),
+      paths_published(c.get("paths_published")),
+      robot_states(c.get("robot_states")),
+      robot_states_rejected(c.get("robot_states_rejected")),
+      snapshots(c.get("snapshots")),
+      snapshots_rejected(c.get("snapshots_rejected")),
+      patches_applied(c.get("patches_applied")),
+      patches_skipped(c.get("patches_skipped")),
+      write_failures(c.get("write_failures")) {
+  for (size_t i = 0; i < replies.size(); ++i) replies[i] = &c.get(counter_name(static_cast<PlanStatus>(i)));
+}
+
+PlannerNode::PlannerNode(const PlannerOptions& options, Counters& counters)
+    : options_(options),
+      period_(std::max<int64_t>(1, static_cast<int64_t>(std::lround(1000.0 / options.loop_rate_hz)))),
+      metrics_(counters),
+      fleet_(options.fleet) {}
+
+Result<std::unique_ptr<PlannerNode>> PlannerNode::create(const PlannerOptions& options, Counters& counters) {
+  std::unique_ptr<PlannerNode> node(new PlannerNode(options, counters));
+  if (auto s = node->configure(); !s) return Error{s.message()};
+  return node;
+}
+
+Status PlannerNode::configure() {
+  auto participant = dds::Participant::create(options_.service.domain, "slam-planner");
+  if (!participant) return Error{participant.message()};
+  participant_ = std::move(*participant);
+
+  auto replies = dds::make_writer(*participant_, dds::kPathReply);
+  if (!replies) return Error{replies.message()};
+  reply_writer_ = std::move(*replies);
+  auto waypoints = dds::make_writer(*participant_, dds::kWaypointCommand);
+  if (!waypoints) return Error{waypoints.message()};
+  waypoint_writer_ = std::move(*waypoints);
+  auto paths = dds::make_writer(*participant_, dds::kRobotPath);
+  if (!paths) return Error{paths.message()};
+  path_writer_ = std::move(*paths);
+
+  try {
+    workers_ = std::make_unique<RequestWorkers>(
+        options_.fleet.planner, options_.request_workers, options_.request_queue,
+        [this](const PathJob& job, const PlanResult& result) { reply(job, result); });
+  } catch (const std::exception& e) {
+    return Error{std::string("cannot start the path request workers: ") + e.what()};
+  }
+
+  // Readers last: from here on callbacks run, and everything they touch exists.
+  auto snapshots = dds::make_reader(*participant_, dds::kGridSnapshot,
+                                    [this](const slam::GridSnapshot& s, const auto&) { intake_.push_snapshot(s); });
+  if (!snapshots) return Error{snapshots.message()};
+  snapshot_reader_ = std::move(*snapshots);
+  auto patches = dds::make_reader(*participant_, dds::kGridPatch,
+                                  [this](const slam::GridPatch& p, const auto&) { intake_.push_patch(p); });
+  if (!patches) return Error{patches.message()};
+  patch_reader_ = std::move(*patches);
+  auto states = dds::make_reader(*participant_, dds::kRobotState,
+                                 [this](const slam::RobotState& s, const auto&) { intake_.push_state(s); });
+  if (!states) return Error{states.message()};
+  state_reader_ = std::move(*states);
+  auto goals = dds::make_reader(*participant_, dds::kNavGoal,
+                                [this](const slam::NavGoal& g, const auto&) { intake_.push_goal(g); });
+  if (!goals) return Error{goals.message()};
+  goal_reader_ = std::move(*goals);
+  auto requests = dds::make_reader(*participant_, dds::kPathRequest,
+                                   [this](const slam::PathRequest& r, const auto&) { intake_.push_request(r); });
+  if (!requests) return Error{requests.message()};
+  request_reader_ = std::move(*requests);
+  spdlog::info("planner ready on domain {} ({} request worker(s), loop {} Hz)", options_.service.domain,
+               options_.request_workers, options_.loop_rate_hz);
+  return Status::ok();
+}
+
+void PlannerNode::run_once() {
+  intake_.wait(period_);
+  intake_.drain(batch_);
+  apply_grid(batch_);
+  apply_states(batch_.states);
+  apply_goals(batch_.goals);
+  submit_requests(batch_.requests);
+  const int64_t now = monotonic_ns();
+  count_replans();
+  fleet_.tick(grid_, now);
+  publish_paths();
+  stream_waypoints(now);
+}
+
+void PlannerNode::apply_grid(IntakeBatch& batch) {
+  if (batch.snapshot) {
+    const uint32_t previous_layout = grid_.layout_id();
+    const bool first = grid_.empty();
+    if (auto s = apply_snapshot(*batch.snapshot, grid_); !s) {
+      bump(metrics_.snapshots_rejected);
+      warn("snapshot", "grid snapshot ignored: " + s.message());
+    } else {
+      bump(metrics_.snapshots);
+      awaiting_snapshot_ = false;
+      fleet_.grid_changed(grid_, std::nullopt);
+      if (first || grid_.layout_id() != previous_layout) {
+        const GridGeometry& g = grid_.geometry();
+        spdlog::info("grid layout {}: {}x{} cells of {} m, origin ({}, {}), version {}", grid_.layout_id(), g.width,
+                     g.height, g.resolution, g.origin.x, g.origin.y, grid_.version());
+      }
+    }
+  }
+  if (batch.patches_dropped && !awaiting_snapshot_) {
+    awaiting_snapshot_ = true;
+    warn("patch", "grid patches arrived faster than the loop applies them; waiting for the next snapshot");
+  }
+  for (const slam::GridPatch& patch : batch.patches) {
+    if (grid_.empty() || awaiting_snapshot_) {
+      bump(metrics_.patches_skipped);
+      continue;
+    }
+    // Already contained in the snapshot that overtook it.
+    if (patch.layout_id() == grid_.layout_id() && patch.version() <= grid_.version()) continue;
+    auto box = apply_patch(patch, grid_);
+    if (!box) {
+      bump(metrics_.patches_skipped);
+      awaiting_snapshot_ = true;
+      warn("patch", box.message() + "; waiting for the next snapshot");
+      continue;
+    }
+    bump(metrics_.patches_applied);
+    fleet_.grid_changed(grid_, *box);
+  }
+}
+
+void PlannerNode::apply_states(const std::vector<slam::RobotState>& states) {
+  for (const slam::RobotState& s : states) {
+    const std::string id = s.robot_id().to_string();
+    const Vec2 position{s.pose().x(), s.pose().y()};
+    if (id.empty() || id == kAllRobots) {
+      bump(metrics_.robot_states_rejected);
+      warn("state:" + id, "robot state ignored: robot_id '" + id + "' is not a robot's name");
+      continue;
+    }
+    if (!std::isfinite(position.x) || !std::isfinite(position.y)) {
+      bump(metrics_.robot_states_rejected);
+      warn("state:" + id, "robot '" + id + "': position is not finite, state ignored");
+      continue;
+    }
+    bump(metrics_.robot_states);
+    if (robots_.insert(id).second) spdlog::info("robot '{}' first seen at ({}, {})", id, position.x, position.y);
+    fleet_.observe(id, position);
+  }
+}
+
+void PlannerNode::apply_goals(const std::vector<slam::NavGoal>& goals) {
+  for (const slam::NavGoal& sample : goals) {
+    const std::string id = sample.robot_id().to_string();
+    auto command = to_goal(sample);
+    if (!command) {
+      reject_goal(id, sample, command.message());
+      continue;
+    }
+    if (auto s = fleet_.set_goal(command->robot_id, command->goal); !s) {
+      reject_goal(id, sample, s.message());
+      continue;
+    }
+    bump(metrics_.goals_accepted);
+    const size_t count = id == kAllRobots ? robots_.size() : 1;
+    spdlog::info("goal {} (mode {}) for robot '{}' ({} robot(s)), target ({}, {})", sample.goal_id(),
+                 static_cast<uint32_t>(sample.mode()), id, count, sample.target().x(), sample.target().y());
+  }
+}
+
+void PlannerNode::reject_goal(const std::string& robot_id, const slam::NavGoal& sample, const std::string& reason) {
+  bump(metrics_.goals_rejected);
+  warn("goal:" + robot_id, "goal " + std::to_string(sample.goal_id()) + " for robot '" + robot_id +
+                               "' rejected: " + reason);
+  // The robot path is where a goal's outcome is read: say there why this one did not start.
+  std::vector<std::string> targets;
+  if (robot_id == kAllRobots) {
+    targets.assign(robots_.begin(), robots_.end());
+  } else if (!robot_id.empty()) {
+    targets.push_back(robot_id);
+  }
+  for (const std::string& id : targets) {
+    slam::RobotPath out;
+    out.robot_id(id);
+    out.goal_id(sample.goal_id());
+    out.mode(static_cast<uint32_t>(sample.mode()) <= static_cast<uint32_t>(slam::GOAL_STOP) ? sample.mode()
+                                                                                          : slam::GOAL_IDLE);
+    out.status(slam::GOAL_STATUS_FAILED);
+    out.target(sample.target());
+    out.reason(reason);
+    bump(path_writer_->write(out) ? metrics_.paths_published : metrics_.write_failures);
+  }
+}
+
+void PlannerNode::submit_requests(const std::vector<slam::PathRequest>& requests) {
+  if (requests.empty()) return;
+  if (grid_.revision() != handed_revision_) {
+    workers_->set_grid(std::make_shared<const PlanningGrid>(grid_));
+    handed_revision_ = grid_.revision();
+  }
+  for (const slam::PathRequest& r : requests) {
+    bump(metrics_.path_requests);
+    workers_->submit(to_job(r));
+  }
+}
+
+void PlannerNode::count_replans() {
+  // A robot that still has waypoints but wants a plan strayed or lost its path to the map.
+  if (grid_.empty()) return;
+  for (const std::string& id : robots_) {
+    const GoalTracker* t = fleet_.tracker(id);
+    if (t != nullptr && t->needs_plan() && !t->waypoints().empty()) {
+      bump(metrics_.replans);
+      spdlog::info("robot '{}': re-planning goal {} (path blocked or robot off its path)", id, t->goal().goal_id);
+    }
+  }
+}
+
+void PlannerNode::publish_paths() {
+  for (const std::string& id : fleet_.take_changed()) {
+    const GoalTracker* t = fleet_.tracker(id);
+    if (t == nullptr) continue;
+    fill_path(id, *t, path_);
+    bump(path_writer_->write(path_) ? metrics_.paths_published : metrics_.write_failures);
+    auto [it, inserted] = reported_status_.try_emplace(id, t->status());
+    if (!inserted && it->second == t->status()) continue;
+    it->second = t->status();
+    if (t->status() == GoalStatus::Reached) {
+      bump(metrics_.goals_reached);
+      spdlog::info("robot '{}' reached goal {}", id, t->goal().goal_id);
+    } else if (t->status() == GoalStatus::Failed) {
+      bump(metrics_.goals_failed);
+      warn("failed:" + id, "robot '" + id + "' failed goal " + std::to_string(t->goal().goal_id) + ": " + t->reason());
+    }
+  }
+}
+
+void PlannerNode::stream_waypoints(int64_t now_ns) {
+  fleet_.due_waypoints(now_ns, due_);
+  for (const DueWaypoint& d : due_) {
+    command_.robot_id(d.robot_id);
+    command_.seq(++waypoint_seq_[d.robot_id]);
+    command_.waypoint(to_point(d.waypoint));
+    to_points(d.remaining, command_.remaining());
+    bump(waypoint_writer_->write(command_) ? metrics_.waypoints_sent : metrics_.write_failures);
+  }
+}
+
+void PlannerNode::reply(const PathJob& job, const PlanResult& result) {
+  slam::PathReply out;
+  fill_reply(job, result, out);
+  if (!reply_writer_->write(out)) bump(metrics_.write_failures);
+  bump(*metrics_.replies[static_cast<size_t>(result.status)]);
+  if (result.ok()) {
+    spdlog::debug("path request {} from '{}': {} m in {} s", job.request_id, job.client_id, result.length_m,
+                  result.planning_time_s);
+  } else {
+    warn("request:" + job.client_id, "path request " + std::to_string(job.request_id) + " from '" +
+                                         job.client_id + "': " + std::string(to_string(result.status)) + ": " +
+                                         result.reason);
+  }
+}
+
+void PlannerNode::warn(const std::string& key, const std::string& line) {
+  uint64_t suppressed = 0;
+  if (!limiter_.allow(key, &suppressed)) return;
+  if (suppressed > 0) {
+    spdlog::warn("{} ({} similar lines suppressed)", line, suppressed);
+  } else {
+    spdlog::warn("{}", line);
+  }
+}
+
+}  // namespace slam::planner

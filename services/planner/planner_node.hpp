@@ -1,0 +1,109 @@
+#pragma once
+// slam-planner's DDS edge: reads grids, robot states, goals and path requests into a locked intake;
+// one loop pass drains it into the core (PlanningGrid, Fleet), then writes waypoint commands and
+// robot paths. Path requests go to RequestWorkers, which write their replies themselves.
+#include <atomic>
+#include <array>
+#include <chrono>
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "common/counters.hpp"
+#include "common/fast_topics.hpp"
+#include "common/log.hpp"
+#include "common/result.hpp"
+#include "planner/fleet.hpp"
+#include "planner/planner_intake.hpp"
+#include "planner/planner_options.hpp"
+#include "planner/request_workers.hpp"
+
+namespace slam::planner {
+
+class PlannerNode {
+ public:
+  // Configure: participant, writers, request workers, readers. A failure undoes what was done.
+  static Result<std::unique_ptr<PlannerNode>> create(const PlannerOptions& options, Counters& counters);
+  PlannerNode(const PlannerNode&) = delete;
+  PlannerNode& operator=(const PlannerNode&) = delete;
+
+  dds::Participant& participant() { return *participant_; }
+
+  // One loop pass: waits up to one loop period (less when a goal or request arrives), applies
+  // what arrived, ticks the fleet, then writes robot paths and due waypoints.
+  void run_once();
+
+ private:
+  // The heartbeat's view of the service.
+  struct Metrics {
+    explicit Metrics(Counters& c);
+    std::atomic<int64_t>& path_requests;
+    std::array<std::atomic<int64_t>*, 7> replies;  // by PlanStatus
+    std::atomic<int64_t>& goals_accepted;
+    std::atomic<int64_t>& goals_rejected;
+    std::atomic<int64_t>& goals_reached;
+    std::atomic<int64_t>& goals_failed;
+    std::atomic<int64_t>& replans;
+    std::atomic<int64_t>& waypoints_sent;
+    std::atomic<int64_t>& paths_published;
+    std::atomic<int64_t>& robot_states;
+    std::atomic<int64_t>& robot_states_rejected;
+    std::atomic<int64_t>& snapshots;
+    std::atomic<int64_t>& snapshots_rejected;
+    std::atomic<int64_t>& patches_applied;
+    std::atomic<int64_t>& patches_skipped;
+    std::atomic<int64_t>& write_failures;
+  };
+
+  PlannerNode(const PlannerOptions& options, Counters& counters);
+  Status configure();
+
+  void apply_grid(IntakeBatch& batch);
+  void apply_states(const std::vector<slam::RobotState>& states);
+  void apply_goals(const std::vector<slam::NavGoal>& goals);
+  void reject_goal(const std::string& robot_id, const slam::NavGoal& sample, const std::string& reason);
+  void submit_requests(const std::vector<slam::PathRequest>& requests);
+  void count_replans();
+  void publish_paths();
+  void stream_waypoints(int64_t now_ns);
+  // Runs on worker threads.
+  void reply(const PathJob& job, const PlanResult& result);
+  void warn(const std::string& key, const std::string& line);
+
+  PlannerOptions options_;
+  std::chrono::milliseconds period_;
+  Metrics metrics_;
+  RateLimiter limiter_;
+
+  // Loop state: touched by the loop thread only.
+  PlanningGrid grid_;
+  Fleet fleet_;
+  bool awaiting_snapshot_ = false;
+  uint64_t handed_revision_ = 0;  // grid revision the request workers have
+  std::set<std::string> robots_;
+  std::map<std::string, uint64_t> waypoint_seq_;
+  std::map<std::string, GoalStatus> reported_status_;
+  IntakeBatch batch_;
+  std::vector<DueWaypoint> due_;
+  slam::WaypointCommand command_;
+  slam::RobotPath path_;
+
+  PlannerIntake intake_;
+  // Destroyed bottom-up: readers stop first, then the workers answer what is queued, then the
+  // writers and the participant go.
+  std::unique_ptr<dds::Participant> participant_;
+  std::unique_ptr<dds::Writer<slam::PathReply>> reply_writer_;
+  std::unique_ptr<dds::Writer<slam::WaypointCommand>> waypoint_writer_;
+  std::unique_ptr<dds::Writer<slam::RobotPath>> path_writer_;
+  std::unique_ptr<RequestWorkers> workers_;
+  std::unique_ptr<dds::Reader<slam::GridSnapshot>> snapshot_reader_;
+  std::unique_ptr<dds::Reader<slam::GridPatch>> patch_reader_;
+  std::unique_ptr<dds::Reader<slam::RobotState>> state_reader_;
+  std::unique_ptr<dds::Reader<slam::NavGoal>> goal_reader_;
+  std::unique_ptr<dds::Reader<slam::PathRequest>> request_reader_;
+};
+
+}  // namespace slam::planner

@@ -1,0 +1,75 @@
+// CLI11 binding and validation of PlannerOptions.
+#include "planner/planner_options.hpp"
+
+#include <cmath>
+#include <map>
+#include <string>
+
+namespace slam::planner {
+
+void add_planner_options(CLI::App& app, PlannerOptions& o) {
+  add_service_options(app, o.service);
+
+  TrackerConfig& goals = o.fleet.goals;
+  app.add_option("--goals-reach-tolerance-m", goals.reach_tolerance_m,
+                 "a waypoint this close (m) counts as reached")
+      ->capture_default_str();
+  app.add_option("--goals-stray-threshold-m", goals.stray_threshold_m,
+                 "a robot further than this (m) off its path segment gets a new plan")
+      ->capture_default_str();
+  app.add_option("--goals-resend-period-s", goals.resend_period_s,
+                 "an unchanged waypoint is sent again this often (s); legacy robots have no ack")
+      ->capture_default_str();
+
+  PlannerConfig& planner = o.fleet.planner;
+  const std::map<std::string, UnknownPolicy> policies{{"blocked", UnknownPolicy::Blocked},
+                                                      {"allowed", UnknownPolicy::Allowed}};
+  app.add_option("--planner-unknown", planner.unknown, "unexplored cells: blocked or allowed")
+      ->transform(CLI::CheckedTransformer(policies, CLI::ignore_case))
+      ->default_str("blocked");
+  app.add_option("--planner-unknown-cost-factor", planner.unknown_cost_factor,
+                 "A* step cost multiplier into unexplored cells when allowed (>= 1)")
+      ->capture_default_str();
+  app.add_option("--planner-ompl-seed", planner.ompl_seed, "OMPL random seed (repeatable sampling)")
+      ->capture_default_str();
+  app.add_option("--planner-max-time-budget-s", planner.max_time_budget_s,
+                 "path requests asking for more time (s) are refused")
+      ->capture_default_str();
+
+  ExplorerConfig& explore = o.fleet.explore;
+  app.add_option("--explore-min-cluster-cells", explore.min_cluster_cells,
+                 "frontier clusters smaller than this are ignored")
+      ->capture_default_str();
+  app.add_option("--explore-gain-weight", explore.gain_weight,
+                 "metres of travel one metre of frontier is worth")
+      ->capture_default_str();
+  app.add_option("--explore-progress-timeout-s", explore.progress_timeout_s,
+                 "a robot not getting closer to its frontier this long gives it up")
+      ->capture_default_str();
+  app.add_option("--explore-progress-min-m", explore.progress_min_m,
+                 "getting this much closer (m) counts as progress")
+      ->capture_default_str();
+  app.add_option("--explore-blacklist-radius-m", explore.blacklist_radius_m,
+                 "frontiers this close (m) to a given-up one are skipped")
+      ->capture_default_str();
+
+  app.add_option("--loop-rate-hz", o.loop_rate_hz, "goal and waypoint loop rate")->capture_default_str();
+  app.add_option("--request-workers", o.request_workers, "threads answering path requests")
+      ->capture_default_str();
+  app.add_option("--request-queue", o.request_queue, "path requests queued before new ones are refused")
+      ->capture_default_str();
+}
+
+Status validate(const PlannerOptions& o) {
+  if (auto s = validate(o.fleet); !s) return s;
+  if (!std::isfinite(o.loop_rate_hz) || o.loop_rate_hz < 1.0 || o.loop_rate_hz > 1000.0) {
+    return Error{"loop_rate_hz must be between 1 and 1000"};
+  }
+  if (o.request_workers == 0 || o.request_workers > 16) {
+    return Error{"request_workers must be between 1 and 16"};
+  }
+  if (o.request_queue == 0) return Error{"request_queue must be at least 1"};
+  return Status::ok();
+}
+
+}  // namespace slam::planner

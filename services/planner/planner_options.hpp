@@ -1,0 +1,30 @@
+#pragma once
+// slam-planner's configuration: the core's FleetConfig plus what only the service edge needs (loop
+// rate, path-request workers and queue), with defaults, CLI11/YAML binding and one validator.
+// Flags are named after the core's keys: `goals.reach_tolerance_m` is --goals-reach-tolerance-m
+// on the command line and `goals: {reach_tolerance_m: 0.15}` in a --config file.
+#include <CLI/CLI.hpp>
+
+#include <cstdint>
+
+#include "common/result.hpp"
+#include "common/service_options.hpp"
+#include "planner/fleet.hpp"
+
+namespace slam::planner {
+
+struct PlannerOptions {
+  ServiceOptions service;
+  FleetConfig fleet;
+  double loop_rate_hz = 20.0;     // goal ticks, waypoint streaming and path publishing
+  uint32_t request_workers = 1;   // threads answering PathRequests, each with its own planner
+  uint32_t request_queue = 64;    // queued PathRequests beyond this are answered TIMEOUT at once
+};
+
+// Adds the common flags and every planner flag to `app`, bound to `options`.
+void add_planner_options(CLI::App& app, PlannerOptions& options);
+
+// Ok, or the first bad key with the reason.
+Status validate(const PlannerOptions& options);
+
+}  // namespace slam::planner

@@ -1,0 +1,99 @@
+#pragma once
+// The planner's copy of the mapper's class grid (GridSnapshot + GridPatch in map.idl), with the
+// cell tests every planner shares: one octet per cell, row-major, row 0 the lowest y.
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "common/result.hpp"
+#include "planner/plan_types.hpp"
+
+namespace slam::planner {
+
+// Cell octet layout, the same values as the CELL_* constants in map.idl.
+inline constexpr uint8_t kCellUnknown = 0;
+inline constexpr uint8_t kCellFree = 1;
+inline constexpr uint8_t kCellOccupied = 2;
+inline constexpr uint8_t kCellStateMask = 3;
+inline constexpr uint8_t kCellInflated = 4;
+inline constexpr uint8_t kCellObstructed = 8;
+
+struct GridGeometry {
+  uint32_t width = 0;       // cells
+  uint32_t height = 0;      // cells
+  double resolution = 0.0;  // metres per cell
+  Vec2 origin;              // map position of cell (0, 0)'s lower-left corner
+};
+
+// A rectangle of cells, used for patches and for "what changed".
+struct CellBox {
+  uint32_t x0 = 0;
+  uint32_t y0 = 0;
+  uint32_t width = 0;
+  uint32_t height = 0;
+};
+
+inline bool cell_blocked(uint8_t c) {
+  return (c & kCellStateMask) == kCellOccupied || (c & (kCellInflated | kCellObstructed)) != 0;
+}
+inline bool cell_unknown(uint8_t c) {
+  return (c & kCellStateMask) == kCellUnknown;
+}
+inline bool cell_free(uint8_t c) {
+  return (c & kCellStateMask) == kCellFree;
+}
+
+class PlanningGrid {
+ public:
+  // Replaces the whole grid (a snapshot). Rejects empty or inconsistent layouts.
+  Status reset(const GridGeometry& geometry, uint32_t layout_id, uint64_t version,
+               std::vector<uint8_t> cells);
+  // Applies a patch: new octets for `box`, row-major. Only in order (version == last + 1) and for
+  // the same layout; otherwise the caller waits for the next snapshot.
+  Status apply_patch(uint32_t layout_id, uint64_t version, const CellBox& box,
+                     std::span<const uint8_t> cells);
+
+  bool empty() const { return cells_.empty(); }
+  const GridGeometry& geometry() const { return geometry_; }
+  int32_t width() const { return static_cast<int32_t>(geometry_.width); }
+  int32_t height() const { return static_cast<int32_t>(geometry_.height); }
+  double resolution() const { return geometry_.resolution; }
+  uint32_t layout_id() const { return layout_id_; }
+  uint64_t version() const { return version_; }
+  // Bumped by every reset and patch, so caches know when to refresh.
+  uint64_t revision() const { return revision_; }
+  const std::vector<uint8_t>& cells() const { return cells_; }
+
+  bool contains(Cell c) const { return c.x >= 0 && c.y >= 0 && c.x < width() && c.y < height(); }
+  size_t index(Cell c) const { return static_cast<size_t>(c.y) * geometry_.width + static_cast<size_t>(c.x); }
+  Cell cell_of(size_t index) const {
+    return Cell{static_cast<int32_t>(index % geometry_.width), static_cast<int32_t>(index / geometry_.width)};
+  }
+  uint8_t at(Cell c) const { return cells_[index(c)]; }
+  bool blocked(Cell c) const { return cell_blocked(at(c)); }
+  bool unknown(Cell c) const { return cell_unknown(at(c)); }
+  // Blocked, or unknown when the policy forbids unknown space.
+  bool impassable(Cell c, UnknownPolicy policy) const {
+    const uint8_t v = at(c);
+    return cell_blocked(v) || (policy == UnknownPolicy::Blocked && cell_unknown(v));
+  }
+
+  // The cell containing a map point, or nothing when the point lies outside the grid.
+  std::optional<Cell> cell_at(Vec2 p) const;
+  Vec2 centre(Cell c) const;
+  // Map coordinates in cell units relative to the origin (cell (i, j) spans [i, i+1) x [j, j+1)).
+  Vec2 to_grid(Vec2 p) const;
+
+  // Writes the octets (for tests and tools that build grids by hand).
+  void set(Cell c, uint8_t value);
+
+ private:
+  GridGeometry geometry_;
+  uint32_t layout_id_ = 0;
+  uint64_t version_ = 0;
+  uint64_t revision_ = 0;
+  std::vector<uint8_t> cells_;
+};
+
+}  // namespace slam::planner

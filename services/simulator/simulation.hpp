@@ -1,0 +1,96 @@
+#pragma once
+// The fleet: N simulated robots in one world, stepped with a fixed dt. Owns spawning (given or
+// random free poses), removal, pause, random-walk targets, wall and robot-robot collisions, and
+// the reports due each step. Deterministic for a seed: robot k draws from its own generator.
+#include <cstdint>
+#include <optional>
+#include <random>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "common/result.hpp"
+#include "simulator/config.hpp"
+#include "simulator/grid.hpp"
+#include "simulator/report.hpp"
+#include "simulator/world.hpp"
+
+namespace slam::sim {
+
+struct Robot {
+  std::string id;
+  uint64_t serial = 0;  // spawn order from 1; seeds the generator with the simulation seed
+  Pose true_pose;
+  Pose reported_pose;  // odometry estimate; waypoints are in this frame
+  std::optional<Vec2> waypoint;
+  double waypoint_deadline_s = 0.0;  // random walk gives up on a target after this time
+  double next_report_s = 0.0;
+  std::mt19937_64 rng;
+};
+
+class Simulation {
+ public:
+  static Result<Simulation> create(World world, SimulationConfig config);
+
+  const World& world() const { return world_; }
+  const SimulationConfig& config() const { return config_; }
+  double time() const { return time_s_; }
+  std::span<const Robot> robots() const { return robots_; }
+  const Robot* find(std::string_view id) const;
+
+  // Places a robot at `pose` (true and reported). An empty id becomes "sim-<serial>". Fails when
+  // the id is taken or the pose is not free (in a wall, off the world, overlapping a robot).
+  Result<std::string> spawn(Pose pose, std::string id = {});
+  // `count` robots at random free poses with random headings; all or none are added.
+  Result<std::vector<std::string>> spawn_random(size_t count);
+  // False when no robot has that id.
+  bool remove(std::string_view id);
+  // Replaces the world and moves every robot to a random free pose (ids kept, odometry reset).
+  Status set_world(World world);
+
+  // Target in the robot's own (reported) frame, as a server sends it.
+  Status set_waypoint(std::string_view id, Vec2 target);
+  Status clear_waypoint(std::string_view id);
+
+  void pause() { paused_ = true; }
+  void resume() { paused_ = false; }
+  bool paused() const { return paused_; }
+  void set_random_walk(bool on) { config_.random_walk = on; }
+  Status set_speed_factor(double factor);
+  // Range noise (m), dropout probability, odometry drift per metre; validated together.
+  Status set_noise(double range_noise_sd, double dropout, double drift_per_metre);
+
+  // Whole steps to run for `wall_seconds` of real time at the speed factor (the remainder carries).
+  size_t steps_for(double wall_seconds);
+
+  // Advances one step of dt (nothing while paused) and returns the reports due in it, valid until
+  // the next call. No allocation once every robot has reported once.
+  std::span<const RobotReport> step();
+
+  // Nearest obstacle along a unit-length beam: walls and other robots' discs (robot index `self`
+  // is ignored); max_range when nothing is closer.
+  double cast(Vec2 origin, Vec2 dir, double max_range, size_t self) const;
+
+ private:
+  Simulation(World world, SimulationConfig config);
+  bool pose_free(Vec2 p, size_t ignore) const;
+  std::optional<Pose> random_free_pose(const World& w, const std::vector<Vec2>& others);
+  void rebuild_robot_index();
+  void pick_random_target(Robot& r);
+  void move(size_t i);
+  bool robots_allow(size_t i, Vec2 from, Vec2 to) const;
+
+  World world_;
+  SimulationConfig config_;
+  std::mt19937_64 spawn_rng_;
+  std::vector<Robot> robots_;
+  Buckets robot_index_;
+  std::vector<RobotReport> reports_;
+  double time_s_ = 0.0;
+  double wall_backlog_s_ = 0.0;
+  uint64_t next_serial_ = 1;
+  bool paused_ = false;
+};
+
+}  // namespace slam::sim

@@ -1,0 +1,173 @@
+// Fleet: goal fan-out, waypoint streaming, and a whole exploration run on a hidden world where
+// simulated robots reveal what they can see and drive to the waypoints they are given.
+#include "planner/fleet.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "grid_builder.hpp"
+#include "planner/line_of_sight.hpp"
+
+namespace slam::planner {
+namespace {
+
+constexpr int64_t kSecond = 1'000'000'000;
+
+TEST(Fleet, GoalsForAllRobotsReachEachKnownRobot) {
+  Fleet fleet({});
+  fleet.observe("a", {0, 0});
+  fleet.observe("b", {1, 1});
+  ASSERT_TRUE(fleet.set_goal(kAllRobots, Goal{7, GoalMode::Direct, {5, 5}, 0, {}}));
+  EXPECT_EQ(fleet.tracker("a")->goal().goal_id, 7u);
+  EXPECT_EQ(fleet.tracker("b")->mode(), GoalMode::Direct);
+  const Status unknown = fleet.set_goal("c", Goal{8, GoalMode::Stop, {}, 0, {}});
+  EXPECT_FALSE(unknown);
+  EXPECT_NE(unknown.message().find("unknown robot 'c'"), std::string::npos);
+  EXPECT_FALSE(fleet.set_goal("a", Goal{9, GoalMode::Square, {}, -1.0, {}}));
+
+  std::vector<DueWaypoint> due;
+  fleet.due_waypoints(0, due);
+  ASSERT_EQ(due.size(), 2u);
+  EXPECT_EQ(due[0].waypoint, (Vec2{5, 5}));
+  fleet.due_waypoints(kSecond / 2, due);
+  EXPECT_TRUE(due.empty());
+  fleet.due_waypoints(kSecond, due);
+  EXPECT_EQ(due.size(), 2u);
+  EXPECT_EQ(fleet.take_changed().size(), 2u);
+  EXPECT_TRUE(fleet.take_changed().empty());
+}
+
+TEST(Fleet, PlansAndReportsFailures) {
+  const PlanningGrid g = test::grid_from_art({
+      "....#....",
+      "....#....",
+      "....#....",
+  });
+  Fleet fleet({});
+  fleet.observe("a", {0.5, 0.5});
+  ASSERT_TRUE(fleet.set_goal("a", Goal{1, GoalMode::Planned, {8.5, 2.5}, 0, {}}));
+  fleet.grid_changed(g, std::nullopt);
+  fleet.tick(g, 0);
+  EXPECT_EQ(fleet.tracker("a")->status(), GoalStatus::Failed);
+  EXPECT_NE(fleet.tracker("a")->reason().find("NO_PATH"), std::string::npos);
+  ASSERT_TRUE(fleet.set_goal("a", Goal{2, GoalMode::Planned, {3.5, 2.5}, 0, {}}));
+  fleet.tick(g, 0);
+  EXPECT_EQ(fleet.tracker("a")->status(), GoalStatus::Active);
+  EXPECT_EQ(fleet.tracker("a")->waypoints().back(), (Vec2{3.5, 2.5}));
+}
+
+// A hidden world the robots uncover within a sensing radius, with line of sight.
+class World {
+ public:
+  World()
+      : truth_(test::grid_from_art({
+            "##############################",
+            "#............#...............#",
+            "#............#...............#",
+            "#............#.......#.......#",
+            "#....................#.......#",
+            "#............#.......#.......#",
+            "######.#######.......#########",
+            "#............#...............#",
+            "#............#...............#",
+            "#............................#",
+            "#............#...............#",
+            "##############################",
+        })),
+        map_(test::uniform_grid(30, 12, kCellUnknown)) {}
+
+  // Reveals what a robot at p sees; returns the changed box.
+  CellBox sense(Vec2 p) {
+    const int r = 5;
+    const Cell c = *truth_.cell_at(p);
+    const uint32_t x0 = static_cast<uint32_t>(std::max(0, c.x - r));
+    const uint32_t y0 = static_cast<uint32_t>(std::max(0, c.y - r));
+    const uint32_t x1 = static_cast<uint32_t>(std::min(truth_.width() - 1, c.x + r));
+    const uint32_t y1 = static_cast<uint32_t>(std::min(truth_.height() - 1, c.y + r));
+    CellBox box{x0, y0, x1 - x0 + 1, y1 - y0 + 1};
+    std::vector<uint8_t> cells;
+    for (uint32_t y = y0; y <= y1; ++y) {
+      for (uint32_t x = x0; x <= x1; ++x) {
+        const Cell q{static_cast<int32_t>(x), static_cast<int32_t>(y)};
+        uint8_t v = map_.at(q);
+        bool seen = true;
+        walk_segment(truth_.to_grid(p), truth_.to_grid(truth_.centre(q)), [&](Cell k, double) {
+          if (k == q) return true;
+          seen = seen && !truth_.blocked(k);
+          return seen;
+        });
+        if (seen && std::hypot(q.x - c.x, q.y - c.y) <= r) v = truth_.at(q);
+        cells.push_back(v);
+      }
+    }
+    EXPECT_TRUE(map_.apply_patch(1, map_.version() + 1, box, cells));
+    return box;
+  }
+  const PlanningGrid& map() const { return map_; }
+
+ private:
+  PlanningGrid truth_;
+  PlanningGrid map_;
+};
+
+TEST(Fleet, ExploresTheWholeWorldAndComesHome) {
+  World world;
+  FleetConfig config;
+  config.explore.min_cluster_cells = 2;
+  config.goals.reach_tolerance_m = 0.3;
+  Fleet fleet(config);
+  const std::vector<std::pair<std::string, Vec2>> start{{"r1", {2.5, 2.5}}, {"r2", {3.5, 2.5}}};
+  std::map<std::string, Vec2> pos;
+  for (const auto& [id, p] : start) {
+    pos[id] = p;
+    world.sense(p);
+    fleet.observe(id, p);
+  }
+  fleet.grid_changed(world.map(), std::nullopt);
+  ASSERT_TRUE(fleet.set_goal(kAllRobots, Goal{1, GoalMode::Explore, {}, 0, {}}));
+  int64_t now = 0;
+  bool done = false;
+  for (int step = 0; step < 400 && !done; ++step, now += kSecond / 2) {
+    fleet.tick(world.map(), now);
+    // Never two robots chasing the same frontier.
+    const GoalTracker* t1 = fleet.tracker("r1");
+    const GoalTracker* t2 = fleet.tracker("r2");
+    if (t1->has_frontier() && t2->has_frontier()) {
+      EXPECT_NE(t1->plan_target(), t2->plan_target());
+    }
+    for (auto& [id, p] : pos) {
+      const auto wp = fleet.tracker(id)->current_waypoint();
+      if (fleet.tracker(id)->status() != GoalStatus::Active || !wp) continue;
+      // Drive up to 1 m toward the waypoint.
+      const double d = distance(p, *wp);
+      const double s = std::min(1.0, d) / std::max(d, 1e-9);
+      p = Vec2{p.x + (wp->x - p.x) * s, p.y + (wp->y - p.y) * s};
+      fleet.grid_changed(world.map(), world.sense(p));
+      fleet.observe(id, p);
+    }
+    done = fleet.tracker("r1")->status() == GoalStatus::Reached &&
+           fleet.tracker("r2")->status() == GoalStatus::Reached;
+  }
+  ASSERT_TRUE(done);
+  EXPECT_TRUE(fleet.exploration_complete());
+  for (const auto& [id, p] : start) {
+    EXPECT_TRUE(fleet.tracker(id)->homing());
+    EXPECT_LE(distance(pos[id], p), config.goals.reach_tolerance_m);
+  }
+  // Every free cell reachable from the start is now known.
+  FrontierMap f;
+  f.rebuild(world.map());
+  std::vector<FrontierCluster> left;
+  f.cluster(world.map(), 2, left);
+  EXPECT_TRUE(left.empty());
+  int unknown_inside = 0;
+  for (int32_t y = 1; y < 11; ++y) {
+    for (int32_t x = 1; x < 29; ++x) unknown_inside += world.map().unknown({x, y}) ? 1 : 0;
+  }
+  EXPECT_LT(unknown_inside, 10);
+}
+
+}  // namespace
+}  // namespace slam::planner
