@@ -129,6 +129,12 @@ int matched_subscriptions(fdds::DataWriter* writer) {
   return status.current_count;
 }
 
+bool acknowledged(fdds::DataWriter* writer, std::chrono::milliseconds timeout) {
+  const auto ms = timeout.count();
+  const eprosima::fastrtps::Duration_t wait(static_cast<int32_t>(ms / 1000), static_cast<uint32_t>((ms % 1000) * 1000000));
+  return writer->wait_for_acknowledgments(wait) == ReturnCode_t::RETCODE_OK;
+}
+
 int matched_publications(fdds::DataReader* reader) {
   fdds::SubscriptionMatchedStatus status;
   if (reader->get_subscription_matched_status(status) != ReturnCode_t::RETCODE_OK) return 0;

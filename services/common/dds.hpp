@@ -11,6 +11,7 @@
 #include <fastdds/dds/topic/Topic.hpp>
 #include <fastdds/dds/topic/TypeSupport.hpp>
 
+#include <chrono>
 #include <functional>
 #include <map>
 #include <memory>
@@ -69,6 +70,7 @@ class Participant {
 // True when rc is OK; otherwise logs (rate-limited) the topic and the code.
 bool log_write_result(const eprosima::fastrtps::types::ReturnCode_t& rc, fdds::DataWriter* writer);
 int matched_subscriptions(fdds::DataWriter* writer);
+bool acknowledged(fdds::DataWriter* writer, std::chrono::milliseconds timeout);
 int matched_publications(fdds::DataReader* reader);
 
 // Writes samples of T. write() returns false when the middleware refused the sample
@@ -85,6 +87,10 @@ class Writer {
   bool write(const T& sample) { return log_write_result(writer_->write(const_cast<T*>(&sample)), writer_); }
   // Number of readers currently matched (for readiness checks and tests).
   int matched_readers() const;
+  // Blocks until every matched reader acknowledged what was written (reliable topics), or timeout.
+  bool wait_for_acknowledgments(std::chrono::milliseconds timeout) {
+    return acknowledged(writer_, timeout);
+  }
   std::string topic_name() const { return writer_->get_topic()->get_name(); }
 
  private:
