@@ -1,0 +1,100 @@
+#pragma once
+// Every observation the mapper has integrated, with the robot pose at that moment, plus the manual
+// obstructions, the grid config and an imported prior: everything a restart or a rebuild needs.
+// SQLite in WAL mode; appends are batched into explicit transactions (commit every batch_size rows
+// or on flush()), because one transaction per message would cap ingest at disk-sync speed.
+//
+// Rebuild reads rows straight from SQLite (one prepared statement, blobs decoded into reused
+// buffers), so RAM stays proportional to the grid, never to the number of stored observations.
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "common/map_io.hpp"
+#include "common/result.hpp"
+#include "mapper/grid_config.hpp"
+#include "mapper/occupancy_grid.hpp"
+
+struct sqlite3;
+struct sqlite3_stmt;
+
+namespace slam::mapper {
+
+struct StoreOptions {
+  int batch_size = 512;  // appends per transaction
+};
+
+// One stored row as iteration presents it; the views are valid during the callback only.
+struct ObservationRecord {
+  int64_t id = 0;              // insertion order
+  std::string_view robot_id;
+  uint64_t seq = 0;
+  int64_t stamp_ns = 0;
+  ObservationView obs;
+};
+
+class ObservationStore {
+ public:
+  // Opens or creates the database. Errors name the path: cannot open, not a database (corrupt),
+  // written by a newer schema.
+  static Result<ObservationStore> open(const std::filesystem::path& path, StoreOptions options = {});
+
+  ObservationStore(ObservationStore&&) noexcept = default;
+  // No move assignment: replacing a store with an open batch would drop it silently.
+  ObservationStore& operator=(ObservationStore&&) = delete;
+  ~ObservationStore();  // commits pending appends
+
+  Status append(std::string_view robot_id, uint64_t seq, int64_t stamp_ns, const ObservationView& obs);
+  Status flush();  // commits the open batch, if any
+
+  // Every observation in insertion order (pending appends included).
+  Status for_each(const std::function<void(const ObservationRecord&)>& visit);
+  Result<int64_t> count();
+  // Deletes one robot's observations; returns how many.
+  Result<int64_t> delete_robot(std::string_view robot_id);
+
+  Status add_obstruction(Point2d p);
+  Status remove_obstruction(Point2d p);
+  Status clear_obstructions();
+  Result<std::vector<Point2d>> obstructions();
+
+  Status save_config(const GridConfig& config);
+  Result<std::optional<GridConfig>> load_config();  // nullopt when never saved
+
+  Status save_prior(const MapImage& image);
+  Status clear_prior();
+  Result<std::optional<MapImage>> load_prior();
+
+  const std::filesystem::path& path() const { return path_; }
+
+ private:
+  struct DbClose {
+    void operator()(sqlite3* db) const;
+  };
+  struct StmtFinalize {
+    void operator()(sqlite3_stmt* s) const;
+  };
+  using Db = std::unique_ptr<sqlite3, DbClose>;
+  using Stmt = std::unique_ptr<sqlite3_stmt, StmtFinalize>;
+
+  ObservationStore() = default;
+  Status exec(const char* sql);
+  Result<Stmt> prepare(const char* sql);
+  Error db_error(std::string_view what) const;
+
+  std::filesystem::path path_;
+  StoreOptions options_;
+  Db db_;
+  Stmt insert_;
+  bool in_batch_ = false;
+  int pending_ = 0;
+  std::vector<Point2d> hits_buf_;
+  std::vector<Point2d> misses_buf_;
+};
+
+}  // namespace slam::mapper
