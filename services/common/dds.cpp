@@ -21,6 +21,11 @@ void apply(const topics::QosSpec& spec, Qos& q) {
   q.durability().kind = spec.transient_local ? fdds::TRANSIENT_LOCAL_DURABILITY_QOS : fdds::VOLATILE_DURABILITY_QOS;
   q.history().kind = fdds::KEEP_LAST_HISTORY_QOS;
   q.history().depth = spec.depth;
+  // Fast DDS defaults to 10 instances: a fleet has hundreds of robots (keys). Unlimited instances
+  // and samples; keep-last bounds each instance to `depth`.
+  q.resource_limits().max_instances = 0;
+  q.resource_limits().max_samples = 0;
+  q.resource_limits().max_samples_per_instance = spec.depth;
   q.liveliness().kind = fdds::AUTOMATIC_LIVELINESS_QOS;
   if (spec.lease_ms > 0) {
     q.liveliness().lease_duration = eprosima::fastrtps::Duration_t(spec.lease_ms / 1000, static_cast<uint32_t>((spec.lease_ms % 1000) * 1000000));

@@ -83,8 +83,11 @@ class Writer {
   Writer(const Writer&) = delete;
   Writer& operator=(const Writer&) = delete;
 
-  // Fast DDS's write() takes a non-const pointer but does not modify the sample.
-  bool write(const T& sample) { return log_write_result(writer_->write(const_cast<T*>(&sample)), writer_); }
+  // Fast DDS's write() takes a non-const pointer but does not modify the sample. The overload with
+  // a handle returns a ReturnCode_t (the one without returns bool).
+  bool write(const T& sample) {
+    return log_write_result(writer_->write(const_cast<T*>(&sample), fdds::HANDLE_NIL), writer_);
+  }
   // Number of readers currently matched (for readiness checks and tests).
   int matched_readers() const;
   // Blocks until every matched reader acknowledged what was written (reliable topics), or timeout.

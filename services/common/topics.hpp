@@ -15,8 +15,8 @@ struct QosSpec {
 
 // Latest value per key, kept for late joiners (robot state, map snapshot, paths, goals).
 inline constexpr QosSpec kStateQos{true, true, 1, 0};
-// Reliable data stream with a deep history so bursts are not lost (observations, patches).
-inline constexpr QosSpec kStreamQos{true, false, 1000, 0};
+// Reliable data stream with a deep history (per key) so bursts are not lost (observations, patches).
+inline constexpr QosSpec kStreamQos{true, false, 200, 0};
 // Requests and replies: reliable, volatile, moderate depth.
 inline constexpr QosSpec kCommandQos{true, false, 64, 0};
 // Heartbeats: latest per service, liveliness tells when a service died.

@@ -1,0 +1,85 @@
+// The Fast DDS edge of the common library, between two participants: writes report success,
+// a fleet's worth of keyed instances all arrive (Fast DDS's default limit is 10), transient-local
+// state reaches a late joiner, and command streams deliver far more than 10 requests.
+#include <gtest/gtest.h>
+
+#include <mutex>
+#include <set>
+
+#include "common/fast_topics.hpp"
+#include "process_group.hpp"
+
+namespace slam::testkit {
+namespace {
+
+std::unique_ptr<dds::Participant> participant(int domain, const char* name) {
+  auto p = dds::Participant::create(domain, name);
+  if (!p) throw std::runtime_error(p.message());
+  return std::move(*p);
+}
+
+struct Pair {
+  DomainLease domain;
+  std::unique_ptr<dds::Participant> a = participant(domain.id(), "dds_test_a");
+  std::unique_ptr<dds::Participant> b = participant(domain.id(), "dds_test_b");
+};
+
+TEST(DdsTest, FiveHundredRobotStatesAllArrive) {
+  Pair p;
+  std::mutex mutex;
+  std::set<std::string> seen;
+  auto reader = dds::make_reader(*p.b, dds::kRobotState, [&](const RobotState& s, const auto&) {
+    std::lock_guard lock(mutex);
+    seen.insert(s.robot_id().to_string());
+  });
+  ASSERT_TRUE(reader) << reader.message();
+  auto writer = dds::make_writer(*p.a, dds::kRobotState);
+  ASSERT_TRUE(writer) << writer.message();
+  ASSERT_TRUE(wait_until([&] { return (*writer)->matched_readers() == 1; }, 10s));
+  RobotState s;
+  for (int i = 0; i < 500; ++i) {
+    s.robot_id("robot-" + std::to_string(i));
+    ASSERT_TRUE((*writer)->write(s)) << "write " << i;
+  }
+  EXPECT_TRUE(wait_until([&] { std::lock_guard lock(mutex); return seen.size() == 500; }, 10s)) << seen.size();
+}
+
+TEST(DdsTest, LateJoinerGetsTheLatestStatePerKey) {
+  Pair p;
+  auto writer = dds::make_writer(*p.a, dds::kRobotState);
+  ASSERT_TRUE(writer);
+  RobotState s;
+  for (int i = 0; i < 50; ++i) {
+    s.robot_id("robot-" + std::to_string(i % 25));
+    s.messages(static_cast<uint64_t>(i));
+    ASSERT_TRUE((*writer)->write(s));
+  }
+  std::vector<RobotState> got;
+  auto reader = dds::make_reader(*p.b, dds::kRobotState);
+  ASSERT_TRUE(reader);
+  ASSERT_TRUE(wait_until([&] { (*reader)->take(got); return got.size() >= 25; }, 10s)) << got.size();
+  EXPECT_EQ(got.size(), 25u);
+  for (const auto& r : got) EXPECT_GE(r.messages(), 25u) << "an older sample of " << r.robot_id().to_string();
+}
+
+TEST(DdsTest, CommandStreamsCarryManyRequests) {
+  Pair p;
+  std::atomic<int> replies{0};
+  auto reader = dds::make_reader(*p.b, dds::kPathReply, [&](const PathReply&, const auto&) { ++replies; });
+  ASSERT_TRUE(reader);
+  auto writer = dds::make_writer(*p.a, dds::kPathReply);
+  ASSERT_TRUE(writer);
+  ASSERT_TRUE(wait_until([&] { return (*writer)->matched_readers() == 1; }, 10s));
+  PathReply r;
+  for (uint64_t i = 0; i < 200; ++i) {
+    r.request_id(i);
+    ASSERT_TRUE((*writer)->write(r)) << "write " << i;
+    if (i % 50 == 49) {
+      ASSERT_TRUE((*writer)->wait_for_acknowledgments(std::chrono::milliseconds(5000)));
+    }
+  }
+  EXPECT_TRUE(wait_until([&] { return replies == 200; }, 10s)) << replies;
+}
+
+}  // namespace
+}  // namespace slam::testkit
