@@ -70,7 +70,12 @@ Result<std::unique_ptr<Participant>> Participant::create(int domain_id, const st
   pqos.name(name);
   if (std::getenv("FASTRTPS_DEFAULT_PROFILES_FILE") == nullptr) {
     pqos.transport().use_builtin_transports = false;
-    pqos.transport().user_transports.push_back(std::make_shared<eprosima::fastdds::rtps::UDPv4TransportDescriptor>());
+    auto udp = std::make_shared<eprosima::fastdds::rtps::UDPv4TransportDescriptor>();
+    // Linux's default 208 KB socket buffers overflow on bursts of small samples (a fleet's
+    // observations), and reliable retransmission then stalls the stream.
+    udp->receiveBufferSize = 4 * 1024 * 1024;
+    udp->sendBufferSize = 4 * 1024 * 1024;
+    pqos.transport().user_transports.push_back(udp);
   }
   std::unique_ptr<Participant> p(new Participant());
   p->domain_id_ = domain_id;

@@ -17,6 +17,7 @@
 #include <memory>
 #include <mutex>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "common/result.hpp"
@@ -73,6 +74,8 @@ int matched_subscriptions(fdds::DataWriter* writer);
 bool acknowledged(fdds::DataWriter* writer, std::chrono::milliseconds timeout);
 int matched_publications(fdds::DataReader* reader);
 
+inline constexpr std::chrono::milliseconds kMatchSettle{300};
+
 // Writes samples of T. write() returns false when the middleware refused the sample
 // (logged rate-limited); callers count it.
 template <class T>
@@ -90,6 +93,18 @@ class Writer {
   }
   // Number of readers currently matched (for readiness checks and tests).
   int matched_readers() const;
+  // Waits until `n` readers matched, then a little longer: the remote reader may match this writer
+  // a moment after this writer matched it, and a volatile reader drops samples that arrive before.
+  // Short-lived senders (slamctl, tests) call this before their first write.
+  bool wait_for_readers(std::chrono::milliseconds timeout, int n = 1) {
+    const auto until = std::chrono::steady_clock::now() + timeout;
+    while (matched_readers() < n) {
+      if (std::chrono::steady_clock::now() >= until) return false;
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    std::this_thread::sleep_for(kMatchSettle);
+    return true;
+  }
   // Blocks until every matched reader acknowledged what was written (reliable topics), or timeout.
   bool wait_for_acknowledgments(std::chrono::milliseconds timeout) {
     return acknowledged(writer_, timeout);

@@ -1,5 +1,6 @@
 #include "common/service_options.hpp"
 
+#include <filesystem>
 #include <iostream>
 
 #include "common/config_file.hpp"
@@ -17,6 +18,8 @@ void add_service_options(CLI::App& app, ServiceOptions& options) {
 }
 
 std::optional<int> parse_command_line(CLI::App& app, int argc, char** argv) {
+  // Name the program by its file name, not the path it was started by, in usage and errors.
+  if (app.get_name().empty() && argc > 0) app.name(std::filesystem::path(argv[0]).filename().string());
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp&) {

@@ -36,7 +36,8 @@ Result<CellBox> apply_patch(const slam::GridPatch& patch, PlanningGrid& grid) {
 Result<GoalCommand> to_goal(const slam::NavGoal& sample) {
   GoalCommand out;
   out.robot_id = sample.robot_id().to_string();
-  if (out.robot_id.empty()) return Error{"goal " + std::to_string(sample.goal_id()) + " has an empty robot_id"};
+  if (out.robot_id.empty())
+    return Error{"goal " + std::to_string(sample.goal_id()) + " has an empty robot_id"};
   const auto mode = static_cast<uint32_t>(sample.mode());
   if (mode > static_cast<uint32_t>(slam::GOAL_STOP)) {
     return Error{"goal " + std::to_string(sample.goal_id()) + " has unknown mode " + std::to_string(mode)};

@@ -17,7 +17,9 @@
 
 namespace slam::planner {
 
-inline Vec2 to_vec2(const slam::Point2& p) { return Vec2{p.x(), p.y()}; }
+inline Vec2 to_vec2(const slam::Point2& p) {
+  return Vec2{p.x(), p.y()};
+}
 slam::Point2 to_point(Vec2 v);
 void to_points(const std::vector<Vec2>& in, std::vector<slam::Point2>& out);
 

@@ -1,6 +1,7 @@
 // PlannerNode: configure, and the loop pass that turns intake into core calls and samples.
 #include "planner/planner_node.hpp"
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <exception>
@@ -77,8 +78,9 @@ Status PlannerNode::configure() {
   }
 
   // Readers last: from here on callbacks run, and everything they touch exists.
-  auto snapshots = dds::make_reader(*participant_, dds::kGridSnapshot,
-                                    [this](const slam::GridSnapshot& s, const auto&) { intake_.push_snapshot(s); });
+  auto snapshots =
+      dds::make_reader(*participant_, dds::kGridSnapshot,
+                       [this](const slam::GridSnapshot& s, const auto&) { intake_.push_snapshot(s); });
   if (!snapshots) return Error{snapshots.message()};
   snapshot_reader_ = std::move(*snapshots);
   auto patches = dds::make_reader(*participant_, dds::kGridPatch,
@@ -93,8 +95,9 @@ Status PlannerNode::configure() {
                                 [this](const slam::NavGoal& g, const auto&) { intake_.push_goal(g); });
   if (!goals) return Error{goals.message()};
   goal_reader_ = std::move(*goals);
-  auto requests = dds::make_reader(*participant_, dds::kPathRequest,
-                                   [this](const slam::PathRequest& r, const auto&) { intake_.push_request(r); });
+  auto requests =
+      dds::make_reader(*participant_, dds::kPathRequest,
+                       [this](const slam::PathRequest& r, const auto&) { intake_.push_request(r); });
   if (!requests) return Error{requests.message()};
   request_reader_ = std::move(*requests);
   spdlog::info("planner ready on domain {} ({} request worker(s), loop {} Hz)", options_.service.domain,
@@ -129,8 +132,8 @@ void PlannerNode::apply_grid(IntakeBatch& batch) {
       fleet_.grid_changed(grid_, std::nullopt);
       if (first || grid_.layout_id() != previous_layout) {
         const GridGeometry& g = grid_.geometry();
-        spdlog::info("grid layout {}: {}x{} cells of {} m, origin ({}, {}), version {}", grid_.layout_id(), g.width,
-                     g.height, g.resolution, g.origin.x, g.origin.y, grid_.version());
+        spdlog::info("grid layout {}: {}x{} cells of {} m, origin ({}, {}), version {}", grid_.layout_id(),
+                     g.width, g.height, g.resolution, g.origin.x, g.origin.y, grid_.version());
       }
     }
   }
@@ -172,7 +175,8 @@ void PlannerNode::apply_states(const std::vector<slam::RobotState>& states) {
       continue;
     }
     bump(metrics_.robot_states);
-    if (robots_.insert(id).second) spdlog::info("robot '{}' first seen at ({}, {})", id, position.x, position.y);
+    if (robots_.insert(id).second)
+      spdlog::info("robot '{}' first seen at ({}, {})", id, position.x, position.y);
     fleet_.observe(id, position);
   }
 }
@@ -196,10 +200,11 @@ void PlannerNode::apply_goals(const std::vector<slam::NavGoal>& goals) {
   }
 }
 
-void PlannerNode::reject_goal(const std::string& robot_id, const slam::NavGoal& sample, const std::string& reason) {
+void PlannerNode::reject_goal(const std::string& robot_id, const slam::NavGoal& sample,
+                              const std::string& reason) {
   bump(metrics_.goals_rejected);
-  warn("goal:" + robot_id, "goal " + std::to_string(sample.goal_id()) + " for robot '" + robot_id +
-                               "' rejected: " + reason);
+  warn("goal:" + robot_id,
+       "goal " + std::to_string(sample.goal_id()) + " for robot '" + robot_id + "' rejected: " + reason);
   // The robot path is where a goal's outcome is read: say there why this one did not start.
   std::vector<std::string> targets;
   if (robot_id == kAllRobots) {
@@ -211,8 +216,9 @@ void PlannerNode::reject_goal(const std::string& robot_id, const slam::NavGoal& 
     slam::RobotPath out;
     out.robot_id(id);
     out.goal_id(sample.goal_id());
-    out.mode(static_cast<uint32_t>(sample.mode()) <= static_cast<uint32_t>(slam::GOAL_STOP) ? sample.mode()
-                                                                                          : slam::GOAL_IDLE);
+    out.mode(static_cast<uint32_t>(sample.mode()) <= static_cast<uint32_t>(slam::GOAL_STOP)
+                 ? sample.mode()
+                 : slam::GOAL_IDLE);
     out.status(slam::GOAL_STATUS_FAILED);
     out.target(sample.target());
     out.reason(reason);
@@ -239,7 +245,8 @@ void PlannerNode::count_replans() {
     const GoalTracker* t = fleet_.tracker(id);
     if (t != nullptr && t->needs_plan() && !t->waypoints().empty()) {
       bump(metrics_.replans);
-      spdlog::info("robot '{}': re-planning goal {} (path blocked or robot off its path)", id, t->goal().goal_id);
+      spdlog::info("robot '{}': re-planning goal {} (path blocked or robot off its path)", id,
+                   t->goal().goal_id);
     }
   }
 }
@@ -258,7 +265,8 @@ void PlannerNode::publish_paths() {
       spdlog::info("robot '{}' reached goal {}", id, t->goal().goal_id);
     } else if (t->status() == GoalStatus::Failed) {
       bump(metrics_.goals_failed);
-      warn("failed:" + id, "robot '" + id + "' failed goal " + std::to_string(t->goal().goal_id) + ": " + t->reason());
+      warn("failed:" + id,
+           "robot '" + id + "' failed goal " + std::to_string(t->goal().goal_id) + ": " + t->reason());
     }
   }
 }
@@ -284,8 +292,8 @@ void PlannerNode::reply(const PathJob& job, const PlanResult& result) {
                   result.planning_time_s);
   } else {
     warn("request:" + job.client_id, "path request " + std::to_string(job.request_id) + " from '" +
-                                         job.client_id + "': " + std::string(to_string(result.status)) + ": " +
-                                         result.reason);
+                                         job.client_id + "': " + std::string(to_string(result.status)) +
+                                         ": " + result.reason);
   }
 }
 

@@ -2,8 +2,8 @@
 // slam-planner's DDS edge: reads grids, robot states, goals and path requests into a locked intake;
 // one loop pass drains it into the core (PlanningGrid, Fleet), then writes waypoint commands and
 // robot paths. Path requests go to RequestWorkers, which write their replies themselves.
-#include <atomic>
 #include <array>
+#include <atomic>
 #include <chrono>
 #include <cstdint>
 #include <map>

@@ -2,7 +2,6 @@
 #include "planner/planner_options.hpp"
 
 #include <cmath>
-#include <map>
 #include <string>
 
 namespace slam::planner {
@@ -22,10 +21,13 @@ void add_planner_options(CLI::App& app, PlannerOptions& o) {
       ->capture_default_str();
 
   PlannerConfig& planner = o.fleet.planner;
-  const std::map<std::string, UnknownPolicy> policies{{"blocked", UnknownPolicy::Blocked},
-                                                      {"allowed", UnknownPolicy::Allowed}};
-  app.add_option("--planner-unknown", planner.unknown, "unexplored cells: blocked or allowed")
-      ->transform(CLI::CheckedTransformer(policies, CLI::ignore_case))
+  app.add_option_function<std::string>(
+         "--planner-unknown",
+         [&planner](const std::string& v) {
+           planner.unknown = v == "allowed" ? UnknownPolicy::Allowed : UnknownPolicy::Blocked;
+         },
+         "unexplored cells: blocked or allowed")
+      ->check(CLI::IsMember({"blocked", "allowed"}))
       ->default_str("blocked");
   app.add_option("--planner-unknown-cost-factor", planner.unknown_cost_factor,
                  "A* step cost multiplier into unexplored cells when allowed (>= 1)")

@@ -16,9 +16,9 @@ namespace slam::planner {
 struct PlannerOptions {
   ServiceOptions service;
   FleetConfig fleet;
-  double loop_rate_hz = 20.0;     // goal ticks, waypoint streaming and path publishing
-  uint32_t request_workers = 1;   // threads answering PathRequests, each with its own planner
-  uint32_t request_queue = 64;    // queued PathRequests beyond this are answered TIMEOUT at once
+  double loop_rate_hz = 20.0;    // goal ticks, waypoint streaming and path publishing
+  uint32_t request_workers = 1;  // threads answering PathRequests, each with its own planner
+  uint32_t request_queue = 64;   // queued PathRequests beyond this are answered TIMEOUT at once
 };
 
 // Adds the common flags and every planner flag to `app`, bound to `options`.

@@ -36,7 +36,7 @@ template <class T, class P>
 int send(Session& s, const dds::Topic<T, P>& topic, const T& sample, const char* served_by) {
   auto writer = dds::make_writer(s.participant(), topic);
   if (!writer) return fail(writer.message());
-  if (!wait_until([&] { return (*writer)->matched_readers() > 0; }, s.timeout()))
+  if (!(*writer)->wait_for_readers(s.timeout()))
     return fail(std::string("no ") + served_by + " on DDS domain " + std::to_string(s.domain()) + " (is it running?)");
   if (!(*writer)->write(sample)) return fail(std::string("could not write to ") + topic.info.name);
   if (!(*writer)->wait_for_acknowledgments(s.timeout()))

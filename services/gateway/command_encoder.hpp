@@ -1,0 +1,47 @@
+#pragma once
+// A waypoint command from the planner, turned into what the robot understands in the protocol it
+// spoke last: v1 gets exactly one 4-byte int16 pair on v1/server/<id>/cmd (never wrapped: out of
+// range is an error), v2 gets the waypoint JSON and the whole remaining path JSON.
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "gateway/robot_registry.hpp"
+#include "protocol/codec_types.hpp"
+#include "protocol/reject_reason.hpp"
+
+namespace slam::gateway {
+
+struct OutboundMessage {
+  std::string topic;
+  std::string payload;  // bytes (binary for v1)
+};
+
+// The MQTT messages for one command; buffers keep their capacity between commands.
+struct CommandMessages {
+  std::array<OutboundMessage, 2> messages;
+  std::size_t count = 0;
+  std::span<const OutboundMessage> view() const { return {messages.data(), count}; }
+};
+
+class CommandEncoder {
+ public:
+  explicit CommandEncoder(const protocol::CodecLimits& limits) : limits_(limits) {}
+
+  // Encodes the command for `robot_id` speaking `protocol`. `remaining` is the rest of the path;
+  // whether or not it starts with `waypoint`, the v2 path sent starts with it exactly once.
+  // On error (bad id, non-finite or out-of-range waypoint, too many points) out.count is 0.
+  protocol::CodecStatus encode(std::string_view robot_id, Protocol protocol, std::uint64_t seq,
+                               protocol::Point waypoint, std::span<const protocol::Point> remaining,
+                               CommandMessages& out);
+
+ private:
+  protocol::CodecLimits limits_;
+  std::vector<protocol::Point> path_;
+};
+
+}  // namespace slam::gateway

@@ -1,0 +1,80 @@
+// GatewayNode, MQTT -> DDS: the hot path. Runs on paho's receive thread: traffic record, decode
+// into reused buffers, registry update under a short lock, RobotObservation written directly.
+// A rejected message only touches counters and a rate-limited log line.
+#include <string>
+
+#include "common/clock.hpp"
+#include "gateway/gateway_msgs.hpp"
+#include "gateway/gateway_node.hpp"
+#include "protocol/text_check.hpp"
+
+namespace slam::gateway {
+
+void GatewayNode::on_mqtt_message(std::string_view topic, std::span<const std::uint8_t> payload) {
+  const Instant now{now_ns(), monotonic_ns()};
+  bump(metrics_.messages_in);
+  if (!traffic_.push(TrafficDirection::Inbound, topic, payload, now.wall_ns, now.mono_ns)) {
+    bump(metrics_.traffic_dropped);
+  }
+
+  std::lock_guard inbound(inbound_mutex_);
+  decoder_.decode(topic, payload);
+  InboundKind kind{};
+  {
+    std::lock_guard lock(registry_mutex_);
+    kind = decoder_.apply(registry_, now);
+    const AcceptResult& a = decoder_.accepted();
+    if (a.first_seen || a.came_online || a.went_offline) urgent_ = true;
+  }
+  const AcceptResult& accepted = decoder_.accepted();
+  if (accepted.first_seen || accepted.came_online || accepted.went_offline) {
+    loop_wake_.notify_one();
+    log_presence(decoder_.robot_id(), accepted);
+  }
+
+  switch (kind) {
+    case InboundKind::Observation:
+      fill_observation(decoder_.robot_id(), accepted.seq, now.wall_ns, decoder_.protocol(), decoder_.observation(),
+                       observation_);
+      bump(observation_writer_->write(observation_) ? metrics_.observations : metrics_.write_failures);
+      return;
+    case InboundKind::Status:
+      bump(metrics_.statuses);
+      return;
+    case InboundKind::Rejected:
+      bump(*metrics_.rejected[static_cast<size_t>(decoder_.rejection().reason())]);
+      log_rejection(topic, now);
+      return;
+    case InboundKind::Refused:
+      bump(metrics_.robots_refused);
+      warn("refused", "message from new robot '" + protocol::escape_for_log(decoder_.robot_id()) + "' ignored: " +
+                          std::to_string(options_.max_robots) + " robots known already (max-robots)");
+      return;
+  }
+}
+
+void GatewayNode::log_rejection(std::string_view topic, Instant now) {
+  const protocol::CodecStatus& why = decoder_.rejection();
+  const std::string_view reason = protocol::reason_name(why.reason());
+  const std::string_view id = decoder_.robot_id();
+  // Keyed by robot and reason; without a valid robot id the key must not include the untrusted
+  // topic, or a flood of made-up topics would get a line each. The budget caps all robots together.
+  std::string key = id.empty() ? std::string("?") : std::string(id);
+  key += ':';
+  key += reason;
+  uint64_t suppressed = 0;
+  if (!limiter_.allow(key, &suppressed) || !reject_log_budget_.take(now.mono_ns)) return;
+  const std::string who = id.empty() ? "message" : "message from robot '" + protocol::escape_for_log(id) + "'";
+  const std::string tail = suppressed > 0 ? " (" + std::to_string(suppressed) + " similar suppressed)" : "";
+  spdlog::warn("rejected {} on '{}': {}{}", who, protocol::escape_for_log(topic), why.message(), tail);
+}
+
+void GatewayNode::log_presence(std::string_view robot_id, const AcceptResult& result) {
+  const std::string id = protocol::escape_for_log(robot_id);
+  const char* protocol = decoder_.protocol() == Protocol::V1 ? "v1" : "v2";
+  if (result.first_seen) spdlog::info("robot '{}' first seen ({})", id, protocol);
+  if (result.came_online) spdlog::info("robot '{}' online again ({})", id, protocol);
+  if (result.went_offline) spdlog::info("robot '{}' offline: last will / offline status", id);
+}
+
+}  // namespace slam::gateway

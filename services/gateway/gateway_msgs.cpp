@@ -1,0 +1,65 @@
+// Core structs <-> generated DDS types.
+#include "gateway/gateway_msgs.hpp"
+
+namespace slam::gateway {
+
+namespace {
+
+void copy_points(const std::vector<protocol::Point>& in, std::vector<slam::Point2>& out) {
+  out.resize(in.size());
+  for (std::size_t i = 0; i < in.size(); ++i) {
+    out[i].x(in[i].x);
+    out[i].y(in[i].y);
+  }
+}
+
+slam::RobotProtocol to_dds(Protocol p) { return p == Protocol::V1 ? slam::PROTOCOL_V1 : slam::PROTOCOL_V2; }
+
+}  // namespace
+
+void fill_observation(std::string_view robot_id, std::uint64_t seq, std::int64_t stamp_ns, Protocol protocol,
+                      const protocol::DecodedObservation& in, slam::RobotObservation& out) {
+  set_text(out.robot_id(), robot_id);
+  out.seq(seq);
+  out.stamp_ns(stamp_ns);
+  out.protocol(to_dds(protocol));
+  out.pose().x(in.x);
+  out.pose().y(in.y);
+  out.pose().theta(in.has_heading ? in.theta : 0.0);
+  out.has_heading(in.has_heading);
+  copy_points(in.hits, out.hits());
+  copy_points(in.misses, out.misses());
+}
+
+void fill_state(const RobotRecord& in, slam::RobotState& out) {
+  set_text(out.robot_id(), in.id);
+  out.protocol(to_dds(in.protocol));
+  out.presence(in.presence == Presence::Online ? slam::PRESENCE_ONLINE : slam::PRESENCE_OFFLINE);
+  out.pose().x(in.x);
+  out.pose().y(in.y);
+  out.pose().theta(in.theta);
+  out.has_heading(in.has_heading);
+  out.first_seen_ns(in.first_seen_ns);
+  out.last_seen_ns(in.last_seen_ns);
+  out.messages(in.messages);
+  out.points(in.points);
+  out.rejected(in.rejected);
+  out.battery(in.battery);
+  set_text(out.status(), in.status);
+}
+
+void fill_traffic(const TrafficRecord& in, slam::MqttTraffic& out) {
+  out.seq(in.seq);
+  out.stamp_ns(in.stamp_ns);
+  out.direction(in.direction == TrafficDirection::Inbound ? slam::MQTT_INBOUND : slam::MQTT_OUTBOUND);
+  set_text(out.topic(), in.topic);
+  out.payload().assign(in.payload.begin(), in.payload.end());
+  out.payload_size(in.payload_size);
+}
+
+void to_points(const std::vector<slam::Point2>& in, std::vector<protocol::Point>& out) {
+  out.resize(in.size());
+  for (std::size_t i = 0; i < in.size(); ++i) out[i] = {in[i].x(), in[i].y()};
+}
+
+}  // namespace slam::gateway

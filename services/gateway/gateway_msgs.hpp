@@ -1,0 +1,45 @@
+#pragma once
+// Conversions between the gateway core and the generated DDS types, in one place. Samples are
+// filled in place so the caller's reused sample keeps its sequence capacity between messages.
+#include <slam/fastdds/mqtt.h>
+#include <slam/fastdds/nav.h>
+#include <slam/fastdds/robot.h>
+
+#include <fastrtps/utils/fixed_size_string.hpp>
+
+#include <algorithm>
+#include <cstdint>
+#include <cstring>
+#include <string_view>
+#include <vector>
+
+#include "gateway/robot_registry.hpp"
+#include "gateway/traffic_queue.hpp"
+#include "protocol/codec_types.hpp"
+
+namespace slam::gateway {
+
+// Sets a bounded DDS string from `text`, cut to N bytes. (fixed_string::assign does not write the
+// terminating NUL, so a shorter value would keep the tail of a longer one: go through a C string.)
+template <std::size_t N>
+void set_text(eprosima::fastrtps::fixed_string<N>& out, std::string_view text) {
+  char buffer[N + 1];
+  const std::size_t n = std::min(text.size(), N);
+  std::memcpy(buffer, text.data(), n);
+  buffer[n] = '\0';
+  out = static_cast<const char*>(buffer);
+}
+
+template <std::size_t N>
+std::string_view text_of(const eprosima::fastrtps::fixed_string<N>& s) {
+  return {s.c_str(), s.size()};
+}
+
+void fill_observation(std::string_view robot_id, std::uint64_t seq, std::int64_t stamp_ns, Protocol protocol,
+                      const protocol::DecodedObservation& in, slam::RobotObservation& out);
+void fill_state(const RobotRecord& in, slam::RobotState& out);
+void fill_traffic(const TrafficRecord& in, slam::MqttTraffic& out);
+// DDS points into `out` (replaced, capacity kept).
+void to_points(const std::vector<slam::Point2>& in, std::vector<protocol::Point>& out);
+
+}  // namespace slam::gateway

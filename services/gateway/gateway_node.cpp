@@ -1,0 +1,164 @@
+// GatewayNode: configure, and the loop that publishes robot states and subscriptions. The MQTT
+// and DDS message handlers are in gateway_inbound.cpp and gateway_outbound.cpp.
+#include "gateway/gateway_node.hpp"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <utility>
+
+#include "common/clock.hpp"
+#include "gateway/gateway_msgs.hpp"
+#include "protocol/text_check.hpp"
+
+namespace slam::gateway {
+
+namespace {
+
+std::string default_client_id() {
+  char host[256] = {};
+  if (::gethostname(host, sizeof(host) - 1) != 0) host[0] = '\0';
+  return "slam-gateway-" + std::string(host[0] ? host : "host") + "-" + std::to_string(::getpid());
+}
+
+}  // namespace
+
+GatewayNode::Metrics::Metrics(Counters& c)
+    : messages_in(c.get("messages_in")),
+      messages_out(c.get("messages_out")),
+      observations(c.get("observations")),
+      statuses(c.get("statuses")),
+      rejected{},
+      robots_refused(c.get("robots_refused")),
+      robots_online(c.get("robots_online")),
+      robot_states(c.get("robot_states")),
+      commands(c.get("commands")),
+      commands_sent(c.get("commands_sent")),
+      commands_failed(c.get("commands_failed")),
+      commands_unknown_robot(c.get("commands_unknown_robot")),
+      mqtt_requests(c.get("mqtt_requests")),
+      mqtt_requests_failed(c.get("mqtt_requests_failed")),
+      publish_failures(c.get("publish_failures")),
+      traffic_dropped(c.get("traffic_dropped")),
+      reconnects(c.get("reconnects")),
+      write_failures(c.get("write_failures")) {
+  for (protocol::RejectReason r : protocol::kAllRejectReasons) {
+    rejected[static_cast<size_t>(r)] = &c.get(std::string(protocol::reason_counter(r)));
+  }
+}
+
+GatewayNode::GatewayNode(const GatewayOptions& options, Counters& counters)
+    : options_(options),
+      period_(std::max<int64_t>(1, static_cast<int64_t>(options.state_period_s * 1000.0))),
+      metrics_(counters),
+      traffic_(options.traffic_queue, options.traffic_rate),
+      registry_(RegistryConfig{static_cast<int64_t>(options.offline_after_s * 1e9), options.max_robots}),
+      decoder_(options.limits),
+      encoder_(options.limits) {}
+
+Result<std::unique_ptr<GatewayNode>> GatewayNode::create(const GatewayOptions& options, Counters& counters) {
+  std::unique_ptr<GatewayNode> node(new GatewayNode(options, counters));
+  if (auto s = node->configure(); !s) return Error{s.message()};
+  return node;
+}
+
+Status GatewayNode::configure() {
+  auto participant = dds::Participant::create(options_.service.domain, "slam-gateway");
+  if (!participant) return Error{participant.message()};
+  participant_ = std::move(*participant);
+
+  auto observations = dds::make_writer(*participant_, dds::kRobotObservation);
+  if (!observations) return Error{observations.message()};
+  observation_writer_ = std::move(*observations);
+  auto states = dds::make_writer(*participant_, dds::kRobotState);
+  if (!states) return Error{states.message()};
+  state_writer_ = std::move(*states);
+  auto subscriptions = dds::make_writer(*participant_, dds::kMqttSubscriptions);
+  if (!subscriptions) return Error{subscriptions.message()};
+  subscriptions_writer_ = std::move(*subscriptions);
+  auto traffic = TrafficPublisher::start(*participant_, traffic_, metrics_.write_failures);
+  if (!traffic) return Error{traffic.message()};
+  traffic_publisher_ = std::move(*traffic);
+
+  const std::string client_id = options_.mqtt.client_id.empty() ? default_client_id() : options_.mqtt.client_id;
+  auto mqtt = MqttClient::create(options_.mqtt, client_id,
+                                 [this](std::string_view topic, std::span<const std::uint8_t> payload) {
+                                   on_mqtt_message(topic, payload);
+                                 });
+  if (!mqtt) return Error{mqtt.message()};
+  mqtt_ = std::move(*mqtt);
+
+  // Readers last: their callbacks publish through the MQTT client.
+  auto waypoints = dds::make_reader(*participant_, dds::kWaypointCommand,
+                                    [this](const slam::WaypointCommand& c, const auto&) { on_waypoint(c); });
+  if (!waypoints) return Error{waypoints.message()};
+  waypoint_reader_ = std::move(*waypoints);
+  auto requests = dds::make_reader(*participant_, dds::kMqttRequest,
+                                   [this](const slam::MqttRequest& r, const auto&) { on_request(r); });
+  if (!requests) return Error{requests.message()};
+  request_reader_ = std::move(*requests);
+
+  spdlog::info("gateway ready on domain {}: broker {} as '{}', QoS {}, {} session, {} filter(s)",
+               options_.service.domain, options_.mqtt.broker, client_id, options_.mqtt.qos,
+               options_.mqtt.persistent_session ? "persistent" : "clean", options_.mqtt.subscriptions.size());
+  return Status::ok();
+}
+
+void GatewayNode::run_once() {
+  Instant now{};
+  size_t online = 0;
+  changed_.clear();
+  went_offline_.clear();
+  {
+    std::unique_lock lock(registry_mutex_);
+    loop_wake_.wait_for(lock, period_, [&] { return urgent_; });
+    urgent_ = false;
+    now = {now_ns(), monotonic_ns()};
+    registry_.expire(now, [&](const RobotRecord& r) { went_offline_.push_back(r.id); });
+    registry_.take_changed([&](const RobotRecord& r) { changed_.push_back(r); });
+    online = registry_.online();
+  }
+  for (const std::string& id : went_offline_) {
+    spdlog::info("robot '{}' offline: silent for {} s", protocol::escape_for_log(id), options_.offline_after_s);
+  }
+  publish_states();
+  metrics_.robots_online.store(static_cast<int64_t>(online), std::memory_order_relaxed);
+  metrics_.reconnects.store(static_cast<int64_t>(mqtt_->reconnects()), std::memory_order_relaxed);
+  publish_subscriptions();
+}
+
+void GatewayNode::publish_states() {
+  for (const RobotRecord& r : changed_) {
+    fill_state(r, state_);
+    bump(state_writer_->write(state_) ? metrics_.robot_states : metrics_.write_failures);
+  }
+}
+
+void GatewayNode::publish_subscriptions() {
+  const std::uint64_t version = mqtt_->version();
+  if (version == published_version_) return;
+  slam::MqttSubscriptions sample;
+  sample.connected(mqtt_->connected());
+  set_text(sample.broker(), mqtt_->broker());
+  for (const std::string& f : mqtt_->filters()) {
+    sample.filters().emplace_back();
+    set_text(sample.filters().back(), f);
+  }
+  if (subscriptions_writer_->write(sample)) {
+    published_version_ = version;
+  } else {
+    bump(metrics_.write_failures);
+  }
+}
+
+void GatewayNode::warn(const std::string& key, const std::string& line) {
+  uint64_t suppressed = 0;
+  if (!limiter_.allow(key, &suppressed)) return;
+  if (suppressed > 0) {
+    spdlog::warn("{} ({} similar line(s) suppressed)", line, suppressed);
+  } else {
+    spdlog::warn("{}", line);
+  }
+}
+
+}  // namespace slam::gateway

@@ -1,0 +1,130 @@
+#pragma once
+// slam-gateway's edges: MQTT in (decode, registry, RobotObservation written straight from the
+// MQTT thread), DDS in (waypoint commands and the viewer's MQTT requests, published to the broker
+// from the reader threads), and a loop that turns robot presence and subscriptions into state
+// samples. The MQTT traffic log goes through a bounded queue to its own worker.
+#include <array>
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "common/counters.hpp"
+#include "common/fast_topics.hpp"
+#include "common/log.hpp"
+#include "common/result.hpp"
+#include "gateway/command_encoder.hpp"
+#include "gateway/gateway_options.hpp"
+#include "gateway/inbound_decoder.hpp"
+#include "gateway/mqtt_client.hpp"
+#include "gateway/robot_registry.hpp"
+#include "gateway/traffic_publisher.hpp"
+#include "gateway/traffic_queue.hpp"
+#include "protocol/reject_reason.hpp"
+
+namespace slam::gateway {
+
+class GatewayNode {
+ public:
+  // Configure: participant, writers, traffic worker, MQTT client, readers. A failure undoes
+  // what was done (members are destroyed in reverse order).
+  static Result<std::unique_ptr<GatewayNode>> create(const GatewayOptions& options, Counters& counters);
+  GatewayNode(const GatewayNode&) = delete;
+  GatewayNode& operator=(const GatewayNode&) = delete;
+
+  dds::Participant& participant() { return *participant_; }
+
+  // One loop pass: waits up to the state period (less when a robot appears or changes presence),
+  // marks silent robots offline, publishes changed RobotStates and, when changed, MqttSubscriptions.
+  void run_once();
+
+ private:
+  struct Metrics {
+    explicit Metrics(Counters& c);
+    std::atomic<int64_t>& messages_in;
+    std::atomic<int64_t>& messages_out;
+    std::atomic<int64_t>& observations;
+    std::atomic<int64_t>& statuses;
+    std::array<std::atomic<int64_t>*, protocol::kRejectReasonCount> rejected;
+    std::atomic<int64_t>& robots_refused;
+    std::atomic<int64_t>& robots_online;
+    std::atomic<int64_t>& robot_states;
+    std::atomic<int64_t>& commands;
+    std::atomic<int64_t>& commands_sent;
+    std::atomic<int64_t>& commands_failed;
+    std::atomic<int64_t>& commands_unknown_robot;
+    std::atomic<int64_t>& mqtt_requests;
+    std::atomic<int64_t>& mqtt_requests_failed;
+    std::atomic<int64_t>& publish_failures;
+    std::atomic<int64_t>& traffic_dropped;
+    std::atomic<int64_t>& reconnects;
+    std::atomic<int64_t>& write_failures;
+  };
+
+  GatewayNode(const GatewayOptions& options, Counters& counters);
+  Status configure();
+
+  // MQTT receive thread.
+  void on_mqtt_message(std::string_view topic, std::span<const std::uint8_t> payload);
+  void log_rejection(std::string_view topic, Instant now);
+  void log_presence(std::string_view robot_id, const AcceptResult& result);
+  // DDS reader threads.
+  void on_waypoint(const slam::WaypointCommand& command);
+  void on_request(const slam::MqttRequest& request);
+  Status execute(const slam::MqttRequest& request);
+  // Any thread: publishes, counts, logs the traffic.
+  Status publish_mqtt(const std::string& topic, std::span<const std::uint8_t> payload, int qos, bool retain);
+  void warn(const std::string& key, const std::string& line);
+
+  void publish_states();
+  void publish_subscriptions();
+
+  GatewayOptions options_;
+  std::chrono::milliseconds period_;
+  Metrics metrics_;
+  RateLimiter limiter_;
+  TrafficQueue traffic_;
+
+  // Registry: MQTT thread, waypoint reader thread and loop. urgent_ wakes the loop.
+  std::mutex registry_mutex_;
+  std::condition_variable loop_wake_;
+  bool urgent_ = false;
+  RobotRegistry registry_;
+
+  // MQTT receive thread only (the mutex makes that a guarantee rather than an assumption).
+  std::mutex inbound_mutex_;
+  InboundDecoder decoder_;
+  slam::RobotObservation observation_;
+  TokenBucket reject_log_budget_{20.0, 20.0};  // rejection lines per second, all robots together
+
+  // Waypoint reader thread.
+  std::mutex outbound_mutex_;
+  CommandEncoder encoder_;
+  CommandMessages commands_;
+  std::vector<protocol::Point> remaining_;
+
+  // Loop thread.
+  std::vector<RobotRecord> changed_;
+  std::vector<std::string> went_offline_;
+  slam::RobotState state_;
+  std::uint64_t published_version_ = 0;
+
+  // Destroyed bottom-up: readers stop first (they publish through the MQTT client), then the MQTT
+  // client (its callbacks write observations and traffic), the traffic worker, writers, participant.
+  std::unique_ptr<dds::Participant> participant_;
+  std::unique_ptr<dds::Writer<slam::RobotObservation>> observation_writer_;
+  std::unique_ptr<dds::Writer<slam::RobotState>> state_writer_;
+  std::unique_ptr<dds::Writer<slam::MqttSubscriptions>> subscriptions_writer_;
+  std::unique_ptr<TrafficPublisher> traffic_publisher_;
+  std::unique_ptr<MqttClient> mqtt_;
+  std::unique_ptr<dds::Reader<slam::WaypointCommand>> waypoint_reader_;
+  std::unique_ptr<dds::Reader<slam::MqttRequest>> request_reader_;
+};
+
+}  // namespace slam::gateway

@@ -1,0 +1,110 @@
+// GatewayNode, DDS -> MQTT: waypoint commands in each robot's protocol and the viewer's raw MQTT
+// requests. Runs on the DDS reader threads; publishing only queues in the MQTT client, so nothing
+// here blocks on the network.
+#include <string>
+
+#include "common/clock.hpp"
+#include "gateway/gateway_msgs.hpp"
+#include "gateway/gateway_node.hpp"
+#include "gateway/topic_filter.hpp"
+#include "protocol/text_check.hpp"
+
+namespace slam::gateway {
+
+namespace {
+
+std::span<const std::uint8_t> bytes(const std::string& s) {
+  return {reinterpret_cast<const std::uint8_t*>(s.data()), s.size()};
+}
+
+const char* kind_name(slam::MqttRequestKind kind) {
+  switch (kind) {
+    case slam::MQTT_PUBLISH: return "publish";
+    case slam::MQTT_SUBSCRIBE: return "subscribe";
+    case slam::MQTT_UNSUBSCRIBE: return "unsubscribe";
+  }
+  return "unknown";
+}
+
+}  // namespace
+
+Status GatewayNode::publish_mqtt(const std::string& topic, std::span<const std::uint8_t> payload, int qos,
+                                 bool retain) {
+  if (auto s = mqtt_->publish(topic, payload, qos, retain); !s) {
+    bump(metrics_.publish_failures);
+    return s;
+  }
+  bump(metrics_.messages_out);
+  if (!traffic_.push(TrafficDirection::Outbound, topic, payload, now_ns(), monotonic_ns())) {
+    bump(metrics_.traffic_dropped);
+  }
+  return Status::ok();
+}
+
+void GatewayNode::on_waypoint(const slam::WaypointCommand& command) {
+  bump(metrics_.commands);
+  const std::string_view id = text_of(command.robot_id());
+  std::optional<Protocol> protocol;
+  {
+    std::lock_guard lock(registry_mutex_);
+    protocol = registry_.protocol_of(id);
+  }
+  const std::string shown = protocol::escape_for_log(id);
+  if (!protocol) {
+    bump(metrics_.commands_unknown_robot);
+    warn("unknown-robot:" + shown, "waypoint for robot '" + shown +
+                                       "' not sent: no valid message from it yet, so its protocol is unknown");
+    return;
+  }
+
+  std::lock_guard lock(outbound_mutex_);
+  to_points(command.remaining(), remaining_);
+  const protocol::Point waypoint{command.waypoint().x(), command.waypoint().y()};
+  if (auto s = encoder_.encode(id, *protocol, command.seq(), waypoint, remaining_, commands_); !s) {
+    // Never wrapped or clamped: a v1 robot would drive somewhere else entirely.
+    bump(metrics_.commands_failed);
+    warn("command:" + shown, "waypoint " + std::to_string(command.seq()) + " (" + std::to_string(waypoint.x) + ", " +
+                                 std::to_string(waypoint.y) + ") m for robot '" + shown + "' (" +
+                                 (*protocol == Protocol::V1 ? "v1" : "v2") + ") not sent: " + s.message());
+    return;
+  }
+  for (const OutboundMessage& m : commands_.view()) {
+    if (auto s = publish_mqtt(m.topic, bytes(m.payload), options_.mqtt.qos, false); !s) {
+      warn("publish", "waypoint for robot '" + shown + "' not sent: " + s.message());
+      return;
+    }
+  }
+  bump(metrics_.commands_sent);
+}
+
+void GatewayNode::on_request(const slam::MqttRequest& request) {
+  bump(metrics_.mqtt_requests);
+  const std::string topic = protocol::escape_for_log(text_of(request.topic()), 256);
+  if (auto s = execute(request); !s) {
+    bump(metrics_.mqtt_requests_failed);
+    warn("request", "MQTT request " + std::to_string(request.request_id()) + " (" + kind_name(request.kind()) +
+                        " '" + topic + "') refused: " + s.message());
+    return;
+  }
+  spdlog::info("MQTT request {}: {} '{}'", request.request_id(), kind_name(request.kind()), topic);
+}
+
+Status GatewayNode::execute(const slam::MqttRequest& request) {
+  const std::string topic(text_of(request.topic()));
+  if (request.qos() > 2) return Error{"qos " + std::to_string(request.qos()) + " is not 0, 1 or 2"};
+  const int qos = request.qos();
+  switch (request.kind()) {
+    case slam::MQTT_PUBLISH:
+      if (auto s = validate_topic_name(topic); !s) return s;
+      return publish_mqtt(topic, request.payload(), qos, request.retain());
+    case slam::MQTT_SUBSCRIBE:
+      if (auto s = validate_filter(topic); !s) return s;
+      return mqtt_->subscribe(topic, qos);
+    case slam::MQTT_UNSUBSCRIBE:
+      if (auto s = validate_filter(topic); !s) return s;
+      return mqtt_->unsubscribe(topic);
+  }
+  return Error{"unknown request kind " + std::to_string(static_cast<uint32_t>(request.kind()))};
+}
+
+}  // namespace slam::gateway

@@ -1,0 +1,86 @@
+// IDL <-> core conversions for slam-mapper (see mapper_msgs.hpp).
+#include "mapper/mapper_msgs.hpp"
+
+#include <cmath>
+#include <string>
+
+namespace slam::mapper {
+namespace {
+
+void copy_points(const std::vector<slam::Point2>& in, std::vector<Point2d>* out) {
+  out->resize(in.size());
+  for (size_t i = 0; i < in.size(); ++i) (*out)[i] = Point2d{in[i].x(), in[i].y()};
+}
+
+}  // namespace
+
+Result<ObservationView> to_view(const slam::RobotObservation& in, std::vector<Point2d>* hits,
+                                std::vector<Point2d>* misses) {
+  if (in.robot_id().size() == 0) return Error{"robot_id is empty"};
+  const size_t points = in.hits().size() + in.misses().size();
+  if (points > kMaxPointsPerObservation)
+    return Error{std::to_string(points) + " points, more than the limit of " + std::to_string(kMaxPointsPerObservation)};
+  copy_points(in.hits(), hits);
+  copy_points(in.misses(), misses);
+  ObservationView view;
+  view.x = in.pose().x();
+  view.y = in.pose().y();
+  view.theta = in.has_heading() ? in.pose().theta() : 0.0;
+  view.has_heading = in.has_heading();
+  view.hits = *hits;
+  view.misses = *misses;
+  return view;
+}
+
+Result<GridConfig> requested_config(const slam::GridConfig& request, const GridConfig& current) {
+  GridConfig c = current;
+  c.resolution = request.resolution();
+  c.origin_x = request.origin().x();
+  c.origin_y = request.origin().y();
+  if (request.width_m() != 0.0) c.width_m = request.width_m();
+  if (request.height_m() != 0.0) c.height_m = request.height_m();
+  if (!(request.inflation_radius() < 0.0)) c.inflation_radius = request.inflation_radius();  // NaN: validated below
+  c.legacy_mode = request.legacy_mode();
+  if (Status s = validate(c); !s) return Error{s.message()};
+  return c;
+}
+
+void fill_snapshot(const OccupancyGrid& grid, uint32_t layout_id, uint64_t version, int64_t stamp_ns,
+                   slam::GridSnapshot* out) {
+  out->layout_id(layout_id);
+  out->version(version);
+  out->stamp_ns(stamp_ns);
+  slam::GridInfo& info = out->info();
+  info.width(static_cast<uint32_t>(grid.width()));
+  info.height(static_cast<uint32_t>(grid.height()));
+  info.resolution(grid.resolution());
+  info.origin().x(grid.origin_x());
+  info.origin().y(grid.origin_y());
+  info.inflation_radius(grid.config().inflation_radius);
+  const auto classes = grid.classes();
+  out->cells().assign(classes.begin(), classes.end());
+}
+
+void fill_patch(const OccupancyGrid& grid, const CellBox& box, uint32_t layout_id, uint64_t version,
+                int64_t stamp_ns, slam::GridPatch* out) {
+  out->layout_id(layout_id);
+  out->version(version);
+  out->stamp_ns(stamp_ns);
+  out->x0(static_cast<uint32_t>(box.x0));
+  out->y0(static_cast<uint32_t>(box.y0));
+  out->width(static_cast<uint32_t>(box.width));
+  out->height(static_cast<uint32_t>(box.height));
+  grid.copy_box(box, &out->cells());
+}
+
+slam::MapResult to_map_result(FileFailure failure) {
+  switch (failure) {
+    case FileFailure::None: return slam::MAP_OK;
+    case FileFailure::InvalidRequest: return slam::MAP_INVALID_REQUEST;
+    case FileFailure::Io: return slam::MAP_IO_ERROR;
+    case FileFailure::BadFile: return slam::MAP_BAD_FILE;
+  }
+  return slam::MAP_IO_ERROR;
+}
+
+}  // namespace slam::mapper

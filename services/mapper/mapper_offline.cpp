@@ -1,0 +1,44 @@
+// slam-mapper --export / --import (see mapper_offline.hpp).
+#include "mapper/mapper_offline.hpp"
+
+#include <filesystem>
+#include <system_error>
+
+#include "mapper/map_files.hpp"
+#include "mapper/rebuild.hpp"
+
+namespace slam::mapper {
+namespace {
+
+Result<std::string> export_store(const MapperOptions& o, ObservationStore& store) {
+  auto config = startup_config(o.grid, store);
+  if (!config) return Error{config.message()};
+  RebuildStats stats;
+  auto grid = rebuild_grid(*config, store, &stats);
+  if (!grid) return Error{grid.message()};
+  FileOutcome out = export_map_file(*grid, o.export_yaml);
+  if (!out.ok()) return Error{out.message};
+  std::string summary = out.message + " (" + std::to_string(stats.observations) + " observations";
+  if (stats.rejected > 0) summary += ", " + std::to_string(stats.rejected) + " rejected: " + stats.first_error;
+  return summary + ")";
+}
+
+Result<std::string> import_prior(const MapperOptions& o, ObservationStore& store) {
+  FileOutcome in = read_map_file(o.import_yaml);
+  if (!in.ok()) return Error{in.message};
+  if (Status s = store.save_prior(*in.image); !s) return Error{s.message()};
+  return in.message + "; stored as the prior of " + o.store;
+}
+
+}  // namespace
+
+Result<std::string> run_offline(const MapperOptions& o) {
+  std::error_code ec;
+  if (!o.export_yaml.empty() && !std::filesystem::is_regular_file(o.store, ec))
+    return Error{"observation store " + o.store + ": no such file (nothing to export)"};
+  auto store = open_store(o.store, StoreOptions{o.store_batch});
+  if (!store) return Error{store.message()};
+  return o.export_yaml.empty() ? import_prior(o, *store) : export_store(o, *store);
+}
+
+}  // namespace slam::mapper

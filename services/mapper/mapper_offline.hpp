@@ -1,0 +1,15 @@
+#pragma once
+// slam-mapper's offline commands: --export (rebuild from the store, write a ROS map) and --import
+// (store a ROS map as the prior). No DDS: they work on a store no mapper has open, e.g. for backups
+// or to seed a new site's map before the fleet starts.
+#include <string>
+
+#include "common/result.hpp"
+#include "mapper/mapper_options.hpp"
+
+namespace slam::mapper {
+
+// Runs the command `options` names; returns a one-line summary, or an error naming the file.
+Result<std::string> run_offline(const MapperOptions& options);
+
+}  // namespace slam::mapper

@@ -1,0 +1,40 @@
+#pragma once
+// slam-mapper's configuration: the store, the grid defaults (the core's GridConfig), the publishing
+// rates and the two offline commands (--export, --import), with defaults, CLI11/YAML binding and one
+// validator. Flags are named after the keys: `grid.resolution` is --grid-resolution on the command
+// line and `grid: {resolution: 0.05}` in a --config file.
+#include <CLI/CLI.hpp>
+
+#include <string>
+
+#include "common/result.hpp"
+#include "common/service_options.hpp"
+#include "mapper/grid_config.hpp"
+
+namespace slam::mapper {
+
+struct MapperOptions {
+  ServiceOptions service;
+  // SQLite file holding every observation; its directory is created when missing.
+  std::string store = "run/data/map.db";
+  int store_batch = 512;           // appends per transaction (a commit also happens every patch period)
+  // The layout of a new store. A store remembers the layout GridConfig requests set last; that layout
+  // (resolution, origin, size, inflation, legacy mode) wins over these flags at start.
+  GridConfig grid;
+  double patch_rate_hz = 10.0;     // GridPatch rate (the changed box since the last patch)
+  double snapshot_period_s = 5.0;  // a full GridSnapshot at least this often
+  size_t max_queued_observations = 100000;  // intake bound: beyond it observations are dropped, counted
+  // Offline commands (no DDS): rebuild from the store and write a ROS map, or store a map as prior.
+  std::string export_yaml;
+  std::string import_yaml;
+
+  bool offline() const { return !export_yaml.empty() || !import_yaml.empty(); }
+};
+
+// Adds the common flags and every mapper flag to `app`, bound to `options`.
+void add_mapper_options(CLI::App& app, MapperOptions& options);
+
+// Ok, or the first bad key with the reason.
+Status validate(const MapperOptions& options);
+
+}  // namespace slam::mapper

@@ -1,0 +1,52 @@
+#pragma once
+// Rebuilds off the map loop: a layout change or a robot reset replays the whole store, which may take
+// seconds, while the loop keeps integrating and publishing with the current grid. The worker reads
+// through its own SQLite connection (WAL lets it read while the loop's connection stays open) and the
+// loop swaps the finished grid in. One rebuild at a time.
+#include <chrono>
+#include <filesystem>
+#include <functional>
+#include <mutex>
+#include <optional>
+#include <thread>
+
+#include "common/result.hpp"
+#include "mapper/grid_config.hpp"
+#include "mapper/observation_store.hpp"
+#include "mapper/occupancy_grid.hpp"
+#include "mapper/rebuild.hpp"
+
+namespace slam::mapper {
+
+struct RebuildOutcome {
+  Result<OccupancyGrid> grid;
+  RebuildStats stats;
+  std::chrono::milliseconds took{0};
+};
+
+class RebuildWorker {
+ public:
+  // `on_done` runs on the worker thread when a result is ready (e.g. to wake the loop); keep it short.
+  explicit RebuildWorker(std::function<void()> on_done) : on_done_(std::move(on_done)) {}
+  ~RebuildWorker();  // waits for a running rebuild
+  RebuildWorker(const RebuildWorker&) = delete;
+  RebuildWorker& operator=(const RebuildWorker&) = delete;
+
+  // Starts rebuilding `config` from the store at `path`. The caller must not write to the store until
+  // the result is taken (the rebuild must see exactly what was committed when it started).
+  Status start(const GridConfig& config, const std::filesystem::path& path);
+  bool busy() const;
+  // The finished rebuild, once; nullopt while running or idle.
+  std::optional<RebuildOutcome> take();
+  // Blocks until a running rebuild finishes, then returns it (nullopt when idle).
+  std::optional<RebuildOutcome> wait();
+
+ private:
+  std::function<void()> on_done_;
+  mutable std::mutex mutex_;
+  bool running_ = false;
+  std::optional<RebuildOutcome> result_;
+  std::thread thread_;
+};
+
+}  // namespace slam::mapper

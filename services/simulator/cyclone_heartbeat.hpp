@@ -1,0 +1,54 @@
+#pragma once
+// The Heartbeat every service publishes (see common/heartbeat.hpp), on Cyclone DDS for the
+// simulator: once a period from its own thread with every counter, so a stalled loop still shows
+// as alive-but-not-progressing and a dead process as gone (liveliness).
+#include <dds/dds.h>
+
+#include <slam/cyclone/system.h>
+
+#include <atomic>
+#include <chrono>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "common/counters.hpp"
+#include "common/result.hpp"
+
+namespace slam::sim {
+
+class CycloneHeartbeat {
+ public:
+  // Publishes at once (state STARTING), then every `period` until destroyed.
+  static Result<std::unique_ptr<CycloneHeartbeat>> start(dds_entity_t participant, std::string service,
+                                                         const Counters& counters,
+                                                         std::chrono::milliseconds period = std::chrono::seconds(1));
+  ~CycloneHeartbeat();
+  CycloneHeartbeat(const CycloneHeartbeat&) = delete;
+  CycloneHeartbeat& operator=(const CycloneHeartbeat&) = delete;
+
+  // RUNNING after activation, STOPPING during shutdown; published at once.
+  void set_state(slam_ServiceState state);
+
+ private:
+  CycloneHeartbeat() = default;
+  void publish();
+  void run();
+
+  dds_entity_t writer_ = 0;  // child of the participant
+  const Counters* counters_ = nullptr;
+  std::string service_;
+  std::string instance_id_;
+  std::string host_;
+  std::chrono::milliseconds period_{1000};
+  std::chrono::steady_clock::time_point started_;
+  std::atomic<slam_ServiceState> state_{slam_SERVICE_STARTING};
+  std::atomic<bool> stop_{false};
+  std::mutex publish_mutex_;
+  std::vector<slam_Counter> counter_samples_;
+  std::thread thread_;
+};
+
+}  // namespace slam::sim

@@ -1,0 +1,106 @@
+#pragma once
+// The fleet's MQTT side: each simulated robot speaks the robot protocol (v1 or v2) exactly as a
+// real one does, over its own connection (client id = robot id) or one shared multiplexed
+// connection. Reports go out from the simulation loop; waypoint commands arrive on paho threads,
+// are decoded and checked there, and wait in a locked intake the loop drains.
+#include <chrono>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include "common/counters.hpp"
+#include "common/log.hpp"
+#include "common/result.hpp"
+#include "protocol/codec_types.hpp"
+#include "simulator/geometry.hpp"
+#include "simulator/mqtt_link.hpp"
+#include "simulator/report.hpp"
+#include "simulator/sim_options.hpp"
+
+namespace slam::sim {
+
+// A decoded server command for one robot. No target: stop (a v2 path with no points).
+struct WaypointOrder {
+  std::string robot_id;
+  std::optional<Vec2> target;
+};
+
+class RobotLinks {
+ public:
+  static constexpr double kStatusPeriodS = 5.0;  // simulated seconds between repeated v2 statuses
+
+  struct Settings {
+    std::string broker;
+    RobotProtocol protocol = RobotProtocol::V1;
+    bool multiplex = false;
+    protocol::CodecLimits limits;
+  };
+
+  // Registers the counters it keeps (reports_sent, waypoints_received, mqtt_reconnects, ...) and,
+  // when multiplexed, opens the shared connection.
+  static Result<std::unique_ptr<RobotLinks>> create(Settings settings, Counters& counters);
+  // v2 robots announce "offline" first; every connection then closes cleanly, all at once.
+  ~RobotLinks();
+  RobotLinks(const RobotLinks&) = delete;
+  RobotLinks& operator=(const RobotLinks&) = delete;
+
+  // Starts speaking for `robot_id` (its own connection unless multiplexed).
+  Status add(const std::string& robot_id);
+  // Stops speaking for it; a v2 robot says "offline" first.
+  void remove(const std::string& robot_id);
+
+  // Publishes the robot's report (v1 adv, or v2 scan plus a status when `driving` changed, the
+  // connection is new, or kStatusPeriodS passed, so late subscribers learn it too). Unknown robots and failed publishes are counted, never fatal.
+  void publish(const RobotReport& report, bool driving);
+
+  // Connect retries; call every loop iteration.
+  void poll(std::chrono::steady_clock::time_point now);
+
+  // Moves the commands received since the last call into `out` (cleared first).
+  void drain_orders(std::vector<WaypointOrder>& out);
+
+ private:
+  struct Endpoint {
+    std::string report_topic;
+    std::string status_topic;
+    std::unique_ptr<MqttLink> own_link;  // per-robot mode
+    MqttLink* link = nullptr;
+    uint64_t status_connects = 0;  // link->connects() when the last status went out
+    double status_time_s = -1e300;   // simulated time of the last status
+    bool driving = false;
+  };
+
+  RobotLinks(Settings settings, Counters& counters);
+  Result<std::unique_ptr<MqttLink>> open(const std::string& client_id, std::vector<std::string> subscriptions,
+                                         std::optional<MqttWill> will);
+  void on_message(std::string_view topic, std::span<const uint8_t> payload);
+  void reject(std::string_view robot_id, const std::string& reason, const std::string& detail);
+  void send(Endpoint& e, const std::string& topic, std::span<const uint8_t> payload);
+  void send_status(Endpoint& e, bool driving, double time_s);
+
+  Settings settings_;
+  std::atomic<int64_t>& reports_sent_;
+  std::atomic<int64_t>& reports_dropped_;
+  std::atomic<int64_t>& waypoints_received_;
+  std::atomic<int64_t>& waypoints_rejected_;
+  std::atomic<int64_t>& orders_dropped_;
+  MqttLinkCounters link_counters_;
+  RateLimiter log_limiter_;
+
+  std::unique_ptr<MqttLink> shared_link_;  // multiplexed mode
+  std::unordered_map<std::string, Endpoint> endpoints_;
+
+  std::mutex intake_mutex_;
+  std::vector<WaypointOrder> intake_;
+
+  // Encoding scratch, reused report after report.
+  std::vector<protocol::Point> hits_;
+  std::vector<uint8_t> bytes_;
+  std::string text_;
+  std::vector<double> ranges_;
+};
+
+}  // namespace slam::sim

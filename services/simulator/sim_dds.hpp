@@ -1,0 +1,52 @@
+#pragma once
+// The simulator's DDS edge on Cyclone DDS (C API, idlc types): SimControl in, SimWorld and
+// SimGroundTruth out, with QoS only from topics.hpp. Converts between the IDL structs and the
+// core's plain types here and nowhere else. Used from the simulation loop's thread only.
+#include <dds/dds.h>
+
+#include <slam/cyclone/sim.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "common/cyclone_qos.hpp"
+#include "common/result.hpp"
+#include "simulator/sim_control.hpp"
+#include "simulator/simulation.hpp"
+#include "simulator/world.hpp"
+
+namespace slam::sim {
+
+class SimDds {
+ public:
+  // Participant on `domain`, the control reader and the world/truth writers; fails naming the entity.
+  static Result<std::unique_ptr<SimDds>> create(int domain);
+
+  dds_entity_t participant() const { return participant_.get(); }
+
+  // Control commands received since the last call, appended to `out`; samples that cannot become
+  // a command (an unknown kind) go to `errors` as one line each.
+  Status take_controls(std::vector<ControlCommand>& out, std::vector<std::string>& errors);
+
+  // The hidden world (transient-local: late joiners get it too). Names beyond 256 bytes are cut.
+  Status publish_world(const World& world);
+  // True and believed pose of every robot, stamped now.
+  Status publish_truth(const Simulation& sim);
+
+ private:
+  SimDds() = default;
+
+  cyclone::Entity participant_;
+  dds_entity_t control_reader_ = 0;  // children of the participant: deleted with it
+  dds_entity_t world_writer_ = 0;
+  dds_entity_t truth_writer_ = 0;
+  std::vector<slam_Segment2> walls_;
+  std::vector<slam_SimRobotTruth> truth_;
+};
+
+// Copies `text` into a bounded IDL string (char[N], N including the terminator), cutting at a
+// UTF-8 character boundary when it is too long.
+void copy_bounded(std::string_view text, char* out, size_t capacity);
+
+}  // namespace slam::sim

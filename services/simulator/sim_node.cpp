@@ -1,0 +1,193 @@
+// The simulation loop and the application of commands. Everything here runs on one thread; the
+// only cross-thread hand-off is RobotLinks' waypoint intake.
+#include "simulator/sim_node.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+
+#include "common/shutdown.hpp"
+#include "protocol/text_check.hpp"
+
+namespace slam::sim {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+constexpr auto kMinTick = std::chrono::milliseconds(1);
+constexpr auto kMaxTick = std::chrono::milliseconds(50);
+
+double seconds(Clock::duration d) {
+  return std::chrono::duration<double>(d).count();
+}
+
+}  // namespace
+
+SimNode::SimNode(const SimOptions& options, Simulation sim, Counters& counters)
+    : options_(options),
+      counters_(counters),
+      sim_(std::move(sim)),
+      robots_(counters.get("robots")),
+      steps_(counters.get("steps")),
+      loop_overruns_(counters.get("loop_overruns")),
+      controls_applied_(counters.get("controls_applied")),
+      controls_rejected_(counters.get("controls_rejected")),
+      waypoints_rejected_(counters.get("waypoints_rejected")),
+      waypoints_outside_world_(counters.get("waypoints_outside_world")),
+      waypoints_unknown_robot_(counters.get("waypoints_unknown_robot")),
+      dds_write_failures_(counters.get("dds_write_failures")) {}
+
+SimNode::~SimNode() = default;
+
+Result<std::unique_ptr<SimNode>> SimNode::create(const SimOptions& options, World world, Counters& counters) {
+  auto config = simulation_config(options);
+  if (!config) return Error{config.message()};
+  auto sim = Simulation::create(std::move(world), *config);
+  if (!sim) return Error{"simulation: " + sim.message()};
+  std::unique_ptr<SimNode> node(new SimNode(options, std::move(*sim), counters));
+
+  auto dds = SimDds::create(options.service.domain);
+  if (!dds) return Error{dds.message()};
+  node->dds_ = std::move(*dds);
+  auto heartbeat = CycloneHeartbeat::start(node->dds_->participant(), "simulator", counters);
+  if (!heartbeat) return Error{heartbeat.message()};
+  node->heartbeat_ = std::move(*heartbeat);
+
+  RobotLinks::Settings link_settings{options.broker, options.robot_protocol(), options.mqtt_multiplex,
+                                     codec_limits(options)};
+  auto links = RobotLinks::create(std::move(link_settings), counters);
+  if (!links) return Error{"MQTT: " + links.message()};
+  node->links_ = std::move(*links);
+
+  auto ids = node->sim_.spawn_random(static_cast<size_t>(options.robots));
+  if (!ids) return Error{"--robots: " + ids.message()};
+  node->add_robots(*ids);
+  if (auto s = node->dds_->publish_world(node->sim_.world()); !s) return Error{s.message()};
+  return node;
+}
+
+void SimNode::warn(const std::string& key, const std::string& text) {
+  uint64_t dropped = 0;
+  if (log_limiter_.allow(key, &dropped)) spdlog::warn("{} ({} similar lines suppressed)", text, dropped);
+}
+
+void SimNode::add_robots(const std::vector<std::string>& ids) {
+  for (const std::string& id : ids) {
+    if (auto s = links_->add(id); !s) {
+      // A robot that cannot speak MQTT would drive unseen: take it out again.
+      warn("link", fmt::format("robot '{}' removed: {}", protocol::escape_for_log(id), s.message()));
+      sim_.remove(id);
+    }
+  }
+  robots_.store(static_cast<int64_t>(sim_.robots().size()), std::memory_order_relaxed);
+}
+
+void SimNode::apply_controls() {
+  controls_.clear();
+  control_errors_.clear();
+  if (auto s = dds_->take_controls(controls_, control_errors_); !s) warn("take", s.message());
+  for (const std::string& e : control_errors_) {
+    bump(controls_rejected_);
+    warn("control", "control ignored: " + e);
+  }
+  for (const ControlCommand& c : controls_) {
+    auto outcome = apply_control(sim_, c);
+    if (!outcome) {
+      bump(controls_rejected_);
+      warn("control", fmt::format("control {} ignored: {}", c.command_id, outcome.message()));
+      continue;
+    }
+    bump(controls_applied_);
+    for (const std::string& id : outcome->removed) links_->remove(id);
+    add_robots(outcome->spawned);
+    if (outcome->world_changed) {
+      spdlog::info("world is now '{}' ({} walls)", sim_.world().name(), sim_.world().walls().size());
+      if (auto s = dds_->publish_world(sim_.world()); !s) {
+        bump(dds_write_failures_);
+        warn("world", s.message());
+      }
+    }
+  }
+  robots_.store(static_cast<int64_t>(sim_.robots().size()), std::memory_order_relaxed);
+}
+
+void SimNode::apply_orders() {
+  links_->drain_orders(orders_);
+  const Bounds& bounds = sim_.world().bounds();
+  for (const WaypointOrder& o : orders_) {
+    if (sim_.find(o.robot_id) == nullptr) {
+      bump(waypoints_unknown_robot_);  // multiplexed: commands for robots this simulator does not run
+      continue;
+    }
+    if (!o.target) {
+      (void)sim_.clear_waypoint(o.robot_id);
+      continue;
+    }
+    if (!bounds.contains(*o.target)) {
+      bump(waypoints_rejected_);
+      bump(waypoints_outside_world_);
+      warn("outside", fmt::format("waypoint ({:.2f}, {:.2f}) for '{}' ignored: outside world '{}' [{}, {}] x [{}, {}]",
+                                  o.target->x, o.target->y, protocol::escape_for_log(o.robot_id), sim_.world().name(),
+                                  bounds.min.x, bounds.max.x, bounds.min.y, bounds.max.y));
+      continue;
+    }
+    (void)sim_.set_waypoint(o.robot_id, *o.target);
+  }
+}
+
+void SimNode::run_steps(double wall_seconds) {
+  const size_t n = sim_.steps_for(wall_seconds);
+  for (size_t k = 0; k < n; ++k) {
+    const auto reports = sim_.step();
+    bump(steps_);
+    // Reports come in fleet order, so one forward walk finds each robot's driving state.
+    const auto robots = sim_.robots();
+    size_t j = 0;
+    for (const RobotReport& r : reports) {
+      while (j < robots.size() && robots[j].id != r.robot_id) ++j;
+      links_->publish(r, j < robots.size() && robots[j].waypoint.has_value());
+    }
+  }
+}
+
+void SimNode::publish_truth() {
+  if (auto s = dds_->publish_truth(sim_); !s) {
+    bump(dds_write_failures_);
+    warn("truth", s.message());
+  }
+}
+
+void SimNode::run() {
+  heartbeat_->set_state(slam_SERVICE_RUNNING);
+  spdlog::info("simulating {} robots ({}, {}) in world '{}'; broker {}", sim_.robots().size(), options_.protocol,
+               options_.mqtt_multiplex ? "one shared MQTT connection" : "one MQTT connection each",
+               sim_.world().name(), options_.broker);
+  const auto truth_period = std::chrono::duration_cast<Clock::duration>(
+      std::chrono::duration<double>(1.0 / options_.truth_rate_hz));
+  auto last = Clock::now();
+  auto next_truth = last;
+  while (!shutdown_requested()) {
+    const auto start = Clock::now();
+    apply_controls();
+    apply_orders();
+    run_steps(seconds(start - last));
+    last = start;
+    links_->poll(start);
+    if (start >= next_truth) {
+      publish_truth();
+      next_truth = std::max(next_truth + truth_period, start);
+    }
+    const auto tick = std::clamp(std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(
+                                     sim_.config().dt / sim_.config().speed_factor)),
+                                 Clock::duration(kMinTick), Clock::duration(kMaxTick));
+    const auto spent = Clock::now() - start;
+    if (spent > tick) {
+      bump(loop_overruns_);
+      continue;
+    }
+    wait_for_shutdown(std::chrono::duration_cast<std::chrono::milliseconds>(tick - spent));
+  }
+  heartbeat_->set_state(slam_SERVICE_STOPPING);
+}
+
+}  // namespace slam::sim

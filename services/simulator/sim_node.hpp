@@ -1,0 +1,64 @@
+#pragma once
+// slam-simulator's service object: owns the Simulation and drives it from one thread. Each loop
+// iteration applies operator commands (Cyclone) and waypoints (MQTT intake), runs the steps due
+// for the elapsed wall time, publishes every report over MQTT and, at its own rate, ground truth.
+#include <chrono>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "common/counters.hpp"
+#include "common/log.hpp"
+#include "common/result.hpp"
+#include "simulator/cyclone_heartbeat.hpp"
+#include "simulator/robot_link.hpp"
+#include "simulator/sim_dds.hpp"
+#include "simulator/sim_options.hpp"
+#include "simulator/simulation.hpp"
+
+namespace slam::sim {
+
+class SimNode {
+ public:
+  // Configure: simulation, Cyclone entities, heartbeat, MQTT links, the initial robots. A failure
+  // undoes what was done (members are released in reverse) and names the step that failed.
+  static Result<std::unique_ptr<SimNode>> create(const SimOptions& options, World world, Counters& counters);
+  ~SimNode();
+
+  // Runs until shutdown is requested; heartbeat RUNNING while it does, STOPPING after.
+  void run();
+
+ private:
+  SimNode(const SimOptions& options, Simulation sim, Counters& counters);
+  void add_robots(const std::vector<std::string>& ids);
+  void apply_controls();
+  void apply_orders();
+  void run_steps(double wall_seconds);
+  void publish_truth();
+  void warn(const std::string& key, const std::string& text);
+
+  SimOptions options_;
+  Counters& counters_;
+  Simulation sim_;
+  RateLimiter log_limiter_;
+  std::atomic<int64_t>& robots_;
+  std::atomic<int64_t>& steps_;
+  std::atomic<int64_t>& loop_overruns_;
+  std::atomic<int64_t>& controls_applied_;
+  std::atomic<int64_t>& controls_rejected_;
+  std::atomic<int64_t>& waypoints_rejected_;
+  std::atomic<int64_t>& waypoints_outside_world_;
+  std::atomic<int64_t>& waypoints_unknown_robot_;
+  std::atomic<int64_t>& dds_write_failures_;
+
+  // Declared in set-up order, so teardown runs in reverse: robots go offline, then DDS goes.
+  std::unique_ptr<SimDds> dds_;
+  std::unique_ptr<CycloneHeartbeat> heartbeat_;
+  std::unique_ptr<RobotLinks> links_;
+
+  std::vector<ControlCommand> controls_;
+  std::vector<std::string> control_errors_;
+  std::vector<WaypointOrder> orders_;
+};
+
+}  // namespace slam::sim

@@ -1,0 +1,28 @@
+#pragma once
+// Mouse and keys over the map: pan (middle or right drag), zoom about the cursor (wheel), rotate
+// (Shift+wheel, or Q/E), flip (V), fit (F), and clicks that send what the Clicks tab chose.
+// Synthetic clicks from --click go through apply_click() exactly like real ones.
+#include "viewer/commands.hpp"
+#include "viewer/viewer_state.hpp"
+
+namespace slam::viewer {
+
+// The box "fit to map" shows: the grid, else every robot and point; false when there is nothing.
+bool fit_box(const ViewerState& state, WorldBox* box);
+
+// Sends the command a click with `button` (0 left, 1 right) at window point `screen` asks for.
+void apply_click(ViewerState& state, CommandSink& sink, Vec2 screen, int button);
+
+class MapInput {
+ public:
+  // Call once per frame after ImGui::NewFrame(), before the panels consume input.
+  void handle(ViewerState& state, CommandSink& sink);
+
+ private:
+  int drag_button_ = -1;  // 1 right, 2 middle; -1 none
+  Vec2 press_{};
+  Vec2 last_{};
+  bool dragged_ = false;
+};
+
+}  // namespace slam::viewer

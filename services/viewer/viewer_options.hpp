@@ -1,0 +1,58 @@
+#pragma once
+// slam-viewer's settings: window size, headless screenshot run, test hooks (synthetic clicks),
+// limits. A plain struct with defaults, its CLI11 binding and a validator naming the bad key.
+#include <CLI/CLI.hpp>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "common/result.hpp"
+#include "common/service_options.hpp"
+#include "viewer/click_actions.hpp"
+
+namespace slam::viewer {
+
+// A synthetic click for tests: window pixel (x, y), button 0 = left, 1 = right, applied at
+// `frame` (counted like --frames, from when the view is ready).
+struct ClickSpec {
+  double x = 0.0, y = 0.0;
+  int button = 0;
+  uint32_t frame = 0;
+};
+
+inline constexpr const char* kTabNames[] = {"main", "mqtt", "clicks", "robots", "drive", "grid", "sim", "map"};
+
+// "X,Y,left|right@FRAME"
+Result<ClickSpec> parse_click_spec(const std::string& text);
+
+struct ViewerOptions {
+  ServiceOptions service;
+  int width = 1280;
+  int height = 800;
+  std::string screenshot;        // headless: write this PNG after `frames` frames and exit
+  uint32_t frames = 60;
+  bool wait_map = false;         // headless: frames count only once a grid snapshot arrived ...
+  uint32_t wait_robots = 0;      // ... and this many robots have points
+  double max_wait_s = 30.0;      // give up (exit 1) when not ready by then
+  double fps = 60.0;             // frame cap (Xvfb has no vsync)
+  float panel_width = 420.0f;    // control panel on the left; the map takes the rest
+  uint32_t max_points_per_robot = 16u << 20;
+  uint32_t point_budget = 200'000;  // points rasterised into the point texture per frame (bounds a frame's cost)
+  std::string left_click = "target";
+  std::string right_click = "obstruct";
+  std::vector<std::string> click_texts;
+  std::string tab;               // open this tab at start (main, mqtt, clicks, robots, drive, grid, sim, map)
+
+  // Filled by validate():
+  std::vector<ClickSpec> clicks;
+  ClickAction left_action = ClickAction::SetTarget;
+  ClickAction right_action = ClickAction::Obstruct;
+  int tab_index = -1;
+};
+
+void add_viewer_options(CLI::App& app, ViewerOptions& o);
+// Checks ranges and parses --click / --left-click / --right-click; the error names the flag.
+Status validate(ViewerOptions& o);
+
+}  // namespace slam::viewer

@@ -1,0 +1,152 @@
+// Viewer frame time with many measurement points (target on llvmpipe: steady frames with 1 M
+// points <= 33 ms, frames while panning <= 100 ms). Needs a display: run under
+//   xvfb-run -a -s "-screen 0 1280x800x24" build/bin/bench_viewer
+// Each iteration is one frame (grid texture + points + glFinish), timed manually; p50/p95 are
+// reported as counters, GL_RENDERER in the context.
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <random>
+#include <vector>
+
+#include "viewer/gl_window.hpp"
+#include "viewer/grid_layer.hpp"
+#include "viewer/point_layer.hpp"
+
+namespace {
+
+using namespace slam::viewer;
+using Clock = std::chrono::steady_clock;
+
+constexpr int kWidth = 1280, kHeight = 800;
+constexpr uint32_t kBudget = 200'000;  // the viewer's default --point-budget
+
+[[noreturn]] void die(const std::string& what) {
+  std::fprintf(stderr, "bench_viewer: %s\n", what.c_str());
+  std::exit(1);
+}
+
+// One window, a 1024² grid and four robots sharing `points` points spread over a 40 m square,
+// sorted along x in 1 m strips as a robot's scans roughly are.
+struct Scene {
+  std::unique_ptr<GlWindow> window;
+  GridMirror grid;
+  GridColors colors;
+  RobotRegistry robots;
+  GridLayer grid_layer;
+  PointLayer point_layer;
+  ViewTransform view;
+  PixelRect px{0, 0, kWidth, kHeight};
+
+  explicit Scene(size_t points) {
+    auto w = GlWindow::create("bench_viewer", kWidth, kHeight);
+    if (!w) die(w.message());
+    window = std::move(*w);
+    if (auto s = grid_layer.init(); !s) die(s.message());
+    if (auto s = point_layer.init(kBudget); !s) die(s.message());
+    GridSnapshotData snap{1, 1, {1024, 1024, 0.05, {-25.6, -25.6}, 0.2}, std::vector<uint8_t>(1024 * 1024)};
+    std::mt19937 rng(7);
+    for (auto& c : snap.cells) c = static_cast<uint8_t>(rng() % 3);
+    if (auto s = grid.apply_snapshot(std::move(snap)); !s) die(s.message());
+    std::uniform_real_distribution<float> u(-20.0f, 20.0f);
+    for (int r = 0; r < 4; ++r) {
+      std::vector<float> xy(points / 4 * 2);
+      for (auto& v : xy) v = u(rng);
+      RobotView& robot = robots.get_or_add("robot" + std::to_string(r));
+      robot.points.append(xy.data(), xy.size() / 2);
+    }
+    view.set_viewport({0.0, 0.0, kWidth, kHeight});
+    view.fit(grid.bounds());
+  }
+
+  double frame_ms() {
+    const auto t0 = Clock::now();
+    glViewport(0, 0, kWidth, kHeight);
+    glClearColor(0.1f, 0.1f, 0.1f, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT);
+    grid_layer.sync(grid);
+    grid_layer.draw(view, colors, grid);
+    point_layer.sync(robots);
+    point_layer.draw(view, px, robots, 1.0);
+    glFinish();
+    glfwSwapBuffers(window->handle());
+    return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+  }
+
+  // Frames until the accumulation texture matches the view; returns their total time.
+  double settle_ms() {
+    double total = 0.0;
+    for (int i = 0; i < 1000; ++i) {
+      total += frame_ms();
+      if (point_layer.stats().settled) return total;
+    }
+    die("the point texture never settled");
+  }
+};
+
+void report(benchmark::State& state, std::vector<double>& ms) {
+  std::sort(ms.begin(), ms.end());
+  state.counters["p50_ms"] = ms[ms.size() / 2];
+  state.counters["p95_ms"] = ms[std::min(ms.size() - 1, ms.size() * 95 / 100)];
+  state.counters["points"] = static_cast<double>(state.range(0));
+}
+
+// Nothing moves: the texture is drawn, no point is rasterised.
+void BM_SteadyFrame(benchmark::State& state) {
+  Scene scene(static_cast<size_t>(state.range(0)));
+  state.counters["first_settle_ms"] = scene.settle_ms();
+  std::vector<double> ms;
+  for (auto _ : state) {
+    ms.push_back(scene.frame_ms());
+    state.SetIterationTime(ms.back() / 1000.0);
+  }
+  if (state.range(0) == 10'000) benchmark::AddCustomContext("GL_RENDERER", scene.window->renderer());
+  report(state, ms);
+}
+
+// The view pans 4 px every frame: the last texture is re-projected.
+void BM_PanFrame(benchmark::State& state) {
+  Scene scene(static_cast<size_t>(state.range(0)));
+  scene.settle_ms();
+  std::vector<double> ms;
+  double x = 300.0;
+  for (auto _ : state) {
+    scene.view.pan_pixels({x, 400.0}, {x + 4.0, 400.0});
+    x += 4.0;
+    ms.push_back(scene.frame_ms());
+    state.SetIterationTime(ms.back() / 1000.0);
+  }
+  // After the pan stops: frames until the texture is re-rendered at budget points per frame.
+  state.counters["resettle_ms"] = scene.settle_ms();
+  report(state, ms);
+}
+
+// Steady view with 2,000 new points per frame (a busy fleet): only those are rasterised.
+void BM_AppendFrame(benchmark::State& state) {
+  Scene scene(static_cast<size_t>(state.range(0)));
+  scene.settle_ms();
+  std::vector<float> xy(4000, 1.0f);
+  std::vector<double> ms;
+  for (auto _ : state) {
+    scene.robots.at(0).points.append(xy.data(), 2000);
+    ms.push_back(scene.frame_ms());
+    state.SetIterationTime(ms.back() / 1000.0);
+  }
+  report(state, ms);
+}
+
+void sizes(benchmark::internal::Benchmark* b) {
+  for (int64_t n : {10'000, 100'000, 1'000'000, 4'000'000}) b->Arg(n);
+  b->UseManualTime()->Unit(benchmark::kMillisecond)->Iterations(60);
+}
+
+BENCHMARK(BM_SteadyFrame)->Apply(sizes);
+BENCHMARK(BM_PanFrame)->Apply(sizes);
+BENCHMARK(BM_AppendFrame)->Apply(sizes);
+
+}  // namespace
+
+BENCHMARK_MAIN();

@@ -1,0 +1,204 @@
+// slam-viewer black-box: started headless under xvfb-run on its own DDS domain, it is sent a known
+// grid, two robots with observations and a path; its screenshot must show the robots' colours
+// where their points are, occupied cells dark and free cells light; synthetic clicks must publish
+// a NavGoal and a MapEdit at the world points under the clicked pixels.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#define STB_IMAGE_IMPLEMENTATION
+#include <stb/stb_image.h>
+
+#include <cmath>
+#include <filesystem>
+#include <sstream>
+
+#include "common/fast_topics.hpp"
+#include "process_group.hpp"
+#include "viewer/cell_colors.hpp"
+#include "viewer/view_transform.hpp"
+
+namespace slam {
+namespace {
+
+using namespace testkit;
+using viewer::Rgba;
+using viewer::Vec2;
+using viewer::ViewTransform;
+
+// The grid: 10 x 8 m at 0.1 m, origin (-5, -4); x >= 2 m occupied, y >= 3 m unknown, rest free.
+constexpr uint32_t kW = 100, kH = 80;
+constexpr double kRes = 0.1, kOx = -5.0, kOy = -4.0;
+
+GridSnapshot make_grid() {
+  GridSnapshot s;
+  s.layout_id(3);
+  s.version(1);
+  GridInfo info;
+  info.width(kW);
+  info.height(kH);
+  info.resolution(kRes);
+  Point2 o;
+  o.x(kOx);
+  o.y(kOy);
+  info.origin(o);
+  info.inflation_radius(0.0);
+  s.info(info);
+  std::vector<uint8_t> cells(size_t{kW} * kH);
+  for (uint32_t y = 0; y < kH; ++y)
+    for (uint32_t x = 0; x < kW; ++x) cells[size_t{y} * kW + x] = x >= 70 ? 2 : (y >= 70 ? 0 : 1);
+  s.cells(cells);
+  return s;
+}
+
+Pose2 pose(double x, double y, double theta) {
+  Pose2 p;
+  p.x(x);
+  p.y(y);
+  p.theta(theta);
+  return p;
+}
+
+Point2 pt(double x, double y) {
+  Point2 p;
+  p.x(x);
+  p.y(y);
+  return p;
+}
+
+RobotState state(const std::string& id, Pose2 p) {
+  RobotState s;
+  s.robot_id(id);
+  s.presence(PRESENCE_ONLINE);
+  s.pose(p);
+  s.has_heading(true);
+  s.battery(-1.0f);
+  return s;
+}
+
+// A dense 0.6 m square of hits around (cx, cy), so it renders as solid colour.
+RobotObservation observation(const std::string& id, Pose2 p, double cx, double cy) {
+  RobotObservation o;
+  o.robot_id(id);
+  o.seq(1);
+  o.pose(p);
+  o.has_heading(true);
+  for (int i = 0; i <= 20; ++i)
+    for (int j = 0; j <= 20; ++j) o.hits().push_back(pt(cx - 0.3 + 0.03 * i, cy - 0.3 + 0.03 * j));
+  return o;
+}
+
+bool have_xvfb() { return ::access("/usr/bin/xvfb-run", X_OK) == 0; }
+
+struct Image {
+  int w = 0, h = 0;
+  std::vector<unsigned char> rgb;
+  // Pixel at the window point of world `p`.
+  Rgba at(const ViewTransform& v, Vec2 world) const {
+    const Vec2 s = v.world_to_screen(world);
+    const int x = static_cast<int>(std::lround(s.x)), y = static_cast<int>(std::lround(s.y));
+    if (x < 0 || y < 0 || x >= w || y >= h) return {-1, -1, -1, -1};
+    const unsigned char* px = &rgb[(static_cast<size_t>(y) * static_cast<size_t>(w) + static_cast<size_t>(x)) * 3];
+    return {px[0] / 255.0f, px[1] / 255.0f, px[2] / 255.0f, 1.0f};
+  }
+};
+
+float brightness(const Rgba& c) { return (c.r + c.g + c.b) / 3.0f; }
+bool close_to(const Rgba& a, const Rgba& b) {
+  return std::abs(a.r - b.r) < 0.08f && std::abs(a.g - b.g) < 0.08f && std::abs(a.b - b.b) < 0.08f;
+}
+std::string str(const Rgba& c) {
+  std::ostringstream s;
+  s << "(" << c.r << ", " << c.g << ", " << c.b << ")";
+  return s.str();
+}
+
+TEST(ViewerTest, RendersGridRobotsAndPointsAndSendsClicks) {
+  if (!have_xvfb()) GTEST_SKIP() << "xvfb-run is not installed";
+  DomainLease domain;
+  auto participant = dds::Participant::create(domain.id(), "viewer_test");
+  ASSERT_TRUE(participant) << participant.message();
+  auto& p = **participant;
+  auto grid_w = dds::make_writer(p, dds::kGridSnapshot);
+  auto state_w = dds::make_writer(p, dds::kRobotState);
+  auto obs_w = dds::make_writer(p, dds::kRobotObservation);
+  auto path_w = dds::make_writer(p, dds::kRobotPath);
+  auto goal_r = dds::make_reader(p, dds::kNavGoal);
+  auto edit_r = dds::make_reader(p, dds::kMapEdit);
+  ASSERT_TRUE(grid_w && state_w && obs_w && path_w && goal_r && edit_r);
+
+  ProcessGroup group;
+  const std::string png = group.dir() + "/viewer.png";
+  group.start("viewer", {"xvfb-run", "-a", "-s", "-screen 0 1280x800x24", bin_path("slam-viewer"), "--domain",
+                         std::to_string(domain.id()), "--width", "1280", "--height", "800", "--screenshot", png,
+                         "--frames", "20", "--wait-map", "--wait-robots", "2", "--max-wait", "60", "--click",
+                         "900,420,left@3", "--click", "1000,300,right@4"});
+  ASSERT_TRUE(wait_until([&] { return (*obs_w)->matched_readers() > 0 && (*grid_w)->matched_readers() > 0; }, 60s))
+      << group.log("viewer");
+
+  // Delivery is checked through the screenshot, not through write()'s result.
+  (*grid_w)->write(make_grid());
+  const Pose2 a = pose(-3.0, 2.0, 0.0), b = pose(-3.0, -2.5, M_PI / 2.0);
+  (*state_w)->write(state("alpha", a));
+  (*state_w)->write(state("bravo", b));
+  (*obs_w)->write(observation("alpha", a, -1.0, 1.0));
+  (*obs_w)->write(observation("bravo", b, -1.0, -2.0));
+  RobotPath path;
+  path.robot_id("alpha");
+  path.goal_id(1);
+  path.mode(GOAL_DIRECT);
+  path.status(GOAL_STATUS_ACTIVE);
+  path.target(pt(1.0, 2.0));
+  path.waypoints({pt(0.0, 2.0), pt(1.0, 2.0)});
+  (*path_w)->write(path);
+
+  ASSERT_EQ(group.wait_exit("viewer", 90s), 0) << group.log("viewer");
+  const std::string log = group.log("viewer");
+  const auto line_at = log.rfind("view center=");
+  ASSERT_NE(line_at, std::string::npos) << log;
+  auto view = ViewTransform::parse(log.substr(line_at, log.find('\n', line_at) - line_at));
+  ASSERT_TRUE(view) << view.message();
+
+  Image img;
+  int channels = 0;
+  unsigned char* data = stbi_load(png.c_str(), &img.w, &img.h, &channels, 3);
+  ASSERT_NE(data, nullptr) << "cannot read " << png;
+  img.rgb.assign(data, data + static_cast<size_t>(img.w) * static_cast<size_t>(img.h) * 3);
+  stbi_image_free(data);
+  ASSERT_EQ(img.w, 1280);
+  ASSERT_EQ(img.h, 800);
+
+  // Points in each robot's colour where they were observed; robots drawn at their poses.
+  for (const auto& [id, where] : {std::pair<std::string, Vec2>{"alpha", {-1.0, 1.0}}, {"bravo", {-1.0, -2.0}}}) {
+    const Rgba want = viewer::default_robot_color(id);
+    EXPECT_TRUE(close_to(img.at(*view, where), want)) << id << " points: got " << str(img.at(*view, where))
+                                                       << " want " << str(want);
+  }
+  EXPECT_TRUE(close_to(img.at(*view, {-3.0, 2.0}), viewer::default_robot_color("alpha")))
+      << "robot alpha: got " << str(img.at(*view, {-3.0, 2.0}));
+  EXPECT_TRUE(close_to(img.at(*view, {-3.0, -2.5}), viewer::default_robot_color("bravo")))
+      << "robot bravo: got " << str(img.at(*view, {-3.0, -2.5}));
+  // Occupied cells dark, free cells light, unknown in between.
+  EXPECT_LT(brightness(img.at(*view, {3.5, -1.0})), 0.25f) << str(img.at(*view, {3.5, -1.0}));
+  EXPECT_GT(brightness(img.at(*view, {0.5, -1.0})), 0.8f) << str(img.at(*view, {0.5, -1.0}));
+  const float unknown = brightness(img.at(*view, {-2.0, 3.5}));
+  EXPECT_GT(unknown, 0.3f);
+  EXPECT_LT(unknown, 0.7f);
+
+  // The left click set a target (NavGoal) and the right click obstructed a cell (MapEdit) at the
+  // world points under those pixels.
+  std::vector<NavGoal> goals;
+  std::vector<MapEdit> edits;
+  ASSERT_TRUE(wait_until([&] { return (*goal_r)->take(goals) + goals.size() > 0; }, 10s));
+  ASSERT_TRUE(wait_until([&] { return (*edit_r)->take(edits) + edits.size() > 0; }, 10s));
+  const Vec2 goal_at = view->screen_to_world({900.0, 420.0}), edit_at = view->screen_to_world({1000.0, 300.0});
+  EXPECT_EQ(goals.back().robot_id().to_string(), "*");
+  EXPECT_EQ(goals.back().mode(), GOAL_DIRECT);
+  EXPECT_NEAR(goals.back().target().x(), goal_at.x, 1e-6);
+  EXPECT_NEAR(goals.back().target().y(), goal_at.y, 1e-6);
+  EXPECT_EQ(edits.back().kind(), EDIT_OBSTRUCT);
+  EXPECT_NEAR(edits.back().point().x(), edit_at.x, 1e-6);
+  EXPECT_NEAR(edits.back().point().y(), edit_at.y, 1e-6);
+}
+
+}  // namespace
+}  // namespace slam

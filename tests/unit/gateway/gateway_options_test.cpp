@@ -1,0 +1,98 @@
+// GatewayOptions: defaults are valid, flags bind, each bad value names its key; topic filters.
+#include "gateway/gateway_options.hpp"
+
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "gateway/topic_filter.hpp"
+
+namespace slam::gateway {
+namespace {
+
+std::string error_of(const GatewayOptions& o) {
+  const Status s = validate(o);
+  return s ? std::string() : s.message();
+}
+
+TEST(GatewayOptionsTest, DefaultsAreValidAndSubscribeBothTrees) {
+  GatewayOptions o;
+  EXPECT_EQ(error_of(o), "");
+  EXPECT_EQ(o.mqtt.broker, "tcp://127.0.0.1:1883");
+  EXPECT_EQ(o.mqtt.subscriptions, (std::vector<std::string>{"v1/robot/+/adv", "v2/robot/+/+"}));
+}
+
+TEST(GatewayOptionsTest, FlagsBind) {
+  CLI::App app;
+  GatewayOptions o;
+  add_gateway_options(app, o);
+  std::vector<std::string> args{"slam-gateway", "--broker", "mqtt://broker:1884", "--qos", "0", "--client-id", "gw",
+                                "--persistent-session", "--subscribe", "a/+", "--subscribe", "b/#",
+                                "--units-per-meter", "1000", "--offline-after-s", "2"};
+  std::vector<char*> argv;
+  for (auto& a : args) argv.push_back(a.data());
+  app.parse(static_cast<int>(argv.size()), argv.data());
+  EXPECT_EQ(o.mqtt.broker, "mqtt://broker:1884");
+  EXPECT_EQ(o.mqtt.qos, 0);
+  EXPECT_TRUE(o.mqtt.persistent_session);
+  EXPECT_EQ(o.mqtt.subscriptions, (std::vector<std::string>{"a/+", "b/#"}));
+  EXPECT_DOUBLE_EQ(o.limits.units_per_meter, 1000.0);
+  EXPECT_DOUBLE_EQ(o.offline_after_s, 2.0);
+  EXPECT_EQ(error_of(o), "");
+}
+
+TEST(GatewayOptionsTest, BadValuesNameTheKey) {
+  auto with = [](auto change) {
+    GatewayOptions o;
+    change(o);
+    return error_of(o);
+  };
+  EXPECT_NE(with([](auto& o) { o.mqtt.broker = "http://x"; }).find("broker"), std::string::npos);
+  EXPECT_NE(with([](auto& o) { o.mqtt.broker = "tcp://"; }).find("broker"), std::string::npos);
+  EXPECT_NE(with([](auto& o) { o.mqtt.qos = 3; }).find("qos"), std::string::npos);
+  EXPECT_NE(with([](auto& o) { o.mqtt.persistent_session = true; }).find("client-id"), std::string::npos);
+  EXPECT_NE(with([](auto& o) { o.mqtt.password = "x"; }).find("username"), std::string::npos);
+  EXPECT_NE(with([](auto& o) { o.mqtt.tls_ca_file = "/etc/hostname"; }).find("ssl://"), std::string::npos);
+  EXPECT_NE(with([](auto& o) {
+              o.mqtt.broker = "ssl://h:8883";
+              o.mqtt.tls_ca_file = "/nonexistent/ca.pem";
+            }).find("tls-ca-file"),
+            std::string::npos);
+  EXPECT_NE(with([](auto& o) {
+              o.mqtt.broker = "ssl://h:8883";
+              o.mqtt.tls_key_file = "/etc/hostname";
+            }).find("tls-cert-file"),
+            std::string::npos);
+  EXPECT_NE(with([](auto& o) { o.mqtt.reconnect_max_s = 0.01; }).find("reconnect-max-s"), std::string::npos);
+  EXPECT_NE(with([](auto& o) { o.mqtt.subscriptions = {"a/#/b"}; }).find("subscribe"), std::string::npos);
+  EXPECT_NE(with([](auto& o) { o.limits.units_per_meter = 0; }).find("units_per_meter"), std::string::npos);
+  EXPECT_NE(with([](auto& o) { o.offline_after_s = -1; }).find("offline-after-s"), std::string::npos);
+  EXPECT_NE(with([](auto& o) { o.max_robots = 0; }).find("max-robots"), std::string::npos);
+  EXPECT_NE(with([](auto& o) { o.traffic_queue = 0; }).find("traffic-queue"), std::string::npos);
+}
+
+TEST(TopicFilterTest, WildcardsOnlyAsWholeLevelsAndHashLast) {
+  EXPECT_TRUE(validate_filter("v1/robot/+/adv"));
+  EXPECT_TRUE(validate_filter("v2/robot/+/+"));
+  EXPECT_TRUE(validate_filter("#"));
+  EXPECT_TRUE(validate_filter("a/#"));
+  EXPECT_TRUE(validate_filter("/leading/empty//levels"));
+  EXPECT_FALSE(validate_filter(""));
+  EXPECT_FALSE(validate_filter("a/b+"));
+  EXPECT_FALSE(validate_filter("a/#/b"));
+  EXPECT_FALSE(validate_filter("a/##"));
+  EXPECT_FALSE(validate_filter(std::string(257, 'a')));
+  EXPECT_FALSE(validate_filter(std::string("a\x01", 2)));
+  EXPECT_FALSE(validate_filter(std::string("a\xff", 2)));
+}
+
+TEST(TopicFilterTest, PublishTopicsHaveNoWildcards) {
+  EXPECT_TRUE(validate_topic_name("v1/server/r1/cmd"));
+  EXPECT_FALSE(validate_topic_name("v1/server/+/cmd"));
+  EXPECT_FALSE(validate_topic_name("a/#"));
+  EXPECT_FALSE(validate_topic_name(""));
+}
+
+}  // namespace
+}  // namespace slam::gateway

@@ -1,0 +1,73 @@
+// PlannerOptions: defaults are valid, flags land in the core's config, bad values name their key.
+#include "planner/planner_options.hpp"
+
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+namespace slam::planner {
+namespace {
+
+// Parses `args` into fresh options; the CLI11 error text when parsing fails.
+std::string parse(PlannerOptions& options, std::vector<std::string> args) {
+  CLI::App app{"test"};
+  add_planner_options(app, options);
+  std::vector<std::string> reversed(args.rbegin(), args.rend());
+  try {
+    app.parse(reversed);
+  } catch (const CLI::ParseError& e) {
+    return e.what();
+  }
+  return {};
+}
+
+TEST(PlannerOptionsTest, DefaultsAreValid) {
+  PlannerOptions options;
+  EXPECT_TRUE(validate(options));
+  EXPECT_EQ(options.fleet.planner.unknown, UnknownPolicy::Blocked);
+}
+
+TEST(PlannerOptionsTest, FlagsSetTheCoreConfiguration) {
+  PlannerOptions o;
+  ASSERT_EQ(parse(o, {"--domain", "7", "--goals-reach-tolerance-m", "0.3", "--goals-resend-period-s", "0.5",
+                      "--planner-unknown", "allowed", "--planner-ompl-seed", "42",
+                      "--explore-min-cluster-cells", "9", "--request-workers", "3"}),
+            "");
+  EXPECT_EQ(o.service.domain, 7);
+  EXPECT_DOUBLE_EQ(o.fleet.goals.reach_tolerance_m, 0.3);
+  EXPECT_DOUBLE_EQ(o.fleet.goals.resend_period_s, 0.5);
+  EXPECT_EQ(o.fleet.planner.unknown, UnknownPolicy::Allowed);
+  EXPECT_EQ(o.fleet.planner.ompl_seed, 42u);
+  EXPECT_EQ(o.fleet.explore.min_cluster_cells, 9u);
+  EXPECT_EQ(o.request_workers, 3u);
+  EXPECT_TRUE(validate(o));
+}
+
+TEST(PlannerOptionsTest, UnknownPolicyMustBeANamedOne) {
+  PlannerOptions o;
+  EXPECT_NE(parse(o, {"--planner-unknown", "sometimes"}).find("--planner-unknown"), std::string::npos);
+}
+
+TEST(PlannerOptionsTest, BadValuesNameTheirKey) {
+  const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
+      {{"--goals-reach-tolerance-m", "0"}, "reach_tolerance_m"},
+      {{"--goals-resend-period-s", "-1"}, "resend_period_s"},
+      {{"--planner-unknown-cost-factor", "0.5"}, "unknown_cost_factor"},
+      {{"--planner-max-time-budget-s", "0"}, "max_time_budget_s"},
+      {{"--explore-min-cluster-cells", "0"}, "min_cluster_cells"},
+      {{"--loop-rate-hz", "0"}, "loop_rate_hz"},
+      {{"--request-workers", "0"}, "request_workers"},
+      {{"--request-queue", "0"}, "request_queue"},
+  };
+  for (const auto& [args, key] : cases) {
+    PlannerOptions o;
+    ASSERT_EQ(parse(o, args), "") << args.front();
+    const Status s = validate(o);
+    EXPECT_FALSE(s) << args.front();
+    EXPECT_NE(s.message().find(key), std::string::npos) << s.message();
+  }
+}
+
+}  // namespace
+}  // namespace slam::planner

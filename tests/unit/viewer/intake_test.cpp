@@ -1,0 +1,74 @@
+// The intake between listener threads and the render thread: drain hands over everything once,
+// a snapshot drops the patches before it, state topics keep the newest per robot, MQTT is bounded.
+#include "viewer/intake.hpp"
+
+#include <gtest/gtest.h>
+
+#include <thread>
+
+namespace slam::viewer {
+namespace {
+
+TEST(IntakeTest, DrainHandsOverOnce) {
+  Intake in;
+  in.push(ObservationData{"r", 1, {}, {1.0f, 2.0f}});
+  IntakeBatch b;
+  in.drain(b);
+  EXPECT_EQ(b.observations.size(), 1u);
+  in.drain(b);
+  EXPECT_TRUE(b.observations.empty());
+}
+
+TEST(IntakeTest, SnapshotDropsEarlierPatches) {
+  Intake in;
+  in.push(GridPatchData{1, 5, 0, 0, 1, 1, {1}});
+  in.push(GridSnapshotData{1, 6, {}, {}});
+  in.push(GridPatchData{1, 7, 0, 0, 1, 1, {1}});
+  IntakeBatch b;
+  in.drain(b);
+  ASSERT_TRUE(b.snapshot);
+  ASSERT_EQ(b.patches.size(), 1u);
+  EXPECT_EQ(b.patches[0].version, 7u);
+}
+
+TEST(IntakeTest, StatesKeepNewestPerRobot) {
+  Intake in;
+  RobotStateData a;
+  a.robot_id = "a";
+  a.messages = 1;
+  in.push(RobotStateData(a));
+  a.messages = 2;
+  in.push(RobotStateData(a));
+  IntakeBatch b;
+  in.drain(b);
+  ASSERT_EQ(b.states.size(), 1u);
+  EXPECT_EQ(b.states[0].messages, 2u);
+}
+
+TEST(IntakeTest, MqttBacklogIsBounded) {
+  Intake in(4);
+  for (uint64_t i = 0; i < 10; ++i) in.push(MqttEntry{i, 0, true, "t", {}, 0});
+  IntakeBatch b;
+  in.drain(b);
+  ASSERT_EQ(b.mqtt.size(), 4u);
+  EXPECT_EQ(b.mqtt.front().seq, 6u);
+  EXPECT_EQ(b.mqtt_dropped, 6u);
+}
+
+TEST(IntakeTest, ConcurrentPushesAreAllDelivered) {
+  Intake in;
+  std::vector<std::thread> threads;
+  for (int t = 0; t < 4; ++t)
+    threads.emplace_back([&] {
+      for (int i = 0; i < 1000; ++i) in.push(ObservationData{"r", 0, {}, {}});
+    });
+  size_t got = 0;
+  IntakeBatch b;
+  for (auto& th : threads) th.join();
+  in.drain(b);
+  got += b.observations.size();
+  EXPECT_EQ(got, 4000u);
+}
+
+}  // namespace
+}  // namespace slam::viewer

@@ -1,0 +1,52 @@
+// slam-viewer options: defaults validate, bad values name their flag, --click specs parse.
+#include "viewer/viewer_options.hpp"
+
+#include <gtest/gtest.h>
+
+namespace slam::viewer {
+namespace {
+
+TEST(ViewerOptionsTest, DefaultsAreValid) {
+  ViewerOptions o;
+  EXPECT_TRUE(validate(o));
+  EXPECT_EQ(o.left_action, ClickAction::SetTarget);
+}
+
+// Validates options that differ from the defaults by `change`; returns the error (empty if valid).
+template <class F>
+std::string error_for(F change) {
+  ViewerOptions o;
+  change(o);
+  const Status s = validate(o);
+  return s ? std::string{} : s.message();
+}
+
+TEST(ViewerOptionsTest, BadValuesNameTheFlag) {
+  EXPECT_NE(error_for([](ViewerOptions& o) { o.width = 10; }).find("--width"), std::string::npos);
+  EXPECT_NE(error_for([](ViewerOptions& o) { o.right_click = "boom"; }).find("--right-click"), std::string::npos);
+  EXPECT_NE(error_for([](ViewerOptions& o) { o.tab = "nope"; }).find("--tab"), std::string::npos);
+  EXPECT_NE(error_for([](ViewerOptions& o) { o.click_texts = {"1,2,middle@3"}; }).find("--click"),
+            std::string::npos);
+  EXPECT_NE(error_for([](ViewerOptions& o) { o.frames = 0, o.screenshot = "x.png"; }).find("--frames"),
+            std::string::npos);
+}
+
+TEST(ViewerOptionsTest, ClickSpecsParse) {
+  auto c = parse_click_spec("640.5,400,right@12");
+  ASSERT_TRUE(c) << c.message();
+  EXPECT_DOUBLE_EQ(c->x, 640.5);
+  EXPECT_EQ(c->button, 1);
+  EXPECT_EQ(c->frame, 12u);
+  EXPECT_FALSE(parse_click_spec("1,2,left"));
+  EXPECT_FALSE(parse_click_spec("1,2,left@3junk"));
+}
+
+TEST(ViewerOptionsTest, TabNamesResolve) {
+  ViewerOptions o;
+  o.tab = "mqtt";
+  ASSERT_TRUE(validate(o));
+  EXPECT_EQ(o.tab_index, 1);
+}
+
+}  // namespace
+}  // namespace slam::viewer
