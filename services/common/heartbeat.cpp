@@ -1,7 +1,5 @@
 #include "common/heartbeat.hpp"
 
-#include <unistd.h>
-
 #include "common/clock.hpp"
 
 namespace slam {
@@ -14,22 +12,13 @@ Result<std::unique_ptr<HeartbeatPublisher>> HeartbeatPublisher::start(dds::Parti
   std::unique_ptr<HeartbeatPublisher> hb(new HeartbeatPublisher());
   hb->writer_ = std::move(*writer);
   hb->counters_ = &counters;
-  hb->service_ = std::move(service);
-  char host[256] = {};
-  gethostname(host, sizeof host - 1);
-  hb->host_ = host;
-  hb->instance_id_ = hb->host_ + ":" + std::to_string(getpid());
-  hb->period_ = period;
-  hb->started_ = std::chrono::steady_clock::now();
+  hb->identity_ = ServiceIdentity::of(std::move(service));
   hb->publish();
-  hb->thread_ = std::thread([p = hb.get()] { p->run(); });
+  hb->ticker_ = std::make_unique<PeriodicTask>(period, [p = hb.get()] { p->publish(); });
   return hb;
 }
 
-HeartbeatPublisher::~HeartbeatPublisher() {
-  stop_ = true;
-  if (thread_.joinable()) thread_.join();
-}
+HeartbeatPublisher::~HeartbeatPublisher() { ticker_.reset(); }
 
 void HeartbeatPublisher::set_state(ServiceState state) {
   state_ = state;
@@ -38,12 +27,12 @@ void HeartbeatPublisher::set_state(ServiceState state) {
 
 void HeartbeatPublisher::publish() {
   std::lock_guard lock(publish_mutex_);
-  sample_.service(service_);
-  sample_.instance_id(instance_id_);
-  sample_.pid(static_cast<uint32_t>(getpid()));
-  sample_.host(host_);
+  sample_.service(identity_.service);
+  sample_.instance_id(identity_.instance_id);
+  sample_.pid(identity_.pid);
+  sample_.host(identity_.host);
   sample_.stamp_ns(now_ns());
-  sample_.uptime_s(std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count());
+  sample_.uptime_s(identity_.uptime_s());
   sample_.state(state_.load());
   auto& out = sample_.counters();
   out.clear();
@@ -56,14 +45,5 @@ void HeartbeatPublisher::publish() {
   writer_->write(sample_);
 }
 
-void HeartbeatPublisher::run() {
-  auto next = std::chrono::steady_clock::now() + period_;
-  while (!stop_) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-    if (std::chrono::steady_clock::now() < next) continue;
-    next += period_;
-    publish();
-  }
-}
 
 }  // namespace slam

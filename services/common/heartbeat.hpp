@@ -5,10 +5,10 @@
 #include <chrono>
 #include <memory>
 #include <string>
-#include <thread>
 
 #include "common/counters.hpp"
 #include "common/fast_topics.hpp"
+#include "common/service_identity.hpp"
 
 namespace slam {
 
@@ -21,25 +21,19 @@ class HeartbeatPublisher {
 
   // Marks the service running (after activation) or stopping (during shutdown); sent at once.
   void set_state(ServiceState state);
-  const std::string& instance_id() const { return instance_id_; }
+  const std::string& instance_id() const { return identity_.instance_id; }
 
  private:
   HeartbeatPublisher() = default;
   void publish();
-  void run();
 
   std::unique_ptr<dds::Writer<Heartbeat>> writer_;
   const Counters* counters_ = nullptr;
-  std::string service_;
-  std::string instance_id_;
-  std::string host_;
-  std::chrono::milliseconds period_{1000};
-  std::chrono::steady_clock::time_point started_;
+  ServiceIdentity identity_;
   std::atomic<ServiceState> state_{SERVICE_STARTING};
-  std::atomic<bool> stop_{false};
   std::mutex publish_mutex_;
   Heartbeat sample_;
-  std::thread thread_;
+  std::unique_ptr<PeriodicTask> ticker_;  // last: stops first
 };
 
 }  // namespace slam

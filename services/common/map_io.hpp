@@ -8,14 +8,15 @@
 #include <string_view>
 #include <vector>
 
+#include "common/cell_class.hpp"
 #include "common/result.hpp"
 
 namespace slam {
 
-// Trinary cell values of MapImage::cells (the same numbers as CELL_UNKNOWN/FREE/OCCUPIED in map.idl).
-inline constexpr uint8_t kMapUnknown = 0;
-inline constexpr uint8_t kMapFree = 1;
-inline constexpr uint8_t kMapOccupied = 2;
+// Trinary cell values of MapImage::cells: the grid's observed states, so images and grids copy 1:1.
+inline constexpr uint8_t kMapUnknown = kCellUnknown;
+inline constexpr uint8_t kMapFree = kCellFree;
+inline constexpr uint8_t kMapOccupied = kCellOccupied;
 
 // A decoded map. cells is row-major with row 0 at the BOTTOM (smallest y), like the grid; the PGM
 // stores the top row first, and the reader/writer flip rows so callers never see PGM order.

@@ -8,20 +8,13 @@
 #include <span>
 #include <vector>
 
+#include "common/cell_class.hpp"
 #include "common/map_io.hpp"
 #include "common/result.hpp"
 #include "mapper/grid_config.hpp"
 #include "mapper/inflation.hpp"
 
 namespace slam::mapper {
-
-// Cell class octet (map.idl CELL_*).
-inline constexpr uint8_t kCellUnknown = 0;
-inline constexpr uint8_t kCellFree = 1;
-inline constexpr uint8_t kCellOccupied = 2;
-inline constexpr uint8_t kCellStateMask = 3;
-inline constexpr uint8_t kCellInflated = 4;
-inline constexpr uint8_t kCellObstructed = 8;
 
 struct Point2d {
   double x = 0.0;

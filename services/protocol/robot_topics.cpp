@@ -7,14 +7,6 @@
 namespace slam::protocol {
 namespace {
 
-CodecStatus build(std::string_view robot_id, std::string_view prefix, std::string_view suffix, std::string& out) {
-  if (auto status = validate_robot_id(robot_id); !status) return status;
-  out.assign(prefix);
-  out.append(robot_id);
-  out.append(suffix);
-  return CodecStatus::ok();
-}
-
 struct CommandTopic {
   std::string_view prefix;
   std::string_view level;
@@ -27,16 +19,16 @@ constexpr CommandTopic kCommandTopics[] = {{"v1/server/", "cmd", CommandKind::V1
 }  // namespace
 
 CodecStatus v1_adv_topic(std::string_view robot_id, std::string& out) {
-  return build(robot_id, "v1/robot/", "/adv", out);
+  return build_robot_topic(robot_id, "v1/robot/", "/adv", out);
 }
 CodecStatus v2_pose_topic(std::string_view robot_id, std::string& out) {
-  return build(robot_id, "v2/robot/", "/pose", out);
+  return build_robot_topic(robot_id, "v2/robot/", "/pose", out);
 }
 CodecStatus v2_scan_topic(std::string_view robot_id, std::string& out) {
-  return build(robot_id, "v2/robot/", "/scan", out);
+  return build_robot_topic(robot_id, "v2/robot/", "/scan", out);
 }
 CodecStatus v2_status_topic(std::string_view robot_id, std::string& out) {
-  return build(robot_id, "v2/robot/", "/status", out);
+  return build_robot_topic(robot_id, "v2/robot/", "/status", out);
 }
 
 CodecStatus parse_command_topic(std::string_view topic, ParsedCommandTopic& out) {

@@ -28,15 +28,16 @@ CodecStatus unknown(std::string_view topic) {
                                       "v2/robot/<id>/{pose,points,scan,status}"};
 }
 
-CodecStatus build(std::string_view robot_id, std::string_view prefix, std::string_view suffix, std::string& out) {
+}  // namespace
+
+CodecStatus build_robot_topic(std::string_view robot_id, std::string_view prefix, std::string_view suffix,
+                              std::string& out) {
   if (auto status = validate_robot_id(robot_id); !status) return status;
   out.assign(prefix);
   out.append(robot_id);
   out.append(suffix);
   return CodecStatus::ok();
 }
-
-}  // namespace
 
 std::string_view topic_kind_name(TopicKind kind) {
   switch (kind) {
@@ -95,13 +96,13 @@ CodecStatus parse_topic(std::string_view topic, ParsedTopic& out) {
 }
 
 CodecStatus v1_command_topic(std::string_view robot_id, std::string& out) {
-  return build(robot_id, "v1/server/", "/cmd", out);
+  return build_robot_topic(robot_id, "v1/server/", "/cmd", out);
 }
 CodecStatus v2_waypoint_topic(std::string_view robot_id, std::string& out) {
-  return build(robot_id, "v2/server/", "/waypoint", out);
+  return build_robot_topic(robot_id, "v2/server/", "/waypoint", out);
 }
 CodecStatus v2_path_topic(std::string_view robot_id, std::string& out) {
-  return build(robot_id, "v2/server/", "/path", out);
+  return build_robot_topic(robot_id, "v2/server/", "/path", out);
 }
 
 }  // namespace slam::protocol

@@ -34,6 +34,10 @@ CodecStatus parse_topic(std::string_view topic, ParsedTopic& out);
 // "*" (which addresses every robot in NavGoal).
 CodecStatus validate_robot_id(std::string_view robot_id);
 
+// prefix + robot_id + suffix after validate_robot_id(); the builders below and in robot_topics.hpp.
+CodecStatus build_robot_topic(std::string_view robot_id, std::string_view prefix, std::string_view suffix,
+                              std::string& out);
+
 // Outbound topics; BadRobotId (and `out` untouched) when the id is invalid. `out` keeps capacity.
 CodecStatus v1_command_topic(std::string_view robot_id, std::string& out);
 CodecStatus v2_waypoint_topic(std::string_view robot_id, std::string& out);

@@ -2,8 +2,6 @@
 // publisher's (instance id "host:pid") so the viewer treats every service alike.
 #include "simulator/cyclone_heartbeat.hpp"
 
-#include <unistd.h>
-
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
@@ -25,22 +23,13 @@ Result<std::unique_ptr<CycloneHeartbeat>> CycloneHeartbeat::start(dds_entity_t p
   if (hb->writer_ < 0)
     return Error{fmt::format("Cyclone writer {}: {}", topics::kHeartbeat.name, dds_strretcode(hb->writer_))};
   hb->counters_ = &counters;
-  hb->service_ = std::move(service);
-  char host[256] = {};
-  gethostname(host, sizeof host - 1);
-  hb->host_ = host;
-  hb->instance_id_ = fmt::format("{}:{}", hb->host_, getpid());
-  hb->period_ = period;
-  hb->started_ = std::chrono::steady_clock::now();
+  hb->identity_ = ServiceIdentity::of(std::move(service));
   hb->publish();
-  hb->thread_ = std::thread([p = hb.get()] { p->run(); });
+  hb->ticker_ = std::make_unique<PeriodicTask>(period, [p = hb.get()] { p->publish(); });
   return hb;
 }
 
-CycloneHeartbeat::~CycloneHeartbeat() {
-  stop_ = true;
-  if (thread_.joinable()) thread_.join();
-}
+CycloneHeartbeat::~CycloneHeartbeat() { ticker_.reset(); }
 
 void CycloneHeartbeat::set_state(slam_ServiceState state) {
   state_ = state;
@@ -56,12 +45,12 @@ void CycloneHeartbeat::publish() {
     counter_samples_[i].value = counters[i].second;
   }
   slam_Heartbeat sample{};
-  copy_bounded(service_, sample.service, sizeof sample.service);
-  copy_bounded(instance_id_, sample.instance_id, sizeof sample.instance_id);
-  sample.pid = static_cast<uint32_t>(getpid());
-  copy_bounded(host_, sample.host, sizeof sample.host);
+  copy_bounded(identity_.service, sample.service, sizeof sample.service);
+  copy_bounded(identity_.instance_id, sample.instance_id, sizeof sample.instance_id);
+  sample.pid = identity_.pid;
+  copy_bounded(identity_.host, sample.host, sizeof sample.host);
   sample.stamp_ns = now_ns();
-  sample.uptime_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count();
+  sample.uptime_s = identity_.uptime_s();
   sample.state = state_.load();
   sample.counters = {static_cast<uint32_t>(counter_samples_.size()), static_cast<uint32_t>(counter_samples_.size()),
                      counter_samples_.data(), false};
@@ -69,14 +58,5 @@ void CycloneHeartbeat::publish() {
   if (rc != DDS_RETCODE_OK) spdlog::warn("writing {}: {}", topics::kHeartbeat.name, dds_strretcode(rc));
 }
 
-void CycloneHeartbeat::run() {
-  auto next = std::chrono::steady_clock::now() + period_;
-  while (!stop_) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-    if (std::chrono::steady_clock::now() < next) continue;
-    next += period_;
-    publish();
-  }
-}
 
 }  // namespace slam::sim

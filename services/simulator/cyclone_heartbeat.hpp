@@ -11,11 +11,11 @@
 #include <memory>
 #include <mutex>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include "common/counters.hpp"
 #include "common/result.hpp"
+#include "common/service_identity.hpp"
 
 namespace slam::sim {
 
@@ -35,20 +35,14 @@ class CycloneHeartbeat {
  private:
   CycloneHeartbeat() = default;
   void publish();
-  void run();
 
   dds_entity_t writer_ = 0;  // child of the participant
   const Counters* counters_ = nullptr;
-  std::string service_;
-  std::string instance_id_;
-  std::string host_;
-  std::chrono::milliseconds period_{1000};
-  std::chrono::steady_clock::time_point started_;
+  ServiceIdentity identity_;
   std::atomic<slam_ServiceState> state_{slam_SERVICE_STARTING};
-  std::atomic<bool> stop_{false};
   std::mutex publish_mutex_;
   std::vector<slam_Counter> counter_samples_;
-  std::thread thread_;
+  std::unique_ptr<PeriodicTask> ticker_;  // last: stops first
 };
 
 }  // namespace slam::sim
