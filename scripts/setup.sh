@@ -13,6 +13,7 @@ PACKAGES=(
   libglfw3-dev libimgui-dev libgl-dev libgl1-mesa-dri xvfb xauth
   libgtest-dev libgmock-dev libbenchmark-dev
   libsqlite3-dev libcli11-dev libspdlog-dev nlohmann-json3-dev libyaml-cpp-dev libstb-dev
+  jq
 )
 
 missing=()

@@ -1,0 +1,288 @@
+// bench_pipeline: the whole system under fleet load on this machine. 1000 simulated robots
+// (slam-simulator, v1, one multiplexed MQTT connection, 10 Hz, 9 beams: 10 points a message)
+// drive through a generated 80 m x 80 m world of 8 m rooms; their messages go mosquitto ->
+// slam-gateway -> slam-mapper, with slam-planner running on the map. Over a window it measures
+//   - the sustained rate: messages sent by the simulator vs received by the gateway vs integrated
+//     by the mapper, from the services' heartbeat counters over DDS (each service's own clock),
+//   - whether queues grow: the mapper's backlog (gateway observations - mapper intake) at the
+//     start and end of the window, every dropped counter, and after the window, with the fleet
+//     paused, how long the queues take to drain and how many messages never arrive,
+//   - CPU per process (/proc/<pid>/stat over the window) and of the whole machine,
+//   - the robot-to-map delay: probe messages from one extra robot (pipeline_probe.hpp), timed from
+//     publish to the first GridPatch showing the probe's cell occupied; p50/p99 over the window.
+// It starts mosquitto (free port) and every service (leased DDS domain) itself and stops them.
+// Run: build/bin/bench_pipeline --benchmark_format=json
+//   SLAM_BENCH_PIPELINE_SECONDS=N (window, default 30), SLAM_BENCH_PIPELINE_ROBOTS=N (default 1000)
+#include <MQTTClient.h>
+#include <benchmark/benchmark.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <map>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "common/clock.hpp"
+#include "pipeline_probe.hpp"
+#include "pipeline_rig.hpp"
+
+namespace slam::bench {
+namespace {
+
+using namespace std::chrono_literals;
+
+constexpr double kProbePeriodS = 0.15;  // ~200 probes in 30 s, a few in flight at a time
+constexpr char kProbeTopic[] = "v1/robot/probe/adv";
+
+// The probe robot's MQTT connection (synchronous client: a few messages per second).
+class ProbeClient {
+ public:
+  ~ProbeClient() {
+    if (client_ == nullptr) return;
+    MQTTClient_disconnect(client_, 1000);
+    MQTTClient_destroy(&client_);
+  }
+  Status connect(int port) {
+    const std::string url = "tcp://127.0.0.1:" + std::to_string(port);
+    if (MQTTClient_create(&client_, url.c_str(), "bench-pipeline-probe", MQTTCLIENT_PERSISTENCE_NONE, nullptr) !=
+        MQTTCLIENT_SUCCESS)
+      return Error{"probe client: MQTTClient_create failed"};
+    MQTTClient_connectOptions options = MQTTClient_connectOptions_initializer;
+    options.cleansession = 1;
+    if (const int rc = MQTTClient_connect(client_, &options); rc != MQTTCLIENT_SUCCESS)
+      return Error{fmt::format("probe client: connect to {} failed ({})", url, rc)};
+    return Status::ok();
+  }
+  bool publish(const std::vector<uint8_t>& payload) {
+    // QoS 0, as the simulator's robots publish; paho copies the payload.
+    return MQTTClient_publish(client_, kProbeTopic, static_cast<int>(payload.size()), payload.data(), 0, 0,
+                              nullptr) == MQTTCLIENT_SUCCESS;
+  }
+
+ private:
+  MQTTClient client_ = nullptr;
+};
+
+// Everything sampled at one end of the window.
+struct WindowEdge {
+  int64_t monotonic_ns = 0;
+  std::map<std::string, CounterSample> counters;  // by service
+  std::map<std::string, double> cpu_s;            // by process, plus "bench" (this process)
+  MachineCpu machine;
+  uint64_t patch_bytes = 0;  // GridPatch cell bytes this process received so far
+};
+
+WindowEdge sample_edge(const PipelineRig& rig, const ProbeSet& probes) {
+  WindowEdge e;
+  e.patch_bytes = probes.patch_bytes();
+  e.monotonic_ns = monotonic_ns();
+  for (const char* service : {"gateway", "mapper", "planner", "simulator"}) e.counters[service] = rig.latest(service);
+  for (const auto& [name, pid] : rig.processes()) e.cpu_s[name] = process_cpu_s(pid);
+  e.cpu_s["bench"] = process_cpu_s(::getpid());
+  e.machine = machine_cpu();
+  return e;
+}
+
+// Observations the gateway published that the mapper has not taken in yet, with the gateway's
+// count moved to the mapper heartbeat's time at the gateway's rate (heartbeats are not aligned).
+double mapper_backlog(const CounterSample& gateway, const CounterSample& mapper, double gateway_rate) {
+  const double gateway_at_mapper_time =
+      static_cast<double>(gateway.get("observations")) +
+      gateway_rate * static_cast<double>(mapper.stamp_ns - gateway.stamp_ns) / 1e9;
+  const int64_t intake = mapper.get("observations") + mapper.get("rejected") + mapper.get("dropped");
+  return gateway_at_mapper_time - static_cast<double>(intake);
+}
+
+// With the fleet paused, lets every queue drain, which tells messages still queued from messages
+// lost. Ends when the gateway has every message the simulator (and the probe) sent and the mapper
+// every observation the gateway published, or when neither count moved for kStallS. The gaps
+// are totals since the processes started; the bench drains once before the window too and
+// subtracts, so what was lost while the services were still matching is not counted.
+struct Drain {
+  double seconds = 0.0;      // from the pause until both counts matched or stopped moving (>= 1.5)
+  double gateway_gap = 0.0;  // sent by the simulator or the probe, not received by the gateway
+  double mapper_gap = 0.0;   // published by the gateway, not taken in by the mapper
+  bool settled = false;      // false: still moving at the timeout, so the gaps are still queued in part
+};
+
+Drain drain(PipelineRig& rig, size_t probes_sent, int64_t paused_at_ns, std::chrono::seconds timeout) {
+  constexpr double kStallS = 3.0;
+  const int64_t t0 = paused_at_ns;
+  std::this_thread::sleep_for(1500ms);  // the simulator's last reports appear in its next heartbeat
+  int64_t last_change = monotonic_ns();
+  int64_t last_in = -1, last_intake = -1;
+  Drain d;
+  while (true) {
+    const CounterSample sim = rig.latest("simulator"), gateway = rig.latest("gateway"), mapper = rig.latest("mapper");
+    const int64_t sent = sim.get("reports_sent") + static_cast<int64_t>(probes_sent);
+    const int64_t in = gateway.get("messages_in");
+    const int64_t intake = mapper.get("observations") + mapper.get("rejected") + mapper.get("dropped");
+    const int64_t now = monotonic_ns();
+    if (in != last_in || intake != last_intake) last_change = now;
+    last_in = in;
+    last_intake = intake;
+    d.gateway_gap = static_cast<double>(sent - in);
+    d.mapper_gap = static_cast<double>(gateway.get("observations") - intake);
+    const bool complete = d.gateway_gap <= 0 && d.mapper_gap <= 0;
+    const bool stalled = static_cast<double>(now - last_change) / 1e9 >= kStallS;
+    if (complete || stalled || now - t0 > std::chrono::nanoseconds(timeout).count()) {
+      d.settled = complete || stalled;
+      d.seconds = static_cast<double>((complete ? now : last_change) - t0) / 1e9;
+      return d;
+    }
+    std::this_thread::sleep_for(200ms);
+  }
+}
+
+bool g_failed = false;  // main's exit code: an error in the run fails the program, not only its JSON
+
+void fail(benchmark::State& state, const std::string& message) {
+  g_failed = true;
+  state.SkipWithError(message.c_str());
+}
+
+// Window figures as benchmark counters (JSON) and as a few readable lines on stderr.
+void report(benchmark::State& state, const PipelineSettings& settings, WindowEdge& start, WindowEdge& end,
+            const ProbeSet::Summary& probe, const Drain& before, const Drain& drained) {
+  const double window_s = static_cast<double>(end.monotonic_ns - start.monotonic_ns) / 1e9;
+  auto rate = [&](const char* service, const char* counter) {
+    return rate_between(start.counters[service], end.counters[service], counter);
+  };
+  auto delta = [&](const char* service, const char* counter) {
+    return static_cast<double>(end.counters[service].get(counter) - start.counters[service].get(counter));
+  };
+  const double sent = rate("simulator", "reports_sent");
+  const double gateway_in = rate("gateway", "messages_in");
+  const double gateway_obs = rate("gateway", "observations");
+  const double mapper_obs = rate("mapper", "observations");
+  auto& c = state.counters;
+  c["robots"] = settings.robots;
+  c["window_s"] = window_s;
+  c["sim_sent_per_s"] = sent;
+  c["gateway_in_per_s"] = gateway_in;
+  c["gateway_states_per_s"] = rate("gateway", "robot_states");
+  c["mapper_obs_per_s"] = mapper_obs;
+  c["gateway_over_sim"] = sent > 0 ? gateway_in / sent : 0.0;
+  c["mapper_over_gateway"] = gateway_obs > 0 ? mapper_obs / gateway_obs : 0.0;
+  c["points_per_obs"] = delta("mapper", "observations") > 0 ? delta("mapper", "points") / delta("mapper", "observations") : 0.0;
+  c["mapper_backlog_start"] = mapper_backlog(start.counters["gateway"], start.counters["mapper"], gateway_obs);
+  c["mapper_backlog_end"] = mapper_backlog(end.counters["gateway"], end.counters["mapper"], gateway_obs);
+  c["mapper_dropped"] = delta("mapper", "dropped");
+  c["mapper_rejected"] = delta("mapper", "rejected");
+  c["gateway_rejected"] = static_cast<double>(end.counters["gateway"].sum_prefixed("rejected_") -
+                                             start.counters["gateway"].sum_prefixed("rejected_"));
+  c["gateway_write_failures"] = delta("gateway", "write_failures") + delta("gateway", "publish_failures");
+  c["sim_reports_dropped"] = delta("simulator", "reports_dropped");
+  c["sim_loop_overruns"] = delta("simulator", "loop_overruns");
+  c["mapper_patches_per_s"] = rate("mapper", "patches");
+  c["planner_patches_applied_per_s"] = rate("planner", "patches_applied");
+  c["planner_patches_skipped"] = delta("planner", "patches_skipped");
+  c["patch_mb_per_s"] = static_cast<double>(end.patch_bytes - start.patch_bytes) / 1e6 / window_s;
+  c["drain_s"] = drained.seconds;
+  c["drain_settled"] = drained.settled ? 1.0 : 0.0;
+  c["lost_to_gateway"] = drained.gateway_gap - before.gateway_gap;
+  c["lost_to_mapper"] = drained.mapper_gap - before.mapper_gap;
+  double ours = 0.0;
+  for (const auto& [name, cpu] : end.cpu_s) {
+    const double share = 100.0 * (cpu - start.cpu_s[name]) / window_s;
+    c["cpu_" + name + "_pct"] = share;
+    ours += share;
+  }
+  const double machine_total = end.machine.total_s - start.machine.total_s;
+  const double machine_busy = machine_total > 0 ? (end.machine.busy_s - start.machine.busy_s) / machine_total : 0.0;
+  c["cpu_machine_busy_pct"] = 100.0 * machine_busy;                                // of all cores
+  c["cpu_others_pct"] = 100.0 * machine_busy * machine_total / window_s - ours;  // of one core
+  c["probes_sent"] = static_cast<double>(probe.sent);
+  c["probes_seen"] = static_cast<double>(probe.seen);
+  c["delay_p50_ms"] = probe.p50_ms;
+  c["delay_p99_ms"] = probe.p99_ms;
+  c["delay_max_ms"] = probe.max_ms;
+
+  auto v = [&](const char* name) { return c[name].value; };
+  std::fprintf(stderr,
+               "bench_pipeline: %d robots, %.1f s window\n"
+               "  rate: simulator sent %.0f msg/s, gateway received %.0f msg/s (%.3f), mapper integrated %.0f obs/s "
+               "(%.3f of the gateway's), %.1f points per observation; gateway RobotState %.0f/s\n"
+               "  queues: mapper backlog %.0f -> %.0f observations; dropped: mapper %.0f, simulator %.0f; "
+               "simulator loop overruns %.0f\n"
+               "  after pausing the fleet: %s %.1f s; %s: %.0f at the gateway, %.0f at the mapper\n"
+               "  map stream: %.1f patches/s, %.1f MB/s of patch cells to each reader\n"
+               "  delay robot message -> GridPatch: p50 %.0f ms, p99 %.0f ms, max %.0f ms (%zu of %zu probes seen)\n"
+               "  CPU %% of one core: mosquitto %.0f, gateway %.0f, mapper %.0f, planner %.0f, simulator %.0f, "
+               "bench %.0f; other processes %.0f; machine %.0f %% busy\n",
+               settings.robots, window_s, sent, gateway_in, v("gateway_over_sim"), mapper_obs, v("mapper_over_gateway"),
+               v("points_per_obs"), v("gateway_states_per_s"), v("mapper_backlog_start"), v("mapper_backlog_end"),
+               v("mapper_dropped"), v("sim_reports_dropped"), v("sim_loop_overruns"),
+               drained.settled ? "queues drained in" : "still draining after", drained.seconds,
+               drained.settled ? "never arrived" : "not arrived yet",
+               v("lost_to_gateway"), v("lost_to_mapper"), v("mapper_patches_per_s"), v("patch_mb_per_s"),
+               probe.p50_ms, probe.p99_ms, probe.max_ms, probe.seen, probe.sent, v("cpu_mosquitto_pct"),
+               v("cpu_gateway_pct"), v("cpu_mapper_pct"), v("cpu_planner_pct"), v("cpu_simulator_pct"),
+               v("cpu_bench_pct"), v("cpu_others_pct"), v("cpu_machine_busy_pct"));
+}
+
+void BM_Pipeline(benchmark::State& state) {
+  auto settings = pipeline_settings_from_env();
+  if (!settings) return fail(state, settings.message());
+  auto rig = PipelineRig::start(*settings);
+  if (!rig) return fail(state, rig.message());
+  ProbeSet probes(settings->grid, static_cast<size_t>(settings->seconds / kProbePeriodS));
+  // Declared after `probes`, so the readers that call into it are destroyed first.
+  auto snapshots = dds::make_reader((*rig)->participant(), dds::kGridSnapshot,
+                                    [&](const GridSnapshot& s, const auto&) { probes.on_snapshot(s); });
+  auto patches = dds::make_reader((*rig)->participant(), dds::kGridPatch,
+                                  [&](const GridPatch& p, const auto&) { probes.on_patch(p); });
+  if (!snapshots) return fail(state, snapshots.message());
+  if (!patches) return fail(state, patches.message());
+  ProbeClient probe_client;
+  if (Status s = probe_client.connect((*rig)->broker_port()); !s) return fail(state, s.message());
+  if (Status s = (*rig)->wait_until_running(120s); !s) return fail(state, s.message());
+  std::this_thread::sleep_for(std::chrono::duration<double>(settings->warmup_s));
+  // What went missing while the services were still matching each other, so it is not counted.
+  if (Status s = (*rig)->control_simulator(SIM_PAUSE); !s) return fail(state, s.message());
+  const Drain before = drain(**rig, 0, monotonic_ns(), 60s);
+  if (Status s = (*rig)->control_simulator(SIM_RESUME); !s) return fail(state, s.message());
+  std::this_thread::sleep_for(3s);  // back to a steady rate
+
+  WindowEdge start, end;
+  ProbeSet::Summary probe;
+  Drain drained;
+  for (auto _ : state) {
+    start = sample_edge(**rig, probes);
+    const int64_t window_ns = static_cast<int64_t>(settings->seconds * 1e9);
+    for (size_t k = 0; k < probes.size(); ++k) {
+      const int64_t due = start.monotonic_ns + static_cast<int64_t>(static_cast<double>(k) * kProbePeriodS * 1e9);
+      if (due - start.monotonic_ns >= window_ns) break;
+      if (const int64_t wait = due - monotonic_ns(); wait > 0) std::this_thread::sleep_for(std::chrono::nanoseconds(wait));
+      probes.mark_sent(k, monotonic_ns());
+      if (!probe_client.publish(probes.payload(k))) return fail(state, "probe publish failed");
+    }
+    if (const int64_t rest = start.monotonic_ns + window_ns - monotonic_ns(); rest > 0)
+      std::this_thread::sleep_for(std::chrono::nanoseconds(rest));
+    end = sample_edge(**rig, probes);
+    if (Status s = (*rig)->control_simulator(SIM_PAUSE); !s) return fail(state, s.message());
+    const int64_t paused_at = monotonic_ns();
+    // Probes still in flight get 5 s more; unseen ones then count with their age.
+    testkit::wait_until([&] { auto p = probes.summary(monotonic_ns()); return p.seen == p.sent; }, 5s, 50ms);
+    probe = probes.summary(monotonic_ns());
+    drained = drain(**rig, probe.sent, paused_at, 120s);
+    if (Status s = (*rig)->check_running(); !s) return fail(state, s.message());
+  }
+  report(state, *settings, start, end, probe, before, drained);
+}
+BENCHMARK(BM_Pipeline)->Iterations(1)->Unit(benchmark::kSecond)->UseRealTime();
+
+}  // namespace
+}  // namespace slam::bench
+
+int main(int argc, char** argv) {
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return slam::bench::g_failed ? 1 : 0;
+}

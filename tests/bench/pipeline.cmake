@@ -1,0 +1,14 @@
+# bench_pipeline: the whole system under a 1000-robot load (mosquitto -> gateway -> mapper, planner
+# running): sustained rate, queue growth, CPU per service, robot-to-map delay (include() from
+# tests/bench/CMakeLists.txt). Starts its own mosquitto and every service; takes ~1 minute.
+# Run: build/bin/bench_pipeline --benchmark_format=json   (SLAM_BENCH_PIPELINE_SECONDS=N: window)
+add_executable(bench_pipeline ${CMAKE_CURRENT_LIST_DIR}/bench_pipeline.cpp ${CMAKE_CURRENT_LIST_DIR}/pipeline_rig.cpp
+                              ${CMAKE_CURRENT_LIST_DIR}/pipeline_probe.cpp)
+target_link_libraries(bench_pipeline PRIVATE slam_common slam_testkit robot_protocol
+                                             eclipse-paho-mqtt-c::paho-mqtt3c benchmark::benchmark)
+add_dependencies(bench_pipeline slam-gateway slam-mapper slam-planner slam-simulator)
+slam_warnings(bench_pipeline)
+# Smoke run for `ctest -L bench`: 200 robots for 5 s; the program exits non-zero if the run failed.
+add_test(NAME bench_pipeline COMMAND bench_pipeline --benchmark_format=json)
+set_tests_properties(bench_pipeline PROPERTIES LABELS bench TIMEOUT 300
+                     ENVIRONMENT "SLAM_BENCH_PIPELINE_ROBOTS=200;SLAM_BENCH_PIPELINE_SECONDS=5")

@@ -1,0 +1,210 @@
+// Starting the whole system for bench_pipeline and reading it from outside: heartbeats, /proc.
+#include "pipeline_rig.hpp"
+
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <iterator>
+#include <sstream>
+#include <thread>
+
+#include <fmt/format.h>
+
+namespace slam::bench {
+namespace {
+
+constexpr double kDoorM = 1.2;
+
+// Reads a positive number from the environment variable `name` into `out` when it is set.
+Status env_number(const char* name, double min, double max, double& out) {
+  const char* text = std::getenv(name);
+  if (text == nullptr) return Status::ok();
+  char* end = nullptr;
+  const double v = std::strtod(text, &end);
+  if (end == text || *end != '\0' || !std::isfinite(v) || v < min || v > max)
+    return Error{fmt::format("{}='{}': must be a number between {} and {}", name, text, min, max)};
+  out = v;
+  return Status::ok();
+}
+
+int cm(double metres) { return static_cast<int>(std::lround(metres * 100.0)); }
+
+}  // namespace
+
+Result<PipelineSettings> pipeline_settings_from_env() {
+  PipelineSettings s;
+  double robots = s.robots;
+  if (auto st = env_number("SLAM_BENCH_PIPELINE_ROBOTS", 1, 5000, robots); !st) return Error{st.message()};
+  if (auto st = env_number("SLAM_BENCH_PIPELINE_SECONDS", 2, 3600, s.seconds); !st) return Error{st.message()};
+  s.robots = static_cast<int>(robots);
+  return s;
+}
+
+std::string rooms_world_text(double side_m, double room_m) {
+  std::string out = fmt::format("{}:{}\n", cm(side_m), cm(side_m));
+  const int rooms = static_cast<int>(std::lround(side_m / room_m));
+  for (int line = 1; line < rooms; ++line) {
+    const double c = line * room_m;
+    for (int r = 0; r < rooms; ++r) {
+      const double a = r * room_m;
+      const double door_lo = a + 0.5 * (room_m - kDoorM);
+      const double door_hi = door_lo + kDoorM;
+      const double b = a + room_m;
+      // Vertical wall at x = c, then horizontal wall at y = c, each in two pieces around the door.
+      out += fmt::format("{},{}:{},{} {},{}:{},{}\n", cm(c), cm(a), cm(c), cm(door_lo), cm(c), cm(door_hi), cm(c), cm(b));
+      out += fmt::format("{},{}:{},{} {},{}:{},{}\n", cm(a), cm(c), cm(door_lo), cm(c), cm(door_hi), cm(c), cm(b), cm(c));
+    }
+  }
+  return out;
+}
+
+int64_t CounterSample::get(const std::string& name) const {
+  const auto it = values.find(name);
+  return it == values.end() ? 0 : it->second;
+}
+
+int64_t CounterSample::sum_prefixed(const std::string& prefix) const {
+  int64_t total = 0;
+  for (const auto& [name, value] : values)
+    if (name.starts_with(prefix)) total += value;
+  return total;
+}
+
+double rate_between(const CounterSample& from, const CounterSample& to, const std::string& name) {
+  const double dt = static_cast<double>(to.stamp_ns - from.stamp_ns) / 1e9;
+  return dt > 0.0 ? static_cast<double>(to.get(name) - from.get(name)) / dt : 0.0;
+}
+
+double process_cpu_s(pid_t pid) {
+  std::ifstream file("/proc/" + std::to_string(pid) + "/stat");
+  const std::string stat((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+  // The command name (field 2) is in parentheses and may contain spaces: count from the last ')'.
+  const size_t close = stat.rfind(')');
+  if (close == std::string::npos) return -1.0;
+  std::istringstream fields(stat.substr(close + 1));
+  std::string skip;
+  for (int field = 3; field < 14; ++field) fields >> skip;  // state .. cmajflt
+  long long utime = 0, stime = 0;
+  if (!(fields >> utime >> stime)) return -1.0;
+  return static_cast<double>(utime + stime) / static_cast<double>(::sysconf(_SC_CLK_TCK));
+}
+
+MachineCpu machine_cpu() {
+  std::ifstream file("/proc/stat");
+  std::string label;
+  file >> label;  // "cpu": the sum over all cores
+  long long user = 0, nice = 0, system = 0, idle = 0, iowait = 0, irq = 0, softirq = 0, steal = 0;
+  file >> user >> nice >> system >> idle >> iowait >> irq >> softirq >> steal;
+  const double tick = static_cast<double>(::sysconf(_SC_CLK_TCK));
+  const auto busy = user + nice + system + irq + softirq + steal;
+  return {static_cast<double>(busy) / tick, static_cast<double>(busy + idle + iowait) / tick};
+}
+
+Result<std::unique_ptr<PipelineRig>> PipelineRig::start(const PipelineSettings& settings) {
+  std::unique_ptr<PipelineRig> rig(new PipelineRig());
+  if (Status s = rig->launch(settings); !s) return Error{s.message()};
+  return rig;
+}
+
+Status PipelineRig::launch(const PipelineSettings& s) {
+  robots_ = s.robots;
+  const std::string world = group_.dir() + "/rooms.txt";
+  std::ofstream(world) << rooms_world_text(s.world_side_m, s.room_m);
+
+  port_ = group_.start_mosquitto();
+  const std::string broker = "tcp://127.0.0.1:" + std::to_string(port_);
+  const std::string domain = std::to_string(domain_.id());
+  const GridLayout& g = s.grid;
+  group_.start("gateway", {testkit::bin_path("slam-gateway"), "--domain", domain, "--broker", broker,
+                           "--log-level", "warn"});
+  group_.start("mapper", {testkit::bin_path("slam-mapper"), "--domain", domain, "--store", group_.dir() + "/map.db",
+                          "--grid-resolution", fmt::format("{}", g.resolution), "--grid-origin-x",
+                          fmt::format("{}", g.origin_x), "--grid-origin-y", fmt::format("{}", g.origin_y),
+                          "--grid-width-m", fmt::format("{}", g.side_m), "--grid-height-m",
+                          fmt::format("{}", g.side_m), "--log-level", "warn"});
+  group_.start("planner", {testkit::bin_path("slam-planner"), "--domain", domain, "--log-level", "warn"});
+  group_.start("simulator",
+               {testkit::bin_path("slam-simulator"), "--domain", domain, "--broker", broker, "--world", world,
+                "--robots", std::to_string(s.robots), "--protocol", "v1", "--rate", "10", "--beams",
+                std::to_string(s.beams), "--max-range", fmt::format("{}", s.max_range_m), "--dropout", "0",
+                "--random-walk", "--mqtt-multiplex", "--log-level", "warn"});
+
+  auto participant = dds::Participant::create(domain_.id(), "bench-pipeline");
+  if (!participant) return Error{"DDS participant: " + participant.message()};
+  participant_ = std::move(*participant);
+  auto reader = dds::make_reader(*participant_, dds::kHeartbeat, [this](const Heartbeat& h, const auto&) {
+    CounterSample sample;
+    sample.stamp_ns = h.stamp_ns();
+    for (const Counter& c : h.counters()) sample.values[c.name().to_string()] = c.value();
+    std::lock_guard lock(mutex_);
+    latest_[h.service().to_string()] = std::move(sample);
+  });
+  if (!reader) return Error{"heartbeat reader: " + reader.message()};
+  heartbeats_ = std::move(*reader);
+  auto control = dds::make_writer(*participant_, dds::kSimControl);
+  if (!control) return Error{"SimControl writer: " + control.message()};
+  sim_control_ = std::move(*control);
+  return Status::ok();
+}
+
+Status PipelineRig::control_simulator(SimCommandKind kind) {
+  if (!sim_control_->wait_for_readers(std::chrono::seconds(10))) return Error{"the simulator's SimControl reader did not match"};
+  SimControl c;
+  c.command_id(++commands_sent_);
+  c.kind(kind);
+  c.speed_factor(1.0);
+  if (!sim_control_->write(c)) return Error{"SimControl write failed"};
+  return Status::ok();
+}
+
+Status PipelineRig::wait_until_running(std::chrono::seconds timeout) {
+  const auto until = std::chrono::steady_clock::now() + timeout;
+  int64_t first_observations = -1;
+  while (std::chrono::steady_clock::now() < until) {
+    if (Status s = check_running(); !s) return s;
+    bool all = true;
+    for (const char* service : {"gateway", "mapper", "planner", "simulator"}) all = all && latest(service).stamp_ns > 0;
+    const int64_t observations = latest("mapper").get("observations");
+    if (all && latest("simulator").get("robots") >= robots_ && observations > 0) {
+      if (first_observations < 0) first_observations = observations;
+      if (observations > first_observations) return Status::ok();  // integrating, not a one-off
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  }
+  std::string missing;
+  for (const char* service : {"gateway", "mapper", "planner", "simulator"}) {
+    const CounterSample s = latest(service);
+    missing += fmt::format(" {}: {}", service, s.stamp_ns > 0 ? "heartbeat seen" : "no heartbeat");
+  }
+  return Error{fmt::format("the pipeline did not start within {} s (simulator robots {}, mapper observations {});{}",
+                           timeout.count(), latest("simulator").get("robots"), latest("mapper").get("observations"),
+                           missing)};
+}
+
+Status PipelineRig::check_running() {
+  for (const auto& [name, pid] : processes()) {
+    if (!group_.running(name)) return Error{name + " exited:\n" + log_tail(name)};
+  }
+  return Status::ok();
+}
+
+CounterSample PipelineRig::latest(const std::string& service) const {
+  std::lock_guard lock(mutex_);
+  const auto it = latest_.find(service);
+  return it == latest_.end() ? CounterSample{} : it->second;
+}
+
+std::vector<std::pair<std::string, pid_t>> PipelineRig::processes() const {
+  std::vector<std::pair<std::string, pid_t>> out;
+  for (const char* name : {"mosquitto", "gateway", "mapper", "planner", "simulator"}) out.emplace_back(name, group_.pid(name));
+  return out;
+}
+
+std::string PipelineRig::log_tail(const std::string& name) const {
+  const std::string log = group_.log(name);
+  return log.size() > 2000 ? "..." + log.substr(log.size() - 2000) : log;
+}
+
+}  // namespace slam::bench

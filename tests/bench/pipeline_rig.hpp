@@ -1,0 +1,110 @@
+#pragma once
+// The whole system as one process group for bench_pipeline: mosquitto on a free port and
+// slam-gateway, slam-mapper, slam-planner and slam-simulator on a leased DDS domain, a generated
+// world, and what the bench reads from outside the processes: heartbeat counters over DDS and CPU
+// time from /proc. Kept apart from the measurement so the benchmark reads as a list of steps.
+#include <sys/types.h>
+
+#include <chrono>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include "common/fast_topics.hpp"
+#include "common/result.hpp"
+#include "process_group.hpp"
+
+namespace slam::bench {
+
+// The mapper's grid, fixed at start so it never grows (a growth publishes snapshots instead of
+// patches) and so the probe can put points in cells only it observes (see pipeline_probe.hpp).
+struct GridLayout {
+  double origin_x = -5.0;
+  double origin_y = -5.0;
+  double side_m = 90.0;
+  double resolution = 0.05;
+};
+
+struct PipelineSettings {
+  int robots = 1000;           // SLAM_BENCH_PIPELINE_ROBOTS
+  double seconds = 30.0;       // SLAM_BENCH_PIPELINE_SECONDS: the measured window
+  double warmup_s = 5.0;       // after every robot reports, before the window
+  int beams = 9;               // 9 obstacle points + the position = 10 v1 pairs per message
+  double max_range_m = 12.0;   // longer than a room's diagonal: nearly every beam hits a wall
+  double world_side_m = 80.0;  // square world of rooms with doors
+  double room_m = 8.0;
+  GridLayout grid;
+};
+
+// Settings with the environment overrides applied; an out-of-range value is an error naming it.
+Result<PipelineSettings> pipeline_settings_from_env();
+
+// The Java-format world text (sizes in cm): a square of `room_m` rooms, every internal wall with a
+// 1.2 m door in the middle of each room side, so random walks reach everywhere.
+std::string rooms_world_text(double side_m, double room_m);
+
+// One service's counters as of one heartbeat.
+struct CounterSample {
+  int64_t stamp_ns = 0;
+  std::map<std::string, int64_t> values;
+  int64_t get(const std::string& name) const;
+  int64_t sum_prefixed(const std::string& prefix) const;  // e.g. every "rejected_*" counter
+};
+
+// Change of a counter between two heartbeats, per second of the service's own clock.
+double rate_between(const CounterSample& from, const CounterSample& to, const std::string& name);
+
+// CPU seconds (user + system) a process used so far, all threads; negative if it is gone.
+double process_cpu_s(pid_t pid);
+
+// Busy and total CPU seconds of the whole machine so far (all cores), from /proc/stat.
+struct MachineCpu {
+  double busy_s = 0.0;
+  double total_s = 0.0;
+};
+MachineCpu machine_cpu();
+
+class PipelineRig {
+ public:
+  // Starts every process and the DDS readers. Errors name the process that did not come up.
+  static Result<std::unique_ptr<PipelineRig>> start(const PipelineSettings& settings);
+
+  // Waits until each service sent a heartbeat, the simulator runs every robot and the mapper
+  // integrates observations.
+  Status wait_until_running(std::chrono::seconds timeout);
+
+  // Pauses (SIM_PAUSE) or resumes (SIM_RESUME) every simulated robot over DDS; heartbeats go on.
+  Status control_simulator(SimCommandKind kind);
+
+  // An error naming the first process that exited, with the end of its log.
+  Status check_running();
+
+  // Latest heartbeat counters of `service`; empty values when none arrived yet.
+  CounterSample latest(const std::string& service) const;
+
+  int broker_port() const { return port_; }
+  dds::Participant& participant() { return *participant_; }
+  // Name and pid of every process started (mosquitto, gateway, mapper, planner, simulator).
+  std::vector<std::pair<std::string, pid_t>> processes() const;
+  // Tail of a process's log, for error messages.
+  std::string log_tail(const std::string& name) const;
+
+ private:
+  PipelineRig() = default;
+  Status launch(const PipelineSettings& settings);
+
+  testkit::DomainLease domain_;
+  testkit::ProcessGroup group_;
+  int port_ = 0;
+  int robots_ = 0;
+  std::unique_ptr<dds::Participant> participant_;
+  std::unique_ptr<dds::Reader<Heartbeat>> heartbeats_;
+  std::unique_ptr<dds::Writer<SimControl>> sim_control_;
+  uint64_t commands_sent_ = 0;
+  mutable std::mutex mutex_;
+  std::map<std::string, CounterSample> latest_;  // by service name
+};
+
+}  // namespace slam::bench
