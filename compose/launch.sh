@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Local process-group launcher: starts mosquitto (unless --broker), every service that is built,
-# simulated robots and the viewer (under Xvfb with PNG snapshots when there is no display).
-# Logs: one file per service in $LOG_DIR. Ctrl-C / SIGTERM stops everything it started.
+# simulated robots and the viewer (on its own Xvfb server, writing PNG snapshots, when there is no
+# display). Logs: one file per service in $LOG_DIR. Ctrl-C / SIGTERM stops everything it started:
+# the services and the viewer first, then the X server and the broker they were connected to.
 set -uo pipefail
 
 BIN=${BIN:-build/bin}
@@ -13,45 +14,101 @@ ROBOTS=3
 MODE=explore
 HEADLESS=0
 SIM=1
+FRESH=0
 DATA=run/data
 LOG_DIR=run/logs
 SNAP_DIR=run/snapshots
+SNAP_PERIOD=10
+BUILT_IN_WORLDS="office maze track empty"
 
 usage() {
   cat <<USAGE
-usage: scripts/run.sh [options]
-  --headless         no window: the viewer renders under Xvfb and writes PNG snapshots
-  --world NAME|FILE  simulated world (built-in: office, maze, track, empty; or a file)   [$WORLD]
-  --robots N         simulated robots                                                   [$ROBOTS]
-  --mode explore|idle  what the robots do at start                                      [$MODE]
-  --no-sim           real robots only
-  --domain N         DDS domain id                                                      [$DOMAIN]
-  --broker URL       use this MQTT broker instead of starting mosquitto
-  --port N           port of the local mosquitto                                        [$PORT]
-  --data DIR         map store directory                                                [$DATA]
+usage: scripts/run.sh [options]      (or BIN=build/bin compose/launch.sh [options])
+  --headless           no window: the viewer renders under Xvfb and writes PNG snapshots
+                       (also the default when \$DISPLAY is not set)
+  --world NAME|FILE    simulated world (built-in: ${BUILT_IN_WORLDS// /, }; or a world file) [$WORLD]
+  --robots N           simulated robots (0..5000)                                   [$ROBOTS]
+  --mode explore|idle  explore: send every robot exploring at start; idle: wait for goals [$MODE]
+  --no-sim             real robots only
+  --fresh              start with an empty map (deletes the map store in --data first)
+  --domain N           DDS domain id (0..232)                                       [$DOMAIN]
+  --broker URL         use this MQTT broker instead of starting mosquitto
+  --port N             port of the local mosquitto                                  [$PORT]
+  --data DIR           map store directory                                          [$DATA]
+  --logs DIR           one log file per service                                     [$LOG_DIR]
+  --snapshots DIR      headless viewer: snapshot-NNNN.png and latest.png go here    [$SNAP_DIR]
+  --snapshot-period S  headless viewer: seconds between snapshots                   [$SNAP_PERIOD]
+Programs come from \$BIN [$BIN]. Ctrl-C stops everything this script started.
 USAGE
 }
+
+fail() {  # fail MESSAGE: a bad option or setup problem, one line, exit status 2
+  echo "run: $1" >&2
+  exit 2
+}
+
+need_value() {  # need_value OPTION ARGC: the option must be followed by a value
+  (($2 >= 2)) || fail "$1 needs a value (see --help)"
+}
+
+is_uint() { [[ $1 =~ ^[0-9]+$ ]] && ((10#$1 <= 1000000)); }
 
 while (($#)); do
   case "$1" in
     --headless) HEADLESS=1 ;;
-    --world) WORLD=$2; shift ;;
-    --robots) ROBOTS=$2; shift ;;
-    --mode) MODE=$2; shift ;;
     --no-sim) SIM=0 ;;
-    --domain) DOMAIN=$2; shift ;;
-    --broker) BROKER=$2; shift ;;
-    --port) PORT=$2; shift ;;
-    --data) DATA=$2; shift ;;
-    -h|--help) usage; exit 0 ;;
-    *) echo "run: unknown option $1 (see --help)" >&2; exit 2 ;;
+    --fresh) FRESH=1 ;;
+    --world | --robots | --mode | --domain | --broker | --port | --data | --logs | --snapshots | --snapshot-period)
+      need_value "$1" $#
+      case "$1" in
+        --world) WORLD=$2 ;;
+        --robots) ROBOTS=$2 ;;
+        --mode) MODE=$2 ;;
+        --domain) DOMAIN=$2 ;;
+        --broker) BROKER=$2 ;;
+        --port) PORT=$2 ;;
+        --data) DATA=$2 ;;
+        --logs) LOG_DIR=$2 ;;
+        --snapshots) SNAP_DIR=$2 ;;
+        --snapshot-period) SNAP_PERIOD=$2 ;;
+      esac
+      shift ;;
+    -h | --help) usage; exit 0 ;;
+    *) fail "unknown option $1 (see --help)" ;;
   esac
   shift
 done
-case "$MODE" in explore|idle) ;; *) echo "run: --mode must be explore or idle" >&2; exit 2 ;; esac
 
-mkdir -p "$LOG_DIR" "$DATA" "$SNAP_DIR"
+case "$MODE" in explore | idle) ;; *) fail "--mode must be explore or idle, got '$MODE'" ;; esac
+is_uint "$ROBOTS" && ((10#$ROBOTS <= 5000)) || fail "--robots must be 0..5000, got '$ROBOTS'"
+is_uint "$DOMAIN" && ((10#$DOMAIN <= 232)) || fail "--domain must be 0..232, got '$DOMAIN'"
+is_uint "$PORT" && ((10#$PORT >= 1 && 10#$PORT <= 65535)) || fail "--port must be 1..65535, got '$PORT'"
+[[ $SNAP_PERIOD =~ ^[0-9]+([.][0-9]+)?$ ]] || fail "--snapshot-period must be a number of seconds, got '$SNAP_PERIOD'"
+if ((SIM)) && [[ " $BUILT_IN_WORLDS " != *" $WORLD "* ]] && [ ! -r "$WORLD" ]; then
+  fail "--world '$WORLD' is neither a built-in world (${BUILT_IN_WORLDS// /, }) nor a readable file"
+fi
+HEADLESS_VIEWER=0
+if ((HEADLESS)) || [ -z "${DISPLAY:-}" ]; then
+  HEADLESS_VIEWER=1
+  command -v Xvfb >/dev/null || fail "no display and no Xvfb: install xvfb (apt-get install xvfb) or set DISPLAY"
+fi
+
+mkdir -p "$LOG_DIR" "$DATA" || fail "cannot create $LOG_DIR or $DATA"
+if ((HEADLESS_VIEWER)); then
+  mkdir -p "$SNAP_DIR" || fail "cannot create $SNAP_DIR"
+  snap_abs=$(cd "$SNAP_DIR" && pwd)
+fi
+if ((FRESH)); then
+  rm -f "$DATA"/map.db "$DATA"/map.db-* "$DATA/world"
+  echo "run: --fresh: removed the map store in $DATA"
+elif ((SIM)) && [ -f "$DATA/map.db" ] && [ -f "$DATA/world" ] && [ "$(cat "$DATA/world")" != "$WORLD" ]; then
+  echo "run: note: the map store in $DATA was built in world '$(cat "$DATA/world")', now '$WORLD': the map mixes both (add --fresh to start empty)" >&2
+fi
+((SIM)) && echo "$WORLD" >"$DATA/world"
+
 declare -A PIDS=()
+HELPER_PIDS=()
+INFRA="mosquitto xvfb"  # stopped last: the others are their clients
 
 start() {  # start NAME CMD...: background process in its own group, output to $LOG_DIR/NAME.log
   local name=$1; shift
@@ -64,20 +121,40 @@ start() {  # start NAME CMD...: background process in its own group, output to $
   echo "run: started $name (pid $!, log $LOG_DIR/$name.log)"
 }
 
-stop_all() {
-  trap - INT TERM
-  echo "run: stopping ${!PIDS[*]}"
-  for pid in "${PIDS[@]}"; do kill -TERM -- "-$pid" 2>/dev/null; done
+stop_groups() {  # stop_groups NAME...: TERM each process group, KILL what is left after 5 s
+  local pids=()
+  for name in "$@"; do [ -n "${PIDS[$name]:-}" ] && pids+=("${PIDS[$name]}"); done
+  ((${#pids[@]})) || return 0
+  for pid in "${pids[@]}"; do kill -TERM -- "-$pid" 2>/dev/null; done
   for _ in $(seq 50); do
     local alive=0
-    for pid in "${PIDS[@]}"; do kill -0 "$pid" 2>/dev/null && alive=1; done
+    for pid in "${pids[@]}"; do kill -0 "$pid" 2>/dev/null && alive=1; done
     ((alive)) || break
     sleep 0.1
   done
-  for pid in "${PIDS[@]}"; do kill -KILL -- "-$pid" 2>/dev/null; done
-  exit 0
+  for pid in "${pids[@]}"; do kill -KILL -- "-$pid" 2>/dev/null; done
 }
-trap stop_all INT TERM
+
+stop_all() {  # stop_all STATUS
+  trap - INT TERM HUP
+  local status=${1:-0} clients=() infra=()
+  for pid in "${HELPER_PIDS[@]}"; do kill -TERM "$pid" 2>/dev/null; done
+  for name in "${!PIDS[@]}"; do
+    if [[ " $INFRA " == *" $name "* ]]; then infra+=("$name"); else clients+=("$name"); fi
+  done
+  if ((${#PIDS[@]})); then
+    local all=("${clients[@]}" "${infra[@]}")
+    echo "run: stopping ${all[*]}"
+    stop_groups "${clients[@]}"
+    stop_groups "${infra[@]}"
+  fi
+  wait 2>/dev/null
+  echo "run: stopped; logs in $LOG_DIR/${SNAP_NOTE:-}"
+  exit "$status"
+}
+trap 'stop_all 0' INT TERM
+trap 'stop_all 1' HUP  # the terminal went away: do not leave the services running
+trap '' PIPE           # stdout piped into a reader that quit (| head): keep managing the processes
 
 if [ -z "$BROKER" ]; then
   conf="$LOG_DIR/mosquitto.conf"
@@ -85,6 +162,11 @@ if [ -z "$BROKER" ]; then
   start mosquitto mosquitto -c "$conf"
   BROKER="tcp://127.0.0.1:$PORT"
   sleep 0.5
+  if [ -z "${PIDS[mosquitto]:-}" ] || ! kill -0 "${PIDS[mosquitto]}" 2>/dev/null; then
+    echo "run: mosquitto did not start (port $PORT in use? try --port); its log:" >&2
+    tail -n 5 "$LOG_DIR/mosquitto.log" >&2
+    stop_all 1
+  fi
 fi
 
 common=(--domain "$DOMAIN")
@@ -94,15 +176,40 @@ start planner "$BIN/slam-planner" "${common[@]}"
 if ((SIM)); then
   start simulator "$BIN/slam-simulator" "${common[@]}" --broker "$BROKER" --world "$WORLD" --robots "$ROBOTS"
 fi
-if ((HEADLESS)) || [ -z "${DISPLAY:-}" ]; then
-  echo "run: no display: the viewer writes a PNG snapshot every 10 s to $SNAP_DIR/"
-  start viewer xvfb-run -a -s "-screen 0 1280x800x24" "$BIN/slam-viewer" "${common[@]}" --snapshot-dir "$SNAP_DIR" --snapshot-period 10
+if [ ! -x "$BIN/slam-viewer" ]; then
+  echo "run: viewer not started ($BIN/slam-viewer is not built)"
+elif ((HEADLESS_VIEWER)); then
+  # Our own X server (not xvfb-run) so the viewer can be stopped before it; -displayfd lets Xvfb
+  # pick a free display and tell us which.
+  display_file="$LOG_DIR/xvfb.display"
+  : >"$display_file"
+  exec 3>"$display_file"
+  start xvfb Xvfb -displayfd 3 -screen 0 1280x800x24 -nolisten tcp
+  exec 3>&-
+  for _ in $(seq 100); do [ -s "$display_file" ] && break; sleep 0.1; done
+  if [ ! -s "$display_file" ]; then
+    echo "run: Xvfb did not start; its log:" >&2
+    tail -n 5 "$LOG_DIR/xvfb.log" >&2
+    stop_all 1
+  fi
+  # Nobody watches the frames under Xvfb: 10 frames per second leave the CPU to the services.
+  start viewer env DISPLAY=":$(head -n 1 "$display_file")" "$BIN/slam-viewer" "${common[@]}" --fps 10 \
+    --snapshot-dir "$SNAP_DIR" --snapshot-period "$SNAP_PERIOD"
+  SNAP_NOTE="; viewer snapshots in $snap_abs/"
+  echo "run: no display: the viewer writes a PNG every $SNAP_PERIOD s to $snap_abs/snapshot-NNNN.png;"
+  echo "run:   the newest is always $snap_abs/latest.png"
 else
   start viewer "$BIN/slam-viewer" "${common[@]}"
 fi
-if ((SIM)) && [ "$MODE" = explore ] && [ -x "$BIN/slamctl" ]; then
-  sleep 2
-  "$BIN/slamctl" --domain "$DOMAIN" goal all explore >>"$LOG_DIR/slamctl.log" 2>&1 &
+if ((SIM)) && [ "$MODE" = explore ]; then
+  if [ -x "$BIN/slamctl" ]; then
+    # "all" also reaches robots the planner has not seen yet; slamctl gives up after --timeout.
+    ( sleep 2 && exec "$BIN/slamctl" --domain "$DOMAIN" --timeout 20 goal all explore ) >>"$LOG_DIR/slamctl.log" 2>&1 &
+    HELPER_PIDS+=($!)
+    echo "run: robots will explore (slamctl goal all explore, log $LOG_DIR/slamctl.log)"
+  else
+    echo "run: $BIN/slamctl is not built: robots stay idle (--mode explore needs it)" >&2
+  fi
 fi
 
 echo "run: running; Ctrl-C stops everything"

@@ -10,7 +10,7 @@ PACKAGES=(
   libompl-dev libeigen3-dev
   libboost-serialization-dev libboost-filesystem-dev libboost-system-dev
   libpaho-mqtt-dev mosquitto mosquitto-clients
-  libglfw3-dev libimgui-dev libgl-dev libgl1-mesa-dri xvfb xauth
+  libglfw3-dev libimgui-dev libgl-dev libx11-dev libgl1-mesa-dri xvfb xauth
   libgtest-dev libgmock-dev libbenchmark-dev
   libsqlite3-dev libcli11-dev libspdlog-dev nlohmann-json3-dev libyaml-cpp-dev libstb-dev
   jq

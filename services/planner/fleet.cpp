@@ -11,27 +11,63 @@ Status validate(const FleetConfig& config) {
 
 Fleet::Fleet(const FleetConfig& config) : config_(config), planner_(config.planner) {}
 
-void Fleet::observe(const std::string& robot_id, Vec2 position) {
-  auto [it, inserted] = robots_.try_emplace(
-      robot_id, Robot{GoalTracker(config_.goals), position, position, ProgressWatch{}, 0});
-  it->second.position = position;
-  if (!inserted) it->second.tracker.update_position(position);
+void Fleet::start(Robot& robot, const Goal& goal) {
+  robot.tracker.set_goal(goal, robot.position, robot.home);
+  robot.idle_since_ns = -1;
+  robot.next_search_ns = 0;
+  if (goal.mode == GoalMode::Explore) exploration_complete_ = false;
 }
 
-Status Fleet::set_goal(const std::string& robot_id, const Goal& goal) {
-  if (auto s = validate(goal); !s) return s;
-  auto start = [&](Robot& r) {
-    r.tracker.set_goal(goal, r.position, r.home);
-    if (goal.mode == GoalMode::Explore) exploration_complete_ = false;
-  };
+UnknownPolicy Fleet::policy(const Robot& robot) const {
+  return robot.tracker.mode() == GoalMode::Explore ? config_.explore.unknown : config_.planner.unknown;
+}
+
+void Fleet::observe(const std::string& robot_id, Vec2 position) {
+  auto [it, inserted] = robots_.try_emplace(
+      robot_id, Robot{GoalTracker(config_.goals), position, position, ProgressWatch{}, 0, -1, 0});
+  Robot& robot = it->second;
+  robot.position = position;
+  if (!inserted) {
+    robot.tracker.update_position(position);
+    return;
+  }
+  const auto own = pending_.find(robot_id);
+  const KeptGoal* kept = own == pending_.end() ? nullptr : &own->second;
+  if (fleet_goal_ && (kept == nullptr || fleet_goal_->order > kept->order)) kept = &*fleet_goal_;
+  if (kept != nullptr) start(robot, kept->goal);
+  if (own != pending_.end()) pending_.erase(own);
+}
+
+Result<size_t> Fleet::set_goal(const std::string& robot_id, const Goal& goal) {
+  if (auto s = validate(goal); !s) return Error{s.message()};
+  const uint64_t order = ++goal_order_;
+  // A new exploration order gives every frontier another chance.
+  if (goal.mode == GoalMode::Explore) blacklist_.clear();
   if (robot_id == kAllRobots) {
-    for (auto& [id, robot] : robots_) start(robot);
-    return Status::ok();
+    if (goal.mode == GoalMode::Explore || goal.mode == GoalMode::Stop) {
+      fleet_goal_ = KeptGoal{goal, order};
+    } else {
+      fleet_goal_.reset();
+    }
+    for (auto& [id, robot] : robots_) start(robot, goal);
+    return robots_.size();
   }
   auto it = robots_.find(robot_id);
-  if (it == robots_.end()) return Error{"unknown robot '" + robot_id + "'"};
-  start(it->second);
-  return Status::ok();
+  if (it != robots_.end()) {
+    start(it->second, goal);
+    return size_t{1};
+  }
+  if (pending_.size() >= kMaxPendingGoals && pending_.count(robot_id) == 0) {
+    return Error{"unknown robot '" + robot_id + "' and " + std::to_string(kMaxPendingGoals) +
+                 " goals already wait for robots not seen yet"};
+  }
+  pending_[robot_id] = KeptGoal{goal, order};
+  return size_t{0};
+}
+
+const Goal* Fleet::pending_goal(const std::string& robot_id) const {
+  auto it = pending_.find(robot_id);
+  return it == pending_.end() ? nullptr : &it->second.goal;
 }
 
 void Fleet::grid_changed(const PlanningGrid& grid, std::optional<CellBox> box) {
@@ -40,50 +76,85 @@ void Fleet::grid_changed(const PlanningGrid& grid, std::optional<CellBox> box) {
   } else {
     frontiers_.rebuild(grid);
   }
-  for (auto& [id, robot] : robots_) robot.tracker.check_path(grid, config_.planner.unknown);
+  for (auto& [id, robot] : robots_) robot.tracker.check_path(grid, policy(robot));
 }
 
 void Fleet::tick(const PlanningGrid& grid, int64_t now_ns) {
   if (grid.empty()) return;
   explore(grid, now_ns);
-  plan_paths(grid);
+  plan_paths(grid, now_ns);
   // A frontier that turned out unreachable was dropped by plan_paths: offer another at once.
   explore(grid, now_ns);
-  plan_paths(grid);
+  plan_paths(grid, now_ns);
 }
 
-void Fleet::plan_paths(const PlanningGrid& grid) {
+void Fleet::give_up(Vec2 target, int64_t now_ns) {
+  blacklist_.add(target, now_ns, static_cast<int64_t>(config_.explore.blacklist_rest_s * 1e9),
+                 config_.explore.blacklist_radius_m);
+}
+
+void Fleet::plan_paths(const PlanningGrid& grid, int64_t now_ns) {
   for (auto& [id, robot] : robots_) {
     GoalTracker& t = robot.tracker;
     if (!t.needs_plan()) continue;
-    const PlanResult result = planner_.plan_astar(grid, robot.position, t.plan_target());
+    // Home is where the robot once stood: inflation may cover it now, a cell beside it will do.
+    const bool snap_goal = t.mode() == GoalMode::Home || t.homing();
+    const PlanResult result =
+        planner_.plan_for_robot(grid, robot.position, t.plan_target(), policy(robot), snap_goal);
     if (result.ok()) {
       t.set_path(result.path);
-    } else {
-      if (t.has_frontier()) blacklist_.add(t.plan_target());
-      t.plan_failed(std::string(to_string(result.status)) + ": " + result.reason);
+      continue;
+    }
+    // A blocked start says nothing about the frontier: only its own failures give it up.
+    if (t.has_frontier() && result.status != PlanStatus::StartBlocked) give_up(t.plan_target(), now_ns);
+    t.plan_failed(std::string(to_string(result.status)) + ": " + result.reason);
+  }
+}
+
+double Fleet::way_to_go(const Robot& robot) const {
+  const GoalTracker& t = robot.tracker;
+  const auto rest = t.remaining();
+  // Not planned yet (or re-planning): the straight line is all there is.
+  if (rest.empty()) return distance(robot.position, t.plan_target());
+  double d = distance(robot.position, rest.front());
+  for (size_t i = 1; i < rest.size(); ++i) d += distance(rest[i - 1], rest[i]);
+  return d;
+}
+
+void Fleet::release_frontiers(const PlanningGrid& grid, int64_t now_ns) {
+  for (auto& [id, robot] : robots_) {
+    GoalTracker& t = robot.tracker;
+    if (const auto reached = t.take_reached_frontier()) {
+      const auto cell = grid.cell_at(*reached);
+      if (cell && frontiers_.is_frontier(*cell, grid)) give_up(*reached, now_ns);
+    }
+    if (!t.has_frontier()) continue;
+    // Drop frontiers that vanished (explored by someone) or that the robot stopped approaching.
+    const auto cell = grid.cell_at(t.plan_target());
+    if (!cell || !frontiers_.is_frontier(*cell, grid)) {
+      t.drop_frontier();
+    } else if (robot.progress.stalled(way_to_go(robot), now_ns, config_.explore)) {
+      give_up(t.plan_target(), now_ns);
+      t.drop_frontier();
     }
   }
 }
 
 void Fleet::explore(const PlanningGrid& grid, int64_t now_ns) {
   if (!frontiers_.matches(grid)) frontiers_.rebuild(grid);
-  // Drop frontiers that vanished (explored by someone) or that the robot stopped approaching.
-  for (auto& [id, robot] : robots_) {
-    GoalTracker& t = robot.tracker;
-    if (!t.has_frontier()) continue;
-    const auto cell = grid.cell_at(t.plan_target());
-    if (!cell || !frontiers_.is_frontier(*cell, grid)) {
-      t.drop_frontier();
-    } else if (robot.progress.stalled(robot.position, now_ns, config_.explore)) {
-      blacklist_.add(t.plan_target());
-      t.drop_frontier();
-    }
-  }
+  release_frontiers(grid, now_ns);
   std::vector<ExploringRobot> seekers;
   std::vector<std::string> ids;
   for (auto& [id, robot] : robots_) {
-    if (!robot.tracker.wants_frontier()) continue;
+    if (!robot.tracker.wants_frontier() || now_ns < robot.next_search_ns) continue;
+    // Nothing observed around the robot yet (or it is walled in): no frontier is known to be
+    // reachable from it, which says nothing about the frontiers. It waits for the map instead of
+    // giving up. (Observed: a known passable cell nearby, whatever the exploration policy.)
+    if (!planner_.robot_start(grid, robot.position, UnknownPolicy::Blocked)) {
+      robot.idle_since_ns = -1;
+      robot.next_search_ns = now_ns + static_cast<int64_t>(config_.explore.retry_period_s * 1e9);
+      continue;
+    }
     seekers.push_back(ExploringRobot{static_cast<uint32_t>(ids.size()), robot.position});
     ids.push_back(id);
   }
@@ -93,7 +164,7 @@ void Fleet::explore(const PlanningGrid& grid, int64_t now_ns) {
   eligible_.assign(clusters_.size(), 1);
   for (size_t c = 0; c < clusters_.size(); ++c) {
     const Vec2 target = grid.centre(clusters_[c].target);
-    if (blacklist_.contains(target, config_.explore.blacklist_radius_m)) eligible_[c] = 0;
+    if (blacklist_.contains(target, config_.explore.blacklist_radius_m, now_ns)) eligible_[c] = 0;
     for (const auto& [id, robot] : robots_) {
       if (robot.tracker.has_frontier() &&
           distance(robot.tracker.plan_target(), target) <= config_.explore.blacklist_radius_m) {
@@ -102,7 +173,7 @@ void Fleet::explore(const PlanningGrid& grid, int64_t now_ns) {
     }
   }
   const auto cost = [&](Vec2 from, Vec2 to) -> std::optional<double> {
-    const PlanResult r = planner_.plan_astar(grid, from, to);
+    const PlanResult r = planner_.plan_for_robot(grid, from, to, config_.explore.unknown);
     return r.ok() ? std::optional<double>(r.length_m) : std::nullopt;
   };
   const auto assignments =
@@ -111,17 +182,39 @@ void Fleet::explore(const PlanningGrid& grid, int64_t now_ns) {
   for (const FrontierAssignment& a : assignments) {
     Robot& robot = robots_.at(ids[a.robot]);
     robot.tracker.set_frontier(a.target);
-    robot.progress.start(a.target, robot.position, now_ns);
+    robot.progress.start(a.target, now_ns);
+    robot.idle_since_ns = -1;
     assigned[a.robot] = true;
   }
-  bool any_left = false;
-  for (size_t c = 0; c < clusters_.size(); ++c) any_left = any_left || eligible_[c] != 0;
+  std::vector<std::string> idle;
   for (size_t s = 0; s < seekers.size(); ++s) {
-    if (assigned[s]) continue;
-    // Nothing this robot can reach is left: its exploration is over.
-    robots_.at(ids[s]).tracker.exploration_complete();
+    if (!assigned[s]) idle.push_back(ids[s]);
   }
-  if (!any_left) exploration_complete_ = true;
+  settle_idle(idle, now_ns);
+}
+
+void Fleet::settle_idle(const std::vector<std::string>& idle, int64_t now_ns) {
+  if (idle.empty()) return;
+  bool others_exploring = false;
+  for (const auto& [id, robot] : robots_) others_exploring = others_exploring || robot.tracker.has_frontier();
+  const auto grace = static_cast<int64_t>(config_.explore.completion_grace_s * 1e9);
+  bool completed = false;
+  for (const std::string& id : idle) {
+    Robot& robot = robots_.at(id);
+    robot.next_search_ns = now_ns + static_cast<int64_t>(config_.explore.retry_period_s * 1e9);
+    // While another robot explores, what it uncovers may be for this one: the grace restarts.
+    if (robot.idle_since_ns < 0 || others_exploring) robot.idle_since_ns = now_ns;
+    if (now_ns - robot.idle_since_ns < grace) continue;
+    // Nothing this robot can reach is left: its exploration is over.
+    robot.tracker.exploration_complete();
+    completed = true;
+  }
+  if (!completed) return;
+  bool still_exploring = false;
+  for (const auto& [id, robot] : robots_) {
+    still_exploring = still_exploring || robot.tracker.has_frontier() || robot.tracker.wants_frontier();
+  }
+  if (!still_exploring) exploration_complete_ = true;
 }
 
 void Fleet::due_waypoints(int64_t now_ns, std::vector<DueWaypoint>& out) {

@@ -34,12 +34,22 @@ struct DueWaypoint {
 
 class Fleet {
  public:
+  // Goals kept for robots not seen yet; more are refused (a typo loop must not grow memory).
+  static constexpr size_t kMaxPendingGoals = 1024;
+
   explicit Fleet(const FleetConfig& config);
 
-  // A robot's position; the first one makes it known and fixes its home.
+  // A robot's position. The first one makes it known, fixes its home and starts the goal kept for
+  // it: its own, or the standing fleet goal, whichever arrived later.
   void observe(const std::string& robot_id, Vec2 position);
-  // A goal for one known robot, or for every known robot with robot_id "*".
-  Status set_goal(const std::string& robot_id, const Goal& goal);
+  // A goal for one robot, or for every robot with robot_id "*"; returns how many robots it
+  // started for now. A goal for a robot not seen yet is kept until its first position (a
+  // restarted planner reads goals before robot states). A "*" Explore or Stop goal stands: robots
+  // appearing later adopt it (exploring and holding are fleet-wide; a target or a square was
+  // chosen for the robots there at the time).
+  Result<size_t> set_goal(const std::string& robot_id, const Goal& goal);
+  // The goal kept for a robot not seen yet, if any.
+  const Goal* pending_goal(const std::string& robot_id) const;
   // After a snapshot (box empty) or a patch (its box): refresh frontiers, check paths.
   void grid_changed(const PlanningGrid& grid, std::optional<CellBox> box);
   // Plans what needs planning and assigns frontiers; call after observations and grid changes.
@@ -52,7 +62,8 @@ class Fleet {
   const GoalTracker* tracker(const std::string& robot_id) const;
   std::optional<Vec2> home(const std::string& robot_id) const;
   size_t size() const { return robots_.size(); }
-  // True once an exploring robot found no frontier left; false again when exploration restarts.
+  // True once the last exploring robot found no frontier left; false again when exploration
+  // restarts.
   bool exploration_complete() const { return exploration_complete_; }
   const FrontierBlacklist& blacklist() const { return blacklist_; }
 
@@ -63,10 +74,26 @@ class Fleet {
     Vec2 home;
     ProgressWatch progress;
     uint64_t published_revision = 0;
+    int64_t idle_since_ns = -1;  // exploring without a frontier to go to since then; -1: not
+    int64_t next_search_ns = 0;  // no frontier search for this robot before then
+  };
+  struct KeptGoal {
+    Goal goal;
+    uint64_t order = 0;  // arrival order: the later of a robot's own and the fleet goal wins
   };
 
-  void plan_paths(const PlanningGrid& grid);
+  void start(Robot& robot, const Goal& goal);
+  // Exploring robots plan under the exploration policy, every other goal under the planner's.
+  UnknownPolicy policy(const Robot& robot) const;
+  void plan_paths(const PlanningGrid& grid, int64_t now_ns);
+  // Gives up a frontier target (see FrontierBlacklist).
+  void give_up(Vec2 target, int64_t now_ns);
   void explore(const PlanningGrid& grid, int64_t now_ns);
+  void release_frontiers(const PlanningGrid& grid, int64_t now_ns);
+  // The robot's remaining path length to its frontier (what progress is measured on).
+  double way_to_go(const Robot& robot) const;
+  // Robots that found nothing: they wait while others explore, then head home after the grace.
+  void settle_idle(const std::vector<std::string>& idle, int64_t now_ns);
 
   FleetConfig config_;
   PathPlanner planner_;
@@ -75,6 +102,9 @@ class Fleet {
   std::vector<FrontierCluster> clusters_;
   std::vector<uint8_t> eligible_;  // per cluster, 0 = taken or blacklisted
   std::map<std::string, Robot> robots_;
+  std::map<std::string, KeptGoal> pending_;
+  std::optional<KeptGoal> fleet_goal_;
+  uint64_t goal_order_ = 0;
   bool exploration_complete_ = false;
 };
 

@@ -2,6 +2,7 @@
 #include "planner/frontier_assignment.hpp"
 
 #include <cmath>
+#include <limits>
 #include <queue>
 
 namespace slam::planner {
@@ -19,6 +20,15 @@ Status validate(const ExplorerConfig& config) {
   }
   if (!std::isfinite(config.blacklist_radius_m) || config.blacklist_radius_m < 0.0) {
     return Error{"explore.blacklist_radius_m must be a finite number >= 0"};
+  }
+  if (!std::isfinite(config.blacklist_rest_s) || config.blacklist_rest_s < 0.0) {
+    return Error{"explore.blacklist_rest_s must be a finite number >= 0"};
+  }
+  if (!std::isfinite(config.completion_grace_s) || config.completion_grace_s < 0.0) {
+    return Error{"explore.completion_grace_s must be a finite number >= 0"};
+  }
+  if (!std::isfinite(config.retry_period_s) || config.retry_period_s <= 0.0) {
+    return Error{"explore.retry_period_s must be positive"};
   }
   return Status::ok();
 }
@@ -66,23 +76,28 @@ std::vector<FrontierAssignment> assign_frontiers(std::span<const ExploringRobot>
   return out;
 }
 
-bool FrontierBlacklist::contains(Vec2 p, double radius_m) const {
-  for (const Vec2& q : points_) {
-    if (distance(p, q) <= radius_m) return true;
+void FrontierBlacklist::add(Vec2 target, int64_t now_ns, int64_t rest_ns, double radius_m) {
+  bool again = false;
+  for (const Entry& e : entries_) again = again || distance(e.point, target) <= radius_m;
+  entries_.push_back(Entry{target, again ? std::numeric_limits<int64_t>::max() : now_ns + rest_ns});
+}
+
+bool FrontierBlacklist::contains(Vec2 p, double radius_m, int64_t now_ns) const {
+  for (const Entry& e : entries_) {
+    if (e.until_ns > now_ns && distance(p, e.point) <= radius_m) return true;
   }
   return false;
 }
 
-void ProgressWatch::start(Vec2 target, Vec2 position, int64_t now_ns) {
+void ProgressWatch::start(Vec2 target, int64_t now_ns) {
   target_ = target;
-  best_distance_ = distance(target, position);
+  best_remaining_ = std::numeric_limits<double>::infinity();
   last_progress_ns_ = now_ns;
 }
 
-bool ProgressWatch::stalled(Vec2 position, int64_t now_ns, const ExplorerConfig& config) {
-  const double d = distance(target_, position);
-  if (d <= best_distance_ - config.progress_min_m) {
-    best_distance_ = d;
+bool ProgressWatch::stalled(double remaining_m, int64_t now_ns, const ExplorerConfig& config) {
+  if (remaining_m <= best_remaining_ - config.progress_min_m) {
+    best_remaining_ = remaining_m;
     last_progress_ns_ = now_ns;
     return false;
   }

@@ -3,6 +3,7 @@
 #include "planner/goal_tracker.hpp"
 
 #include <cmath>
+#include <utility>
 
 #include "planner/line_of_sight.hpp"
 
@@ -50,6 +51,7 @@ void GoalTracker::set_goal(const Goal& goal, Vec2 position, Vec2 home) {
   plan_wanted_ = false;
   frontier_set_ = false;
   homing_ = false;
+  reached_frontier_.reset();
   target_ = goal.target;
   status_ = GoalStatus::Active;
   switch (goal.mode) {
@@ -120,6 +122,7 @@ void GoalTracker::update_position(Vec2 position) {
 
 void GoalTracker::finish_route() {
   if (goal_.mode == GoalMode::Explore && !homing_) {
+    if (frontier_set_) reached_frontier_ = target_;
     drop_frontier();
     return;
   }
@@ -133,9 +136,13 @@ void GoalTracker::check_path(const PlanningGrid& grid, UnknownPolicy policy) {
     return;
   }
   // From the leg's start, not the robot: a robot brushing an inflated cell must not fail its plan.
+  // The current leg may begin inside impassable cells (an escape leg, or a wall inflated under a
+  // waypoint already reached): only where it leads counts.
   Vec2 from = leg_start_;
   for (size_t i = current_; i < waypoints_.size(); ++i) {
-    if (!segment_clear(grid, from, waypoints_[i], policy)) {
+    const bool clear = i == current_ ? segment_clear_leaving(grid, from, waypoints_[i], policy)
+                                     : segment_clear(grid, from, waypoints_[i], policy);
+    if (!clear) {
       plan_wanted_ = true;
       return;
     }
@@ -185,6 +192,10 @@ void GoalTracker::drop_frontier() {
   target_ = position_;
   ++waypoint_seq_;
   ++revision_;
+}
+
+std::optional<Vec2> GoalTracker::take_reached_frontier() {
+  return std::exchange(reached_frontier_, std::nullopt);
 }
 
 void GoalTracker::exploration_complete() {

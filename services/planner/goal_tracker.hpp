@@ -67,6 +67,9 @@ class GoalTracker {
   // Gives up the current frontier (reached, vanished, stalled, unreachable): asks for another.
   void drop_frontier();
   bool has_frontier() const { return mode() == GoalMode::Explore && !homing_ && frontier_set_; }
+  // The frontier the robot last arrived at, once: still a frontier after the robot stood on it,
+  // it cannot be seen from there and should not be handed out again.
+  std::optional<Vec2> take_reached_frontier();
   // No frontier left for this robot: it drives home and the goal is reached there.
   void exploration_complete();
 
@@ -107,6 +110,7 @@ class GoalTracker {
   bool plan_wanted_ = false;
   bool frontier_set_ = false;
   bool homing_ = false;
+  std::optional<Vec2> reached_frontier_;
   uint64_t waypoint_seq_ = 0;  // bumped when the current waypoint changes
   uint64_t sent_seq_ = 0;
   bool sent_once_ = false;

@@ -62,6 +62,12 @@ bool walk_segment(Vec2 a, Vec2 b, Visit&& visit) {
 // True when every cell the segment touches is inside the grid and passable under `policy`.
 bool segment_clear(const PlanningGrid& grid, Vec2 a, Vec2 b, UnknownPolicy policy);
 
+// Like segment_clear, but impassable cells at the start of the segment (inflated or unexplored; a
+// wall only as the very first cell) are passed over until the first passable one: a leg that begins
+// where a robot stands in an inflated or unexplored cell (an escape leg, see start_escape.hpp) is
+// judged by where it leads, not by where the robot is.
+bool segment_clear_leaving(const PlanningGrid& grid, Vec2 a, Vec2 b, UnknownPolicy policy);
+
 // The segment parameter in [0, 1] where it first enters a cell that is impassable or outside the
 // grid; 1.0 or more (infinity) when the whole segment is clear.
 double first_blocked_fraction(const PlanningGrid& grid, Vec2 a, Vec2 b, UnknownPolicy policy);

@@ -22,6 +22,12 @@ std::string describe(Vec2 p) {
   return buf;
 }
 
+std::string metres(double m) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.2f m", m);
+  return buf;
+}
+
 PlanResult failure(PlanStatus status, std::string reason) {
   PlanResult r;
   r.status = status;
@@ -41,6 +47,9 @@ Status validate(const PlannerConfig& config) {
   }
   if (!std::isfinite(config.max_time_budget_s) || config.max_time_budget_s <= 0.0) {
     return Error{"planner.max_time_budget_s must be positive"};
+  }
+  if (!std::isfinite(config.escape_radius_m) || config.escape_radius_m < 0.0) {
+    return Error{"planner.escape_radius_m must be a finite number >= 0"};
   }
   return Status::ok();
 }
@@ -86,9 +95,10 @@ std::optional<PlanResult> PathPlanner::reject(const PlanningGrid& grid, const Pa
   return std::nullopt;
 }
 
-PlanResult PathPlanner::run_astar(const PlanningGrid& grid, Vec2 start, Vec2 goal) {
-  const AstarOptions options{config_.unknown, config_.unknown_cost_factor};
-  const PlanStatus status = astar_.search(grid, *grid.cell_at(start), *grid.cell_at(goal), options, cells_);
+PlanResult PathPlanner::run_astar(const PlanningGrid& grid, Cell from, Cell to, Vec2 start, Vec2 goal,
+                                  UnknownPolicy policy) {
+  const AstarOptions options{policy, config_.unknown_cost_factor};
+  const PlanStatus status = astar_.search(grid, from, to, options, cells_);
   if (status != PlanStatus::Ok) {
     return failure(status, status == PlanStatus::NoPath
                                ? "no path from " + describe(start) + " to " + describe(goal)
@@ -96,13 +106,64 @@ PlanResult PathPlanner::run_astar(const PlanningGrid& grid, Vec2 start, Vec2 goa
   }
   PlanResult result;
   result.status = PlanStatus::Ok;
-  result.path = reduce_cell_path(grid, cells_, start, goal, config_.unknown);
+  result.path = reduce_cell_path(grid, cells_, start, goal, policy);
   result.length_m = path_length(result.path);
   return result;
 }
 
-PlanResult PathPlanner::plan_astar(const PlanningGrid& grid, Vec2 start, Vec2 goal) {
-  return plan(grid, PathQuery{start, goal, "astar", config_.max_time_budget_s});
+double PathPlanner::escape_cells(const PlanningGrid& grid) const {
+  return config_.escape_radius_m / grid.resolution();
+}
+
+std::optional<Cell> PathPlanner::robot_start(const PlanningGrid& grid, Vec2 position, UnknownPolicy policy) {
+  const auto cell = grid.cell_at(position);
+  if (!cell) return std::nullopt;
+  return escape_.find(grid, *cell, escape_cells(grid), policy);
+}
+
+PlanResult PathPlanner::plan_for_robot(const PlanningGrid& grid, Vec2 start, Vec2 goal, UnknownPolicy policy,
+                                       bool snap_goal) {
+  const auto t0 = std::chrono::steady_clock::now();
+  if (grid.empty()) return failure(PlanStatus::NoMap, "no map received yet");
+  if (!finite(start)) return failure(PlanStatus::InvalidRequest, "start is not finite");
+  if (!finite(goal)) return failure(PlanStatus::InvalidRequest, "goal is not finite");
+  const auto start_cell = grid.cell_at(start);
+  if (!start_cell)
+    return failure(PlanStatus::InvalidRequest, "start " + describe(start) + " is outside the map");
+  const auto goal_cell = grid.cell_at(goal);
+  if (!goal_cell)
+    return failure(PlanStatus::InvalidRequest, "goal " + describe(goal) + " is outside the map");
+  const double radius = escape_cells(grid);
+  const auto from = escape_.find(grid, *start_cell, radius, policy);
+  if (!from) {
+    return failure(PlanStatus::StartBlocked,
+                   "start " + describe(start) +
+                       (grid.unknown(*start_cell) ? " is in unexplored space"
+                                                  : " is in an obstacle or too close to one") +
+                       " with no passable cell within " + metres(config_.escape_radius_m));
+  }
+  std::optional<Cell> to = *goal_cell;
+  if (snap_goal) {
+    to = escape_.find(grid, *goal_cell, radius, policy);
+  } else if (grid.impassable(*goal_cell, policy)) {
+    to.reset();
+  }
+  if (!to) {
+    return failure(PlanStatus::GoalBlocked,
+                   "goal " + describe(goal) +
+                       (grid.unknown(*goal_cell) ? " is in unexplored space"
+                                                 : " is in an obstacle or too close to one"));
+  }
+  const bool escaped = !(*from == *start_cell);
+  const Vec2 leg_start = escaped ? grid.centre(*from) : start;
+  const Vec2 leg_goal = *to == *goal_cell ? goal : grid.centre(*to);
+  PlanResult result = run_astar(grid, *from, *to, leg_start, leg_goal, policy);
+  if (result.ok() && escaped) {
+    result.path.insert(result.path.begin(), start);
+    result.length_m = path_length(result.path);
+  }
+  result.planning_time_s = seconds_since(t0);
+  return result;
 }
 
 PlanResult PathPlanner::plan(const PlanningGrid& grid, const PathQuery& query) {
@@ -110,7 +171,8 @@ PlanResult PathPlanner::plan(const PlanningGrid& grid, const PathQuery& query) {
   if (auto rejected = reject(grid, query)) return std::move(*rejected);
   PlanResult result;
   if (query.algorithm == "astar") {
-    result = run_astar(grid, query.start, query.goal);
+    result = run_astar(grid, *grid.cell_at(query.start), *grid.cell_at(query.goal), query.start, query.goal,
+                       config_.unknown);
   } else {
     try {
       OmplOutcome outcome =
@@ -120,7 +182,9 @@ PlanResult PathPlanner::plan(const PlanningGrid& grid, const PathQuery& query) {
         result.path = shortcut(grid, drop_collinear(outcome.path), config_.unknown);
         result.length_m = path_length(result.path);
       } else if (outcome.status == PlanStatus::Timeout &&
-                 run_astar(grid, query.start, query.goal).status == PlanStatus::NoPath) {
+                 run_astar(grid, *grid.cell_at(query.start), *grid.cell_at(query.goal), query.start,
+                           query.goal, config_.unknown)
+                         .status == PlanStatus::NoPath) {
         // OMPL cannot tell "no path" from "not found yet"; an exhaustive A* can.
         result = failure(PlanStatus::NoPath,
                          "no path from " + describe(query.start) + " to " + describe(query.goal));

@@ -11,6 +11,7 @@
 #include "planner/ompl_planner.hpp"
 #include "planner/plan_types.hpp"
 #include "planner/planning_grid.hpp"
+#include "planner/start_escape.hpp"
 
 namespace slam::planner {
 
@@ -19,6 +20,9 @@ struct PlannerConfig {
   double unknown_cost_factor = 3.0;  // A* step cost multiplier into unknown cells (>= 1)
   uint32_t ompl_seed = 1;
   double max_time_budget_s = 60.0;  // longer requests are refused, not silently shortened
+  // A robot planning its own goal from an inflated or unexplored cell first leaves for the nearest
+  // passable cell this close (robot radius + inflation + a margin for pose noise).
+  double escape_radius_m = 0.5;
 };
 
 // Ok, or the first bad field with the reason.
@@ -37,19 +41,29 @@ class PathPlanner {
 
   // One query on the current grid. Never throws; every failure is a status with a reason.
   PlanResult plan(const PlanningGrid& grid, const PathQuery& query);
-  // A* between two map points with the configured unknown policy (goals and exploration).
-  PlanResult plan_astar(const PlanningGrid& grid, Vec2 start, Vec2 goal);
+  // A* for a robot's own goal (goals and exploration) under `policy`. A start in an impassable
+  // cell leaves through the nearest passable cell within escape_radius_m: the path is then the
+  // exact start, that cell's centre, and on. With `snap_goal` an impassable goal is moved the same
+  // way (Home: a place the robot once stood on, now maybe inflated).
+  PlanResult plan_for_robot(const PlanningGrid& grid, Vec2 start, Vec2 goal, UnknownPolicy policy,
+                            bool snap_goal = false);
+  // The cell a robot at `position` plans from under `policy`: its own, its escape cell, or nothing
+  // (the robot is walled in, or nothing around it has been observed yet).
+  std::optional<Cell> robot_start(const PlanningGrid& grid, Vec2 position, UnknownPolicy policy);
 
   const PlannerConfig& config() const { return config_; }
 
  private:
   // Shared request checks; nothing when the query may run.
   std::optional<PlanResult> reject(const PlanningGrid& grid, const PathQuery& query) const;
-  PlanResult run_astar(const PlanningGrid& grid, Vec2 start, Vec2 goal);
+  PlanResult run_astar(const PlanningGrid& grid, Cell from, Cell to, Vec2 start, Vec2 goal,
+                       UnknownPolicy policy);
+  double escape_cells(const PlanningGrid& grid) const;
 
   PlannerConfig config_;
   GridAstar astar_;
   OmplPlanner ompl_;
+  StartEscape escape_;
   std::vector<Cell> cells_;
 };
 

@@ -175,9 +175,16 @@ void PlannerNode::apply_states(const std::vector<slam::RobotState>& states) {
       continue;
     }
     bump(metrics_.robot_states);
-    if (robots_.insert(id).second)
-      spdlog::info("robot '{}' first seen at ({}, {})", id, position.x, position.y);
+    const bool first = robots_.insert(id).second;
     fleet_.observe(id, position);
+    if (!first) continue;
+    const GoalTracker* t = fleet_.tracker(id);
+    if (t != nullptr && t->status() == GoalStatus::Active) {
+      spdlog::info("robot '{}' first seen at ({}, {}); starts goal {} (mode {})", id, position.x, position.y,
+                   t->goal().goal_id, static_cast<uint32_t>(t->mode()));
+    } else {
+      spdlog::info("robot '{}' first seen at ({}, {})", id, position.x, position.y);
+    }
   }
 }
 
@@ -189,15 +196,29 @@ void PlannerNode::apply_goals(const std::vector<slam::NavGoal>& goals) {
       reject_goal(id, sample, command.message());
       continue;
     }
-    if (auto s = fleet_.set_goal(command->robot_id, command->goal); !s) {
-      reject_goal(id, sample, s.message());
+    auto started = fleet_.set_goal(command->robot_id, command->goal);
+    if (!started) {
+      reject_goal(id, sample, started.message());
       continue;
     }
     bump(metrics_.goals_accepted);
-    const size_t count = id == kAllRobots ? robots_.size() : 1;
-    spdlog::info("goal {} (mode {}) for robot '{}' ({} robot(s)), target ({}, {})", sample.goal_id(),
-                 static_cast<uint32_t>(sample.mode()), id, count, sample.target().x(), sample.target().y());
+    spdlog::info("goal {} (mode {}) for robot '{}' ({} robot(s) now), target ({}, {})", sample.goal_id(),
+                 static_cast<uint32_t>(sample.mode()), id, *started, sample.target().x(),
+                 sample.target().y());
+    if (id != kAllRobots && *started == 0) report_waiting(id, sample);
   }
+}
+
+void PlannerNode::report_waiting(const std::string& robot_id, const slam::NavGoal& sample) {
+  // The robot path is where a goal's outcome is read: say there that this one waits for its robot.
+  slam::RobotPath out;
+  out.robot_id(robot_id);
+  out.goal_id(sample.goal_id());
+  out.mode(sample.mode());
+  out.status(slam::GOAL_STATUS_NONE);
+  out.target(sample.target());
+  out.reason("unknown robot '" + robot_id + "': the goal starts when it first reports its position");
+  bump(path_writer_->write(out) ? metrics_.paths_published : metrics_.write_failures);
 }
 
 void PlannerNode::reject_goal(const std::string& robot_id, const slam::NavGoal& sample,

@@ -64,6 +64,7 @@ class PlannerNode {
   void apply_grid(IntakeBatch& batch);
   void apply_states(const std::vector<slam::RobotState>& states);
   void apply_goals(const std::vector<slam::NavGoal>& goals);
+  void report_waiting(const std::string& robot_id, const slam::NavGoal& sample);
   void reject_goal(const std::string& robot_id, const slam::NavGoal& sample, const std::string& reason);
   void submit_requests(const std::vector<slam::PathRequest>& requests);
   void count_replans();

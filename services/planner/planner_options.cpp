@@ -37,6 +37,10 @@ void add_planner_options(CLI::App& app, PlannerOptions& o) {
   app.add_option("--planner-max-time-budget-s", planner.max_time_budget_s,
                  "path requests asking for more time (s) are refused")
       ->capture_default_str();
+  app.add_option("--planner-escape-radius-m", planner.escape_radius_m,
+                 "a robot in an inflated or unexplored cell plans from the nearest passable cell this "
+                 "close (m)")
+      ->capture_default_str();
 
   ExplorerConfig& explore = o.fleet.explore;
   app.add_option("--explore-min-cluster-cells", explore.min_cluster_cells,
@@ -53,6 +57,23 @@ void add_planner_options(CLI::App& app, PlannerOptions& o) {
       ->capture_default_str();
   app.add_option("--explore-blacklist-radius-m", explore.blacklist_radius_m,
                  "frontiers this close (m) to a given-up one are skipped")
+      ->capture_default_str();
+  app.add_option("--explore-blacklist-rest-s", explore.blacklist_rest_s,
+                 "a frontier given up once is offered again after this long (s); twice: for good")
+      ->capture_default_str();
+  app.add_option_function<std::string>(
+         "--explore-unknown",
+         [&explore](const std::string& v) {
+           explore.unknown = v == "blocked" ? UnknownPolicy::Blocked : UnknownPolicy::Allowed;
+         },
+         "unexplored cells on an exploring robot's way: allowed (sparse sensors leave gaps) or blocked")
+      ->check(CLI::IsMember({"blocked", "allowed"}))
+      ->default_str("allowed");
+  app.add_option("--explore-completion-grace-s", explore.completion_grace_s,
+                 "a robot finding no frontier waits this long (s) before heading home")
+      ->capture_default_str();
+  app.add_option("--explore-retry-period-s", explore.retry_period_s,
+                 "a robot without a reachable frontier looks again this often (s)")
       ->capture_default_str();
 
   app.add_option("--loop-rate-hz", o.loop_rate_hz, "goal and waypoint loop rate")->capture_default_str();

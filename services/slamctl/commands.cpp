@@ -68,23 +68,41 @@ std::optional<Rep> request(Session& s, const dds::Topic<Req, ReqP>& req_topic, c
   return reply;
 }
 
-// Collects samples of a state topic for `listen`, latest per key.
-template <class T, class P, class Key>
-std::map<std::string, T> collect(Session& s, const dds::Topic<T, P>& topic, Key key, std::chrono::milliseconds listen) {
-  std::mutex mutex;
-  std::map<std::string, T> latest;
-  auto reader = dds::make_reader(s.participant(), topic, [&](const T& sample, const auto&) {
-    std::lock_guard lock(mutex);
-    latest[key(sample)] = sample;
-  });
-  if (!reader) {
-    fail(reader.message());
-    return {};
+// The latest sample per key of a state topic, collected on the reader's thread.
+template <class T>
+class Latest {
+ public:
+  template <class P, class Key>
+  Latest(Session& s, const dds::Topic<T, P>& topic, Key key) {
+    auto reader = dds::make_reader(s.participant(), topic, [this, key](const T& sample, const auto&) {
+      std::lock_guard lock(mutex_);
+      latest_[key(sample)] = sample;
+    });
+    if (!reader) {
+      fail(reader.message());
+      return;
+    }
+    reader_ = std::move(*reader);
   }
-  wait_for_shutdown(listen);
-  reader->reset();
-  std::lock_guard lock(mutex);
-  return latest;
+  bool ok() const { return reader_ != nullptr; }
+  bool matched() const { return reader_ && reader_->matched_writers() > 0; }
+  std::map<std::string, T> take() {
+    reader_.reset();
+    std::lock_guard lock(mutex_);
+    return std::move(latest_);
+  }
+
+ private:
+  std::mutex mutex_;
+  std::map<std::string, T> latest_;
+  std::unique_ptr<dds::Reader<T>> reader_;
+};
+
+// Listens for `listen` once `first` matched a writer (nothing to hear when none did within the
+// timeout): discovery alone can take seconds, and the samples kept for late joiners arrive only after it.
+template <class T>
+void listen_after_match(Session& s, const Latest<T>& first, std::chrono::milliseconds listen) {
+  if (wait_until([&] { return first.matched(); }, s.timeout())) wait_for_shutdown(listen);
 }
 
 template <class T, class P>
@@ -108,26 +126,31 @@ uint64_t Session::next_request_id() {
 }
 
 int cmd_status(Session& s) {
+  Latest<Heartbeat> beats(s, dds::kHeartbeat,
+                          [](const Heartbeat& h) { return h.service().to_string() + "/" + h.instance_id().to_string(); });
+  if (!beats.ok()) return 1;
   // Heartbeats come once a second: listen a little longer than that.
-  const auto beats = collect(s, dds::kHeartbeat, [](const Heartbeat& h) { return h.service().to_string() + "/" + h.instance_id().to_string(); },
-                             std::min<std::chrono::milliseconds>(s.timeout(), 2500ms));
-  if (beats.empty()) return fail("no service seen on DDS domain " + std::to_string(s.domain()));
+  listen_after_match(s, beats, std::min<std::chrono::milliseconds>(s.timeout(), 2500ms));
+  const auto seen = beats.take();
+  if (seen.empty()) return fail("no service seen on DDS domain " + std::to_string(s.domain()));
   const int64_t now = now_ns();
-  for (const auto& [key, hb] : beats) std::printf("%s", format_heartbeat(hb, now).c_str());
+  for (const auto& [key, hb] : seen) std::printf("%s", format_heartbeat(hb, now).c_str());
   return 0;
 }
 
 int cmd_robots(Session& s) {
-  const auto listen = std::min<std::chrono::milliseconds>(s.timeout(), 1500ms);
-  std::map<std::string, RobotPath> paths;
-  std::thread path_thread([&] { paths = collect(s, dds::kRobotPath, [](const RobotPath& p) { return p.robot_id().to_string(); }, listen); });
-  const auto states = collect(s, dds::kRobotState, [](const RobotState& r) { return r.robot_id().to_string(); }, listen);
-  path_thread.join();
-  if (states.empty()) return fail("no robot known on DDS domain " + std::to_string(s.domain()));
+  Latest<RobotPath> paths(s, dds::kRobotPath, [](const RobotPath& p) { return p.robot_id().to_string(); });
+  Latest<RobotState> states(s, dds::kRobotState, [](const RobotState& r) { return r.robot_id().to_string(); });
+  if (!paths.ok() || !states.ok()) return 1;
+  // Paths are optional (no planner, no paths): the window follows the robot states' writer.
+  listen_after_match(s, states, std::min<std::chrono::milliseconds>(s.timeout(), 1500ms));
+  const auto path_of = paths.take();
+  const auto robots = states.take();
+  if (robots.empty()) return fail("no robot known on DDS domain " + std::to_string(s.domain()));
   const int64_t now = now_ns();
-  for (const auto& [id, st] : states) {
-    auto it = paths.find(id);
-    std::printf("%s", format_robot(st, it == paths.end() ? nullptr : &it->second, now).c_str());
+  for (const auto& [id, st] : robots) {
+    auto it = path_of.find(id);
+    std::printf("%s", format_robot(st, it == path_of.end() ? nullptr : &it->second, now).c_str());
   }
   return 0;
 }

@@ -3,10 +3,7 @@
 
 #include <spdlog/spdlog.h>
 
-#define STB_IMAGE_WRITE_IMPLEMENTATION
-#include <stb/stb_image_write.h>
-
-#include <vector>
+#include "viewer/display_loss.hpp"
 
 namespace slam::viewer {
 namespace {
@@ -18,6 +15,7 @@ void log_glfw_error(int code, const char* description) { spdlog::error("GLFW err
 Result<std::unique_ptr<GlWindow>> GlWindow::create(const std::string& title, int width, int height) {
   glfwSetErrorCallback(log_glfw_error);
   if (!glfwInit()) return Error{"cannot initialise GLFW (no display? run under xvfb-run)"};
+  end_process_on_display_loss();
   glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
   glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
   glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
@@ -52,19 +50,20 @@ std::string GlWindow::renderer() const {
   return r ? r : "unknown";
 }
 
-Status write_screenshot(const std::string& path, int width, int height) {
-  std::vector<unsigned char> pixels(static_cast<size_t>(width) * static_cast<size_t>(height) * 3);
+RgbImage read_back_buffer(int width, int height) {
+  RgbImage image;
+  image.width = width;
+  image.height = height;
+  image.bottom_up = true;
+  image.pixels.resize(static_cast<size_t>(width) * static_cast<size_t>(height) * 3);
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
   glReadBuffer(GL_BACK);
-  glReadPixels(0, 0, width, height, GL_RGB, GL_UNSIGNED_BYTE, pixels.data());
-  const size_t row = static_cast<size_t>(width) * 3;
-  std::vector<unsigned char> flipped(pixels.size());
-  for (int y = 0; y < height; ++y)
-    std::copy_n(pixels.data() + static_cast<size_t>(height - 1 - y) * row, row,
-                flipped.data() + static_cast<size_t>(y) * row);
-  if (!stbi_write_png(path.c_str(), width, height, 3, flipped.data(), static_cast<int>(row)))
-    return Error{"cannot write screenshot " + path};
-  return {};
+  glReadPixels(0, 0, width, height, GL_RGB, GL_UNSIGNED_BYTE, image.pixels.data());
+  return image;
+}
+
+Status write_screenshot(const std::string& path, int width, int height) {
+  return write_png(path, read_back_buffer(width, height));
 }
 
 }  // namespace slam::viewer

@@ -6,6 +6,7 @@
 
 #include "common/result.hpp"
 #include "viewer/gl_api.hpp"
+#include "viewer/png_file.hpp"
 
 namespace slam::viewer {
 
@@ -28,7 +29,10 @@ class GlWindow {
   GLFWwindow* window_ = nullptr;
 };
 
-// Reads the back buffer (w x h, RGB) and writes it as a PNG, rows flipped to top-down.
+// The back buffer (w x h, RGB, bottom row first as GL returns it). Cheap next to PNG encoding,
+// which is why periodic snapshots only do this on the render thread.
+RgbImage read_back_buffer(int width, int height);
+// read_back_buffer + write_png: a PNG that appears complete or not at all.
 Status write_screenshot(const std::string& path, int width, int height);
 
 }  // namespace slam::viewer

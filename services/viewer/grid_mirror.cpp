@@ -6,7 +6,17 @@
 #include <string>
 #include <utility>
 
+#include "viewer/cell_colors.hpp"
+
 namespace slam::viewer {
+namespace {
+
+bool known(uint8_t cell) {
+  const uint8_t state = cell & kCellStateMask;
+  return state == kCellFree || state == kCellOccupied;
+}
+
+}  // namespace
 
 void CellBox::unite(const CellBox& o) {
   if (o.empty()) return;
@@ -39,6 +49,8 @@ Status GridMirror::apply_snapshot(GridSnapshotData&& s) {
   info_ = s.info;
   cells_ = std::move(s.cells);
   dirty_ = {0, 0, info_.width, info_.height};
+  known_ = {};
+  include_known(dirty_);
   return {};
 }
 
@@ -61,12 +73,33 @@ PatchResult GridMirror::apply_patch(const GridPatchData& p) {
                 cells_.begin() + static_cast<std::ptrdiff_t>((size_t{p.y0} + row) * info_.width + p.x0));
   version_ = p.version;
   dirty_.unite({p.x0, p.y0, p.width, p.height});
+  include_known({p.x0, p.y0, p.width, p.height});
   return PatchResult::Applied;
 }
 
 WorldBox GridMirror::bounds() const {
   return {info_.origin.x, info_.origin.y, info_.origin.x + info_.width * info_.resolution,
           info_.origin.y + info_.height * info_.resolution};
+}
+
+void GridMirror::include_known(const CellBox& area) {
+  // Per row only the first and last known cell matter: one pass, no allocation.
+  for (uint32_t y = area.y0; y < area.y0 + area.height; ++y) {
+    const uint8_t* row = cells_.data() + size_t{y} * info_.width;
+    uint32_t first = area.x0, last = area.x0 + area.width;
+    while (first < last && !known(row[first])) ++first;
+    if (first == last) continue;
+    while (!known(row[last - 1])) --last;
+    known_.unite({first, y, last - first, 1});
+  }
+}
+
+bool GridMirror::known_bounds(WorldBox* box) const {
+  if (!has_grid_ || known_.empty()) return false;
+  const double r = info_.resolution;
+  *box = {info_.origin.x + known_.x0 * r, info_.origin.y + known_.y0 * r,
+          info_.origin.x + (known_.x0 + known_.width) * r, info_.origin.y + (known_.y0 + known_.height) * r};
+  return true;
 }
 
 bool GridMirror::cell_at(Vec2 w, uint8_t* cell) const {

@@ -1,7 +1,8 @@
 #pragma once
 // The viewer's copy of the mapper's grid: snapshots replace it, patches update it in order
 // (same layout, version == last + 1), and the changed box is remembered so the GPU texture is
-// updated with that box only.
+// updated with that box only. The box of known cells is kept too, so the view can fit the part of
+// the grid that has been mapped rather than its whole (mostly unknown) extent.
 #include <cstdint>
 #include <vector>
 
@@ -37,6 +38,9 @@ class GridMirror {
   uint64_t version() const { return version_; }
   bool waiting_for_snapshot() const { return waiting_; }
   WorldBox bounds() const;
+  // Map-frame box around every free or occupied cell; false while the whole grid is unknown.
+  // Patches only widen it (a cell that turns unknown again is rare); a snapshot recomputes it.
+  bool known_bounds(WorldBox* box) const;
 
   // The cell octet at a map-frame point; false when outside the grid.
   bool cell_at(Vec2 world, uint8_t* cell) const;
@@ -55,6 +59,9 @@ class GridMirror {
   GridInfoData info_;
   std::vector<uint8_t> cells_;
   CellBox dirty_;
+  CellBox known_;
+
+  void include_known(const CellBox& area);
 };
 
 }  // namespace slam::viewer

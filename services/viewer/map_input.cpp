@@ -3,9 +3,11 @@
 
 #include <imgui.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
+#include "viewer/auto_fit.hpp"
 #include "viewer/gl_api.hpp"
 
 namespace slam::viewer {
@@ -20,12 +22,28 @@ bool inside(const Viewport& vp, Vec2 p) {
 
 }  // namespace
 
+std::optional<WorldBox> content_box(const ViewerState& state) {
+  std::optional<WorldBox> content;
+  auto add = [&](const WorldBox& b) { content = content ? unite(*content, b) : b; };
+  WorldBox b;
+  if (state.grid.known_bounds(&b)) add(b);
+  if (state.robots.bounds(&b)) add(b);
+  // A simulated world's walls, when shown: the map then fills in inside a view that already
+  // holds the whole world, instead of the view following the exploration.
+  if (state.show_world && state.world)
+    for (const auto& [a, z] : state.world->walls)
+      add({std::min(a.x, z.x), std::min(a.y, z.y), std::max(a.x, z.x), std::max(a.y, z.y)});
+  return content;
+}
+
 bool fit_box(const ViewerState& state, WorldBox* box) {
-  if (state.grid.has_grid()) {
-    *box = state.grid.bounds();
+  if (auto content = content_box(state)) {
+    *box = *content;
     return true;
   }
-  return state.robots.bounds(box);
+  if (!state.grid.has_grid()) return false;
+  *box = state.grid.bounds();
+  return true;
 }
 
 void apply_click(ViewerState& state, CommandSink& sink, Vec2 screen, int button) {

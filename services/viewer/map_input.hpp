@@ -2,12 +2,17 @@
 // Mouse and keys over the map: pan (middle or right drag), zoom about the cursor (wheel), rotate
 // (Shift+wheel, or Q/E), flip (V), fit (F), and clicks that send what the Clicks tab chose.
 // Synthetic clicks from --click go through apply_click() exactly like real ones.
+#include <optional>
+
 #include "viewer/commands.hpp"
 #include "viewer/viewer_state.hpp"
 
 namespace slam::viewer {
 
-// The box "fit to map" shows: the grid, else every robot and point; false when there is nothing.
+// What there is to see: the mapped (free or occupied) cells, every robot and point, and the
+// simulated world's walls when they are shown; nothing before any of them arrived.
+std::optional<WorldBox> content_box(const ViewerState& state);
+// The box Fit (button or F) shows: the content, else the grid's extent; false when there is nothing.
 bool fit_box(const ViewerState& state, WorldBox* box);
 
 // Sends the command a click with `button` (0 left, 1 right) at window point `screen` asks for.

@@ -96,7 +96,9 @@ void draw_map_overlay(const ViewerState& state) {
                  online ? IM_COL32(0, 0, 0, 255) : IM_COL32(90, 90, 90, 255));
       if (state.show_names) {
         const ImVec2 c = screen(v, r.state.pose.x, r.state.pose.y);
-        dl->AddText({c.x + 12.0f, c.y - 18.0f}, IM_COL32(255, 255, 255, 230), r.id.c_str());
+        // A dark shadow keeps the white name readable over free (light) cells too.
+        dl->AddText({c.x + 13.0f, c.y - 17.0f}, IM_COL32(0, 0, 0, 220), r.id.c_str());
+        dl->AddText({c.x + 12.0f, c.y - 18.0f}, IM_COL32(255, 255, 255, 240), r.id.c_str());
       }
     }
   dl->PopClipRect();

@@ -44,7 +44,7 @@ void DrivePanel::draw(ViewerState& state, CommandSink& sink) {
   if (ImGui::Button("explore")) send(GoalMode::Explore);
   ImGui::SameLine();
   if (ImGui::Button("idle")) send(GoalMode::Idle);
-  ImGui::TextDisabled("Clicks with 'set target' use the square settings in square mode.");
+  hint("Clicks with 'set target' use the square settings in square mode.");
 }
 
 }  // namespace slam::viewer

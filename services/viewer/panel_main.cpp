@@ -65,12 +65,19 @@ void MainPanel::draw(const ViewerState& state, int64_t now_ns) {
     const bool alive = ServiceHealth::alive(e, now_ns);
     const double ago = static_cast<double>(now_ns - e.last_seen_ns) / 1e9;
     ImGui::PushID(&e);
-    ImGui::TextColored(alive ? ImVec4(0.3f, 0.9f, 0.3f, 1) : ImVec4(0.9f, 0.3f, 0.3f, 1), alive ? "alive" : "DEAD ");
+    // A service that said it was stopping has ended cleanly; silence without that is a failure.
+    const bool ended = !alive && h.state == ServiceState::Stopping;
+    if (ended) {
+      ImGui::TextDisabled("ended");
+    } else {
+      ImGui::TextColored(alive ? ImVec4(0.3f, 0.9f, 0.3f, 1) : ImVec4(0.9f, 0.3f, 0.3f, 1), alive ? "alive" : "DEAD ");
+    }
     ImGui::SameLine();
-    if (ImGui::TreeNode("svc", "%s  %s  pid %u  up %.0f s  seen %.1f s ago", h.service.c_str(), state_name(h.state),
-                        h.pid, h.uptime_s, ago)) {
-      ImGui::TextDisabled("%s on %s, %llu beats", h.instance_id.c_str(), h.host.c_str(),
-                          static_cast<unsigned long long>(e.beats));
+    // Short enough for the panel; the rest is one click away.
+    if (ImGui::TreeNode("svc", "%s  %s  up %.0f s  beat %.1f s ago", h.service.c_str(), state_name(h.state),
+                        h.uptime_s, ago)) {
+      hint("%s on %s, pid %u, %llu beats", h.instance_id.c_str(), h.host.c_str(), h.pid,
+           static_cast<unsigned long long>(e.beats));
       for (const auto& [name, value] : h.counters)
         ImGui::Text("%-28s %lld", name.c_str(), static_cast<long long>(value));
       ImGui::TreePop();

@@ -100,10 +100,10 @@ void MqttPanel::draw_log(ViewerState& state) {
   if (ImGui::SmallButton("clear")) state.mqtt.clear();
   ImGui::SetNextItemWidth(-1.0f);
   ImGui::InputTextWithHint("##search", "topic contains...", search, sizeof search);
-  ImGui::TextDisabled("%zu kept (%zu KiB of %zu), %llu evicted, %llu in / %llu out, %llu dropped", log.size(),
-                      log.bytes() / 1024, log.max_bytes() / 1024, static_cast<unsigned long long>(log.evicted()),
-                      static_cast<unsigned long long>(log.inbound()), static_cast<unsigned long long>(log.outbound()),
-                      static_cast<unsigned long long>(state.mqtt_dropped));
+  hint("%zu kept (%zu KiB of %zu), %llu evicted, %llu in / %llu out, %llu dropped", log.size(),
+       log.bytes() / 1024, log.max_bytes() / 1024, static_cast<unsigned long long>(log.evicted()),
+       static_cast<unsigned long long>(log.inbound()), static_cast<unsigned long long>(log.outbound()),
+       static_cast<unsigned long long>(state.mqtt_dropped));
   ImGui::BeginChild("mqtt-log", ImVec2(0, 0), true, ImGuiWindowFlags_HorizontalScrollbar);
   const bool filtered = search[0] != '\0' || !show_inbound || !show_outbound;
   auto visible = [&](const MqttEntry& e) {

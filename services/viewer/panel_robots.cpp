@@ -34,6 +34,7 @@ void robot_details(ViewerState& state, CommandSink& sink, RobotView& r) {
   int last_n = static_cast<int>(s.last_n);
   if (ImGui::InputInt("last N points (0 all)", &last_n, 100, 1000)) s.last_n = static_cast<uint32_t>(std::max(0, last_n));
 
+  ImGui::SetNextItemWidth(ImGui::GetContentRegionAvail().x * 0.45f);  // room for the buttons beside it
   mode_combo("mode", &s.mode);
   ImGui::SameLine();
   if (ImGui::SmallButton("send")) {
@@ -70,6 +71,7 @@ void robot_details(ViewerState& state, CommandSink& sink, RobotView& r) {
 void RobotsPanel::draw(ViewerState& state, CommandSink& sink) {
   section_title("Every robot");
   RobotSettings& d = state.robots.defaults();
+  ImGui::SetNextItemWidth(ImGui::GetContentRegionAvail().x * 0.45f);  // room for the button beside it
   mode_combo("default mode", &d.mode);
   ImGui::SameLine();
   if (ImGui::Button("send to all")) {

@@ -2,6 +2,7 @@
 #include <imgui.h>
 
 #include <algorithm>
+#include <cstdarg>
 #include <cstring>
 
 #include "viewer/panels.hpp"
@@ -30,8 +31,17 @@ void ClicksPanel::draw(ViewerState& state) {
   action_combo("left click", &state.left_click);
   action_combo("right click", &state.right_click);
   robot_selector(state, "targets go to");
-  ImGui::TextDisabled("Right or middle drag pans; wheel zooms about the cursor;");
-  ImGui::TextDisabled("Shift+wheel or Q/E rotate; V flips the vertical axis; F fits the map.");
+  hint("Right or middle drag pans; wheel zooms about the cursor; Shift+wheel or Q/E rotate; V flips the vertical "
+       "axis; F fits the map.");
+}
+
+void hint(const char* fmt, ...) {
+  ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+  va_list args;
+  va_start(args, fmt);
+  ImGui::TextWrappedV(fmt, args);
+  va_end(args);
+  ImGui::PopStyleColor();
 }
 
 void GridPanel::draw(ViewerState& state, CommandSink& sink) {

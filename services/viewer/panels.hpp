@@ -2,6 +2,8 @@
 // The control panel: one ImGui tab per job. Each panel is a struct holding only its own UI state
 // (text fields, toggles); received data lives in ViewerState and is fed by ViewerState::ingest(),
 // never by Draw(). Commands leave through the CommandSink.
+#include <imgui.h>
+
 #include <cstdint>
 
 #include "viewer/commands.hpp"
@@ -81,9 +83,11 @@ struct ControlPanel {
   void draw(ViewerState& state, CommandSink& sink, float width, float height, int64_t now_ns);
 };
 
-// Shared widgets: a separator with a title (ImGui 1.86 has no SeparatorText) and a robot
-// selector ("*" = every robot) bound to state.selected_robot.
+// Shared widgets: a separator with a title (ImGui 1.86 has no SeparatorText), a dimmed hint that
+// wraps at the panel's edge instead of running out of it, and a robot selector ("*" = every
+// robot) bound to state.selected_robot.
 void section_title(const char* label);
+void hint(const char* fmt, ...) IM_FMTARGS(1);
 
 void robot_selector(ViewerState& state, const char* label);
 

@@ -7,6 +7,7 @@
 #include <spdlog/spdlog.h>
 
 #include <chrono>
+#include <cstdio>
 #include <thread>
 
 #include "common/clock.hpp"
@@ -31,6 +32,7 @@ Result<std::unique_ptr<ViewerApp>> ViewerApp::create(const ViewerOptions& option
                                                      Counters& counters) {
   std::unique_ptr<ViewerApp> app(new ViewerApp(options, intake, sink, counters));
   if (Status s = app->init_graphics(); !s) return Error{s.message()};
+  if (Status s = app->init_snapshots(); !s) return Error{s.message()};
   return app;
 }
 
@@ -52,6 +54,40 @@ Status ViewerApp::init_graphics() {
   return {};
 }
 
+Status ViewerApp::init_snapshots() {
+  if (options_.snapshot_dir.empty()) return {};
+  auto first = prepare_snapshot_dir(options_.snapshot_dir);
+  if (!first) return first.status();
+  snapshot_schedule_.emplace(options_.snapshot_dir, options_.snapshot_period_s, *first, options_.snapshot_keep);
+  snapshot_writer_ = std::make_unique<SnapshotWriter>();
+  spdlog::info("snapshots every {} s: {}/{} on, and {}/latest.png", options_.snapshot_period_s, options_.snapshot_dir,
+               snapshot_file_name(*first), options_.snapshot_dir);
+  return {};
+}
+
+void ViewerApp::take_snapshot(int64_t now_ns) {
+  int fbw = 0, fbh = 0;
+  window_->framebuffer_size(&fbw, &fbh);
+  if (fbw <= 0 || fbh <= 0) {  // minimised: nothing to read; try again next period
+    snapshot_schedule_->skip(now_ns);
+    return;
+  }
+  SnapshotJob job;
+  job.names = snapshot_schedule_->take(now_ns);
+  const int64_t t0 = monotonic_ns();
+  job.image = read_back_buffer(fbw, fbh);
+  char read_ms[32];
+  std::snprintf(read_ms, sizeof read_ms, "read back in %.1f ms, ", static_cast<double>(monotonic_ns() - t0) / 1e6);
+  job.summary = read_ms + std::to_string(state_.robots.online()) + "/" + std::to_string(state_.robots.size()) +
+                " robots online, " + std::to_string(state_.robots.total_points()) + " points, map " +
+                (state_.grid.has_grid() ? std::to_string(state_.grid.info().width) + "x" +
+                                              std::to_string(state_.grid.info().height) + " cells"
+                                        : std::string("none yet"));
+  const std::string path = job.names.path;
+  if (!snapshot_writer_->submit(std::move(job)))
+    spdlog::warn("snapshot {} skipped: the previous one is still being written", path);
+}
+
 ViewerApp::~ViewerApp() {
   if (imgui_ready_) {
     ImGui_ImplOpenGL3_Shutdown();
@@ -68,21 +104,14 @@ bool ViewerApp::ready() const {
 }
 
 void ViewerApp::fit_automatically() {
-  if (state_.view_touched) return;
-  WorldBox box;
-  if (!fit_box(state_, &box)) return;
-  // Re-fit when the grid's layout or the window changed; robots alone are fitted once.
-  const Viewport& vp = state_.view.viewport();
-  const std::string key = state_.grid.has_grid()
-                              ? std::to_string(state_.grid.layout_id()) + "/" + std::to_string(box.min_x) + "/" +
-                                    std::to_string(box.max_x) + "/" + std::to_string(box.min_y) + "/" +
-                                    std::to_string(box.max_y)
-                              : "robots";
-  const std::string full = key + "@" + std::to_string(vp.width) + "x" + std::to_string(vp.height);
-  if (full == fitted_for_) return;
-  fitted_for_ = full;
-  state_.view.fit(box);
-  spdlog::info("{}", state_.view.describe());
+  const std::optional<WorldBox> content = content_box(state_);
+  std::optional<WorldBox> grid;
+  if (state_.grid.has_grid()) grid = state_.grid.bounds();
+  const auto box =
+      auto_fit_.update(content, grid, state_.grid.layout_id(), state_.view.viewport(), state_.view_touched);
+  if (!box) return;
+  state_.view.fit(*box);
+  spdlog::info("fitted to the {}: {}", content ? "content" : "grid's extent", state_.view.describe());
 }
 
 void ViewerApp::render_map(int fb_width, int fb_height, double fb_scale) {
@@ -136,6 +165,7 @@ int ViewerApp::run() {
   const auto period = std::chrono::duration<double>(1.0 / options_.fps);
   const int64_t started = monotonic_ns();
   long ready_frames = -1;
+  if (snapshot_schedule_) snapshot_schedule_->start(started);
   while (!glfwWindowShouldClose(window_->handle()) && !shutdown_requested()) {
     const auto t0 = std::chrono::steady_clock::now();
     glfwPollEvents();
@@ -159,6 +189,7 @@ int ViewerApp::run() {
                    state_.robots.total_points());
       return 0;
     }
+    if (snapshot_schedule_ && snapshot_schedule_->due(monotonic_ns())) take_snapshot(monotonic_ns());
     glfwSwapBuffers(window_->handle());
     const auto spent = std::chrono::steady_clock::now() - t0;
     state_.frame_ms = 0.9 * state_.frame_ms + 0.1 * std::chrono::duration<double, std::milli>(spent).count();

@@ -1,11 +1,15 @@
 #pragma once
 // The render thread: window, Dear ImGui, the GL layers and the frame loop in ImGui's fixed order
 // (poll → drain intake → new frame → panels and input → render → swap). Headless runs count
-// frames once the awaited data arrived, apply synthetic clicks, write the PNG and stop.
+// frames once the awaited data arrived, apply synthetic clicks, write the PNG and stop. With
+// --snapshot-dir the loop keeps running and reads the frame back once a period; a writer thread
+// encodes and stores it.
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "common/counters.hpp"
+#include "viewer/auto_fit.hpp"
 #include "viewer/commands.hpp"
 #include "viewer/gl_window.hpp"
 #include "viewer/grid_layer.hpp"
@@ -13,6 +17,8 @@
 #include "viewer/map_input.hpp"
 #include "viewer/panels.hpp"
 #include "viewer/point_layer.hpp"
+#include "viewer/snapshot_schedule.hpp"
+#include "viewer/snapshot_writer.hpp"
 #include "viewer/viewer_options.hpp"
 #include "viewer/viewer_state.hpp"
 
@@ -33,6 +39,8 @@ class ViewerApp {
  private:
   ViewerApp(const ViewerOptions& options, Intake& intake, CommandSink& sink, Counters& counters);
   Status init_graphics();
+  Status init_snapshots();
+  void take_snapshot(int64_t now_ns);
   // One frame without the swap; `ready_frame` counts frames since the view became ready (or -1).
   void frame(int64_t now_ns, long ready_frame);
   void fit_automatically();
@@ -51,7 +59,9 @@ class ViewerApp {
   ControlPanel panel_;
   MapInput input_;
   IntakeBatch batch_;
-  std::string fitted_for_;  // grid layout + viewport the automatic fit was made for
+  AutoFit auto_fit_;
+  std::optional<SnapshotSchedule> snapshot_schedule_;
+  std::unique_ptr<SnapshotWriter> snapshot_writer_;
 };
 
 }  // namespace slam::viewer

@@ -46,6 +46,11 @@ void add_viewer_options(CLI::App& app, ViewerOptions& o) {
   app.add_option("--right-click", o.right_click, "right click: nothing|target|obstruct|unobstruct")
       ->capture_default_str();
   app.add_option("--tab", o.tab, "open this tab at start: main|mqtt|clicks|robots|drive|grid|sim|map");
+  app.add_option("--snapshot-dir", o.snapshot_dir,
+                 "keep running and write DIR/snapshot-NNNN.png and DIR/latest.png every --snapshot-period");
+  app.add_option("--snapshot-period", o.snapshot_period_s, "seconds between snapshots")->capture_default_str();
+  app.add_option("--snapshot-keep", o.snapshot_keep, "numbered snapshots kept, older ones deleted (0 keeps all)")
+      ->capture_default_str();
   app.add_option("--click", o.click_texts, "test hook: synthetic click X,Y,left|right@FRAME (repeatable)");
 }
 
@@ -58,6 +63,10 @@ Status validate(ViewerOptions& o) {
   if (o.panel_width < 0.0f || o.panel_width > static_cast<float>(o.width) - 64.0f)
     return Error{"--panel-width must be 0..(width - 64)"};
   if (o.max_points_per_robot == 0) return Error{"--max-points must be positive"};
+  if (!(o.snapshot_period_s >= 0.1 && o.snapshot_period_s <= 86400.0))
+    return Error{"--snapshot-period must be 0.1..86400 seconds"};
+  if (!o.snapshot_dir.empty() && !o.screenshot.empty())
+    return Error{"--snapshot-dir and --screenshot exclude each other (periodic snapshots vs one and exit)"};
   if (o.point_budget < 1000) return Error{"--point-budget must be at least 1000"};
   auto left = parse_click_action(o.left_click);
   if (!left) return Error{"--left-click: " + left.message()};

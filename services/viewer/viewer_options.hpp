@@ -1,6 +1,6 @@
 #pragma once
-// slam-viewer's settings: window size, headless screenshot run, test hooks (synthetic clicks),
-// limits. A plain struct with defaults, its CLI11 binding and a validator naming the bad key.
+// slam-viewer's settings: window size, headless screenshot run, periodic snapshots, test hooks
+// (synthetic clicks), limits. A plain struct with defaults, its CLI11 binding and a validator naming the bad key.
 #include <CLI/CLI.hpp>
 
 #include <cstdint>
@@ -43,6 +43,9 @@ struct ViewerOptions {
   std::string right_click = "obstruct";
   std::vector<std::string> click_texts;
   std::string tab;               // open this tab at start (main, mqtt, clicks, robots, drive, grid, sim, map)
+  std::string snapshot_dir;      // keep running; every snapshot_period_s write DIR/snapshot-NNNN.png + latest.png
+  double snapshot_period_s = 10.0;
+  uint32_t snapshot_keep = 0;    // numbered snapshots kept (older ones deleted); 0 keeps all
 
   // Filled by validate():
   std::vector<ClickSpec> clicks;

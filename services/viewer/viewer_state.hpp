@@ -49,7 +49,6 @@ struct ViewerState {
   // View and display choices.
   ViewTransform view;
   bool view_touched = false;  // the operator moved the view: stop fitting automatically
-  bool fitted = false;
   GridColors grid_colors;
   bool show_grid = true;
   bool show_points = true;

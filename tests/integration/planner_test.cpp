@@ -305,10 +305,11 @@ TEST_F(PlannerTest, StreamsWaypointsInOrderAndReplansWhenAPatchBlocksThePath) {
   move_robot("r1", 2, 1);
   ASSERT_TRUE(wait_until([&] { return counter("robot_states") >= 1; }, 30s));
 
-  // Bad goals: a clear FAILED status with the reason, and nothing sent.
+  // A goal for a robot not seen yet waits for it (status NONE, the reason says so); bad goals get a
+  // clear FAILED status with the reason, and nothing is sent.
   send_goal("ghost", 1, GOAL_PLANNED, pt(8, 1));
   ASSERT_TRUE(wait_until([&] { return last_path("ghost", 1).has_value(); }, 30s));
-  EXPECT_EQ(last_path("ghost", 1)->status(), GOAL_STATUS_FAILED);
+  EXPECT_EQ(last_path("ghost", 1)->status(), GOAL_STATUS_NONE);
   EXPECT_NE(last_path("ghost", 1)->reason().to_string().find("unknown robot"), std::string::npos);
   send_goal("r1", 1, GOAL_PLANNED, pt(std::numeric_limits<double>::infinity(), 1));
   ASSERT_TRUE(wait_until([&] { return last_path("r1", 1).has_value(); }, 30s));

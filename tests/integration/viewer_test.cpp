@@ -1,15 +1,19 @@
 // slam-viewer black-box: started headless under xvfb-run on its own DDS domain, it is sent a known
 // grid, two robots with observations and a path; its screenshot must show the robots' colours
 // where their points are, occupied cells dark and free cells light; synthetic clicks must publish
-// a NavGoal and a MapEdit at the world points under the clicked pixels.
+// a NavGoal and a MapEdit at the world points under the clicked pixels. Run with --snapshot-dir it
+// keeps going, fits itself to data that arrives after it started, and writes a numbered PNG plus
+// latest.png every period.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
 #define STB_IMAGE_IMPLEMENTATION
 #include <stb/stb_image.h>
 
+#include <csignal>
 #include <cmath>
 #include <filesystem>
+#include <regex>
 #include <sstream>
 
 #include "common/fast_topics.hpp"
@@ -87,7 +91,24 @@ RobotObservation observation(const std::string& id, Pose2 p, double cx, double c
   return o;
 }
 
-bool have_xvfb() { return ::access("/usr/bin/xvfb-run", X_OK) == 0; }
+bool have_xvfb() { return ::access("/usr/bin/xvfb-run", X_OK) == 0 && ::access("/usr/bin/Xvfb", X_OK) == 0; }
+
+// Starts Xvfb as "xvfb" in `group` (its own process, so the viewer can be stopped alone, as
+// compose/launch.sh does) and returns its DISPLAY, or "" when it did not come up. -displayfd 1
+// makes the server pick a free display and print its number into the log.
+std::string start_xvfb(ProcessGroup& group) {
+  group.start("xvfb", {"Xvfb", "-displayfd", "1", "-screen", "0", "1280x800x24", "-nolisten", "tcp"});
+  const std::regex number("(^|\\n)([0-9]+)\\n");
+  std::smatch m;
+  std::string log;
+  if (!wait_until([&] {
+        log = group.log("xvfb");
+        return std::regex_search(log, m, number);
+      }, 20s))
+    return "";
+  std::string display = m[2].str();
+  return display.insert(0, 1, ':');
+}
 
 struct Image {
   int w = 0, h = 0;
@@ -101,6 +122,24 @@ struct Image {
     return {px[0] / 255.0f, px[1] / 255.0f, px[2] / 255.0f, 1.0f};
   }
 };
+
+// The PNG at `path`, or an image of width 0.
+Image load_png(const std::string& path) {
+  Image img;
+  int channels = 0;
+  unsigned char* data = stbi_load(path.c_str(), &img.w, &img.h, &channels, 3);
+  if (!data) return {};
+  img.rgb.assign(data, data + static_cast<size_t>(img.w) * static_cast<size_t>(img.h) * 3);
+  stbi_image_free(data);
+  return img;
+}
+
+// The last "view center=..." line in a log (every automatic fit and the screenshot log one).
+Result<ViewTransform> last_view(const std::string& log) {
+  const auto at = log.rfind("view center=");
+  if (at == std::string::npos) return Error{"no view line in the log"};
+  return ViewTransform::parse(log.substr(at, log.find('\n', at) - at));
+}
 
 float brightness(const Rgba& c) { return (c.r + c.g + c.b) / 3.0f; }
 bool close_to(const Rgba& a, const Rgba& b) {
@@ -153,18 +192,11 @@ TEST(ViewerTest, RendersGridRobotsAndPointsAndSendsClicks) {
 
   ASSERT_EQ(group.wait_exit("viewer", 90s), 0) << group.log("viewer");
   const std::string log = group.log("viewer");
-  const auto line_at = log.rfind("view center=");
-  ASSERT_NE(line_at, std::string::npos) << log;
-  auto view = ViewTransform::parse(log.substr(line_at, log.find('\n', line_at) - line_at));
-  ASSERT_TRUE(view) << view.message();
+  auto view = last_view(log);
+  ASSERT_TRUE(view) << view.message() << "\n" << log;
 
-  Image img;
-  int channels = 0;
-  unsigned char* data = stbi_load(png.c_str(), &img.w, &img.h, &channels, 3);
-  ASSERT_NE(data, nullptr) << "cannot read " << png;
-  img.rgb.assign(data, data + static_cast<size_t>(img.w) * static_cast<size_t>(img.h) * 3);
-  stbi_image_free(data);
-  ASSERT_EQ(img.w, 1280);
+  const Image img = load_png(png);
+  ASSERT_EQ(img.w, 1280) << "cannot read " << png;
   ASSERT_EQ(img.h, 800);
 
   // Points in each robot's colour where they were observed; robots drawn at their poses.
@@ -198,6 +230,74 @@ TEST(ViewerTest, RendersGridRobotsAndPointsAndSendsClicks) {
   EXPECT_EQ(edits.back().kind(), EDIT_OBSTRUCT);
   EXPECT_NEAR(edits.back().point().x(), edit_at.x, 1e-6);
   EXPECT_NEAR(edits.back().point().y(), edit_at.y, 1e-6);
+}
+
+TEST(ViewerTest, SnapshotsPeriodicallyAndFitsToDataThatArrivesLater) {
+  if (!have_xvfb()) GTEST_SKIP() << "xvfb-run is not installed";
+  DomainLease domain;
+  auto participant = dds::Participant::create(domain.id(), "viewer_snapshot_test");
+  ASSERT_TRUE(participant) << participant.message();
+  auto& p = **participant;
+  auto grid_w = dds::make_writer(p, dds::kGridSnapshot);
+  auto state_w = dds::make_writer(p, dds::kRobotState);
+  auto obs_w = dds::make_writer(p, dds::kRobotObservation);
+  ASSERT_TRUE(grid_w && state_w && obs_w);
+
+  ProcessGroup group;
+  const std::filesystem::path dir = group.dir() + "/snapshots";
+  const std::string display = start_xvfb(group);
+  ASSERT_FALSE(display.empty()) << group.log("xvfb");
+  group.start("viewer", {"env", "DISPLAY=" + display, bin_path("slam-viewer"), "--domain", std::to_string(domain.id()),
+                         "--snapshot-dir", dir.string(), "--snapshot-period", "1", "--fps", "20"});
+  ASSERT_TRUE(wait_until([&] { return (*obs_w)->matched_readers() > 0 && (*grid_w)->matched_readers() > 0; }, 60s))
+      << group.log("viewer");
+
+  // Everything arrives after the viewer started: it must fit the view to it by itself.
+  (*grid_w)->write(make_grid());
+  const Pose2 a = pose(-3.0, 2.0, 0.0);
+  (*state_w)->write(state("alpha", a));
+  (*obs_w)->write(observation("alpha", a, -1.0, 1.0));
+
+  // The second snapshot taken with the data in (the log lines name them): by then the view has
+  // held still long enough for the point texture to be complete.
+  const std::regex with_data("snapshot (\\S+) written \\(1280x800, [^)]*1/1 robots online, 441 points, map 100x80");
+  std::vector<std::string> shots;
+  std::string log;
+  ASSERT_TRUE(wait_until([&] {
+    log = group.log("viewer");
+    shots.clear();
+    for (std::sregex_iterator it(log.begin(), log.end(), with_data), end; it != end; ++it) shots.push_back((*it)[1]);
+    return shots.size() >= 2;
+  }, 60s)) << log;
+  const std::string shot = shots[1];
+  ASSERT_TRUE(wait_until([&] { return std::filesystem::exists(dir / "snapshot-0002.png"); }, 30s)) << log;
+
+  // Ctrl-C: a clean exit (the X server is still up).
+  group.stop("viewer", SIGINT);
+  EXPECT_EQ(group.wait_exit("viewer", 15s), 0) << group.log("viewer");
+  log = group.log("viewer");
+
+  // Every file is a complete PNG of the window; no temp file is left; latest is the newest.
+  size_t numbered = 0;
+  for (const auto& e : std::filesystem::directory_iterator(dir)) {
+    const std::string name = e.path().filename().string();
+    EXPECT_EQ(name.find(".tmp"), std::string::npos) << name;
+    EXPECT_EQ(load_png(e.path().string()).w, 1280) << name << " is not a 1280-wide PNG";
+    numbered += name.rfind("snapshot-", 0) == 0 ? 1 : 0;
+  }
+  EXPECT_GE(numbered, 2u);
+  EXPECT_EQ(load_png((dir / "latest.png").string()).h, 800);
+
+  // The snapshot with data shows the map fitted (occupied dark, free light) and alpha's points.
+  auto view = last_view(log.substr(0, log.find(shot + " written")));
+  ASSERT_TRUE(view) << view.message() << "\n" << log;
+  const Image img = load_png(shot);
+  ASSERT_EQ(img.w, 1280) << shot;
+  EXPECT_GT(view->scale(), 50.0) << "the 10 x 8 m map should fill most of the 860 px map area";
+  EXPECT_TRUE(close_to(img.at(*view, {-1.0, 1.0}), viewer::default_robot_color("alpha")))
+      << "alpha's points: got " << str(img.at(*view, {-1.0, 1.0}));
+  EXPECT_LT(brightness(img.at(*view, {3.5, -1.0})), 0.25f) << str(img.at(*view, {3.5, -1.0}));
+  EXPECT_GT(brightness(img.at(*view, {0.5, -1.0})), 0.8f) << str(img.at(*view, {0.5, -1.0}));
 }
 
 }  // namespace

@@ -6,6 +6,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
+#include <vector>
 
 #include "grid_builder.hpp"
 #include "planner/line_of_sight.hpp"
@@ -22,9 +24,12 @@ TEST(Fleet, GoalsForAllRobotsReachEachKnownRobot) {
   ASSERT_TRUE(fleet.set_goal(kAllRobots, Goal{7, GoalMode::Direct, {5, 5}, 0, {}}));
   EXPECT_EQ(fleet.tracker("a")->goal().goal_id, 7u);
   EXPECT_EQ(fleet.tracker("b")->mode(), GoalMode::Direct);
-  const Status unknown = fleet.set_goal("c", Goal{8, GoalMode::Stop, {}, 0, {}});
-  EXPECT_FALSE(unknown);
-  EXPECT_NE(unknown.message().find("unknown robot 'c'"), std::string::npos);
+  // Not seen yet: kept for later, started for nobody now.
+  const auto kept = fleet.set_goal("c", Goal{8, GoalMode::Stop, {}, 0, {}});
+  ASSERT_TRUE(kept);
+  EXPECT_EQ(*kept, 0u);
+  ASSERT_NE(fleet.pending_goal("c"), nullptr);
+  EXPECT_EQ(fleet.tracker("c"), nullptr);
   EXPECT_FALSE(fleet.set_goal("a", Goal{9, GoalMode::Square, {}, -1.0, {}}));
 
   std::vector<DueWaypoint> due;
@@ -37,6 +42,54 @@ TEST(Fleet, GoalsForAllRobotsReachEachKnownRobot) {
   EXPECT_EQ(due.size(), 2u);
   EXPECT_EQ(fleet.take_changed().size(), 2u);
   EXPECT_TRUE(fleet.take_changed().empty());
+}
+
+TEST(Fleet, AGoalForARobotNotSeenYetStartsOnItsFirstPosition) {
+  Fleet fleet({});
+  ASSERT_EQ(*fleet.set_goal("late", Goal{3, GoalMode::Direct, {4, 0}, 0, {}}), 0u);
+  fleet.observe("late", {0, 0});
+  const GoalTracker* t = fleet.tracker("late");
+  ASSERT_NE(t, nullptr);
+  EXPECT_EQ(t->goal().goal_id, 3u);
+  EXPECT_EQ(t->status(), GoalStatus::Active);
+  EXPECT_EQ(t->current_waypoint(), (Vec2{4, 0}));
+  EXPECT_EQ(fleet.pending_goal("late"), nullptr);
+  EXPECT_EQ(fleet.take_changed(), std::vector<std::string>{"late"});
+}
+
+TEST(Fleet, FleetWideExploreAndStopGoalsReachRobotsThatAppearLater) {
+  Fleet fleet({});
+  ASSERT_EQ(*fleet.set_goal(kAllRobots, Goal{5, GoalMode::Explore, {}, 0, {}}), 0u);
+  fleet.observe("a", {0, 0});
+  EXPECT_EQ(fleet.tracker("a")->mode(), GoalMode::Explore);
+  EXPECT_EQ(fleet.tracker("a")->goal().goal_id, 5u);
+  // A robot's own goal wins when it came later, the fleet goal when it did.
+  ASSERT_EQ(*fleet.set_goal("b", Goal{6, GoalMode::Stop, {}, 0, {}}), 0u);
+  fleet.observe("b", {1, 0});
+  EXPECT_EQ(fleet.tracker("b")->goal().goal_id, 6u);
+  ASSERT_EQ(*fleet.set_goal("c", Goal{7, GoalMode::Home, {}, 0, {}}), 0u);
+  ASSERT_EQ(*fleet.set_goal(kAllRobots, Goal{8, GoalMode::Stop, {}, 0, {}}), 2u);
+  EXPECT_NE(fleet.pending_goal("c"), nullptr);  // kept, but the later fleet goal wins
+  fleet.observe("c", {2, 0});
+  EXPECT_EQ(fleet.pending_goal("c"), nullptr);
+  EXPECT_EQ(fleet.tracker("c")->goal().goal_id, 8u);
+  EXPECT_EQ(fleet.tracker("c")->mode(), GoalMode::Stop);
+  // A target chosen for the robots there does not stand for newcomers.
+  ASSERT_EQ(*fleet.set_goal(kAllRobots, Goal{9, GoalMode::Direct, {5, 5}, 0, {}}), 3u);
+  fleet.observe("d", {3, 0});
+  EXPECT_EQ(fleet.tracker("d")->status(), GoalStatus::None);
+}
+
+TEST(Fleet, GoalsWaitingForUnseenRobotsAreBounded) {
+  Fleet fleet({});
+  for (size_t i = 0; i < Fleet::kMaxPendingGoals; ++i) {
+    ASSERT_TRUE(fleet.set_goal("ghost-" + std::to_string(i), Goal{1, GoalMode::Stop, {}, 0, {}}));
+  }
+  const auto refused = fleet.set_goal("one-more", Goal{1, GoalMode::Stop, {}, 0, {}});
+  ASSERT_FALSE(refused);
+  EXPECT_NE(refused.message().find("unknown robot 'one-more'"), std::string::npos);
+  // Replacing a kept goal is fine.
+  EXPECT_TRUE(fleet.set_goal("ghost-0", Goal{2, GoalMode::Stop, {}, 0, {}}));
 }
 
 TEST(Fleet, PlansAndReportsFailures) {

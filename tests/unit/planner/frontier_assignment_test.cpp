@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <set>
 
 #include "grid_builder.hpp"
@@ -72,9 +73,21 @@ TEST(FrontierAssignment, SkipsUnreachableAndComputesFewCosts) {
 
 TEST(FrontierBlacklist, MatchesWithinRadius) {
   FrontierBlacklist b;
-  b.add({1.0, 1.0});
-  EXPECT_TRUE(b.contains({1.3, 1.0}, 0.5));
-  EXPECT_FALSE(b.contains({2.0, 1.0}, 0.5));
+  b.add({1.0, 1.0}, 0, 100, 0.5);
+  EXPECT_TRUE(b.contains({1.3, 1.0}, 0.5, 0));
+  EXPECT_FALSE(b.contains({2.0, 1.0}, 0.5, 0));
+}
+
+TEST(FrontierBlacklist, AFirstFailureRestsThePlaceASecondGivesItUp) {
+  FrontierBlacklist b;
+  b.add({1.0, 1.0}, 0, 100, 0.5);
+  EXPECT_TRUE(b.contains({1.0, 1.0}, 0.5, 99));
+  EXPECT_FALSE(b.contains({1.0, 1.0}, 0.5, 100));  // offered again
+  b.add({1.2, 1.0}, 200, 100, 0.5);                // failed again nearby: for good
+  EXPECT_TRUE(b.contains({1.2, 1.0}, 0.5, 1'000'000));
+  EXPECT_EQ(b.size(), 2u);
+  b.clear();
+  EXPECT_FALSE(b.contains({1.2, 1.0}, 0.5, 300));
 }
 
 TEST(ProgressWatch, StallsWithoutProgress) {
@@ -82,10 +95,22 @@ TEST(ProgressWatch, StallsWithoutProgress) {
   c.progress_timeout_s = 10.0;
   c.progress_min_m = 0.5;
   ProgressWatch w;
-  w.start({10, 0}, {0, 0}, 0);
-  EXPECT_FALSE(w.stalled({1, 0}, 5'000'000'000, c));     // progress at t=5 s
-  EXPECT_FALSE(w.stalled({1.2, 0}, 14'000'000'000, c));  // too little, but < 10 s since t=5
-  EXPECT_TRUE(w.stalled({1.2, 0}, 15'500'000'000, c));
+  w.start({10, 0}, 0);
+  EXPECT_FALSE(w.stalled(12.0, 1'000'000'000, c));   // the first measure is progress
+  EXPECT_FALSE(w.stalled(11.0, 5'000'000'000, c));   // progress at t=5 s
+  EXPECT_FALSE(w.stalled(10.8, 14'000'000'000, c));  // too little, but < 10 s since t=5
+  EXPECT_TRUE(w.stalled(10.8, 15'500'000'000, c));
+}
+
+TEST(ProgressWatch, ProgressIsTheWayLeftNotTheStraightLine) {
+  // A path winding away from its target still makes progress while it gets shorter.
+  ExplorerConfig c;
+  c.progress_timeout_s = 1.0;
+  ProgressWatch w;
+  w.start({1, 0}, 0);
+  for (int64_t t = 0; t <= 20; ++t) {
+    EXPECT_FALSE(w.stalled(20.0 - static_cast<double>(t), t * 900'000'000, c)) << t;
+  }
 }
 
 TEST(ExplorerConfig, Validates) {
@@ -95,6 +120,15 @@ TEST(ExplorerConfig, Validates) {
   EXPECT_FALSE(validate(c));
   c = {};
   c.progress_timeout_s = -1;
+  EXPECT_FALSE(validate(c));
+  c = {};
+  c.blacklist_rest_s = -1;
+  EXPECT_FALSE(validate(c));
+  c = {};
+  c.completion_grace_s = std::nan("");
+  EXPECT_FALSE(validate(c));
+  c = {};
+  c.retry_period_s = 0;
   EXPECT_FALSE(validate(c));
 }
 

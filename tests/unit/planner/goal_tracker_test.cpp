@@ -183,5 +183,37 @@ TEST(GoalTracker, ExploreAsksForFrontiersThenGoesHome) {
   EXPECT_EQ(t.status(), GoalStatus::Reached);
 }
 
+TEST(GoalTracker, AnEscapeLegFromAnInflatedStartIsNoReasonToReplan) {
+  const PlanningGrid g = test::grid_from_art({
+      "#i......",
+      "#i......",
+  });
+  GoalTracker t({});
+  t.set_goal(goal(GoalMode::Planned, {6.5, 1.5}), {1.3, 1.5}, {1.3, 1.5});
+  t.set_path({{1.3, 1.5}, {2.5, 1.5}, {6.5, 1.5}});
+  t.check_path(g, UnknownPolicy::Blocked);
+  EXPECT_FALSE(t.needs_plan());
+  // A wall across a later leg still is.
+  PlanningGrid blocked = g;
+  blocked.set({4, 1}, kCellOccupied);
+  t.check_path(blocked, UnknownPolicy::Blocked);
+  EXPECT_TRUE(t.needs_plan());
+}
+
+TEST(GoalTracker, ReportsTheFrontierItArrivedAtOnce) {
+  GoalTracker t({});
+  t.set_goal(goal(GoalMode::Explore), {1, 1}, {0, 0});
+  t.set_frontier({5, 1});
+  t.set_path({{1, 1}, {5, 1}});
+  EXPECT_FALSE(t.take_reached_frontier());
+  t.update_position({5, 1});
+  EXPECT_EQ(t.take_reached_frontier(), (Vec2{5, 1}));
+  EXPECT_FALSE(t.take_reached_frontier());
+  // Dropped without arriving: nothing to report.
+  t.set_frontier({9, 1});
+  t.drop_frontier();
+  EXPECT_FALSE(t.take_reached_frontier());
+}
+
 }  // namespace
 }  // namespace slam::planner

@@ -35,6 +35,30 @@ TEST(GridMirrorTest, SnapshotReplacesAndMarksEverythingDirty) {
   EXPECT_DOUBLE_EQ(b.max_y, -0.5);
 }
 
+TEST(GridMirrorTest, KnownBoundsCoverFreeAndOccupiedCellsAndGrowWithPatches) {
+  GridMirror m;
+  WorldBox b;
+  EXPECT_FALSE(m.known_bounds(&b));
+  auto s = snapshot(1, 1);  // 4 x 3 cells of 0.5 m from (-1, -2)
+  s.cells[1 * 4 + 1] = 1;   // free at (1, 1)
+  s.cells[1 * 4 + 2] = 2 | 4;  // occupied + inflated at (2, 1)
+  s.cells[2 * 4 + 3] = 3;   // state 3 is not a known state
+  ASSERT_TRUE(m.apply_snapshot(std::move(s)));
+  ASSERT_TRUE(m.known_bounds(&b));
+  EXPECT_DOUBLE_EQ(b.min_x, -0.5);
+  EXPECT_DOUBLE_EQ(b.max_x, 0.5);
+  EXPECT_DOUBLE_EQ(b.min_y, -1.5);
+  EXPECT_DOUBLE_EQ(b.max_y, -1.0);
+  ASSERT_EQ(m.apply_patch(patch(1, 2, 0, 0, 1, 1, 1)), PatchResult::Applied);
+  ASSERT_TRUE(m.known_bounds(&b));
+  EXPECT_DOUBLE_EQ(b.min_x, -1.0);
+  EXPECT_DOUBLE_EQ(b.min_y, -2.0);
+  EXPECT_DOUBLE_EQ(b.max_x, 0.5);
+  // A new snapshot with nothing known forgets it.
+  ASSERT_TRUE(m.apply_snapshot(snapshot(1, 5)));
+  EXPECT_FALSE(m.known_bounds(&b));
+}
+
 TEST(GridMirrorTest, RejectsMalformedSnapshots) {
   GridMirror m;
   auto bad = snapshot(1, 1);

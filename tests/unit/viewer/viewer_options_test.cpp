@@ -29,6 +29,10 @@ TEST(ViewerOptionsTest, BadValuesNameTheFlag) {
             std::string::npos);
   EXPECT_NE(error_for([](ViewerOptions& o) { o.frames = 0, o.screenshot = "x.png"; }).find("--frames"),
             std::string::npos);
+  EXPECT_NE(error_for([](ViewerOptions& o) { o.snapshot_period_s = 0.0; }).find("--snapshot-period"),
+            std::string::npos);
+  EXPECT_NE(error_for([](ViewerOptions& o) { o.snapshot_dir = "d", o.screenshot = "x.png"; }).find("--snapshot-dir"),
+            std::string::npos);
 }
 
 TEST(ViewerOptionsTest, ClickSpecsParse) {
