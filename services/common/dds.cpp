@@ -50,6 +50,9 @@ std::string code_name(const ReturnCode_t& rc) {
 fdds::DataWriterQos writer_qos(const topics::QosSpec& spec) {
   fdds::DataWriterQos q = fdds::DATAWRITER_QOS_DEFAULT;
   apply(spec, q);
+  // Data sharing (on by default for fixed-size types) keeps files in /dev/shm that a killed
+  // process leaves behind, like the shared-memory transport we also keep off.
+  q.data_sharing().off();
   // Large samples (map snapshots) must be fragmented and may need resending; keep memory growable.
   q.endpoint().history_memory_policy = eprosima::fastrtps::rtps::PREALLOCATED_WITH_REALLOC_MEMORY_MODE;
   if (spec.reliable) q.reliability().max_blocking_time = eprosima::fastrtps::Duration_t(0, 100000000);
@@ -59,6 +62,7 @@ fdds::DataWriterQos writer_qos(const topics::QosSpec& spec) {
 fdds::DataReaderQos reader_qos(const topics::QosSpec& spec) {
   fdds::DataReaderQos q = fdds::DATAREADER_QOS_DEFAULT;
   apply(spec, q);
+  q.data_sharing().off();
   q.endpoint().history_memory_policy = eprosima::fastrtps::rtps::PREALLOCATED_WITH_REALLOC_MEMORY_MODE;
   return q;
 }
