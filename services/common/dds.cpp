@@ -55,7 +55,13 @@ fdds::DataWriterQos writer_qos(const topics::QosSpec& spec) {
   q.data_sharing().off();
   // Large samples (map snapshots) must be fragmented and may need resending; keep memory growable.
   q.endpoint().history_memory_policy = eprosima::fastrtps::rtps::PREALLOCATED_WITH_REALLOC_MEMORY_MODE;
-  if (spec.reliable) q.reliability().max_blocking_time = eprosima::fastrtps::Duration_t(0, 100000000);
+  if (spec.reliable) {
+    q.reliability().max_blocking_time = eprosima::fastrtps::Duration_t(0, 100000000);
+    // A volatile reliable writer frees a sample only once every reader has acknowledged it, and
+    // readers acknowledge when a heartbeat asks. With the default 3 s heartbeat a 10 kHz stream
+    // piles up ~30 000 samples, and Fast DDS searches its history linearly on every removal.
+    q.reliable_writer_qos().times.heartbeatPeriod = eprosima::fastrtps::Duration_t(0, 100000000);
+  }
   return q;
 }
 
