@@ -31,11 +31,19 @@ void Fleet::observe(const std::string& robot_id, Vec2 position) {
     robot.tracker.update_position(position);
     return;
   }
+  if (const auto home = restored_homes_.find(robot_id); home != restored_homes_.end()) {
+    robot.home = home->second;
+    restored_homes_.erase(home);
+  }
   const auto own = pending_.find(robot_id);
   const KeptGoal* kept = own == pending_.end() ? nullptr : &own->second;
   if (fleet_goal_ && (kept == nullptr || fleet_goal_->order > kept->order)) kept = &*fleet_goal_;
   if (kept != nullptr) start(robot, kept->goal);
   if (own != pending_.end()) pending_.erase(own);
+}
+
+void Fleet::restore_home(const std::string& robot_id, Vec2 home) {
+  if (robots_.count(robot_id) == 0) restored_homes_[robot_id] = home;
 }
 
 Result<size_t> Fleet::set_goal(const std::string& robot_id, const Goal& goal) {

@@ -42,6 +42,9 @@ class Fleet {
   // A robot's position. The first one makes it known, fixes its home and starts the goal kept for
   // it: its own, or the standing fleet goal, whichever arrived later.
   void observe(const std::string& robot_id, Vec2 position);
+  // A home kept from an earlier run (GoalStore): the robot's home once it is seen, instead of its
+  // first position.
+  void restore_home(const std::string& robot_id, Vec2 home);
   // A goal for one robot, or for every robot with robot_id "*"; returns how many robots it
   // started for now. A goal for a robot not seen yet is kept until its first position (a
   // restarted planner reads goals before robot states). A "*" Explore or Stop goal stands: robots
@@ -103,6 +106,7 @@ class Fleet {
   std::vector<uint8_t> eligible_;  // per cluster, 0 = taken or blacklisted
   std::map<std::string, Robot> robots_;
   std::map<std::string, KeptGoal> pending_;
+  std::map<std::string, Vec2> restored_homes_;
   std::optional<KeptGoal> fleet_goal_;
   uint64_t goal_order_ = 0;
   bool exploration_complete_ = false;

@@ -42,10 +42,10 @@ void PlannerIntake::push_state(const slam::RobotState& sample) {
   }
 }
 
-void PlannerIntake::push_goal(const slam::NavGoal& sample) {
+void PlannerIntake::push_goal(const slam::NavGoal& sample, int64_t sent_ns) {
   {
     std::lock_guard lock(mutex_);
-    pending_.goals.push_back(sample);
+    pending_.goals.push_back(ReceivedGoal{sample, sent_ns});
     urgent_ = true;
   }
   wake_.notify_one();

@@ -9,6 +9,7 @@
 
 #include <chrono>
 #include <condition_variable>
+#include <cstdint>
 #include <map>
 #include <mutex>
 #include <optional>
@@ -17,12 +18,18 @@
 
 namespace slam::planner {
 
+// A goal with its sender's timestamp (DDS source timestamp), which orders it against stored goals.
+struct ReceivedGoal {
+  slam::NavGoal sample;
+  int64_t sent_ns = 0;
+};
+
 struct IntakeBatch {
   std::optional<slam::GridSnapshot> snapshot;  // the latest one, applied before `patches`
   std::vector<slam::GridPatch> patches;        // in arrival order
   bool patches_dropped = false;                // the queue overflowed: wait for the next snapshot
   std::vector<slam::RobotState> states;        // the latest per robot
-  std::vector<slam::NavGoal> goals;            // in arrival order
+  std::vector<ReceivedGoal> goals;             // in arrival order
   std::vector<slam::PathRequest> requests;     // in arrival order
 
   void clear();
@@ -37,7 +44,7 @@ class PlannerIntake {
   void push_snapshot(const slam::GridSnapshot& sample);
   void push_patch(const slam::GridPatch& sample);
   void push_state(const slam::RobotState& sample);
-  void push_goal(const slam::NavGoal& sample);
+  void push_goal(const slam::NavGoal& sample, int64_t sent_ns);
   void push_request(const slam::PathRequest& sample);
 
   // Sleeps until `timeout` passes or a goal or path request arrives (they deserve an answer now).

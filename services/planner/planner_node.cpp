@@ -29,6 +29,8 @@ PlannerNode::Metrics::Metrics(Counters& c)
       goals_rejected(c.get("goals_rejected")),
       goals_reached(c.get("goals_reached")),
       goals_failed(c.get("goals_failed")),
+      goals_replayed(c.get("goals_replayed")),
+      store_failures(c.get("store_failures")),
       replans(c.get("replans")),
       waypoints_sent(c.get("waypoints_sent")),
       paths_published(c.get("paths_published")),
@@ -55,6 +57,11 @@ Result<std::unique_ptr<PlannerNode>> PlannerNode::create(const PlannerOptions& o
 }
 
 Status PlannerNode::configure() {
+  auto store = GoalStore::open(options_.goal_store);
+  if (!store) return Error{store.message()};
+  goal_store_ = std::move(*store);
+  resume_goals();
+
   auto participant = dds::Participant::create(options_.service.domain, "slam-planner");
   if (!participant) return Error{participant.message()};
   participant_ = std::move(*participant);
@@ -92,7 +99,9 @@ Status PlannerNode::configure() {
   if (!states) return Error{states.message()};
   state_reader_ = std::move(*states);
   auto goals = dds::make_reader(*participant_, dds::kNavGoal,
-                                [this](const slam::NavGoal& g, const auto&) { intake_.push_goal(g); });
+                                [this](const slam::NavGoal& g, const dds::fdds::SampleInfo& info) {
+                                  intake_.push_goal(g, info.source_timestamp.to_ns());
+                                });
   if (!goals) return Error{goals.message()};
   goal_reader_ = std::move(*goals);
   auto requests =
@@ -117,6 +126,39 @@ void PlannerNode::run_once() {
   fleet_.tick(grid_, now);
   publish_paths();
   stream_waypoints(now);
+  flush_store();
+}
+
+void PlannerNode::resume_goals() {
+  const GoalRecord& record = goal_store_.record();
+  for (const auto& [id, home] : record.homes) fleet_.restore_home(id, home);
+  size_t resumed = 0;
+  for (const StoredGoal& g : goals_to_resume(record)) {
+    if (auto started = fleet_.set_goal(g.robot_id, g.goal); !started) {
+      warn("resume:" + g.robot_id, "stored goal " + std::to_string(g.goal.goal_id) + " for robot '" + g.robot_id +
+                                       "' not resumed: " + started.message());
+      continue;
+    }
+    ++resumed;
+  }
+  if (!options_.goal_store.empty()) {
+    spdlog::info("goal store {}: {} goal(s) resumed, {} home(s) known", options_.goal_store, resumed,
+                 record.homes.size());
+  }
+}
+
+void PlannerNode::store_goal(const std::string& robot_id, const Goal& goal, int64_t sent_ns) {
+  goal_store_.put(StoredGoal{robot_id, goal, sent_ns, false});
+  if (robot_id != kAllRobots) return;
+  for (const std::string& id : robots_) goal_store_.put(StoredGoal{id, goal, sent_ns, false});
+}
+
+void PlannerNode::flush_store() {
+  if (!goal_store_.dirty()) return;
+  if (auto s = goal_store_.flush(); !s) {
+    bump(metrics_.store_failures);
+    warn("store", s.message() + "; goals will not survive a restart until it can be written");
+  }
 }
 
 void PlannerNode::apply_grid(IntakeBatch& batch) {
@@ -178,6 +220,7 @@ void PlannerNode::apply_states(const std::vector<slam::RobotState>& states) {
     const bool first = robots_.insert(id).second;
     fleet_.observe(id, position);
     if (!first) continue;
+    if (const auto home = fleet_.home(id)) goal_store_.put_home(id, *home);
     const GoalTracker* t = fleet_.tracker(id);
     if (t != nullptr && t->status() == GoalStatus::Active) {
       spdlog::info("robot '{}' first seen at ({}, {}); starts goal {} (mode {})", id, position.x, position.y,
@@ -188,9 +231,16 @@ void PlannerNode::apply_states(const std::vector<slam::RobotState>& states) {
   }
 }
 
-void PlannerNode::apply_goals(const std::vector<slam::NavGoal>& goals) {
-  for (const slam::NavGoal& sample : goals) {
+void PlannerNode::apply_goals(const std::vector<ReceivedGoal>& goals) {
+  for (const ReceivedGoal& received : goals) {
+    const slam::NavGoal& sample = received.sample;
     const std::string id = sample.robot_id().to_string();
+    // After a restart, writers' caches replay goals the store already resumed (or replaced).
+    if (goal_store_.is_stale(id, received.sent_ns)) {
+      bump(metrics_.goals_replayed);
+      spdlog::debug("goal {} for robot '{}' is not newer than the stored one; ignored", sample.goal_id(), id);
+      continue;
+    }
     auto command = to_goal(sample);
     if (!command) {
       reject_goal(id, sample, command.message());
@@ -202,6 +252,7 @@ void PlannerNode::apply_goals(const std::vector<slam::NavGoal>& goals) {
       continue;
     }
     bump(metrics_.goals_accepted);
+    store_goal(command->robot_id, command->goal, received.sent_ns);
     spdlog::info("goal {} (mode {}) for robot '{}' ({} robot(s) now), target ({}, {})", sample.goal_id(),
                  static_cast<uint32_t>(sample.mode()), id, *started, sample.target().x(),
                  sample.target().y());
@@ -281,6 +332,7 @@ void PlannerNode::publish_paths() {
     auto [it, inserted] = reported_status_.try_emplace(id, t->status());
     if (!inserted && it->second == t->status()) continue;
     it->second = t->status();
+    if (t->status() == GoalStatus::Reached || t->status() == GoalStatus::Failed) goal_store_.finish(id, t->goal().goal_id);
     if (t->status() == GoalStatus::Reached) {
       bump(metrics_.goals_reached);
       spdlog::info("robot '{}' reached goal {}", id, t->goal().goal_id);

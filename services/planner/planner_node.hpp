@@ -17,6 +17,7 @@
 #include "common/log.hpp"
 #include "common/result.hpp"
 #include "planner/fleet.hpp"
+#include "planner/goal_store.hpp"
 #include "planner/planner_intake.hpp"
 #include "planner/planner_options.hpp"
 #include "planner/request_workers.hpp"
@@ -46,6 +47,8 @@ class PlannerNode {
     std::atomic<int64_t>& goals_rejected;
     std::atomic<int64_t>& goals_reached;
     std::atomic<int64_t>& goals_failed;
+    std::atomic<int64_t>& goals_replayed;
+    std::atomic<int64_t>& store_failures;
     std::atomic<int64_t>& replans;
     std::atomic<int64_t>& waypoints_sent;
     std::atomic<int64_t>& paths_published;
@@ -63,7 +66,12 @@ class PlannerNode {
 
   void apply_grid(IntakeBatch& batch);
   void apply_states(const std::vector<slam::RobotState>& states);
-  void apply_goals(const std::vector<slam::NavGoal>& goals);
+  // Goals and homes from the store, before any reader runs: a restarted planner carries on.
+  void resume_goals();
+  void apply_goals(const std::vector<ReceivedGoal>& goals);
+  // Records an accepted goal; a fleet goal also as each known robot's own goal (it replaced theirs).
+  void store_goal(const std::string& robot_id, const Goal& goal, int64_t sent_ns);
+  void flush_store();
   void report_waiting(const std::string& robot_id, const slam::NavGoal& sample);
   void reject_goal(const std::string& robot_id, const slam::NavGoal& sample, const std::string& reason);
   void submit_requests(const std::vector<slam::PathRequest>& requests);
@@ -82,6 +90,7 @@ class PlannerNode {
   // Loop state: touched by the loop thread only.
   PlanningGrid grid_;
   Fleet fleet_;
+  GoalStore goal_store_;
   bool awaiting_snapshot_ = false;
   uint64_t handed_revision_ = 0;  // grid revision the request workers have
   std::set<std::string> robots_;

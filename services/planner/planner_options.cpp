@@ -81,6 +81,9 @@ void add_planner_options(CLI::App& app, PlannerOptions& o) {
       ->capture_default_str();
   app.add_option("--request-queue", o.request_queue, "path requests queued before new ones are refused")
       ->capture_default_str();
+  app.add_option("--goal-store", o.goal_store,
+                 "file keeping goals and robot homes across restarts (JSON); empty: keep none")
+      ->capture_default_str();
 }
 
 Status validate(const PlannerOptions& o) {

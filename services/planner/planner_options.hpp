@@ -6,6 +6,7 @@
 #include <CLI/CLI.hpp>
 
 #include <cstdint>
+#include <string>
 
 #include "common/result.hpp"
 #include "common/service_options.hpp"
@@ -19,6 +20,7 @@ struct PlannerOptions {
   double loop_rate_hz = 20.0;    // goal ticks, waypoint streaming and path publishing
   uint32_t request_workers = 1;  // threads answering PathRequests, each with its own planner
   uint32_t request_queue = 64;   // queued PathRequests beyond this are answered TIMEOUT at once
+  std::string goal_store = "run/data/goals.json";  // goals and homes kept across restarts; "" = none
 };
 
 // Adds the common flags and every planner flag to `app`, bound to `options`.

@@ -124,7 +124,8 @@ Status PipelineRig::launch(const PipelineSettings& s) {
                           fmt::format("{}", g.origin_x), "--grid-origin-y", fmt::format("{}", g.origin_y),
                           "--grid-width-m", fmt::format("{}", g.side_m), "--grid-height-m",
                           fmt::format("{}", g.side_m), "--log-level", "warn"});
-  group_.start("planner", {testkit::bin_path("slam-planner"), "--domain", domain, "--log-level", "warn"});
+  group_.start("planner", {testkit::bin_path("slam-planner"), "--domain", domain, "--log-level", "warn",
+                           "--goal-store", group_.dir() + "/goals.json"});
   group_.start("simulator",
                {testkit::bin_path("slam-simulator"), "--domain", domain, "--broker", broker, "--world", world,
                 "--robots", std::to_string(s.robots), "--protocol", "v1", "--rate", "10", "--beams",

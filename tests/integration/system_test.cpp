@@ -44,7 +44,7 @@ class SystemTest : public ::testing::Test {
     } else if (service == "mapper") {
       group_.start(service, {bin_path("slam-mapper"), "--domain", domain, "--store", group_.dir() + "/map.db"});
     } else {
-      group_.start(service, {bin_path("slam-planner"), "--domain", domain});
+      group_.start(service, {bin_path("slam-planner"), "--domain", domain, "--goal-store", group_.dir() + "/goals.json"});
     }
   }
   // Waits until `service` (this very process) sends heartbeats.
@@ -251,7 +251,8 @@ TEST_F(SystemTest, KillNineOfEachServiceAndABrokerRestartLeaveTheRobotDriving) {
       },
       60s, 0ms))
       << "the robot's scene never reached the map\n" << group_.log("gateway") << group_.log("mapper");
-  ASSERT_TRUE(probe_.set_goal(id, GOAL_PLANNED, Scene::kGoal));
+  // Sent by slamctl, which exits: after a planner restart only the planner's goal store has it.
+  ctl("goal", {"goal", id, "planned", std::to_string(Scene::kGoal.x), std::to_string(Scene::kGoal.y)});
   ASSERT_TRUE(wait_until([&] { return !robot.commands().empty(); }, 30s)) << "no waypoint\n" << group_.log("planner");
   // The robot stands at the start: every waypoint it hears must be a first step around the wall.
   const auto first_step = [](const std::string& payload) {
@@ -315,9 +316,12 @@ TEST_F(SystemTest, KillNineOfEachServiceAndABrokerRestartLeaveTheRobotDriving) {
     }
     ASSERT_NO_FATAL_FAILURE(wait_up(service));
     if (service == "planner") {
-      // The waypoints come from the new process: it resumed the standing goal.
+      // The waypoints come from the new process: it resumed the goal from its store, as no
+      // writer holds it any more.
       const auto pid = static_cast<uint32_t>(group_.pid(service));
       EXPECT_TRUE(wait_until([&] { return probe_.counter("planner", pid, "waypoints_sent") > 0; }, 5s));
+      EXPECT_EQ(probe_.counter("planner", pid, "goals_accepted"), 0);
+      EXPECT_NE(group_.log(service).find("1 goal(s) resumed"), std::string::npos) << group_.log(service);
     }
   }
 }

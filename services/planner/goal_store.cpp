@@ -1,0 +1,218 @@
+// GoalStore: the goal file's format, and keeping it current.
+#include "planner/goal_store.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <system_error>
+
+#include "planner/fleet.hpp"
+
+namespace slam::planner {
+namespace {
+
+using nlohmann::json;
+
+constexpr const char* kFormat = "slam-planner-goals";
+constexpr int kVersion = 1;
+constexpr size_t kMaxRobotId = 64;  // NavGoal.robot_id is a string<64>
+
+constexpr std::array<const char*, 7> kModeNames{"idle", "direct", "planned", "square", "explore", "home", "stop"};
+constexpr std::array<const char*, 2> kAnchorNames{"corner", "centred"};
+
+template <size_t N>
+Result<size_t> name_index(const json& value, const std::array<const char*, N>& names, const char* what) {
+  if (value.is_string()) {
+    const auto& text = value.get_ref<const std::string&>();
+    for (size_t i = 0; i < N; ++i)
+      if (text == names[i]) return i;
+  }
+  std::string list;
+  for (const char* n : names) list += (list.empty() ? "" : ", ") + std::string(n);
+  return Error{std::string(what) + " must be one of " + list + ", got " + value.dump()};
+}
+
+Result<Vec2> to_point(const json& value, const std::string& what) {
+  if (!value.is_array() || value.size() != 2 || !value[0].is_number() || !value[1].is_number())
+    return Error{what + " must be [x, y] in metres"};
+  const Vec2 p{value[0].get<double>(), value[1].get<double>()};
+  if (!std::isfinite(p.x) || !std::isfinite(p.y)) return Error{what + " is not finite"};
+  return p;
+}
+
+Result<std::string> to_robot_id(const json& value, const std::string& what) {
+  if (!value.is_string()) return Error{what + " must be a string"};
+  const auto& id = value.get_ref<const std::string&>();
+  if (id.empty() || id.size() > kMaxRobotId) return Error{what + " must be 1 to 64 characters"};
+  return id;
+}
+
+Result<StoredGoal> to_stored_goal(const json& item, size_t index) {
+  const std::string where = "goals[" + std::to_string(index) + "]";
+  if (!item.is_object()) return Error{where + " must be an object"};
+  for (const char* key : {"robot_id", "goal_id", "mode", "target", "sent_ns", "finished"}) {
+    if (!item.contains(key)) return Error{where + " has no \"" + key + "\""};
+  }
+  StoredGoal out;
+  auto id = to_robot_id(item["robot_id"], where + ".robot_id");
+  if (!id) return Error{id.message()};
+  out.robot_id = *id;
+  if (!item["goal_id"].is_number_unsigned()) return Error{where + ".goal_id must be a non-negative integer"};
+  out.goal.goal_id = item["goal_id"].get<uint64_t>();
+  auto mode = name_index(item["mode"], kModeNames, (where + ".mode").c_str());
+  if (!mode) return Error{mode.message()};
+  out.goal.mode = static_cast<GoalMode>(*mode);
+  auto target = to_point(item["target"], where + ".target");
+  if (!target) return Error{target.message()};
+  out.goal.target = *target;
+  if (item.contains("square_size")) {
+    const json& size = item["square_size"];
+    if (!size.is_number() || !std::isfinite(size.get<double>()))
+      return Error{where + ".square_size must be a finite number"};
+    out.goal.square_size = size.get<double>();
+  }
+  if (item.contains("square_anchor")) {
+    auto anchor = name_index(item["square_anchor"], kAnchorNames, (where + ".square_anchor").c_str());
+    if (!anchor) return Error{anchor.message()};
+    out.goal.square_anchor = static_cast<SquareAnchor>(*anchor);
+  }
+  if (!item["sent_ns"].is_number_integer()) return Error{where + ".sent_ns must be an integer"};
+  out.sent_ns = item["sent_ns"].get<int64_t>();
+  if (!item["finished"].is_boolean()) return Error{where + ".finished must be true or false"};
+  out.finished = item["finished"].get<bool>();
+  if (auto s = validate(out.goal); !s) return Error{where + ": " + s.message()};
+  return out;
+}
+
+}  // namespace
+
+Result<GoalRecord> parse_goal_record(std::string_view text) {
+  const json doc = json::parse(text.begin(), text.end(), nullptr, false);
+  if (doc.is_discarded()) return Error{"not valid JSON"};
+  if (!doc.is_object()) return Error{"must be a JSON object"};
+  if (!doc.contains("format") || doc["format"] != kFormat)
+    return Error{std::string("\"format\" must be \"") + kFormat + "\""};
+  if (!doc.contains("version") || doc["version"] != kVersion)
+    return Error{"\"version\" must be " + std::to_string(kVersion) + " (written by a newer planner?)"};
+  GoalRecord record;
+  if (doc.contains("goals")) {
+    const json& goals = doc["goals"];
+    if (!goals.is_array()) return Error{"\"goals\" must be an array"};
+    for (size_t i = 0; i < goals.size(); ++i) {
+      auto goal = to_stored_goal(goals[i], i);
+      if (!goal) return Error{goal.message()};
+      const std::string id = goal->robot_id;
+      if (!record.goals.emplace(id, std::move(*goal)).second)
+        return Error{"goals[" + std::to_string(i) + "]: a second goal for robot '" + id + "'"};
+    }
+  }
+  if (doc.contains("homes")) {
+    const json& homes = doc["homes"];
+    if (!homes.is_object()) return Error{"\"homes\" must be an object of robot_id: [x, y]"};
+    for (const auto& [key, value] : homes.items()) {
+      auto id = to_robot_id(json(key), "homes key '" + key + "'");
+      if (!id) return Error{id.message()};
+      auto home = to_point(value, "homes." + key);
+      if (!home) return Error{home.message()};
+      record.homes.emplace(*id, *home);
+    }
+  }
+  return record;
+}
+
+std::string format_goal_record(const GoalRecord& record) {
+  json goals = json::array();
+  for (const auto& [id, g] : record.goals) {
+    goals.push_back({{"robot_id", id},
+                     {"goal_id", g.goal.goal_id},
+                     {"mode", kModeNames[static_cast<size_t>(g.goal.mode)]},
+                     {"target", {g.goal.target.x, g.goal.target.y}},
+                     {"square_size", g.goal.square_size},
+                     {"square_anchor", kAnchorNames[static_cast<size_t>(g.goal.square_anchor)]},
+                     {"sent_ns", g.sent_ns},
+                     {"finished", g.finished}});
+  }
+  json homes = json::object();
+  for (const auto& [id, p] : record.homes) homes[id] = {p.x, p.y};
+  const json doc{{"format", kFormat}, {"version", kVersion}, {"goals", goals}, {"homes", homes}};
+  // Robot ids come off the network: replace invalid UTF-8 rather than fail to save.
+  return doc.dump(1, ' ', false, json::error_handler_t::replace) + "\n";
+}
+
+std::vector<StoredGoal> goals_to_resume(const GoalRecord& record) {
+  std::vector<StoredGoal> out;
+  for (const auto& [id, g] : record.goals)
+    if (!g.finished) out.push_back(g);
+  std::stable_sort(out.begin(), out.end(), [](const StoredGoal& a, const StoredGoal& b) {
+    if (a.sent_ns != b.sent_ns) return a.sent_ns < b.sent_ns;
+    return a.robot_id == kAllRobots && b.robot_id != kAllRobots;
+  });
+  return out;
+}
+
+Result<GoalStore> GoalStore::open(const std::string& path) {
+  GoalStore store;
+  store.path_ = path;
+  if (path.empty()) return store;
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    std::error_code ec;
+    if (std::filesystem::exists(path, ec)) return Error{"goal store " + path + ": cannot be read"};
+    return store;
+  }
+  std::ostringstream text;
+  text << in.rdbuf();
+  auto record = parse_goal_record(text.str());
+  if (!record) return Error{"goal store " + path + ": " + record.message() + " (fix the file or delete it)"};
+  store.record_ = std::move(*record);
+  return store;
+}
+
+bool GoalStore::is_stale(const std::string& robot_id, int64_t sent_ns) const {
+  const auto it = record_.goals.find(robot_id);
+  return it != record_.goals.end() && sent_ns <= it->second.sent_ns;
+}
+
+void GoalStore::put(const StoredGoal& goal) {
+  record_.goals[goal.robot_id] = goal;
+  dirty_ = true;
+}
+
+void GoalStore::finish(const std::string& robot_id, uint64_t goal_id) {
+  const auto it = record_.goals.find(robot_id);
+  if (it == record_.goals.end() || it->second.goal.goal_id != goal_id || it->second.finished) return;
+  it->second.finished = true;
+  dirty_ = true;
+}
+
+void GoalStore::put_home(const std::string& robot_id, Vec2 home) {
+  if (record_.homes.emplace(robot_id, home).second) dirty_ = true;
+}
+
+Status GoalStore::flush() {
+  if (!dirty_ || path_.empty()) {
+    dirty_ = false;
+    return Status::ok();
+  }
+  const std::filesystem::path target(path_);
+  std::error_code ec;
+  if (target.has_parent_path()) std::filesystem::create_directories(target.parent_path(), ec);
+  const std::string temporary = path_ + ".tmp";
+  {
+    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
+    out << format_goal_record(record_);
+    out.flush();
+    if (!out) return Error{"goal store " + temporary + ": cannot be written"};
+  }
+  std::filesystem::rename(temporary, target, ec);
+  if (ec) return Error{"goal store " + path_ + ": " + ec.message()};
+  dirty_ = false;
+  return Status::ok();
+}
+
+}  // namespace slam::planner
