@@ -35,7 +35,8 @@ MapperNode::Metrics::Metrics(Counters& c)
       store_observations(c.get("store_observations")),
       store_bytes(c.get("store_bytes")),
       store_errors(c.get("store_errors")),
-      write_failures(c.get("write_failures")) {}
+      write_failures(c.get("write_failures")),
+      robot_hits_filtered(c.get("robot_hits_filtered")) {}
 
 ObservationView MapperNode::Deferred::view() const {
   ObservationView v;
@@ -53,6 +54,7 @@ MapperNode::MapperNode(const MapperOptions& options, Counters& counters)
       metrics_(counters),
       patch_period_(seconds(1.0 / options.patch_rate_hz)),
       snapshot_period_(seconds(options.snapshot_period_s)),
+      footprints_(options.robot_filter),
       intake_(options.max_queued_observations),
       worker_([this] { intake_.notify(); }) {}
 
@@ -162,6 +164,14 @@ void MapperNode::run_once() {
 void MapperNode::integrate(const slam::RobotObservation& sample) {
   const std::string_view robot(sample.robot_id().c_str(), sample.robot_id().size());
   auto view = to_view(sample, &hits_, &misses_);
+  if (view) {
+    const size_t moved = footprints_.apply(robot, view->x, view->y, monotonic_ns(), &hits_, &misses_);
+    if (moved > 0) {
+      bump(metrics_.robot_hits_filtered, static_cast<int64_t>(moved));
+      view->hits = hits_;
+      view->misses = misses_;
+    }
+  }
   Result<IntegrateStats> stats = view ? grid_->integrate(*view) : Result<IntegrateStats>(Error{view.message()});
   if (!stats) {
     bump(metrics_.rejected);

@@ -61,6 +61,7 @@ class MapperNode {
     std::atomic<int64_t>& store_bytes;
     std::atomic<int64_t>& store_errors;
     std::atomic<int64_t>& write_failures;
+    std::atomic<int64_t>& robot_hits_filtered;
   };
 
   // An observation integrated while a rebuild runs, kept for the new grid and the store.
@@ -125,6 +126,7 @@ class MapperNode {
   std::chrono::steady_clock::time_point next_store_stat_;
   std::vector<Point2d> hits_;
   std::vector<Point2d> misses_;
+  RobotFootprints footprints_;
   std::vector<Deferred> deferred_;         // observations integrated during a rebuild
   std::optional<RebuildTicket> ticket_;    // the running rebuild's
   std::deque<MapCommand> queued_;          // requests waiting for the rebuild

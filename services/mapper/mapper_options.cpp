@@ -33,6 +33,13 @@ void add_mapper_options(CLI::App& app, MapperOptions& o) {
   app.add_option("--grid-max-range-m", g.max_range_m, "a point farther than this from its robot is rejected")
       ->capture_default_str();
 
+  app.add_option("--robot-filter-radius-m", o.robot_filter.radius_m,
+                 "a hit this close to another robot's reported position is not an obstacle (0: off)")
+      ->capture_default_str();
+  app.add_option("--robot-filter-max-age-s", o.robot_filter.max_age_s,
+                 "a robot position older than this no longer filters hits")
+      ->capture_default_str();
+
   app.add_option("--patch-rate", o.patch_rate_hz, "GridPatch rate (Hz)")->capture_default_str();
   app.add_option("--snapshot-period", o.snapshot_period_s, "full GridSnapshot at least every S seconds")
       ->capture_default_str();
@@ -49,6 +56,7 @@ Status validate(const MapperOptions& o) {
   if (o.store.empty()) return Error{"store: must name a file"};
   if (o.store_batch < 1 || o.store_batch > 100000) return Error{"store_batch: must be between 1 and 100000"};
   if (auto s = validate(o.grid); !s) return Error{"grid." + s.message()};
+  if (auto s = validate(o.robot_filter); !s) return s;
   if (!std::isfinite(o.patch_rate_hz) || o.patch_rate_hz < 0.1 || o.patch_rate_hz > 1000.0)
     return Error{"patch_rate: must be between 0.1 and 1000 Hz"};
   if (!std::isfinite(o.snapshot_period_s) || o.snapshot_period_s < 0.1 || o.snapshot_period_s > 3600.0)

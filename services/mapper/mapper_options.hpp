@@ -10,6 +10,7 @@
 #include "common/result.hpp"
 #include "common/service_options.hpp"
 #include "mapper/grid_config.hpp"
+#include "mapper/robot_footprints.hpp"
 
 namespace slam::mapper {
 
@@ -21,6 +22,7 @@ struct MapperOptions {
   // The layout of a new store. A store remembers the layout GridConfig requests set last; that layout
   // (resolution, origin, size, inflation, legacy mode) wins over these flags at start.
   GridConfig grid;
+  FootprintConfig robot_filter;    // hits on other robots become misses
   double patch_rate_hz = 10.0;     // GridPatch rate (the changed box since the last patch)
   double snapshot_period_s = 5.0;  // a full GridSnapshot at least this often
   size_t max_queued_observations = 100000;  // intake bound: beyond it observations are dropped, counted
