@@ -13,20 +13,22 @@
 #include <string_view>
 #include <vector>
 
+#include "common/bounded_text.hpp"
 #include "gateway/robot_registry.hpp"
 #include "gateway/traffic_queue.hpp"
 #include "protocol/codec_types.hpp"
 
 namespace slam::gateway {
 
-// Sets a bounded DDS string from `text`, cut to N bytes. (fixed_string::assign does not write the
-// terminating NUL, so a shorter value would keep the tail of a longer one: go through a C string.)
+// Sets a bounded DDS string from `text`, cut to N bytes at a character boundary. (fixed_string::assign
+// does not write the terminating NUL, so a shorter value would keep the tail of a longer one: go
+// through a C string.)
 template <std::size_t N>
 void set_text(eprosima::fastrtps::fixed_string<N>& out, std::string_view text) {
   char buffer[N + 1];
-  const std::size_t n = std::min(text.size(), N);
-  std::memcpy(buffer, text.data(), n);
-  buffer[n] = '\0';
+  const std::string_view cut = bounded_prefix(text, N);
+  std::memcpy(buffer, cut.data(), cut.size());
+  buffer[cut.size()] = '\0';
   out = static_cast<const char*>(buffer);
 }
 

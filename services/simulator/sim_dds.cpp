@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cstring>
 
+#include "common/bounded_text.hpp"
 #include "common/clock.hpp"
 #include "common/topics.hpp"
 
@@ -67,12 +68,9 @@ slam_Pose2 to_idl(const Pose& p) {
 }  // namespace
 
 void copy_bounded(std::string_view text, char* out, size_t capacity) {
-  size_t n = std::min(text.size(), capacity - 1);
-  // Never end inside a multi-byte character: back up over continuation bytes.
-  if (n < text.size())
-    while (n > 0 && (static_cast<unsigned char>(text[n]) & 0xC0) == 0x80) --n;
-  std::memcpy(out, text.data(), n);
-  out[n] = '\0';
+  const std::string_view cut = bounded_prefix(text, capacity - 1);
+  std::memcpy(out, cut.data(), cut.size());
+  out[cut.size()] = '\0';
 }
 
 Result<std::unique_ptr<SimDds>> SimDds::create(int domain) {
