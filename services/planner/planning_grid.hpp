@@ -6,18 +6,11 @@
 #include <span>
 #include <vector>
 
+#include "common/cell_class.hpp"
 #include "common/result.hpp"
 #include "planner/plan_types.hpp"
 
 namespace slam::planner {
-
-// Cell octet layout, the same values as the CELL_* constants in map.idl.
-inline constexpr uint8_t kCellUnknown = 0;
-inline constexpr uint8_t kCellFree = 1;
-inline constexpr uint8_t kCellOccupied = 2;
-inline constexpr uint8_t kCellStateMask = 3;
-inline constexpr uint8_t kCellInflated = 4;
-inline constexpr uint8_t kCellObstructed = 8;
 
 struct GridGeometry {
   uint32_t width = 0;       // cells

@@ -6,20 +6,14 @@
 #include <cstdint>
 #include <string>
 
+#include "common/cell_class.hpp"
+
 namespace slam::viewer {
 
 struct Rgba {
   float r = 0.0f, g = 0.0f, b = 0.0f, a = 1.0f;
   bool operator==(const Rgba&) const = default;
 };
-
-// Cell octet bits, as in idl/map.idl.
-inline constexpr uint8_t kCellUnknown = 0;
-inline constexpr uint8_t kCellFree = 1;
-inline constexpr uint8_t kCellOccupied = 2;
-inline constexpr uint8_t kCellStateMask = 3;
-inline constexpr uint8_t kCellInflated = 4;
-inline constexpr uint8_t kCellObstructed = 8;
 
 // Operator-adjustable colours (Grid tab); local to the viewer.
 struct GridColors {
