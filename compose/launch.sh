@@ -28,13 +28,14 @@ usage: scripts/run.sh [options]      (or BIN=build/bin compose/launch.sh [option
                        (also the default when \$DISPLAY is not set)
   --world NAME|FILE    simulated world (built-in: ${BUILT_IN_WORLDS// /, }; or a world file) [$WORLD]
   --robots N           simulated robots (0..5000)                                   [$ROBOTS]
-  --mode explore|idle  explore: send every robot exploring at start; idle: wait for goals [$MODE]
+  --mode explore|idle  explore: send every robot exploring at start; idle: wait for goals
+                       (goals kept in --data from an earlier run resume either way)  [$MODE]
   --no-sim             real robots only
-  --fresh              start with an empty map (deletes the map store in --data first)
+  --fresh              start afresh: deletes the map store and the planner's goals in --data
   --domain N           DDS domain id (0..232)                                       [$DOMAIN]
   --broker URL         use this MQTT broker instead of starting mosquitto
   --port N             port of the local mosquitto                                  [$PORT]
-  --data DIR           map store directory                                          [$DATA]
+  --data DIR           map store and planner goal file directory                    [$DATA]
   --logs DIR           one log file per service                                     [$LOG_DIR]
   --snapshots DIR      headless viewer: snapshot-NNNN.png and latest.png go here    [$SNAP_DIR]
   --snapshot-period S  headless viewer: seconds between snapshots                   [$SNAP_PERIOD]
@@ -99,8 +100,8 @@ if ((HEADLESS_VIEWER)); then
   snap_abs=$(cd "$SNAP_DIR" && pwd)
 fi
 if ((FRESH)); then
-  rm -f "$DATA"/map.db "$DATA"/map.db-* "$DATA/world"
-  echo "run: --fresh: removed the map store in $DATA"
+  rm -f "$DATA"/map.db "$DATA"/map.db-* "$DATA/world" "$DATA/goals.json"
+  echo "run: --fresh: removed the map store and the planner's goals in $DATA"
 elif ((SIM)) && [ -f "$DATA/map.db" ] && [ -f "$DATA/world" ] && [ "$(cat "$DATA/world")" != "$WORLD" ]; then
   echo "run: note: the map store in $DATA was built in world '$(cat "$DATA/world")', now '$WORLD': the map mixes both (add --fresh to start empty)" >&2
 fi
@@ -172,7 +173,7 @@ fi
 common=(--domain "$DOMAIN")
 start gateway "$BIN/slam-gateway" "${common[@]}" --broker "$BROKER"
 start mapper "$BIN/slam-mapper" "${common[@]}" --store "$DATA/map.db"
-start planner "$BIN/slam-planner" "${common[@]}"
+start planner "$BIN/slam-planner" "${common[@]}" --goal-store "$DATA/goals.json"
 if ((SIM)); then
   start simulator "$BIN/slam-simulator" "${common[@]}" --broker "$BROKER" --world "$WORLD" --robots "$ROBOTS"
 fi
