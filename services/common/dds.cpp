@@ -86,6 +86,10 @@ Result<std::unique_ptr<Participant>> Participant::create(int domain_id, const st
     udp->receiveBufferSize = 4 * 1024 * 1024;
     udp->sendBufferSize = 4 * 1024 * 1024;
     pqos.transport().user_transports.push_back(udp);
+    // A restarted service must be matched again within the 3 s the system promises. When its first
+    // multicast announcements are missed, peers only learn of it from the periodic one (3 s by
+    // default): announce every second instead (one small packet per participant).
+    pqos.wire_protocol().builtin.discovery_config.leaseDuration_announcementperiod = eprosima::fastrtps::Duration_t(1, 0);
   }
   std::unique_ptr<Participant> p(new Participant());
   p->domain_id_ = domain_id;
