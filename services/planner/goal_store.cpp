@@ -89,6 +89,9 @@ Result<StoredGoal> to_stored_goal(const json& item, size_t index) {
   return out;
 }
 
+// Robot ids come off the network: invalid UTF-8 is replaced rather than failing the save.
+std::string dump(const nlohmann::ordered_json& value) { return value.dump(-1, ' ', false, nlohmann::ordered_json::error_handler_t::replace); }
+
 }  // namespace
 
 Result<GoalRecord> parse_goal_record(std::string_view text) {
@@ -126,22 +129,23 @@ Result<GoalRecord> parse_goal_record(std::string_view text) {
 }
 
 std::string format_goal_record(const GoalRecord& record) {
-  json goals = json::array();
+  // One goal per line: small enough to read and to diff by hand.
+  std::string goals;
   for (const auto& [id, g] : record.goals) {
-    goals.push_back({{"robot_id", id},
-                     {"goal_id", g.goal.goal_id},
-                     {"mode", kModeNames[static_cast<size_t>(g.goal.mode)]},
-                     {"target", {g.goal.target.x, g.goal.target.y}},
-                     {"square_size", g.goal.square_size},
-                     {"square_anchor", kAnchorNames[static_cast<size_t>(g.goal.square_anchor)]},
-                     {"sent_ns", g.sent_ns},
-                     {"finished", g.finished}});
+    const nlohmann::ordered_json goal{{"robot_id", id},
+                    {"goal_id", g.goal.goal_id},
+                    {"mode", kModeNames[static_cast<size_t>(g.goal.mode)]},
+                    {"target", {g.goal.target.x, g.goal.target.y}},
+                    {"square_size", g.goal.square_size},
+                    {"square_anchor", kAnchorNames[static_cast<size_t>(g.goal.square_anchor)]},
+                    {"sent_ns", g.sent_ns},
+                    {"finished", g.finished}};
+    goals += (goals.empty() ? "\n  " : ",\n  ") + dump(goal);
   }
-  json homes = json::object();
+  nlohmann::ordered_json homes = nlohmann::ordered_json::object();
   for (const auto& [id, p] : record.homes) homes[id] = {p.x, p.y};
-  const json doc{{"format", kFormat}, {"version", kVersion}, {"goals", goals}, {"homes", homes}};
-  // Robot ids come off the network: replace invalid UTF-8 rather than fail to save.
-  return doc.dump(1, ' ', false, json::error_handler_t::replace) + "\n";
+  return std::string("{\"format\": \"") + kFormat + "\", \"version\": " + std::to_string(kVersion) +
+         ",\n \"goals\": [" + goals + (goals.empty() ? "" : "\n ") + "],\n \"homes\": " + dump(homes) + "}\n";
 }
 
 std::vector<StoredGoal> goals_to_resume(const GoalRecord& record) {
