@@ -14,6 +14,7 @@ PACKAGES=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libsqlite3-dev libcli11-dev libspdlog-dev nlohmann-json3-dev libyaml-cpp-dev libstb-dev
   jq
+  docker-compose  # validates compose/docker-compose.yml in tests (no Docker engine needed)
 )
 
 missing=()

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <utility>
 
+#include "common/square_path.hpp"
 #include "planner/line_of_sight.hpp"
 
 namespace slam::planner {
@@ -32,9 +33,9 @@ Status validate(const TrackerConfig& config) {
   return Status::ok();
 }
 
-std::vector<Vec2> square_corners(Vec2 target, double size, SquareAnchor anchor) {
-  const Vec2 c0 = anchor == SquareAnchor::Corner ? target : Vec2{target.x - size / 2, target.y - size / 2};
-  return {c0, {c0.x + size, c0.y}, {c0.x + size, c0.y + size}, {c0.x, c0.y + size}, c0};
+std::vector<Vec2> square_path(Vec2 target, double size, SquareAnchor anchor) {
+  const auto c = square_corners(target, size, anchor == SquareAnchor::Centred);
+  return {c[0], c[1], c[2], c[3], c[0]};
 }
 
 bool GoalTracker::plans_paths() const {
@@ -62,7 +63,7 @@ void GoalTracker::set_goal(const Goal& goal, Vec2 position, Vec2 home) {
       follow({goal.target}, position);
       break;
     case GoalMode::Square:
-      follow(square_corners(goal.target, goal.square_size, goal.square_anchor), position);
+      follow(square_path(goal.target, goal.square_size, goal.square_anchor), position);
       break;
     case GoalMode::Planned:
       plan_wanted_ = true;

@@ -30,9 +30,8 @@ struct Goal {
 // Ok, or what is wrong with the goal (non-finite target, bad square size).
 Status validate(const Goal& goal);
 
-// The square's corners in driving order, closing back at the first corner. Corner anchor: the
-// target is the first corner and the square extends to +x, +y; Centred: the target is the centre.
-std::vector<Vec2> square_corners(Vec2 target, double size, SquareAnchor anchor);
+// The square path's waypoints: common/square_path.hpp's corners, closing back at the first.
+std::vector<Vec2> square_path(Vec2 target, double size, SquareAnchor anchor);
 
 struct TrackerConfig {
   double reach_tolerance_m = 0.15;  // a waypoint this close counts as reached

@@ -68,6 +68,8 @@ bool MqttLink::start_connect() {
   connect.maxRetryInterval = kMaxRetryS;
   connect.onFailure = &MqttLink::on_connect_failure;
   connect.context = this;
+  if (!options_.username.empty()) connect.username = options_.username.c_str();
+  if (!options_.password.empty()) connect.password = options_.password.c_str();
   MQTTAsync_willOptions will = MQTTAsync_willOptions_initializer;
   if (options_.will) {
     // paho copies the will at connect time and reuses it for automatic reconnects.

@@ -28,6 +28,8 @@ struct MqttWill {
 struct MqttLinkOptions {
   std::string broker;  // tcp://host:port
   std::string client_id;
+  std::string username;  // empty: anonymous
+  std::string password;
   std::vector<std::string> subscriptions;  // subscribed (QoS 1) after every connect
   std::optional<MqttWill> will;
 };

@@ -72,7 +72,11 @@ RobotLinks::~RobotLinks() {
 Result<std::unique_ptr<MqttLink>> RobotLinks::open(const std::string& client_id,
                                                    std::vector<std::string> subscriptions,
                                                    std::optional<MqttWill> will) {
-  MqttLinkOptions options{settings_.broker, client_id, std::move(subscriptions), std::move(will)};
+  MqttLinkOptions options{settings_.broker, client_id, "", "", std::move(subscriptions), std::move(will)};
+  if (!settings_.password.empty() && !settings_.multiplex) {
+    options.username = client_id;  // a robot's connection is named by its robot id
+    options.password = settings_.password;
+  }
   return MqttLink::create(
       std::move(options), [this](std::string_view topic, std::span<const uint8_t> payload) { on_message(topic, payload); },
       link_counters_);

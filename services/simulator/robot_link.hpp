@@ -37,6 +37,9 @@ class RobotLinks {
     RobotProtocol protocol = RobotProtocol::V1;
     bool multiplex = false;
     protocol::CodecLimits limits;
+    // Not empty: each robot's own connection logs in as its robot id with this password (a broker
+    // with a password file and an ACL keyed by user name, like compose/mosquitto).
+    std::string password;
   };
 
   // Registers the counters it keeps (reports_sent, waypoints_received, mqtt_reconnects, ...) and,

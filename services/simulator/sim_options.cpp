@@ -38,6 +38,8 @@ void add_sim_options(CLI::App& app, SimOptions& o) {
       ->check(CLI::Range(0.01, 100.0))
       ->capture_default_str();
   app.add_flag("--mqtt-multiplex", o.mqtt_multiplex, "one MQTT connection for every robot (large fleets)");
+  app.add_option("--mqtt-password", o.mqtt_password,
+                 "each robot logs in as its robot id with this password (a broker with an ACL; prefer a --config file)");
   app.add_option("--units-per-meter", o.units_per_meter, "v1 robot units per metre")
       ->check(CLI::Range(1.0, 10000.0))
       ->capture_default_str();
@@ -73,6 +75,8 @@ protocol::CodecLimits codec_limits(const SimOptions& o) {
 Status validate(const SimOptions& o) {
   if (!o.broker.starts_with("tcp://") && !o.broker.starts_with("mqtt://"))
     return Error{fmt::format("--broker: '{}' is not tcp://HOST:PORT or mqtt://HOST:PORT", o.broker)};
+  if (!o.mqtt_password.empty() && o.mqtt_multiplex)
+    return Error{"--mqtt-password logs each robot in under its own id: drop --mqtt-multiplex (one shared connection)"};
   if (auto c = simulation_config(o); !c) return c.status();
   if (auto s = protocol::validate(codec_limits(o)); !s) return Error{"--units-per-meter: " + s.message()};
   return {};

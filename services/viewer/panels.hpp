@@ -48,6 +48,7 @@ struct RobotsPanel {
 struct DrivePanel {
   double target_x = 0.0;
   double target_y = 0.0;
+  int corner_mode = 0;  // corner buttons send 0 direct, 1 planned goals
   void draw(ViewerState& state, CommandSink& sink);
 };
 

@@ -51,8 +51,8 @@ bool accumulated(const RobotSettings& s) { return s.visible && s.last_n == 0; }
 
 }  // namespace
 
-Status PointLayer::init(uint32_t point_budget) {
-  budget_ = point_budget;
+Status PointLayer::init(const PacerConfig& pacing) {
+  pacer_ = PointPacer(pacing);
   auto p = GlProgram::build("points", kPointVertex, kPointFragment);
   if (!p) return Error{p.message()};
   points_ = std::move(*p);
@@ -182,7 +182,8 @@ void PointLayer::draw_range(const RobotBuffer& b, const RobotSettings& s, size_t
   stats_.points_drawn += count;
 }
 
-bool PointLayer::advance(Target& t, const RobotRegistry& robots, uint64_t budget, double fb_scale) {
+bool PointLayer::advance(Target& t, const RobotRegistry& robots, double fb_scale) {
+  uint64_t budget = stats_.step_budget;
   if (t.drawn.size() < robots.size()) t.drawn.resize(robots.size(), 0);
   float m[9];
   t.view.world_to_ndc().to_mat3(m);
@@ -207,6 +208,9 @@ bool PointLayer::advance(Target& t, const RobotRegistry& robots, uint64_t budget
     }
     if (t.drawn[i] < end) complete = false;
   }
+  const uint64_t added = stats_.step_budget - budget;
+  stats_.points_accumulated += added;
+  unpaced_points_ += added;
   if (bound) glBindFramebuffer(GL_FRAMEBUFFER, 0);
   return complete;
 }
@@ -225,8 +229,15 @@ void PointLayer::show(const Target& t, const Affine2& delta) {
   glBindVertexArray(0);
 }
 
+void PointLayer::end_frame(double frame_ms) {
+  pacer_.record(unpaced_points_, frame_ms);
+  unpaced_points_ = 0;
+}
+
 void PointLayer::draw(const ViewTransform& view, const PixelRect& px, const RobotRegistry& robots, double fb_scale) {
   stats_.points_drawn = 0;
+  stats_.points_accumulated = 0;
+  stats_.step_budget = pacer_.budget();
   fingerprint(robots, fp_scratch_);
   const bool moving = !have_last_view_ || last_view_ != view;
   have_last_view_ = true;
@@ -241,12 +252,12 @@ void PointLayer::draw(const ViewTransform& view, const PixelRect& px, const Robo
   bool complete = false;
   if (current(shown, view, fp_scratch_, px)) {
     // Usually just the points that arrived since the last frame (or the rest of a first fill).
-    complete = advance(shown, robots, budget_, fb_scale);
+    complete = advance(shown, robots, fb_scale);
     display = &shown;
   } else if (!moving || !shown.valid) {
     // The view holds still (or nothing was ever shown): render a fresh texture, budget-limited.
     if (!current(work, view, fp_scratch_, px)) reset(work, view, fp_scratch_, px);
-    complete = advance(work, robots, budget_, fb_scale);
+    complete = advance(work, robots, fb_scale);
     if (complete || !shown.valid) {
       shown_ = 1 - shown_;
       display = &work;

@@ -5,8 +5,9 @@
 // - robots that show every point are rendered into an accumulation texture (an FBO) once, and the
 //   texture is drawn each frame; new points are added to it incrementally;
 // - while the view moves, the last finished texture is shown re-projected (one textured quad);
-//   once the view holds still, a new texture is rendered with at most `budget` points per frame
-//   and swapped in when complete;
+//   once the view holds still, a new texture is rendered in steps and swapped in when complete.
+//   Each step rasterises as many points as fit the target frame time (PointPacer, fed with the
+//   time of earlier frames), so no frame overruns whatever the renderer or the load;
 // - robots limited to their last N points are drawn straight from their VBO (N is bounded).
 #include <cstdint>
 #include <vector>
@@ -14,6 +15,7 @@
 #include "common/result.hpp"
 #include "viewer/gl_program.hpp"
 #include "viewer/gl_viewport.hpp"
+#include "viewer/point_pacer.hpp"
 #include "viewer/robot_registry.hpp"
 
 namespace slam::viewer {
@@ -25,16 +27,22 @@ class PointLayer {
   PointLayer(const PointLayer&) = delete;
   PointLayer& operator=(const PointLayer&) = delete;
 
-  Status init(uint32_t point_budget);
+  // `pacing` must be valid (validate(PacerConfig)).
+  Status init(const PacerConfig& pacing);
   // Uploads the points each robot gained since the last call.
   void sync(const RobotRegistry& robots);
   // Draws into `px` (the map viewport of `view` in framebuffer pixels).
   void draw(const ViewTransform& view, const PixelRect& px, const RobotRegistry& robots, double fb_scale);
+  // The frame ended (after the buffer swap) and took `frame_ms`, not counting a frame-rate cap's
+  // sleep: sizes the texture's next steps (PointPacer). Call it every frame, drawn or not.
+  void end_frame(double frame_ms);
 
   struct Stats {
     uint64_t points_drawn = 0;  // rasterised this frame (accumulation + direct)
+    uint64_t points_accumulated = 0;  // of those, into the accumulation texture
     bool settled = false;       // the texture shown matches the current view and settings
     size_t gpu_bytes = 0;       // vertex buffers + accumulation textures
+    uint64_t step_budget = 0;   // points the texture could take this frame
   };
   const Stats& stats() const { return stats_; }
 
@@ -60,7 +68,8 @@ class PointLayer {
   void grow(RobotBuffer& b, size_t points);
   bool current(const Target& t, const ViewTransform& view, const std::vector<float>& fp, const PixelRect& px) const;
   void reset(Target& t, const ViewTransform& view, const std::vector<float>& fp, const PixelRect& px);
-  bool advance(Target& t, const RobotRegistry& robots, uint64_t budget, double fb_scale);
+  // Adds up to stats_.step_budget points to `t`; true once it holds them all.
+  bool advance(Target& t, const RobotRegistry& robots, double fb_scale);
   void draw_range(const RobotBuffer& b, const RobotSettings& s, size_t first, size_t count, const float m[9],
                   double fb_scale);
   void show(const Target& t, const Affine2& delta);
@@ -69,7 +78,8 @@ class PointLayer {
   GlProgram points_;
   GlProgram blit_;
   GLuint blit_vao_ = 0;
-  uint32_t budget_ = 500'000;
+  PointPacer pacer_{PacerConfig{}};
+  uint64_t unpaced_points_ = 0;  // rasterised into a texture since the last end_frame()
   std::vector<RobotBuffer> buffers_;
   Target targets_[2];
   int shown_ = 0;

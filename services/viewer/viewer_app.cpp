@@ -50,7 +50,7 @@ Status ViewerApp::init_graphics() {
     return Error{"cannot initialise the Dear ImGui GLFW/OpenGL3 backends"};
   imgui_ready_ = true;
   if (Status s = grid_layer_.init(); !s) return s;
-  if (Status s = point_layer_.init(options_.point_budget); !s) return s;
+  if (Status s = point_layer_.init(pacer_config(options_)); !s) return s;
   return {};
 }
 
@@ -192,7 +192,9 @@ int ViewerApp::run() {
     if (snapshot_schedule_ && snapshot_schedule_->due(monotonic_ns())) take_snapshot(monotonic_ns());
     glfwSwapBuffers(window_->handle());
     const auto spent = std::chrono::steady_clock::now() - t0;
-    state_.frame_ms = 0.9 * state_.frame_ms + 0.1 * std::chrono::duration<double, std::milli>(spent).count();
+    const double spent_ms = std::chrono::duration<double, std::milli>(spent).count();
+    point_layer_.end_frame(spent_ms);
+    state_.frame_ms = 0.9 * state_.frame_ms + 0.1 * spent_ms;
     if (spent < period) std::this_thread::sleep_for(period - spent);
   }
   return 0;

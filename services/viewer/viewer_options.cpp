@@ -1,6 +1,7 @@
 // slam-viewer flags and their validation (see viewer_options.hpp).
 #include "viewer/viewer_options.hpp"
 
+#include <algorithm>
 #include <cstdio>
 
 namespace slam::viewer {
@@ -39,7 +40,10 @@ void add_viewer_options(CLI::App& app, ViewerOptions& o) {
       ->capture_default_str();
   app.add_option("--max-points", o.max_points_per_robot, "measurement points kept per robot")
       ->capture_default_str();
-  app.add_option("--point-budget", o.point_budget, "points drawn into the point texture per frame")
+  app.add_option("--point-budget", o.point_budget, "most points drawn into the point texture in one frame")
+      ->capture_default_str();
+  app.add_option("--point-frame-ms", o.point_frame_ms,
+                 "frame time in ms the point texture's re-render aims at (sizes its steps)")
       ->capture_default_str();
   app.add_option("--left-click", o.left_click, "left click: nothing|target|obstruct|unobstruct")
       ->capture_default_str();
@@ -68,6 +72,7 @@ Status validate(ViewerOptions& o) {
   if (!o.snapshot_dir.empty() && !o.screenshot.empty())
     return Error{"--snapshot-dir and --screenshot exclude each other (periodic snapshots vs one and exit)"};
   if (o.point_budget < 1000) return Error{"--point-budget must be at least 1000"};
+  if (!(o.point_frame_ms >= 1.0 && o.point_frame_ms <= 1000.0)) return Error{"--point-frame-ms must be 1..1000"};
   auto left = parse_click_action(o.left_click);
   if (!left) return Error{"--left-click: " + left.message()};
   auto right = parse_click_action(o.right_click);
@@ -85,6 +90,15 @@ Status validate(ViewerOptions& o) {
     o.clicks.push_back(*c);
   }
   return {};
+}
+
+PacerConfig pacer_config(const ViewerOptions& o) {
+  PacerConfig c;
+  c.frame_ms = o.point_frame_ms;
+  c.max_points = o.point_budget;
+  c.min_points = std::min<uint64_t>(c.min_points, o.point_budget);
+  c.first_points = std::min<uint64_t>(c.first_points, o.point_budget);
+  return c;
 }
 
 }  // namespace slam::viewer

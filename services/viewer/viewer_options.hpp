@@ -10,6 +10,7 @@
 #include "common/result.hpp"
 #include "common/service_options.hpp"
 #include "viewer/click_actions.hpp"
+#include "viewer/point_pacer.hpp"
 
 namespace slam::viewer {
 
@@ -38,7 +39,8 @@ struct ViewerOptions {
   double fps = 60.0;             // frame cap (Xvfb has no vsync)
   float panel_width = 420.0f;    // control panel on the left; the map takes the rest
   uint32_t max_points_per_robot = 16u << 20;
-  uint32_t point_budget = 200'000;  // points rasterised into the point texture per frame (bounds a frame's cost)
+  uint32_t point_budget = 2'000'000;  // most points rasterised into the point texture in one frame
+  double point_frame_ms = 60.0;      // frame time the point texture's re-render aims at
   std::string left_click = "target";
   std::string right_click = "obstruct";
   std::vector<std::string> click_texts;
@@ -57,5 +59,7 @@ struct ViewerOptions {
 void add_viewer_options(CLI::App& app, ViewerOptions& o);
 // Checks ranges and parses --click / --left-click / --right-click; the error names the flag.
 Status validate(ViewerOptions& o);
+// The point texture's step sizing from --point-budget and --point-frame-ms (valid once o is).
+PacerConfig pacer_config(const ViewerOptions& o);
 
 }  // namespace slam::viewer

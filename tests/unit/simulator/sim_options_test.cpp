@@ -73,5 +73,14 @@ TEST(SimOptions, BadValuesNameTheFlag) {
   EXPECT_THAT(validate(o).message(), HasSubstr("--broker"));
 }
 
+TEST(SimOptions, PasswordNeedsOneConnectionPerRobot) {
+  SimOptions o;
+  ASSERT_EQ(parse(o, {"--mqtt-password", "s3cret"}), "");
+  EXPECT_EQ(o.mqtt_password, "s3cret");
+  EXPECT_TRUE(validate(o));
+  o.mqtt_multiplex = true;  // one shared connection cannot log in as every robot
+  EXPECT_THAT(validate(o).message(), HasSubstr("--mqtt-password"));
+}
+
 }  // namespace
 }  // namespace slam::sim

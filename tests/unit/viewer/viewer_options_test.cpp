@@ -35,6 +35,22 @@ TEST(ViewerOptionsTest, BadValuesNameTheFlag) {
             std::string::npos);
 }
 
+TEST(ViewerOptionsTest, PointPacingComesFromItsFlags) {
+  EXPECT_NE(error_for([](ViewerOptions& o) { o.point_frame_ms = 0.5; }).find("--point-frame-ms"), std::string::npos);
+  EXPECT_NE(error_for([](ViewerOptions& o) { o.point_budget = 10; }).find("--point-budget"), std::string::npos);
+  ViewerOptions o;
+  o.point_budget = 2'000;  // below the pacer's usual minimum and first step: both follow it down
+  o.point_frame_ms = 45.0;
+  ASSERT_TRUE(validate(o));
+  const PacerConfig c = pacer_config(o);
+  EXPECT_TRUE(validate(c));
+  EXPECT_EQ(c.max_points, 2'000u);
+  EXPECT_EQ(c.first_points, 2'000u);
+  EXPECT_DOUBLE_EQ(c.frame_ms, 45.0);
+  const ViewerOptions defaults;
+  EXPECT_TRUE(validate(pacer_config(defaults)));
+}
+
 TEST(ViewerOptionsTest, ClickSpecsParse) {
   auto c = parse_click_spec("640.5,400,right@12");
   ASSERT_TRUE(c) << c.message();
