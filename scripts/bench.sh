@@ -80,8 +80,10 @@ for name in "${SELECTED[@]}"; do
   read -r -a extra <<<"$(args_for "$name")"
   cmd+=("${extra[@]}")
   # The viewer renders through GLFW: without a display it runs under Xvfb (Mesa llvmpipe).
+  # -noreset: each benchmark closes its window, and an Xvfb resetting after its last client
+  # refuses the next benchmark's connection.
   if [ "$name" = viewer ] && [ -z "${DISPLAY:-}" ]; then
-    cmd=(xvfb-run -a -s "-screen 0 1280x800x24" "${cmd[@]}")
+    cmd=(xvfb-run -a -s "-screen 0 1280x800x24 -noreset" "${cmd[@]}")
   fi
   read -r -a environment <<<"$(env_for "$name")"
   echo "bench: running bench_$name (log $log)"
@@ -89,6 +91,7 @@ for name in "${SELECTED[@]}"; do
   if ! env "${environment[@]}" "${cmd[@]}" >"$log" 2>&1; then
     echo "bench: bench_$name failed; last lines of $log:" >&2
     tail -n 15 "$log" >&2
+    rm -f "$json"  # cut off mid-run: the table shows its figures as not run
     failed+=("$name")
     continue
   fi
