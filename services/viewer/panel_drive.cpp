@@ -57,9 +57,9 @@ void DrivePanel::draw(ViewerState& state, CommandSink& sink) {
   ImGui::InputDouble("side m", &state.square_size, 0.1, 0.5, "%.2f");
   if (state.square_size < 0.1) state.square_size = 0.1;
   int anchor = state.square_centred ? 1 : 0;
-  ImGui::RadioButton("target is the first corner (+x, +y)", &anchor, 0);
+  ImGui::RadioButton("target = first corner (+x, +y)", &anchor, 0);
   ImGui::SameLine();
-  ImGui::RadioButton("target is the centre", &anchor, 1);
+  ImGui::RadioButton("target = centre", &anchor, 1);
   state.square_centred = anchor == 1;
   if (ImGui::Button("drive the square")) send(state, sink, drive_goal(drive(), GoalMode::Square));
   ImGui::TextUnformatted("drive to one corner:");
