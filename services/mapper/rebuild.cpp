@@ -1,8 +1,20 @@
-// Rebuild: replays the store into a new grid. Rows stream from SQLite into reused buffers, so the
-// only memory that grows is the grid itself.
+// Rebuild: replays the store into a new grid. Rows stream from SQLite into a few reused batches,
+// so the only memory that grows is the grid itself.
 #include "mapper/rebuild.hpp"
 
+#include <thread>
+
+#include "mapper/observation_batches.hpp"
+
 namespace slam::mapper {
+namespace {
+
+// Enough per batch that the hand-off costs nothing next to the ray casting; three batches let the
+// reader fill one while the integrator works through another.
+constexpr size_t kBatchObservations = 2048;
+constexpr size_t kBatchesInFlight = 3;
+
+}  // namespace
 
 Result<OccupancyGrid> rebuild_grid(const GridConfig& config, ObservationStore& store, RebuildStats* stats) {
   RebuildStats local;
@@ -19,16 +31,35 @@ Result<OccupancyGrid> rebuild_grid(const GridConfig& config, ObservationStore& s
     else if (st.first_error.empty()) st.first_error = cells.message();
   }
 
-  const Status read = store.for_each([&](const ObservationRecord& rec) {
-    auto r = grid->integrate(rec.obs);
-    if (!r) {
-      ++st.rejected;
-      if (st.first_error.empty()) st.first_error = "observation " + std::to_string(rec.id) + ": " + r.message();
-      return;
-    }
-    ++st.observations;
-    st.clipped += r->clipped;
+  // SQLite reads and decodes on a second thread while this one ray-casts: together they take
+  // about as long as the ray casting alone (docs/performance.md, mapper rebuild).
+  ObservationBatches batches(kBatchesInFlight);
+  Status read = Status::ok();
+  std::thread reader([&] {
+    ObservationBatch* batch = batches.take_empty();
+    read = store.for_each([&](const ObservationRecord& rec) {
+      batch->add(rec.id, rec.obs);
+      if (batch->entries.size() < kBatchObservations) return;
+      batches.push_full(batch);
+      batch = batches.take_empty();
+    });
+    if (!batch->entries.empty()) batches.push_full(batch);
+    batches.finish();
   });
+  while (ObservationBatch* batch = batches.pop_full()) {
+    batch->for_each([&](int64_t id, const ObservationView& obs) {
+      auto r = grid->integrate(obs);
+      if (!r) {
+        ++st.rejected;
+        if (st.first_error.empty()) st.first_error = "observation " + std::to_string(id) + ": " + r.message();
+        return;
+      }
+      ++st.observations;
+      st.clipped += r->clipped;
+    });
+    batches.give_back(batch);
+  }
+  reader.join();
   if (!read) return Error{read.message()};
 
   auto obstructions = store.obstructions();
