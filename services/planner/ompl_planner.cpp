@@ -91,9 +91,17 @@ class GridMotionValidator : public ob::MotionValidator {
   UnknownPolicy policy_;
 };
 
-ob::PlannerPtr make_planner(std::string_view name, const ob::SpaceInformationPtr& si) {
-  if (name == "rrtconnect") return std::make_shared<og::RRTConnect>(si);
-  if (name == "rrtstar") return std::make_shared<og::RRTstar>(si);
+ob::PlannerPtr make_planner(std::string_view name, const ob::SpaceInformationPtr& si, double range_m) {
+  if (name == "rrtconnect") {
+    auto p = std::make_shared<og::RRTConnect>(si);
+    if (range_m > 0.0) p->setRange(range_m);
+    return p;
+  }
+  if (name == "rrtstar") {
+    auto p = std::make_shared<og::RRTstar>(si);
+    if (range_m > 0.0) p->setRange(range_m);
+    return p;
+  }
   if (name == "prmstar") return std::make_shared<og::PRMstar>(si);
   return nullptr;
 }
@@ -104,7 +112,7 @@ bool is_ompl_algorithm(std::string_view name) {
   return name == "rrtconnect" || name == "rrtstar" || name == "prmstar";
 }
 
-OmplPlanner::OmplPlanner(uint32_t seed) {
+OmplPlanner::OmplPlanner(uint32_t seed, double range_m) : range_m_(range_m) {
   static std::once_flag seeded;
   std::call_once(seeded, [seed] { ompl::RNG::setSeed(seed); });
   ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
@@ -127,7 +135,7 @@ OmplOutcome OmplPlanner::plan(const PlanningGrid& grid, Vec2 start, Vec2 goal, s
   setup.setStateValidityChecker(std::make_shared<GridValidityChecker>(si, grid, policy));
   si->setMotionValidator(std::make_shared<GridMotionValidator>(si, grid, policy));
   setup.setOptimizationObjective(std::make_shared<ob::PathLengthOptimizationObjective>(si));
-  ob::PlannerPtr planner = make_planner(algorithm, si);
+  ob::PlannerPtr planner = make_planner(algorithm, si, range_m_);
   if (!planner) {
     outcome.status = PlanStatus::InvalidRequest;
     outcome.reason = "unknown OMPL algorithm '" + std::string(algorithm) + "'";

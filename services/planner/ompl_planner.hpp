@@ -24,13 +24,17 @@ struct OmplOutcome {
 class OmplPlanner {
  public:
   // Seeds OMPL's global generator (only the first planner in a process can: OMPL ignores later
-  // seeds once sampling started) and quiets OMPL's logging to warnings.
-  explicit OmplPlanner(uint32_t seed);
+  // seeds once sampling started) and quiets OMPL's logging to warnings. `range_m` > 0 limits each
+  // RRT extension (0: OMPL's default).
+  OmplPlanner(uint32_t seed, double range_m);
 
   // Plans start -> goal with `algorithm` within `budget_s`: three quarters for solving, the rest
   // (at least one pass) for simplification. Start and goal must be valid cells; the caller checks.
   OmplOutcome plan(const PlanningGrid& grid, Vec2 start, Vec2 goal, std::string_view algorithm,
                    double budget_s, UnknownPolicy policy) const;
+
+ private:
+  double range_m_ = 0.0;
 };
 
 }  // namespace slam::planner

@@ -48,13 +48,16 @@ Status validate(const PlannerConfig& config) {
   if (!std::isfinite(config.max_time_budget_s) || config.max_time_budget_s <= 0.0) {
     return Error{"planner.max_time_budget_s must be positive"};
   }
+  if (!std::isfinite(config.ompl_range_m) || config.ompl_range_m < 0.0) {
+    return Error{"planner.ompl_range_m must be a finite number >= 0 (0: OMPL's default)"};
+  }
   if (!std::isfinite(config.escape_radius_m) || config.escape_radius_m < 0.0) {
     return Error{"planner.escape_radius_m must be a finite number >= 0"};
   }
   return Status::ok();
 }
 
-PathPlanner::PathPlanner(const PlannerConfig& config) : config_(config), ompl_(config.ompl_seed) {}
+PathPlanner::PathPlanner(const PlannerConfig& config) : config_(config), ompl_(config.ompl_seed, config.ompl_range_m) {}
 
 std::optional<PlanResult> PathPlanner::reject(const PlanningGrid& grid, const PathQuery& query) const {
   if (!finite(query.start)) return failure(PlanStatus::InvalidRequest, "start is not finite");

@@ -19,6 +19,10 @@ struct PlannerConfig {
   UnknownPolicy unknown = UnknownPolicy::Blocked;
   double unknown_cost_factor = 3.0;  // A* step cost multiplier into unknown cells (>= 1)
   uint32_t ompl_seed = 1;
+  // How far one RRT extension reaches (RRTConnect, RRT*); 0 = OMPL's default, a fifth of the map's
+  // diagonal. In cluttered rooms a long extension almost always hits something and is thrown away,
+  // so a few metres grows the trees faster (docs/performance.md, planner).
+  double ompl_range_m = 3.0;
   double max_time_budget_s = 60.0;  // longer requests are refused, not silently shortened
   // A robot planning its own goal from an inflated or unexplored cell first leaves for the nearest
   // passable cell this close (robot radius + inflation + a margin for pose noise).

@@ -34,6 +34,9 @@ void add_planner_options(CLI::App& app, PlannerOptions& o) {
       ->capture_default_str();
   app.add_option("--planner-ompl-seed", planner.ompl_seed, "OMPL random seed (repeatable sampling)")
       ->capture_default_str();
+  app.add_option("--planner-ompl-range-m", planner.ompl_range_m,
+                 "longest RRT extension in metres (rrtconnect, rrtstar); 0: OMPL's default")
+      ->capture_default_str();
   app.add_option("--planner-max-time-budget-s", planner.max_time_budget_s,
                  "path requests asking for more time (s) are refused")
       ->capture_default_str();

@@ -118,6 +118,11 @@ TEST(PathPlanner, ValidatesConfig) {
   c = {};
   c.max_time_budget_s = 0.0;
   EXPECT_FALSE(validate(c));
+  c = {};
+  c.ompl_range_m = -1.0;
+  EXPECT_FALSE(validate(c));
+  c.ompl_range_m = 0.0;  // OMPL's own default
+  EXPECT_TRUE(validate(c));
 }
 
 }  // namespace
