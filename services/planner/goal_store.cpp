@@ -192,6 +192,15 @@ void GoalStore::finish(const std::string& robot_id, uint64_t goal_id) {
   if (it == record_.goals.end() || it->second.goal.goal_id != goal_id || it->second.finished) return;
   it->second.finished = true;
   dirty_ = true;
+  // A fleet-wide goal ends when no robot that took it is still working on it, so a finished
+  // exploration is not started again after a restart.
+  const auto fleet = record_.goals.find(kAllRobots);
+  if (robot_id == kAllRobots || fleet == record_.goals.end() || fleet->second.finished ||
+      fleet->second.goal.goal_id != goal_id)
+    return;
+  for (const auto& [id, g] : record_.goals)
+    if (id != kAllRobots && g.goal.goal_id == goal_id && !g.finished) return;
+  fleet->second.finished = true;
 }
 
 void GoalStore::put_home(const std::string& robot_id, Vec2 home) {

@@ -49,7 +49,8 @@ class GoalStore {
   bool is_stale(const std::string& robot_id, int64_t sent_ns) const;
   // Keeps `goal` as its robot's current goal.
   void put(const StoredGoal& goal);
-  // Marks robot_id's goal finished if it is still goal_id.
+  // Marks robot_id's goal finished if it is still goal_id; the fleet-wide goal with that id too
+  // once every robot that took it has finished it.
   void finish(const std::string& robot_id, uint64_t goal_id);
   // Keeps a robot's home unless one is kept already.
   void put_home(const std::string& robot_id, Vec2 home);

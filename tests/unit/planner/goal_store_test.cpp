@@ -142,6 +142,22 @@ TEST(GoalStore, ReplaysAreStaleAndOnlyTheCurrentGoalFinishes) {
   EXPECT_TRUE(store->flush());  // memory only: nothing to write, no error
 }
 
+TEST(GoalStore, AFleetGoalFinishesWhenEveryRobotThatTookItHas) {
+  auto store = GoalStore::open("");
+  ASSERT_TRUE(store);
+  const Goal explore{21, GoalMode::Explore, {}, 0.0, SquareAnchor::Corner};
+  store->put(StoredGoal{"*", explore, 500, false});
+  store->put(StoredGoal{"r1", explore, 500, false});
+  store->put(StoredGoal{"r2", explore, 500, false});
+  store->put(StoredGoal{"r3", Goal{22, GoalMode::Planned, {1, 1}, 0.0, SquareAnchor::Corner}, 600, false});
+  store->finish("r1", 21);
+  EXPECT_FALSE(store->record().goals.at("*").finished) << "r2 is still exploring";
+  store->finish("r2", 21);
+  EXPECT_TRUE(store->record().goals.at("*").finished);  // r3 has its own goal, not the fleet's
+  ASSERT_EQ(goals_to_resume(store->record()).size(), 1u);
+  EXPECT_EQ(goals_to_resume(store->record())[0].robot_id, "r3");
+}
+
 TEST(GoalStore, ABrokenFileIsRefusedWithItsPath) {
   ScratchDir dir("broken");
   const std::string path = (dir.path / "goals.json").string();
