@@ -154,6 +154,14 @@ class Reader : private fdds::DataReaderListener {
     return n;
   }
   int matched_writers() const { return matched_publications(reader_); }
+  // Samples the middleware knows this reader never got (DDS SAMPLE_LOST, cumulative): e.g. a
+  // reliable writer's keep-last history replaced them before they were delivered.
+  int64_t samples_lost() const {
+    fdds::SampleLostStatus status;
+    return reader_->get_sample_lost_status(status) == eprosima::fastrtps::types::ReturnCode_t::RETCODE_OK
+               ? status.total_count
+               : 0;
+  }
   fdds::DataReaderListener* listener() { return callback_ ? this : nullptr; }
   void attach(fdds::DataReader* reader) { reader_ = reader; }
 

@@ -36,7 +36,8 @@ MapperNode::Metrics::Metrics(Counters& c)
       store_bytes(c.get("store_bytes")),
       store_errors(c.get("store_errors")),
       write_failures(c.get("write_failures")),
-      robot_hits_filtered(c.get("robot_hits_filtered")) {}
+      robot_hits_filtered(c.get("robot_hits_filtered")),
+      observations_lost(c.get("observations_lost")) {}
 
 ObservationView MapperNode::Deferred::view() const {
   ObservationView v;
@@ -95,7 +96,7 @@ Status MapperNode::configure() {
   auto count = store_->count();
   if (!count) return Error{count.message()};
   metrics_.store_observations.store(*count);
-  update_store_bytes();
+  update_periodic_counters();
 
   // Layout ids continue from the clock so a restarted mapper's ids differ from the last run's.
   layout_id_ = static_cast<uint32_t>(now_ns() / 1000000000);
@@ -221,7 +222,7 @@ void MapperNode::tick() {
   snapshot_readers_ = readers;
   const auto now = std::chrono::steady_clock::now();
   if (joined || now >= next_snapshot_) publish_snapshot(false);
-  if (now >= next_store_stat_) update_store_bytes();
+  if (now >= next_store_stat_) update_periodic_counters();
 }
 
 void MapperNode::publish_changes() {
@@ -260,7 +261,7 @@ void MapperNode::publish_snapshot(bool bump_version) {
   bump(metrics_.snapshots);
 }
 
-void MapperNode::update_store_bytes() {
+void MapperNode::update_periodic_counters() {
   int64_t bytes = 0;
   for (const char* suffix : {"", "-wal"}) {
     std::error_code ec;
@@ -268,6 +269,8 @@ void MapperNode::update_store_bytes() {
     if (!ec) bytes += static_cast<int64_t>(size);
   }
   metrics_.store_bytes.store(bytes, std::memory_order_relaxed);
+  if (observation_reader_)
+    metrics_.observations_lost.store(observation_reader_->samples_lost(), std::memory_order_relaxed);
   next_store_stat_ = std::chrono::steady_clock::now() + std::chrono::seconds(1);
 }
 

@@ -62,6 +62,7 @@ class MapperNode {
     std::atomic<int64_t>& store_errors;
     std::atomic<int64_t>& write_failures;
     std::atomic<int64_t>& robot_hits_filtered;
+    std::atomic<int64_t>& observations_lost;  // DDS SAMPLE_LOST on the observation reader
   };
 
   // An observation integrated while a rebuild runs, kept for the new grid and the store.
@@ -95,7 +96,8 @@ class MapperNode {
   void tick();
   void publish_changes();
   void publish_snapshot(bool bump_version);
-  void update_store_bytes();
+  // Once a second: the store's size on disk and the observations DDS lost.
+  void update_periodic_counters();
 
   // Requests and rebuilds (mapper_requests.cpp).
   void handle(const MapCommand& command);

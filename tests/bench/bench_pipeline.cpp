@@ -17,8 +17,10 @@
 #include <benchmark/benchmark.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <map>
 #include <string>
 #include <thread>
@@ -67,6 +69,48 @@ class ProbeClient {
   MQTTClient client_ = nullptr;
 };
 
+// mosquitto's own count of messages it dropped (queue and in-flight limits), which no service can
+// see: $SYS/broker/publish/messages/dropped, published every sys_interval (1 s in the test broker).
+class BrokerDrops {
+ public:
+  ~BrokerDrops() {
+    if (client_ == nullptr) return;
+    MQTTClient_disconnect(client_, 1000);
+    MQTTClient_destroy(&client_);
+  }
+  Status connect(int port) {
+    const std::string url = "tcp://127.0.0.1:" + std::to_string(port);
+    if (MQTTClient_create(&client_, url.c_str(), "bench-pipeline-sys", MQTTCLIENT_PERSISTENCE_NONE, nullptr) !=
+        MQTTCLIENT_SUCCESS)
+      return Error{"broker $SYS client: MQTTClient_create failed"};
+    MQTTClient_setCallbacks(client_, this, nullptr, &BrokerDrops::arrived, nullptr);
+    MQTTClient_connectOptions options = MQTTClient_connectOptions_initializer;
+    options.cleansession = 1;
+    if (const int rc = MQTTClient_connect(client_, &options); rc != MQTTCLIENT_SUCCESS)
+      return Error{fmt::format("broker $SYS client: connect to {} failed ({})", url, rc)};
+    if (MQTTClient_subscribe(client_, kTopic, 0) != MQTTCLIENT_SUCCESS)
+      return Error{"broker $SYS client: subscribe failed"};
+    return Status::ok();
+  }
+  // The latest count, -1 before the first one arrived.
+  int64_t dropped() const { return dropped_.load(std::memory_order_acquire); }
+
+ private:
+  static constexpr char kTopic[] = "$SYS/broker/publish/messages/dropped";
+  static int arrived(void* context, char* topic, int, MQTTClient_message* message) {
+    const std::string text(static_cast<const char*>(message->payload), static_cast<size_t>(message->payloadlen));
+    char* end = nullptr;
+    const long long value = std::strtoll(text.c_str(), &end, 10);
+    if (end != text.c_str()) static_cast<BrokerDrops*>(context)->dropped_.store(value, std::memory_order_release);
+    MQTTClient_freeMessage(&message);
+    MQTTClient_free(topic);
+    return 1;
+  }
+
+  MQTTClient client_ = nullptr;
+  std::atomic<int64_t> dropped_{-1};
+};
+
 // Everything sampled at one end of the window.
 struct WindowEdge {
   int64_t monotonic_ns = 0;
@@ -74,10 +118,12 @@ struct WindowEdge {
   std::map<std::string, double> cpu_s;            // by process, plus "bench" (this process)
   MachineCpu machine;
   uint64_t patch_bytes = 0;  // GridPatch cell bytes this process received so far
+  int64_t broker_dropped = -1;  // mosquitto's dropped count so far (-1: not reported yet)
 };
 
-WindowEdge sample_edge(const PipelineRig& rig, const ProbeSet& probes) {
+WindowEdge sample_edge(const PipelineRig& rig, const ProbeSet& probes, const BrokerDrops& broker) {
   WindowEdge e;
+  e.broker_dropped = broker.dropped();
   e.patch_bytes = probes.patch_bytes();
   e.monotonic_ns = monotonic_ns();
   for (const char* service : {"gateway", "mapper", "planner", "simulator"}) e.counters[service] = rig.latest(service);
@@ -172,6 +218,11 @@ void report(benchmark::State& state, const PipelineSettings& settings, WindowEdg
   c["mapper_backlog_start"] = mapper_backlog(start.counters["gateway"], start.counters["mapper"], gateway_obs);
   c["mapper_backlog_end"] = mapper_backlog(end.counters["gateway"], end.counters["mapper"], gateway_obs);
   c["mapper_dropped"] = delta("mapper", "dropped");
+  c["mapper_dds_lost"] = delta("mapper", "observations_lost");
+  // -1 when mosquitto never reported: unknown, not zero.
+  c["broker_dropped"] = start.broker_dropped >= 0 && end.broker_dropped >= 0
+                            ? static_cast<double>(end.broker_dropped - start.broker_dropped)
+                            : -1.0;
   c["mapper_rejected"] = delta("mapper", "rejected");
   c["gateway_rejected"] = static_cast<double>(end.counters["gateway"].sum_prefixed("rejected_") -
                                              start.counters["gateway"].sum_prefixed("rejected_"));
@@ -207,8 +258,8 @@ void report(benchmark::State& state, const PipelineSettings& settings, WindowEdg
                "bench_pipeline: %d robots, %.1f s window\n"
                "  rate: simulator sent %.0f msg/s, gateway received %.0f msg/s (%.3f), mapper integrated %.0f obs/s "
                "(%.3f of the gateway's), %.1f points per observation; gateway RobotState %.0f/s\n"
-               "  queues: mapper backlog %.0f -> %.0f observations; dropped: mapper %.0f, simulator %.0f; "
-               "simulator loop overruns %.0f\n"
+               "  queues: mapper backlog %.0f -> %.0f observations; dropped: mapper %.0f, simulator %.0f, "
+               "broker %.0f; lost by DDS before the mapper %.0f; simulator loop overruns %.0f\n"
                "  after pausing the fleet: %s %.1f s; %s: %.0f at the gateway, %.0f at the mapper\n"
                "  map stream: %.1f patches/s, %.1f MB/s of patch cells to each reader\n"
                "  delay robot message -> GridPatch: p50 %.0f ms, p99 %.0f ms, max %.0f ms (%zu of %zu probes seen)\n"
@@ -216,7 +267,8 @@ void report(benchmark::State& state, const PipelineSettings& settings, WindowEdg
                "bench %.0f; other processes %.0f; machine %.0f %% busy\n",
                settings.robots, window_s, sent, gateway_in, v("gateway_over_sim"), mapper_obs, v("mapper_over_gateway"),
                v("points_per_obs"), v("gateway_states_per_s"), v("mapper_backlog_start"), v("mapper_backlog_end"),
-               v("mapper_dropped"), v("sim_reports_dropped"), v("sim_loop_overruns"),
+               v("mapper_dropped"), v("sim_reports_dropped"), v("broker_dropped"), v("mapper_dds_lost"),
+               v("sim_loop_overruns"),
                drained.settled ? "queues drained in" : "still draining after", drained.seconds,
                drained.settled ? "never arrived" : "not arrived yet",
                v("lost_to_gateway"), v("lost_to_mapper"), v("mapper_patches_per_s"), v("patch_mb_per_s"),
@@ -240,6 +292,8 @@ void BM_Pipeline(benchmark::State& state) {
   if (!patches) return fail(state, patches.message());
   ProbeClient probe_client;
   if (Status s = probe_client.connect((*rig)->broker_port()); !s) return fail(state, s.message());
+  BrokerDrops broker;
+  if (Status s = broker.connect((*rig)->broker_port()); !s) return fail(state, s.message());
   if (Status s = (*rig)->wait_until_running(120s); !s) return fail(state, s.message());
   std::this_thread::sleep_for(std::chrono::duration<double>(settings->warmup_s));
   // What went missing while the services were still matching each other, so it is not counted.
@@ -252,7 +306,7 @@ void BM_Pipeline(benchmark::State& state) {
   ProbeSet::Summary probe;
   Drain drained;
   for (auto _ : state) {
-    start = sample_edge(**rig, probes);
+    start = sample_edge(**rig, probes, broker);
     const int64_t window_ns = static_cast<int64_t>(settings->seconds * 1e9);
     for (size_t k = 0; k < probes.size(); ++k) {
       const int64_t due = start.monotonic_ns + static_cast<int64_t>(static_cast<double>(k) * kProbePeriodS * 1e9);
@@ -263,7 +317,7 @@ void BM_Pipeline(benchmark::State& state) {
     }
     if (const int64_t rest = start.monotonic_ns + window_ns - monotonic_ns(); rest > 0)
       std::this_thread::sleep_for(std::chrono::nanoseconds(rest));
-    end = sample_edge(**rig, probes);
+    end = sample_edge(**rig, probes, broker);
     if (Status s = (*rig)->control_simulator(SIM_PAUSE); !s) return fail(state, s.message());
     const int64_t paused_at = monotonic_ns();
     // Probes still in flight get 5 s more; unseen ones then count with their age.
