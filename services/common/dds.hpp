@@ -154,6 +154,18 @@ class Reader : private fdds::DataReaderListener {
     return n;
   }
   int matched_writers() const { return matched_publications(reader_); }
+  // Waits until `n` writers matched this reader, then a little longer: the remote writer may match
+  // this reader a moment later, and a volatile writer sends nothing to a reader it has not matched.
+  // Requesters (slamctl, tests) call this on their reply reader before sending a request.
+  bool wait_for_writers(std::chrono::milliseconds timeout, int n = 1) {
+    const auto until = std::chrono::steady_clock::now() + timeout;
+    while (matched_writers() < n) {
+      if (std::chrono::steady_clock::now() >= until) return false;
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    std::this_thread::sleep_for(kMatchSettle);
+    return true;
+  }
   // Samples the middleware knows this reader never got (DDS SAMPLE_LOST, cumulative): e.g. a
   // reliable writer's keep-last history replaced them before they were delivered.
   int64_t samples_lost() const {

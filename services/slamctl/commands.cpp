@@ -59,6 +59,11 @@ std::optional<Rep> request(Session& s, const dds::Topic<Req, ReqP>& req_topic, c
     fail(reader.message());
     return std::nullopt;
   }
+  // The replier's writer must know this reader before it answers, or the reply goes nowhere.
+  if (!(*reader)->wait_for_writers(s.timeout())) {
+    fail(std::string("no ") + served_by + " on DDS domain " + std::to_string(s.domain()) + " (is it running?)");
+    return std::nullopt;
+  }
   if (send(s, req_topic, req, served_by) != 0) return std::nullopt;
   if (!wait_until([&] { std::lock_guard lock(mutex); return reply.has_value(); }, s.timeout())) {
     fail(std::string("no reply from ") + served_by + " within " + std::to_string(s.timeout().count()) + " ms");

@@ -163,6 +163,8 @@ class MapperTest : public ::testing::Test {
         },
         60s))
         << "slam-mapper never matched the test's topics\n" << group_.log("mapper");
+    // Matching is seen from this side first; let the mapper's writers match our readers too.
+    std::this_thread::sleep_for(dds::kMatchSettle);
   }
 
   // The mapper's latest heartbeat value of `name` (-1 before the first heartbeat).

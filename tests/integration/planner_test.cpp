@@ -153,6 +153,8 @@ class PlannerTest : public ::testing::Test {
         60s))
         << "slam-planner never matched the test's topics\n"
         << group_.log("planner");
+    // Matching is seen from this side first; let the planner's writers match our readers too.
+    std::this_thread::sleep_for(dds::kMatchSettle);
   }
 
   void TearDown() override {
