@@ -170,9 +170,13 @@ void Fleet::explore(const PlanningGrid& grid, int64_t now_ns) {
 
   frontiers_.cluster(grid, config_.explore.min_cluster_cells, clusters_);
   eligible_.assign(clusters_.size(), 1);
+  bool resting = false;  // a frontier will be offered again: exploration is not over yet
   for (size_t c = 0; c < clusters_.size(); ++c) {
     const Vec2 target = grid.centre(clusters_[c].target);
-    if (blacklist_.contains(target, config_.explore.blacklist_radius_m, now_ns)) eligible_[c] = 0;
+    if (blacklist_.contains(target, config_.explore.blacklist_radius_m, now_ns)) {
+      eligible_[c] = 0;
+      resting = resting || blacklist_.rests(target, config_.explore.blacklist_radius_m, now_ns);
+    }
     for (const auto& [id, robot] : robots_) {
       if (robot.tracker.has_frontier() &&
           distance(robot.tracker.plan_target(), target) <= config_.explore.blacklist_radius_m) {
@@ -198,10 +202,10 @@ void Fleet::explore(const PlanningGrid& grid, int64_t now_ns) {
   for (size_t s = 0; s < seekers.size(); ++s) {
     if (!assigned[s]) idle.push_back(ids[s]);
   }
-  settle_idle(idle, now_ns);
+  settle_idle(idle, resting, now_ns);
 }
 
-void Fleet::settle_idle(const std::vector<std::string>& idle, int64_t now_ns) {
+void Fleet::settle_idle(const std::vector<std::string>& idle, bool frontiers_resting, int64_t now_ns) {
   if (idle.empty()) return;
   bool others_exploring = false;
   for (const auto& [id, robot] : robots_) others_exploring = others_exploring || robot.tracker.has_frontier();
@@ -210,8 +214,9 @@ void Fleet::settle_idle(const std::vector<std::string>& idle, int64_t now_ns) {
   for (const std::string& id : idle) {
     Robot& robot = robots_.at(id);
     robot.next_search_ns = now_ns + static_cast<int64_t>(config_.explore.retry_period_s * 1e9);
-    // While another robot explores, what it uncovers may be for this one: the grace restarts.
-    if (robot.idle_since_ns < 0 || others_exploring) robot.idle_since_ns = now_ns;
+    // While another robot explores, what it uncovers may be for this one, and a resting frontier
+    // is offered again later: either way the grace restarts.
+    if (robot.idle_since_ns < 0 || others_exploring || frontiers_resting) robot.idle_since_ns = now_ns;
     if (now_ns - robot.idle_since_ns < grace) continue;
     // Nothing this robot can reach is left: its exploration is over.
     robot.tracker.exploration_complete();

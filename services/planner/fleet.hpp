@@ -95,8 +95,9 @@ class Fleet {
   void release_frontiers(const PlanningGrid& grid, int64_t now_ns);
   // The robot's remaining path length to its frontier (what progress is measured on).
   double way_to_go(const Robot& robot) const;
-  // Robots that found nothing: they wait while others explore, then head home after the grace.
-  void settle_idle(const std::vector<std::string>& idle, int64_t now_ns);
+  // Robots that found nothing: they wait while others explore or a given-up frontier only rests,
+  // then head home after the grace.
+  void settle_idle(const std::vector<std::string>& idle, bool frontiers_resting, int64_t now_ns);
 
   FleetConfig config_;
   PathPlanner planner_;

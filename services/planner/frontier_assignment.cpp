@@ -79,7 +79,7 @@ std::vector<FrontierAssignment> assign_frontiers(std::span<const ExploringRobot>
 void FrontierBlacklist::add(Vec2 target, int64_t now_ns, int64_t rest_ns, double radius_m) {
   bool again = false;
   for (const Entry& e : entries_) again = again || distance(e.point, target) <= radius_m;
-  entries_.push_back(Entry{target, again ? std::numeric_limits<int64_t>::max() : now_ns + rest_ns});
+  entries_.push_back(Entry{target, again ? kForGood : now_ns + rest_ns});
 }
 
 bool FrontierBlacklist::contains(Vec2 p, double radius_m, int64_t now_ns) const {
@@ -87,6 +87,16 @@ bool FrontierBlacklist::contains(Vec2 p, double radius_m, int64_t now_ns) const 
     if (e.until_ns > now_ns && distance(p, e.point) <= radius_m) return true;
   }
   return false;
+}
+
+bool FrontierBlacklist::rests(Vec2 p, double radius_m, int64_t now_ns) const {
+  bool resting = false;
+  for (const Entry& e : entries_) {
+    if (e.until_ns <= now_ns || distance(p, e.point) > radius_m) continue;
+    if (e.until_ns == kForGood) return false;  // given up for good, whatever else rests here
+    resting = true;
+  }
+  return resting;
 }
 
 void ProgressWatch::start(Vec2 target, int64_t now_ns) {

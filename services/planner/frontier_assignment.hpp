@@ -3,6 +3,7 @@
 // to tell that a robot stopped getting closer to its frontier.
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <optional>
 #include <span>
 #include <vector>
@@ -67,14 +68,17 @@ class FrontierBlacklist {
   void add(Vec2 target, int64_t now_ns, int64_t rest_ns, double radius_m);
   // True when an entry within radius_m of p is in force at now_ns.
   bool contains(Vec2 p, double radius_m, int64_t now_ns) const;
+  // True when an entry within radius_m of p only rests at now_ns (it is offered again later).
+  bool rests(Vec2 p, double radius_m, int64_t now_ns) const;
   size_t size() const { return entries_.size(); }
   void clear() { entries_.clear(); }
 
  private:
   struct Entry {
     Vec2 point;
-    int64_t until_ns;  // INT64_MAX: for good
+    int64_t until_ns;  // kForGood: for good
   };
+  static constexpr int64_t kForGood = std::numeric_limits<int64_t>::max();
   std::vector<Entry> entries_;
 };
 

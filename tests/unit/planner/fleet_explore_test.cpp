@@ -129,6 +129,38 @@ TEST(FleetExplore, AFrontierStillThereWhenReachedIsNotHandedOutAgain) {
   EXPECT_FALSE(t->has_frontier() && distance(t->plan_target(), target) < 0.5);
 }
 
+TEST(FleetExplore, ARestingFrontierKeepsExplorationOpenUntilItIsGivenUpForGood) {
+  // The only frontier was reached without uncovering anything: it rests (30 s), so the robot
+  // waits instead of calling the exploration done, tries it once more, and only then goes home.
+  const PlanningGrid g = strip();
+  FleetConfig config;
+  config.explore.completion_grace_s = 3.0;
+  config.explore.blacklist_rest_s = 30.0;
+  Fleet fleet(config);
+  fleet.observe("a", {0.55, 0.25});
+  fleet.grid_changed(g, std::nullopt);
+  ASSERT_TRUE(fleet.set_goal("a", explore_goal()));
+  fleet.tick(g, 0);
+  const GoalTracker* t = fleet.tracker("a");
+  ASSERT_TRUE(t->has_frontier());
+  const Vec2 target = t->plan_target();
+  fleet.observe("a", target);
+  int64_t now = kSecond;
+  for (; now < 30 * kSecond; now += kSecond / 2) {
+    fleet.tick(g, now);
+    ASSERT_FALSE(t->homing()) << "went home at " << now / kSecond << " s while the frontier rests";
+  }
+  EXPECT_FALSE(fleet.exploration_complete());
+  // The rest is over: the robot, still standing on it, is given it again, reaches it at once
+  // and, nothing new seen, it is given up for good (a second blacklist entry).
+  for (; now <= 33 * kSecond && fleet.blacklist().size() < 2; now += kSecond / 2) fleet.tick(g, now);
+  ASSERT_EQ(fleet.blacklist().size(), 2u) << "the rested frontier was not offered again";
+  EXPECT_FALSE(fleet.blacklist().rests(target, 0.5, now));
+  for (const int64_t end = now + 5 * kSecond; now <= end; now += kSecond / 2) fleet.tick(g, now);
+  EXPECT_TRUE(t->homing());
+  EXPECT_TRUE(fleet.exploration_complete());
+}
+
 TEST(FleetExplore, AWalledInStartDoesNotBlacklistTheFrontier) {
   PlanningGrid g = strip();
   Fleet fleet({});
