@@ -5,6 +5,8 @@
 #include <spdlog/spdlog.h>
 
 #include <cstdlib>
+#include <functional>
+#include <thread>
 
 #include "common/log.hpp"
 
@@ -163,6 +165,16 @@ int matched_publications(fdds::DataReader* reader) {
   fdds::SubscriptionMatchedStatus status;
   if (reader->get_subscription_matched_status(status) != ReturnCode_t::RETCODE_OK) return 0;
   return status.current_count;
+}
+
+bool wait_matched(const std::function<int()>& matched, int n, std::chrono::milliseconds timeout) {
+  const auto until = std::chrono::steady_clock::now() + timeout;
+  while (matched() < n) {
+    if (std::chrono::steady_clock::now() >= until) return false;
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  std::this_thread::sleep_for(kMatchSettle);
+  return true;
 }
 
 void call_guarded(const char* where, const std::function<void()>& fn) {

@@ -17,7 +17,6 @@
 #include <memory>
 #include <mutex>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include "common/result.hpp"
@@ -76,6 +75,10 @@ int matched_publications(fdds::DataReader* reader);
 
 inline constexpr std::chrono::milliseconds kMatchSettle{300};
 
+// Polls `matched` until it reaches n (false after timeout), then waits kMatchSettle: a match is
+// seen on one side first, and the other endpoint may match a moment later.
+bool wait_matched(const std::function<int()>& matched, int n, std::chrono::milliseconds timeout);
+
 // Writes samples of T. write() returns false when the middleware refused the sample
 // (logged rate-limited); callers count it.
 template <class T>
@@ -97,13 +100,7 @@ class Writer {
   // a moment after this writer matched it, and a volatile reader drops samples that arrive before.
   // Short-lived senders (slamctl, tests) call this before their first write.
   bool wait_for_readers(std::chrono::milliseconds timeout, int n = 1) {
-    const auto until = std::chrono::steady_clock::now() + timeout;
-    while (matched_readers() < n) {
-      if (std::chrono::steady_clock::now() >= until) return false;
-      std::this_thread::sleep_for(std::chrono::milliseconds(10));
-    }
-    std::this_thread::sleep_for(kMatchSettle);
-    return true;
+    return wait_matched([this] { return matched_readers(); }, n, timeout);
   }
   // Blocks until every matched reader acknowledged what was written (reliable topics), or timeout.
   bool wait_for_acknowledgments(std::chrono::milliseconds timeout) {
@@ -158,13 +155,7 @@ class Reader : private fdds::DataReaderListener {
   // this reader a moment later, and a volatile writer sends nothing to a reader it has not matched.
   // Requesters (slamctl, tests) call this on their reply reader before sending a request.
   bool wait_for_writers(std::chrono::milliseconds timeout, int n = 1) {
-    const auto until = std::chrono::steady_clock::now() + timeout;
-    while (matched_writers() < n) {
-      if (std::chrono::steady_clock::now() >= until) return false;
-      std::this_thread::sleep_for(std::chrono::milliseconds(10));
-    }
-    std::this_thread::sleep_for(kMatchSettle);
-    return true;
+    return wait_matched([this] { return matched_writers(); }, n, timeout);
   }
   // Samples the middleware knows this reader never got (DDS SAMPLE_LOST, cumulative): e.g. a
   // reliable writer's keep-last history replaced them before they were delivered.

@@ -210,7 +210,7 @@ bool PointLayer::advance(Target& t, const RobotRegistry& robots, double fb_scale
   }
   const uint64_t added = stats_.step_budget - budget;
   stats_.points_accumulated += added;
-  unpaced_points_ += added;
+  texture_points_this_frame_ += added;
   if (bound) glBindFramebuffer(GL_FRAMEBUFFER, 0);
   return complete;
 }
@@ -230,8 +230,8 @@ void PointLayer::show(const Target& t, const Affine2& delta) {
 }
 
 void PointLayer::end_frame(double frame_ms) {
-  pacer_.record(unpaced_points_, frame_ms);
-  unpaced_points_ = 0;
+  pacer_.record(texture_points_this_frame_, frame_ms);
+  texture_points_this_frame_ = 0;
 }
 
 void PointLayer::draw(const ViewTransform& view, const PixelRect& px, const RobotRegistry& robots, double fb_scale) {

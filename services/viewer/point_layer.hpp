@@ -79,7 +79,7 @@ class PointLayer {
   GlProgram blit_;
   GLuint blit_vao_ = 0;
   PointPacer pacer_{PacerConfig{}};
-  uint64_t unpaced_points_ = 0;  // rasterised into a texture since the last end_frame()
+  uint64_t texture_points_this_frame_ = 0;  // rasterised into a texture since the last end_frame()
   std::vector<RobotBuffer> buffers_;
   Target targets_[2];
   int shown_ = 0;

@@ -40,56 +40,56 @@ using namespace std::chrono_literals;
 constexpr double kProbePeriodS = 0.15;  // ~200 probes in 30 s, a few in flight at a time
 constexpr char kProbeTopic[] = "v1/robot/probe/adv";
 
-// The probe robot's MQTT connection (synchronous client: a few messages per second).
-class ProbeClient {
+// One synchronous paho connection to the bench's broker, disconnected when it goes.
+class LoopbackClient {
  public:
-  ~ProbeClient() {
+  ~LoopbackClient() {
     if (client_ == nullptr) return;
     MQTTClient_disconnect(client_, 1000);
     MQTTClient_destroy(&client_);
   }
-  Status connect(int port) {
+  // `arrived` (with `context`), when given, receives subscribed messages on paho's thread.
+  Status connect(int port, const char* client_id, void* context = nullptr,
+                 MQTTClient_messageArrived* arrived = nullptr) {
     const std::string url = "tcp://127.0.0.1:" + std::to_string(port);
-    if (MQTTClient_create(&client_, url.c_str(), "bench-pipeline-probe", MQTTCLIENT_PERSISTENCE_NONE, nullptr) !=
+    if (MQTTClient_create(&client_, url.c_str(), client_id, MQTTCLIENT_PERSISTENCE_NONE, nullptr) !=
         MQTTCLIENT_SUCCESS)
-      return Error{"probe client: MQTTClient_create failed"};
+      return Error{fmt::format("{}: MQTTClient_create failed", client_id)};
+    if (arrived != nullptr) MQTTClient_setCallbacks(client_, context, nullptr, arrived, nullptr);
     MQTTClient_connectOptions options = MQTTClient_connectOptions_initializer;
     options.cleansession = 1;
     if (const int rc = MQTTClient_connect(client_, &options); rc != MQTTCLIENT_SUCCESS)
-      return Error{fmt::format("probe client: connect to {} failed ({})", url, rc)};
+      return Error{fmt::format("{}: connect to {} failed ({})", client_id, url, rc)};
     return Status::ok();
   }
+  MQTTClient handle() const { return client_; }
+
+ private:
+  MQTTClient client_ = nullptr;
+};
+
+// The probe robot's MQTT connection (a few messages per second).
+class ProbeClient {
+ public:
+  Status connect(int port) { return client_.connect(port, "bench-pipeline-probe"); }
   bool publish(const std::vector<uint8_t>& payload) {
     // QoS 0, as the simulator's robots publish; paho copies the payload.
-    return MQTTClient_publish(client_, kProbeTopic, static_cast<int>(payload.size()), payload.data(), 0, 0,
+    return MQTTClient_publish(client_.handle(), kProbeTopic, static_cast<int>(payload.size()), payload.data(), 0, 0,
                               nullptr) == MQTTCLIENT_SUCCESS;
   }
 
  private:
-  MQTTClient client_ = nullptr;
+  LoopbackClient client_;
 };
 
 // mosquitto's own count of messages it dropped (queue and in-flight limits), which no service can
 // see: $SYS/broker/publish/messages/dropped, published every sys_interval (1 s in the test broker).
 class BrokerDrops {
  public:
-  ~BrokerDrops() {
-    if (client_ == nullptr) return;
-    MQTTClient_disconnect(client_, 1000);
-    MQTTClient_destroy(&client_);
-  }
   Status connect(int port) {
-    const std::string url = "tcp://127.0.0.1:" + std::to_string(port);
-    if (MQTTClient_create(&client_, url.c_str(), "bench-pipeline-sys", MQTTCLIENT_PERSISTENCE_NONE, nullptr) !=
-        MQTTCLIENT_SUCCESS)
-      return Error{"broker $SYS client: MQTTClient_create failed"};
-    MQTTClient_setCallbacks(client_, this, nullptr, &BrokerDrops::arrived, nullptr);
-    MQTTClient_connectOptions options = MQTTClient_connectOptions_initializer;
-    options.cleansession = 1;
-    if (const int rc = MQTTClient_connect(client_, &options); rc != MQTTCLIENT_SUCCESS)
-      return Error{fmt::format("broker $SYS client: connect to {} failed ({})", url, rc)};
-    if (MQTTClient_subscribe(client_, kTopic, 0) != MQTTCLIENT_SUCCESS)
-      return Error{"broker $SYS client: subscribe failed"};
+    if (Status s = client_.connect(port, "bench-pipeline-sys", this, &BrokerDrops::arrived); !s) return s;
+    if (MQTTClient_subscribe(client_.handle(), kTopic, 0) != MQTTCLIENT_SUCCESS)
+      return Error{"bench-pipeline-sys: subscribe failed"};
     return Status::ok();
   }
   // The latest count, -1 before the first one arrived.
@@ -107,8 +107,8 @@ class BrokerDrops {
     return 1;
   }
 
-  MQTTClient client_ = nullptr;
-  std::atomic<int64_t> dropped_{-1};
+  std::atomic<int64_t> dropped_{-1};  // before client_: paho's thread writes it until client_ is gone
+  LoopbackClient client_;
 };
 
 // Everything sampled at one end of the window.
