@@ -4,7 +4,7 @@
 set -euo pipefail
 
 PACKAGES=(
-  build-essential cmake ninja-build pkg-config clang
+  build-essential cmake ninja-build pkg-config clang clang-format
   libfastrtps-dev fastddsgen fastdds-tools
   cyclonedds-dev cyclonedds-tools
   libompl-dev libeigen3-dev

@@ -8,7 +8,8 @@
 namespace slam::gateway {
 
 protocol::CodecStatus CommandEncoder::encode(std::string_view robot_id, Protocol protocol, std::uint64_t seq,
-                                             protocol::Point waypoint, std::span<const protocol::Point> remaining,
+                                             protocol::Point waypoint,
+                                             std::span<const protocol::Point> remaining,
                                              CommandMessages& out) {
   out.count = 0;
   if (protocol == Protocol::V1) {

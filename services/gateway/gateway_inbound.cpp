@@ -3,7 +3,7 @@
 // A rejected message only touches counters and a rate-limited log line.
 #include <string>
 
-#include "common/clock.hpp"
+#include "common/core/clock.hpp"
 #include "gateway/gateway_msgs.hpp"
 #include "gateway/gateway_node.hpp"
 #include "protocol/text_check.hpp"
@@ -34,8 +34,8 @@ void GatewayNode::on_mqtt_message(std::string_view topic, std::span<const std::u
 
   switch (kind) {
     case InboundKind::Observation:
-      fill_observation(decoder_.robot_id(), accepted.seq, now.wall_ns, decoder_.protocol(), decoder_.observation(),
-                       observation_);
+      fill_observation(decoder_.robot_id(), accepted.seq, now.wall_ns, decoder_.protocol(),
+                       decoder_.observation(), observation_);
       bump(observation_writer_->write(observation_) ? metrics_.observations : metrics_.write_failures);
       return;
     case InboundKind::Status:
@@ -47,8 +47,9 @@ void GatewayNode::on_mqtt_message(std::string_view topic, std::span<const std::u
       return;
     case InboundKind::Refused:
       bump(metrics_.robots_refused);
-      warn("refused", "message from new robot '" + protocol::escape_for_log(decoder_.robot_id()) + "' ignored: " +
-                          std::to_string(options_.max_robots) + " robots known already (max-robots)");
+      warn("refused", "message from new robot '" + protocol::escape_for_log(decoder_.robot_id()) +
+                          "' ignored: " + std::to_string(options_.max_robots) +
+                          " robots known already (max-robots)");
       return;
   }
 }
@@ -64,7 +65,8 @@ void GatewayNode::log_rejection(std::string_view topic, Instant now) {
   key += reason;
   uint64_t suppressed = 0;
   if (!limiter_.allow(key, &suppressed) || !reject_log_budget_.take(now.mono_ns)) return;
-  const std::string who = id.empty() ? "message" : "message from robot '" + protocol::escape_for_log(id) + "'";
+  const std::string who =
+      id.empty() ? "message" : "message from robot '" + protocol::escape_for_log(id) + "'";
   const std::string tail = suppressed > 0 ? " (" + std::to_string(suppressed) + " similar suppressed)" : "";
   spdlog::warn("rejected {} on '{}': {}{}", who, protocol::escape_for_log(topic), why.message(), tail);
 }

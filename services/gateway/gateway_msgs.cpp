@@ -13,7 +13,9 @@ void copy_points(const std::vector<protocol::Point>& in, std::vector<slam::Point
   }
 }
 
-slam::RobotProtocol to_dds(Protocol p) { return p == Protocol::V1 ? slam::PROTOCOL_V1 : slam::PROTOCOL_V2; }
+slam::RobotProtocol to_dds(Protocol p) {
+  return p == Protocol::V1 ? slam::PROTOCOL_V1 : slam::PROTOCOL_V2;
+}
 
 }  // namespace
 

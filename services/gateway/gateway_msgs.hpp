@@ -5,15 +5,14 @@
 #include <slam/fastdds/nav.h>
 #include <slam/fastdds/robot.h>
 
-#include <fastrtps/utils/fixed_size_string.hpp>
-
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
+#include <fastrtps/utils/fixed_size_string.hpp>
 #include <string_view>
 #include <vector>
 
-#include "common/bounded_text.hpp"
+#include "common/core/bounded_text.hpp"
 #include "gateway/robot_registry.hpp"
 #include "gateway/traffic_queue.hpp"
 #include "protocol/codec_types.hpp"

@@ -7,7 +7,7 @@
 #include <algorithm>
 #include <utility>
 
-#include "common/clock.hpp"
+#include "common/core/clock.hpp"
 #include "gateway/gateway_msgs.hpp"
 #include "protocol/text_check.hpp"
 
@@ -80,7 +80,8 @@ Status GatewayNode::configure() {
   if (!traffic) return Error{traffic.message()};
   traffic_publisher_ = std::move(*traffic);
 
-  const std::string client_id = options_.mqtt.client_id.empty() ? default_client_id() : options_.mqtt.client_id;
+  const std::string client_id =
+      options_.mqtt.client_id.empty() ? default_client_id() : options_.mqtt.client_id;
   auto mqtt = MqttClient::create(options_.mqtt, client_id,
                                  [this](std::string_view topic, std::span<const std::uint8_t> payload) {
                                    on_mqtt_message(topic, payload);
@@ -119,7 +120,8 @@ void GatewayNode::run_once() {
     online = registry_.online();
   }
   for (const std::string& id : went_offline_) {
-    spdlog::info("robot '{}' offline: silent for {} s", protocol::escape_for_log(id), options_.offline_after_s);
+    spdlog::info("robot '{}' offline: silent for {} s", protocol::escape_for_log(id),
+                 options_.offline_after_s);
   }
   publish_states();
   metrics_.robots_online.store(static_cast<int64_t>(online), std::memory_order_relaxed);

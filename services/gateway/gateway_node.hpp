@@ -15,10 +15,10 @@
 #include <string_view>
 #include <vector>
 
-#include "common/counters.hpp"
-#include "common/fast_topics.hpp"
-#include "common/log.hpp"
-#include "common/result.hpp"
+#include "common/core/counters.hpp"
+#include "common/core/log.hpp"
+#include "common/core/result.hpp"
+#include "common/fastdds/fast_topics.hpp"
 #include "gateway/command_encoder.hpp"
 #include "gateway/gateway_options.hpp"
 #include "gateway/inbound_decoder.hpp"

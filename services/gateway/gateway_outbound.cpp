@@ -3,7 +3,7 @@
 // here blocks on the network.
 #include <string>
 
-#include "common/clock.hpp"
+#include "common/core/clock.hpp"
 #include "gateway/gateway_msgs.hpp"
 #include "gateway/gateway_node.hpp"
 #include "gateway/topic_filter.hpp"
@@ -19,9 +19,12 @@ std::span<const std::uint8_t> bytes(const std::string& s) {
 
 const char* kind_name(slam::MqttRequestKind kind) {
   switch (kind) {
-    case slam::MQTT_PUBLISH: return "publish";
-    case slam::MQTT_SUBSCRIBE: return "subscribe";
-    case slam::MQTT_UNSUBSCRIBE: return "unsubscribe";
+    case slam::MQTT_PUBLISH:
+      return "publish";
+    case slam::MQTT_SUBSCRIBE:
+      return "subscribe";
+    case slam::MQTT_UNSUBSCRIBE:
+      return "unsubscribe";
   }
   return "unknown";
 }
@@ -52,8 +55,9 @@ void GatewayNode::on_waypoint(const slam::WaypointCommand& command) {
   const std::string shown = protocol::escape_for_log(id);
   if (!protocol) {
     bump(metrics_.commands_unknown_robot);
-    warn("unknown-robot:" + shown, "waypoint for robot '" + shown +
-                                       "' not sent: no valid message from it yet, so its protocol is unknown");
+    warn("unknown-robot:" + shown,
+         "waypoint for robot '" + shown +
+             "' not sent: no valid message from it yet, so its protocol is unknown");
     return;
   }
 
@@ -63,8 +67,8 @@ void GatewayNode::on_waypoint(const slam::WaypointCommand& command) {
   if (auto s = encoder_.encode(id, *protocol, command.seq(), waypoint, remaining_, commands_); !s) {
     // Never wrapped or clamped: a v1 robot would drive somewhere else entirely.
     bump(metrics_.commands_failed);
-    warn("command:" + shown, "waypoint " + std::to_string(command.seq()) + " (" + std::to_string(waypoint.x) + ", " +
-                                 std::to_string(waypoint.y) + ") m for robot '" + shown + "' (" +
+    warn("command:" + shown, "waypoint " + std::to_string(command.seq()) + " (" + std::to_string(waypoint.x) +
+                                 ", " + std::to_string(waypoint.y) + ") m for robot '" + shown + "' (" +
                                  (*protocol == Protocol::V1 ? "v1" : "v2") + ") not sent: " + s.message());
     return;
   }
@@ -82,8 +86,8 @@ void GatewayNode::on_request(const slam::MqttRequest& request) {
   const std::string topic = protocol::escape_for_log(text_of(request.topic()), 256);
   if (auto s = execute(request); !s) {
     bump(metrics_.mqtt_requests_failed);
-    warn("request", "MQTT request " + std::to_string(request.request_id()) + " (" + kind_name(request.kind()) +
-                        " '" + topic + "') refused: " + s.message());
+    warn("request", "MQTT request " + std::to_string(request.request_id()) + " (" +
+                        kind_name(request.kind()) + " '" + topic + "') refused: " + s.message());
     return;
   }
   spdlog::info("MQTT request {}: {} '{}'", request.request_id(), kind_name(request.kind()), topic);

@@ -23,13 +23,15 @@ InboundKind InboundDecoder::apply(RobotRegistry& registry, Instant now) {
   accepted_ = is_status ? registry.accept_status(robot_id_, message_.status, now)
                         : registry.accept_observation(robot_id_, protocol(), message_.observation, now);
   switch (accepted_.kind) {
-    case AcceptResult::Kind::Accepted: return is_status ? InboundKind::Status : InboundKind::Observation;
+    case AcceptResult::Kind::Accepted:
+      return is_status ? InboundKind::Status : InboundKind::Observation;
     case AcceptResult::Kind::NoPose:
       status_ = {protocol::RejectReason::MissingField,
                  "points message without pose, and no earlier pose from this robot to cast rays from"};
       registry.count_rejected(robot_id_);
       return InboundKind::Rejected;
-    case AcceptResult::Kind::RegistryFull: break;
+    case AcceptResult::Kind::RegistryFull:
+      break;
   }
   return InboundKind::Refused;
 }

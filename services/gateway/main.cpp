@@ -2,8 +2,8 @@
 // back. Only wiring: options -> logging -> node (configure) -> heartbeat -> loop -> tear down.
 #include <iostream>
 
-#include "common/heartbeat.hpp"
-#include "common/shutdown.hpp"
+#include "common/core/shutdown.hpp"
+#include "common/fastdds/heartbeat.hpp"
 #include "gateway/gateway_node.hpp"
 #include "gateway/gateway_options.hpp"
 

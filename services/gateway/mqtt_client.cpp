@@ -158,13 +158,14 @@ void MqttClient::schedule_retry(const std::string& why, bool lost) {
   if (lost) {
     connected_.store(false);
     version_.fetch_add(1);
-    spdlog::warn("MQTT connection to {} lost: {}; reconnecting (backoff {} ms, up to {} s)", options_.broker, why,
-                 delay.count(), options_.reconnect_max_s);
+    spdlog::warn("MQTT connection to {} lost: {}; reconnecting (backoff {} ms, up to {} s)", options_.broker,
+                 why, delay.count(), options_.reconnect_max_s);
   } else if (first) {
     spdlog::warn("MQTT cannot connect to {}: {}; retrying with backoff up to {} s", options_.broker, why,
                  options_.reconnect_max_s);
   } else {
-    spdlog::debug("MQTT connect to {} failed again: {}; next attempt in {} ms", options_.broker, why, delay.count());
+    spdlog::debug("MQTT connect to {} failed again: {}; next attempt in {} ms", options_.broker, why,
+                  delay.count());
   }
 }
 
@@ -211,7 +212,8 @@ void MqttClient::on_connect_failure(void* context, MQTTAsync_failureData* respon
   guarded("connect-failure", [&] { self->schedule_retry(failure_text(response), false); });
 }
 
-Status MqttClient::publish(const std::string& topic, std::span<const std::uint8_t> payload, int qos, bool retain) {
+Status MqttClient::publish(const std::string& topic, std::span<const std::uint8_t> payload, int qos,
+                           bool retain) {
   if (payload.size() > static_cast<size_t>(std::numeric_limits<int>::max())) {
     return Error{"publish to '" + topic + "': payload too large"};
   }
@@ -231,7 +233,8 @@ Status MqttClient::subscribe(const std::string& filter, int qos) {
   bool now = false;
   {
     std::lock_guard lock(mutex_);
-    auto it = std::find_if(filters_.begin(), filters_.end(), [&](const Filter& f) { return f.filter == filter; });
+    auto it =
+        std::find_if(filters_.begin(), filters_.end(), [&](const Filter& f) { return f.filter == filter; });
     if (it != filters_.end()) {
       it->qos = qos;
     } else {
@@ -248,7 +251,8 @@ Status MqttClient::unsubscribe(const std::string& filter) {
   bool now = false;
   {
     std::lock_guard lock(mutex_);
-    auto it = std::find_if(filters_.begin(), filters_.end(), [&](const Filter& f) { return f.filter == filter; });
+    auto it =
+        std::find_if(filters_.begin(), filters_.end(), [&](const Filter& f) { return f.filter == filter; });
     if (it == filters_.end()) return Error{"not subscribed to '" + filter + "'"};
     filters_.erase(it);
     now = link_ == Link::Connected;
@@ -295,10 +299,12 @@ Status MqttClient::send_requests(const std::vector<Filter>& filters, bool subscr
     std::lock_guard lock(requests_mutex_);
     requests_.erase(request);
   }
-  return Error{std::string(subscribe ? "subscribe " : "unsubscribe ") + joined + ": " + MQTTAsync_strerror(rc)};
+  return Error{std::string(subscribe ? "subscribe " : "unsubscribe ") + joined + ": " +
+               MQTTAsync_strerror(rc)};
 }
 
-void MqttClient::finish_request(Request* request, const std::vector<bool>& refused, int code, const char* message) {
+void MqttClient::finish_request(Request* request, const std::vector<bool>& refused, int code,
+                                const char* message) {
   std::string accepted_list;
   std::string refused_list;
   for (size_t i = 0; i < request->filters.size(); ++i) {
@@ -309,8 +315,9 @@ void MqttClient::finish_request(Request* request, const std::vector<bool>& refus
     spdlog::info("MQTT {} {}", request->subscribe ? "subscribed to" : "unsubscribed from", accepted_list);
   }
   if (!refused_list.empty()) {
-    spdlog::warn("MQTT broker refused to {} {}: {} (code {})", request->subscribe ? "subscribe" : "unsubscribe",
-                 refused_list, message ? message : MQTTAsync_strerror(code), code);
+    spdlog::warn("MQTT broker refused to {} {}: {} (code {})",
+                 request->subscribe ? "subscribe" : "unsubscribe", refused_list,
+                 message ? message : MQTTAsync_strerror(code), code);
   }
   std::lock_guard lock(requests_mutex_);
   requests_.erase(request);
@@ -326,7 +333,8 @@ void MqttClient::on_request_success(void* context, MQTTAsync_successData* respon
     std::vector<bool> refused(n, false);
     if (request->subscribe && response) {
       for (size_t i = 0; i < n; ++i) {
-        const int granted = n == 1 ? response->alt.qos : (response->alt.qosList ? response->alt.qosList[i] : 0);
+        const int granted =
+            n == 1 ? response->alt.qos : (response->alt.qosList ? response->alt.qosList[i] : 0);
         refused[i] = granted == kRefused;
       }
     }
@@ -348,8 +356,9 @@ int MqttClient::on_message_arrived(void* context, char* topic, int topic_len, MQ
     if (self->closing_.load(std::memory_order_relaxed)) return;
     const size_t length = topic_len > 0 ? static_cast<size_t>(topic_len) : std::strlen(topic);
     const auto* bytes = static_cast<const std::uint8_t*>(message->payload);
-    self->on_message_(std::string_view(topic, length),
-                      std::span<const std::uint8_t>(bytes, static_cast<size_t>(std::max(message->payloadlen, 0))));
+    self->on_message_(
+        std::string_view(topic, length),
+        std::span<const std::uint8_t>(bytes, static_cast<size_t>(std::max(message->payloadlen, 0))));
   });
   MQTTAsync_freeMessage(&message);
   MQTTAsync_free(topic);

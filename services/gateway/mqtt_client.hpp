@@ -19,7 +19,7 @@
 #include <thread>
 #include <vector>
 
-#include "common/result.hpp"
+#include "common/core/result.hpp"
 #include "gateway/backoff.hpp"
 #include "gateway/gateway_options.hpp"
 

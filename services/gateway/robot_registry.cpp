@@ -87,7 +87,8 @@ AcceptResult RobotRegistry::accept_observation(std::string_view id, Protocol pro
   return result;
 }
 
-AcceptResult RobotRegistry::accept_status(std::string_view id, const protocol::DecodedStatus& status, Instant now) {
+AcceptResult RobotRegistry::accept_status(std::string_view id, const protocol::DecodedStatus& status,
+                                          Instant now) {
   AcceptResult result;
   RobotRecord* r = touch(id, Protocol::V2, now, result);
   if (!r) return result;
@@ -106,7 +107,8 @@ void RobotRegistry::count_rejected(std::string_view id) {
 
 void RobotRegistry::expire(Instant now, const std::function<void(const RobotRecord&)>& on_offline) {
   for (auto& [id, r] : robots_) {
-    if (r.presence != Presence::Online || now.mono_ns - r.last_heard_mono_ns < config_.offline_after_ns) continue;
+    if (r.presence != Presence::Online || now.mono_ns - r.last_heard_mono_ns < config_.offline_after_ns)
+      continue;
     r.presence = Presence::Offline;
     r.changed = true;
     --online_;

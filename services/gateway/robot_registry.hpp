@@ -35,18 +35,18 @@ struct RobotRecord {
   std::int64_t first_seen_ns = 0;  // wall clock
   std::int64_t last_seen_ns = 0;   // wall clock, last valid message
   std::int64_t last_heard_mono_ns = 0;
-  std::uint64_t messages = 0;      // valid messages
-  std::uint64_t points = 0;        // hits + misses over all observations
-  std::uint64_t rejected = 0;      // rejected messages on this robot's topics
+  std::uint64_t messages = 0;  // valid messages
+  std::uint64_t points = 0;    // hits + misses over all observations
+  std::uint64_t rejected = 0;  // rejected messages on this robot's topics
   std::uint64_t observation_seq = 0;
-  float battery = -1.0f;           // negative: unknown
-  std::string status;              // v2 robot-reported state, empty when unknown
-  bool changed = true;             // not published since the last change
+  float battery = -1.0f;  // negative: unknown
+  std::string status;     // v2 robot-reported state, empty when unknown
+  bool changed = true;    // not published since the last change
 };
 
 struct RegistryConfig {
   std::int64_t offline_after_ns = 5'000'000'000;  // silence that turns a robot offline
-  std::size_t max_robots = 10'000;                 // robots beyond this are refused (bounded memory)
+  std::size_t max_robots = 10'000;                // robots beyond this are refused (bounded memory)
 };
 
 // What accepting a valid message did.
@@ -57,10 +57,10 @@ struct AcceptResult {
     RegistryFull,  // a new robot while max_robots are known
   };
   Kind kind = Kind::Accepted;
-  std::uint64_t seq = 0;           // observation sequence number (1, 2, ...), 0 for a status
-  bool first_seen = false;         // the robot was not known before
-  bool came_online = false;        // it was offline before this message
-  bool went_offline = false;       // a status carrying the last will turned it offline
+  std::uint64_t seq = 0;      // observation sequence number (1, 2, ...), 0 for a status
+  bool first_seen = false;    // the robot was not known before
+  bool came_online = false;   // it was offline before this message
+  bool went_offline = false;  // a status carrying the last will turned it offline
 };
 
 class RobotRegistry {
@@ -70,8 +70,8 @@ class RobotRegistry {
   // A valid observation. A points message without a pose (has_pose false) gets the robot's last
   // pose filled in, or NoPose when there is none. Counts the message and its points, sets the
   // protocol and marks the robot online. On NoPose/RegistryFull nothing is recorded.
-  AcceptResult accept_observation(std::string_view id, Protocol protocol, protocol::DecodedObservation& observation,
-                                  Instant now);
+  AcceptResult accept_observation(std::string_view id, Protocol protocol,
+                                  protocol::DecodedObservation& observation, Instant now);
   // A valid v2 status: battery and state; the last will ({"state":"offline"}) turns it offline.
   AcceptResult accept_status(std::string_view id, const protocol::DecodedStatus& status, Instant now);
   // A rejected message on a robot's topic: counted only for robots already known (an unknown id

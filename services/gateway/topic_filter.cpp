@@ -32,7 +32,8 @@ Status validate_filter(std::string_view filter) {
   std::size_t start = 0;
   while (true) {
     const std::size_t end = filter.find('/', start);
-    const std::string_view level = filter.substr(start, end == std::string_view::npos ? std::string_view::npos : end - start);
+    const std::string_view level =
+        filter.substr(start, end == std::string_view::npos ? std::string_view::npos : end - start);
     const bool has_wildcard = level.find_first_of("+#") != std::string_view::npos;
     if (has_wildcard && level.size() != 1) {
       return Error{"filter '" + protocol::escape_for_log(filter) + "': a wildcard must be a whole level"};

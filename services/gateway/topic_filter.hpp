@@ -5,7 +5,7 @@
 #include <cstddef>
 #include <string_view>
 
-#include "common/result.hpp"
+#include "common/core/result.hpp"
 
 namespace slam::gateway {
 

@@ -7,7 +7,8 @@
 
 namespace slam::gateway {
 
-Result<std::unique_ptr<TrafficPublisher>> TrafficPublisher::start(dds::Participant& participant, TrafficQueue& queue,
+Result<std::unique_ptr<TrafficPublisher>> TrafficPublisher::start(dds::Participant& participant,
+                                                                  TrafficQueue& queue,
                                                                   std::atomic<int64_t>& write_failures) {
   std::unique_ptr<TrafficPublisher> p(new TrafficPublisher(queue, write_failures));
   auto writer = dds::make_writer(participant, dds::kMqttTraffic);

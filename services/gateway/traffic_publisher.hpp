@@ -6,8 +6,8 @@
 #include <thread>
 #include <vector>
 
-#include "common/counters.hpp"
-#include "common/fast_topics.hpp"
+#include "common/core/counters.hpp"
+#include "common/fastdds/fast_topics.hpp"
 #include "gateway/traffic_queue.hpp"
 
 namespace slam::gateway {

@@ -42,8 +42,8 @@ std::vector<TrafficRecord> TrafficQueue::make_batch(std::size_t size) const {
   return batch;
 }
 
-bool TrafficQueue::push(TrafficDirection direction, std::string_view topic, std::span<const std::uint8_t> payload,
-                        std::int64_t stamp_ns, std::int64_t mono_ns) {
+bool TrafficQueue::push(TrafficDirection direction, std::string_view topic,
+                        std::span<const std::uint8_t> payload, std::int64_t stamp_ns, std::int64_t mono_ns) {
   {
     std::lock_guard lock(mutex_);
     const std::uint64_t seq = next_seq_++;

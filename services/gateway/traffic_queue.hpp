@@ -32,7 +32,8 @@ struct TrafficRecord {
 // `rate` tokens per second, at most `burst` saved up. Time is passed in, so tests need no clock.
 class TokenBucket {
  public:
-  TokenBucket(double rate_per_s, double burst) : rate_per_ns_(rate_per_s * 1e-9), burst_(burst), tokens_(burst) {}
+  TokenBucket(double rate_per_s, double burst)
+      : rate_per_ns_(rate_per_s * 1e-9), burst_(burst), tokens_(burst) {}
   bool take(std::int64_t mono_ns);
 
  private:
@@ -62,7 +63,7 @@ class TrafficQueue {
   std::mutex mutex_;
   std::condition_variable ready_;
   std::vector<TrafficRecord> ring_;
-  std::size_t head_ = 0;   // oldest record
+  std::size_t head_ = 0;  // oldest record
   std::size_t count_ = 0;
   std::uint64_t next_seq_ = 1;
   TokenBucket bucket_;

@@ -7,7 +7,9 @@
 namespace slam::mapper {
 namespace {
 
-Error bad(const char* key, const std::string& why) { return Error{std::string(key) + ": " + why}; }
+Error bad(const char* key, const std::string& why) {
+  return Error{std::string(key) + ": " + why};
+}
 
 std::string num(double v) {
   std::string s = std::to_string(v);
@@ -16,7 +18,9 @@ std::string num(double v) {
   return s;
 }
 
-bool positive(double v) { return std::isfinite(v) && v > 0.0; }
+bool positive(double v) {
+  return std::isfinite(v) && v > 0.0;
+}
 
 }  // namespace
 
@@ -29,8 +33,10 @@ int64_t cells_for(double metres, double resolution) {
 Status validate(const GridConfig& c) {
   if (!positive(c.resolution) || c.resolution < 1e-3)
     return bad("resolution", "must be a finite number >= 0.001 m, got " + num(c.resolution));
-  if (!std::isfinite(c.origin_x) || std::abs(c.origin_x) > 1e6) return bad("origin_x", "must be finite, |x| <= 1e6");
-  if (!std::isfinite(c.origin_y) || std::abs(c.origin_y) > 1e6) return bad("origin_y", "must be finite, |y| <= 1e6");
+  if (!std::isfinite(c.origin_x) || std::abs(c.origin_x) > 1e6)
+    return bad("origin_x", "must be finite, |x| <= 1e6");
+  if (!std::isfinite(c.origin_y) || std::abs(c.origin_y) > 1e6)
+    return bad("origin_y", "must be finite, |y| <= 1e6");
   if (!positive(c.width_m)) return bad("width_m", "must be > 0, got " + num(c.width_m));
   if (!positive(c.height_m)) return bad("height_m", "must be > 0, got " + num(c.height_m));
   if (!positive(c.max_extent_m)) return bad("max_extent_m", "must be > 0, got " + num(c.max_extent_m));
@@ -38,9 +44,10 @@ Status validate(const GridConfig& c) {
     return bad("max_extent_m", "must be at least width_m and height_m (" + num(c.max_extent_m) + " m)");
   const int64_t side = cells_for(c.max_extent_m, c.resolution);
   if (side > kMaxCellsPerSide || side * side > kMaxCells)
-    return bad("max_extent_m", num(c.max_extent_m) + " m at " + num(c.resolution) + " m/cell needs " +
-                                   std::to_string(side) + " cells per side, more than the limit of " +
-                                   std::to_string(static_cast<int64_t>(std::sqrt(static_cast<double>(kMaxCells)))));
+    return bad("max_extent_m",
+               num(c.max_extent_m) + " m at " + num(c.resolution) + " m/cell needs " + std::to_string(side) +
+                   " cells per side, more than the limit of " +
+                   std::to_string(static_cast<int64_t>(std::sqrt(static_cast<double>(kMaxCells)))));
   if (!positive(c.grow_chunk_m)) return bad("grow_chunk_m", "must be > 0, got " + num(c.grow_chunk_m));
   if (!positive(c.max_range_m)) return bad("max_range_m", "must be > 0, got " + num(c.max_range_m));
   if (!std::isfinite(c.inflation_radius) || c.inflation_radius < 0.0)

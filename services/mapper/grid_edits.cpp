@@ -58,7 +58,8 @@ void OccupancyGrid::clear_obstructions() {
 Result<int64_t> OccupancyGrid::apply_prior(const MapImage& image) {
   if (image.width == 0 || image.height == 0 || image.cells.size() != size_t{image.width} * image.height)
     return Error{"prior map: cell count does not match width*height"};
-  if (!std::isfinite(image.resolution) || image.resolution <= 0.0) return Error{"prior map: resolution must be > 0"};
+  if (!std::isfinite(image.resolution) || image.resolution <= 0.0)
+    return Error{"prior map: resolution must be > 0"};
   if (!std::isfinite(image.origin_x) || !std::isfinite(image.origin_y) || !std::isfinite(image.origin_yaw))
     return Error{"prior map: origin is not finite"};
   const double c = std::cos(image.origin_yaw);
@@ -109,7 +110,8 @@ Result<int64_t> OccupancyGrid::apply_prior(const MapImage& image) {
       if (u < 0 || v < 0 || u >= image.width || v >= image.height) continue;
       const uint8_t cell = image.cells[static_cast<size_t>(v) * image.width + static_cast<size_t>(u)];
       if (cell == kMapUnknown) continue;
-      set_value(index(gx, gy), cell == kMapOccupied ? config_.log_odds.prior_occupied : config_.log_odds.prior_free);
+      set_value(index(gx, gy),
+                cell == kMapOccupied ? config_.log_odds.prior_occupied : config_.log_odds.prior_free);
       ++set;
     }
   }

@@ -2,8 +2,8 @@
 // Only wiring: options -> (offline command) -> logging -> node (configure) -> heartbeat -> loop -> tear down.
 #include <iostream>
 
-#include "common/heartbeat.hpp"
-#include "common/shutdown.hpp"
+#include "common/core/shutdown.hpp"
+#include "common/fastdds/heartbeat.hpp"
 #include "mapper/mapper_node.hpp"
 #include "mapper/mapper_offline.hpp"
 #include "mapper/mapper_options.hpp"

@@ -6,7 +6,9 @@
 namespace slam::mapper {
 namespace {
 
-FileOutcome failed(FileFailure kind, std::string message) { return FileOutcome{kind, std::move(message), {}}; }
+FileOutcome failed(FileFailure kind, std::string message) {
+  return FileOutcome{kind, std::move(message), {}};
+}
 
 // Remote requests name files on the mapper's disk: refuse what cannot be a map path before touching it.
 std::optional<FileOutcome> check_path(const std::string& yaml_path) {
@@ -27,8 +29,9 @@ Result<ObservationStore> open_store(const std::filesystem::path& path, StoreOpti
   if (!dir.empty()) {
     std::error_code ec;
     std::filesystem::create_directories(dir, ec);
-    if (ec) return Error{"observation store " + path.string() + ": cannot create directory " + dir.string() + ": " +
-                         ec.message()};
+    if (ec)
+      return Error{"observation store " + path.string() + ": cannot create directory " + dir.string() + ": " +
+                   ec.message()};
   }
   return ObservationStore::open(path, options);
 }
@@ -48,8 +51,8 @@ Result<GridConfig> startup_config(const GridConfig& defaults, ObservationStore& 
     config.legacy_mode = s.legacy_mode;
   }
   if (Status v = validate(config); !v)
-    return Error{"observation store " + store.path().string() + ": its layout does not fit the grid flags: " +
-                 v.message()};
+    return Error{"observation store " + store.path().string() +
+                 ": its layout does not fit the grid flags: " + v.message()};
   return config;
 }
 
@@ -71,8 +74,9 @@ FileOutcome export_map_file(const OccupancyGrid& grid, const std::string& yaml_p
   std::filesystem::path pgm = p;
   pgm.replace_extension(".pgm");
   return FileOutcome{FileFailure::None,
-                     "exported " + std::to_string(image.width) + "x" + std::to_string(image.height) + " cells at " +
-                         std::to_string(image.resolution) + " m to " + yaml_path + " and " + pgm.string(),
+                     "exported " + std::to_string(image.width) + "x" + std::to_string(image.height) +
+                         " cells at " + std::to_string(image.resolution) + " m to " + yaml_path + " and " +
+                         pgm.string(),
                      {}};
 }
 
@@ -85,8 +89,8 @@ FileOutcome read_map_file(const std::string& yaml_path) {
   // The YAML exists: what fails now is its content or the image it names.
   if (!image) return failed(FileFailure::BadFile, image.message());
   FileOutcome out{FileFailure::None,
-                  "read " + std::to_string(image->width) + "x" + std::to_string(image->height) + " pixels at " +
-                      std::to_string(image->resolution) + " m from " + yaml_path,
+                  "read " + std::to_string(image->width) + "x" + std::to_string(image->height) +
+                      " pixels at " + std::to_string(image->resolution) + " m from " + yaml_path,
                   std::move(*image)};
   return out;
 }

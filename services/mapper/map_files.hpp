@@ -6,8 +6,8 @@
 #include <optional>
 #include <string>
 
-#include "common/map_io.hpp"
-#include "common/result.hpp"
+#include "common/core/map_io.hpp"
+#include "common/core/result.hpp"
 #include "mapper/grid_config.hpp"
 #include "mapper/observation_store.hpp"
 #include "mapper/occupancy_grid.hpp"
@@ -28,7 +28,7 @@ enum class FileFailure { None, InvalidRequest, Io, BadFile };
 
 struct FileOutcome {
   FileFailure failure = FileFailure::None;
-  std::string message;        // what was done, or what went wrong (naming the file)
+  std::string message;            // what was done, or what went wrong (naming the file)
   std::optional<MapImage> image;  // read_map_file: the decoded map
   bool ok() const { return failure == FileFailure::None; }
 };

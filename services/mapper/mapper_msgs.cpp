@@ -19,7 +19,8 @@ Result<ObservationView> to_view(const slam::RobotObservation& in, std::vector<Po
   if (in.robot_id().size() == 0) return Error{"robot_id is empty"};
   const size_t points = in.hits().size() + in.misses().size();
   if (points > kMaxPointsPerObservation)
-    return Error{std::to_string(points) + " points, more than the limit of " + std::to_string(kMaxPointsPerObservation)};
+    return Error{std::to_string(points) + " points, more than the limit of " +
+                 std::to_string(kMaxPointsPerObservation)};
   copy_points(in.hits(), hits);
   copy_points(in.misses(), misses);
   ObservationView view;
@@ -39,7 +40,8 @@ Result<GridConfig> requested_config(const slam::GridConfig& request, const GridC
   c.origin_y = request.origin().y();
   if (request.width_m() != 0.0) c.width_m = request.width_m();
   if (request.height_m() != 0.0) c.height_m = request.height_m();
-  if (!(request.inflation_radius() < 0.0)) c.inflation_radius = request.inflation_radius();  // NaN: validated below
+  if (!(request.inflation_radius() < 0.0))
+    c.inflation_radius = request.inflation_radius();  // NaN: validated below
   c.legacy_mode = request.legacy_mode();
   if (Status s = validate(c); !s) return Error{s.message()};
   return c;
@@ -75,10 +77,14 @@ void fill_patch(const OccupancyGrid& grid, const CellBox& box, uint32_t layout_i
 
 slam::MapResult to_map_result(FileFailure failure) {
   switch (failure) {
-    case FileFailure::None: return slam::MAP_OK;
-    case FileFailure::InvalidRequest: return slam::MAP_INVALID_REQUEST;
-    case FileFailure::Io: return slam::MAP_IO_ERROR;
-    case FileFailure::BadFile: return slam::MAP_BAD_FILE;
+    case FileFailure::None:
+      return slam::MAP_OK;
+    case FileFailure::InvalidRequest:
+      return slam::MAP_INVALID_REQUEST;
+    case FileFailure::Io:
+      return slam::MAP_IO_ERROR;
+    case FileFailure::BadFile:
+      return slam::MAP_BAD_FILE;
   }
   return slam::MAP_IO_ERROR;
 }

@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "common/result.hpp"
+#include "common/core/result.hpp"
 #include "mapper/grid_config.hpp"
 #include "mapper/map_files.hpp"
 #include "mapper/occupancy_grid.hpp"

@@ -7,7 +7,7 @@
 #include <system_error>
 #include <utility>
 
-#include "common/clock.hpp"
+#include "common/core/clock.hpp"
 #include "mapper/map_files.hpp"
 #include "mapper/mapper_msgs.hpp"
 #include "mapper/rebuild.hpp"
@@ -89,10 +89,12 @@ Status MapperNode::configure() {
   if (!grid) return Error{grid.message()};
   grid_.emplace(std::move(*grid));
   const auto took = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-  spdlog::info("store {}: {} observations, {} obstructions, {} prior cells rebuilt in {:.3f} s ({}x{} cells of {} m)",
-               options_.store, stats.observations, stats.obstructions, stats.prior_cells, took, grid_->width(),
-               grid_->height(), grid_->resolution());
-  if (stats.rejected > 0) spdlog::warn("store: {} observations rejected: {}", stats.rejected, stats.first_error);
+  spdlog::info(
+      "store {}: {} observations, {} obstructions, {} prior cells rebuilt in {:.3f} s ({}x{} cells of {} m)",
+      options_.store, stats.observations, stats.obstructions, stats.prior_cells, took, grid_->width(),
+      grid_->height(), grid_->resolution());
+  if (stats.rejected > 0)
+    spdlog::warn("store: {} observations rejected: {}", stats.rejected, stats.first_error);
   auto count = store_->count();
   if (!count) return Error{count.message()};
   metrics_.store_observations.store(*count);
@@ -118,20 +120,23 @@ Status MapperNode::configure() {
   publish_snapshot(false);
 
   // Readers last: from here on callbacks run, and everything they touch exists.
-  auto observations = dds::make_reader(*participant_, dds::kRobotObservation,
-                                       [this](const slam::RobotObservation& o, const auto&) { intake_.push(o); });
+  auto observations =
+      dds::make_reader(*participant_, dds::kRobotObservation,
+                       [this](const slam::RobotObservation& o, const auto&) { intake_.push(o); });
   if (!observations) return Error{observations.message()};
   observation_reader_ = std::move(*observations);
-  auto configs = dds::make_reader(*participant_, dds::kGridConfig,
-                                  [this](const slam::GridConfig& c, const auto&) { intake_.push(MapCommand{c}); });
+  auto configs =
+      dds::make_reader(*participant_, dds::kGridConfig,
+                       [this](const slam::GridConfig& c, const auto&) { intake_.push(MapCommand{c}); });
   if (!configs) return Error{configs.message()};
   config_reader_ = std::move(*configs);
   auto edits = dds::make_reader(*participant_, dds::kMapEdit,
                                 [this](const slam::MapEdit& e, const auto&) { intake_.push(MapCommand{e}); });
   if (!edits) return Error{edits.message()};
   edit_reader_ = std::move(*edits);
-  auto files = dds::make_reader(*participant_, dds::kMapFileRequest,
-                                [this](const slam::MapFileRequest& r, const auto&) { intake_.push(MapCommand{r}); });
+  auto files =
+      dds::make_reader(*participant_, dds::kMapFileRequest,
+                       [this](const slam::MapFileRequest& r, const auto&) { intake_.push(MapCommand{r}); });
   if (!files) return Error{files.message()};
   file_reader_ = std::move(*files);
 
@@ -173,7 +178,8 @@ void MapperNode::integrate(const slam::RobotObservation& sample) {
       view->misses = misses_;
     }
   }
-  Result<IntegrateStats> stats = view ? grid_->integrate(*view) : Result<IntegrateStats>(Error{view.message()});
+  Result<IntegrateStats> stats =
+      view ? grid_->integrate(*view) : Result<IntegrateStats>(Error{view.message()});
   if (!stats) {
     bump(metrics_.rejected);
     warn("reject:" + std::string(robot), "observation of robot '" + std::string(robot) + "' seq " +
@@ -183,12 +189,13 @@ void MapperNode::integrate(const slam::RobotObservation& sample) {
   bump(metrics_.observations);
   bump(metrics_.points, static_cast<int64_t>(hits_.size() + misses_.size()));
   if (stats->clipped > 0)
-    warn("clip:" + std::string(robot), "robot '" + std::string(robot) + "': " + std::to_string(stats->clipped) +
+    warn("clip:" + std::string(robot), "robot '" + std::string(robot) +
+                                           "': " + std::to_string(stats->clipped) +
                                            " point(s) clipped: " + kClipReason);
   if (worker_.busy()) {
     // The rebuild must see the store as it was when it started: keep this for the new grid.
-    deferred_.push_back(Deferred{std::string(robot), sample.seq(), sample.stamp_ns(), view->x, view->y, view->theta,
-                                 view->has_heading, hits_, misses_});
+    deferred_.push_back(Deferred{std::string(robot), sample.seq(), sample.stamp_ns(), view->x, view->y,
+                                 view->theta, view->has_heading, hits_, misses_});
     return;
   }
   store_observation(robot, sample.seq(), sample.stamp_ns(), *view);
@@ -198,8 +205,8 @@ void MapperNode::store_observation(std::string_view robot, uint64_t seq, int64_t
                                    const ObservationView& view) {
   if (Status s = store_->append(robot, seq, stamp_ns, view); !s) {
     bump(metrics_.store_errors);
-    warn("store", "observation of robot '" + std::string(robot) + "' not stored (the map has it until restart): " +
-                      s.message());
+    warn("store", "observation of robot '" + std::string(robot) +
+                      "' not stored (the map has it until restart): " + s.message());
     return;
   }
   bump(metrics_.store_observations);
@@ -277,8 +284,10 @@ void MapperNode::update_periodic_counters() {
 void MapperNode::warn(const std::string& key, const std::string& line) {
   uint64_t suppressed = 0;
   if (!limiter_.allow(key, &suppressed)) return;
-  if (suppressed > 0) spdlog::warn("{} ({} similar lines suppressed)", line, suppressed);
-  else spdlog::warn("{}", line);
+  if (suppressed > 0)
+    spdlog::warn("{} ({} similar lines suppressed)", line, suppressed);
+  else
+    spdlog::warn("{}", line);
 }
 
 }  // namespace slam::mapper

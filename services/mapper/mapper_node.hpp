@@ -17,10 +17,10 @@
 #include <string>
 #include <vector>
 
-#include "common/counters.hpp"
-#include "common/fast_topics.hpp"
-#include "common/log.hpp"
-#include "common/result.hpp"
+#include "common/core/counters.hpp"
+#include "common/core/log.hpp"
+#include "common/core/result.hpp"
+#include "common/fastdds/fast_topics.hpp"
 #include "mapper/mapper_intake.hpp"
 #include "mapper/mapper_options.hpp"
 #include "mapper/observation_store.hpp"
@@ -119,19 +119,19 @@ class MapperNode {
   // Loop state: touched by the loop thread only.
   std::optional<ObservationStore> store_;
   std::optional<OccupancyGrid> grid_;
-  uint32_t layout_id_ = 0;        // published; changes when size, origin or resolution change
-  uint32_t seen_layout_ = 0;      // grid_->layout_version() last published
-  uint64_t version_ = 0;          // last published change set (patch, or grid-replacing snapshot)
-  int snapshot_readers_ = 0;      // matched snapshot readers at the last tick
+  uint32_t layout_id_ = 0;    // published; changes when size, origin or resolution change
+  uint32_t seen_layout_ = 0;  // grid_->layout_version() last published
+  uint64_t version_ = 0;      // last published change set (patch, or grid-replacing snapshot)
+  int snapshot_readers_ = 0;  // matched snapshot readers at the last tick
   std::chrono::steady_clock::time_point next_tick_;
   std::chrono::steady_clock::time_point next_snapshot_;
   std::chrono::steady_clock::time_point next_store_stat_;
   std::vector<Point2d> hits_;
   std::vector<Point2d> misses_;
   RobotFootprints footprints_;
-  std::vector<Deferred> deferred_;         // observations integrated during a rebuild
-  std::optional<RebuildTicket> ticket_;    // the running rebuild's
-  std::deque<MapCommand> queued_;          // requests waiting for the rebuild
+  std::vector<Deferred> deferred_;       // observations integrated during a rebuild
+  std::optional<RebuildTicket> ticket_;  // the running rebuild's
+  std::deque<MapCommand> queued_;        // requests waiting for the rebuild
   MapperBatch batch_;
   slam::GridSnapshot snapshot_;
   slam::GridPatch patch_;

@@ -19,7 +19,8 @@ Result<std::string> export_store(const MapperOptions& o, ObservationStore& store
   FileOutcome out = export_map_file(*grid, o.export_yaml);
   if (!out.ok()) return Error{out.message};
   std::string summary = out.message + " (" + std::to_string(stats.observations) + " observations";
-  if (stats.rejected > 0) summary += ", " + std::to_string(stats.rejected) + " rejected: " + stats.first_error;
+  if (stats.rejected > 0)
+    summary += ", " + std::to_string(stats.rejected) + " rejected: " + stats.first_error;
   return summary + ")";
 }
 

@@ -4,7 +4,7 @@
 // or to seed a new site's map before the fleet starts.
 #include <string>
 
-#include "common/result.hpp"
+#include "common/core/result.hpp"
 #include "mapper/mapper_options.hpp"
 
 namespace slam::mapper {

@@ -9,7 +9,8 @@ void add_mapper_options(CLI::App& app, MapperOptions& o) {
   add_service_options(app, o.service);
   app.footer(
       "Offline commands (no DDS; the store must not be in use by a running mapper):\n"
-      "  slam-mapper --store map.db --export map.yaml   rebuild the map from the store, write map.yaml + map.pgm\n"
+      "  slam-mapper --store map.db --export map.yaml   rebuild the map from the store, write map.yaml + "
+      "map.pgm\n"
       "  slam-mapper --store map.db --import map.yaml   store a ROS map_server map as the prior (applied\n"
       "                                                 under every observation at the next start/rebuild)");
 
@@ -18,7 +19,8 @@ void add_mapper_options(CLI::App& app, MapperOptions& o) {
   app.add_option("--store-batch", o.store_batch, "observations per store transaction")->capture_default_str();
 
   GridConfig& g = o.grid;
-  app.add_option("--grid-resolution", g.resolution, "metres per cell (a new store's layout)")->capture_default_str();
+  app.add_option("--grid-resolution", g.resolution, "metres per cell (a new store's layout)")
+      ->capture_default_str();
   app.add_option("--grid-origin-x", g.origin_x, "x of the lower-left corner (m)")->capture_default_str();
   app.add_option("--grid-origin-y", g.origin_y, "y of the lower-left corner (m)")->capture_default_str();
   app.add_option("--grid-width-m", g.width_m, "initial width (m); the grid grows as robots explore")
@@ -26,7 +28,8 @@ void add_mapper_options(CLI::App& app, MapperOptions& o) {
   app.add_option("--grid-height-m", g.height_m, "initial height (m)")->capture_default_str();
   app.add_option("--grid-inflation-radius", g.inflation_radius, "robot radius (m) of the restricted layer")
       ->capture_default_str();
-  app.add_flag("--grid-legacy-mode", g.legacy_mode, "2019 behaviour: points obstruct their cell, nothing is cleared");
+  app.add_flag("--grid-legacy-mode", g.legacy_mode,
+               "2019 behaviour: points obstruct their cell, nothing is cleared");
   app.add_option("--grid-max-extent-m", g.max_extent_m, "the grid never grows past this many metres per side")
       ->capture_default_str();
   app.add_option("--grid-grow-chunk-m", g.grow_chunk_m, "growth step (m)")->capture_default_str();
@@ -47,8 +50,10 @@ void add_mapper_options(CLI::App& app, MapperOptions& o) {
                  "observations waiting for the map loop beyond this are dropped (counted)")
       ->capture_default_str();
 
-  auto* export_flag = app.add_option("--export", o.export_yaml, "offline: write the stored map to FILE.yaml (+ .pgm) and exit");
-  auto* import_flag = app.add_option("--import", o.import_yaml, "offline: store FILE.yaml (+ its PGM) as the prior and exit");
+  auto* export_flag = app.add_option("--export", o.export_yaml,
+                                     "offline: write the stored map to FILE.yaml (+ .pgm) and exit");
+  auto* import_flag =
+      app.add_option("--import", o.import_yaml, "offline: store FILE.yaml (+ its PGM) as the prior and exit");
   export_flag->excludes(import_flag);
 }
 

@@ -4,11 +4,10 @@
 // validator. Flags are named after the keys: `grid.resolution` is --grid-resolution on the command
 // line and `grid: {resolution: 0.05}` in a --config file.
 #include <CLI/CLI.hpp>
-
 #include <string>
 
-#include "common/result.hpp"
-#include "common/service_options.hpp"
+#include "common/core/result.hpp"
+#include "common/core/service_options.hpp"
 #include "mapper/grid_config.hpp"
 #include "mapper/robot_footprints.hpp"
 
@@ -18,13 +17,13 @@ struct MapperOptions {
   ServiceOptions service;
   // SQLite file holding every observation; its directory is created when missing.
   std::string store = "run/data/map.db";
-  int store_batch = 512;           // appends per transaction (a commit also happens every patch period)
+  int store_batch = 512;  // appends per transaction (a commit also happens every patch period)
   // The layout of a new store. A store remembers the layout GridConfig requests set last; that layout
   // (resolution, origin, size, inflation, legacy mode) wins over these flags at start.
   GridConfig grid;
-  FootprintConfig robot_filter;    // hits on other robots become misses
-  double patch_rate_hz = 10.0;     // GridPatch rate (the changed box since the last patch)
-  double snapshot_period_s = 5.0;  // a full GridSnapshot at least this often
+  FootprintConfig robot_filter;             // hits on other robots become misses
+  double patch_rate_hz = 10.0;              // GridPatch rate (the changed box since the last patch)
+  double snapshot_period_s = 5.0;           // a full GridSnapshot at least this often
   size_t max_queued_observations = 100000;  // intake bound: beyond it observations are dropped, counted
   // Offline commands (no DDS): rebuild from the store and write a ROS map, or store a map as prior.
   std::string export_yaml;

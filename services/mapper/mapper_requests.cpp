@@ -13,7 +13,9 @@
 namespace slam::mapper {
 namespace {
 
-std::string point_text(double x, double y) { return "(" + std::to_string(x) + ", " + std::to_string(y) + ")"; }
+std::string point_text(double x, double y) {
+  return "(" + std::to_string(x) + ", " + std::to_string(y) + ")";
+}
 
 std::string layout_text(const GridConfig& c) {
   return std::to_string(c.resolution) + " m/cell, origin " + point_text(c.origin_x, c.origin_y) + ", " +
@@ -41,9 +43,12 @@ void MapperNode::handle(const MapCommand& command) {
   std::visit(
       [this](const auto& c) {
         using T = std::decay_t<decltype(c)>;
-        if constexpr (std::is_same_v<T, slam::GridConfig>) handle_config(c);
-        else if constexpr (std::is_same_v<T, slam::MapEdit>) handle_edit(c);
-        else handle_file(c);
+        if constexpr (std::is_same_v<T, slam::GridConfig>)
+          handle_config(c);
+        else if constexpr (std::is_same_v<T, slam::MapEdit>)
+          handle_edit(c);
+        else
+          handle_file(c);
       },
       command);
 }
@@ -69,9 +74,11 @@ void MapperNode::handle_edit(const slam::MapEdit& edit) {
   switch (edit.kind()) {
     case slam::EDIT_OBSTRUCT: {
       int32_t cx = 0, cy = 0;
-      const bool already = grid_->world_to_cell(x, y, &cx, &cy) && (grid_->cell_class(cx, cy) & kCellObstructed) != 0;
+      const bool already =
+          grid_->world_to_cell(x, y, &cx, &cy) && (grid_->cell_class(cx, cy) & kCellObstructed) != 0;
       if (Status s = grid_->obstruct(x, y); !s) return reply(id, slam::MAP_INVALID_REQUEST, s.message());
-      if (already) return reply(id, slam::MAP_OK, "the cell at " + point_text(x, y) + " is already obstructed");
+      if (already)
+        return reply(id, slam::MAP_OK, "the cell at " + point_text(x, y) + " is already obstructed");
       if (Status s = store_->add_obstruction({x, y}); !s) {
         (void)grid_->unobstruct(x, y);
         bump(metrics_.store_errors);
@@ -80,17 +87,20 @@ void MapperNode::handle_edit(const slam::MapEdit& edit) {
       return reply(id, slam::MAP_OK, "obstructed the cell at " + point_text(x, y));
     }
     case slam::EDIT_UNOBSTRUCT: {
-      if (!std::isfinite(x) || !std::isfinite(y)) return reply(id, slam::MAP_INVALID_REQUEST, "point is not finite");
+      if (!std::isfinite(x) || !std::isfinite(y))
+        return reply(id, slam::MAP_INVALID_REQUEST, "point is not finite");
       const std::vector<Point2d> removed = grid_->unobstruct(x, y);
       for (const Point2d& p : removed) {
         if (Status s = store_->remove_obstruction(p); !s) {
           bump(metrics_.store_errors);
-          return reply(id, slam::MAP_IO_ERROR, s.message() + " (the map no longer shows it; a restart would)");
+          return reply(id, slam::MAP_IO_ERROR,
+                       s.message() + " (the map no longer shows it; a restart would)");
         }
       }
       return reply(id, slam::MAP_OK,
                    removed.empty() ? "no manual obstruction at " + point_text(x, y)
-                                   : "removed " + std::to_string(removed.size()) + " obstruction(s) at " + point_text(x, y));
+                                   : "removed " + std::to_string(removed.size()) + " obstruction(s) at " +
+                                         point_text(x, y));
     }
     case slam::EDIT_CLEAR_OBSTRUCTIONS: {
       if (Status s = store_->clear_obstructions(); !s) {
@@ -109,11 +119,12 @@ void MapperNode::handle_edit(const slam::MapEdit& edit) {
         bump(metrics_.store_errors);
         return reply(id, slam::MAP_IO_ERROR, deleted.message());
       }
-      if (*deleted == 0) return reply(id, slam::MAP_UNKNOWN_ROBOT, "no stored observations of robot '" + robot + "'");
+      if (*deleted == 0)
+        return reply(id, slam::MAP_UNKNOWN_ROBOT, "no stored observations of robot '" + robot + "'");
       metrics_.store_observations.fetch_sub(*deleted, std::memory_order_relaxed);
-      return start_rebuild(RebuildTicket{RebuildCause::ResetRobot, id, grid_->config(),
-                                         "deleted " + std::to_string(*deleted) + " observations of robot '" + robot + "'",
-                                         std::nullopt});
+      return start_rebuild(RebuildTicket{
+          RebuildCause::ResetRobot, id, grid_->config(),
+          "deleted " + std::to_string(*deleted) + " observations of robot '" + robot + "'", std::nullopt});
     }
   }
   reply(id, slam::MAP_INVALID_REQUEST, "unknown edit kind " + std::to_string(static_cast<int>(edit.kind())));
@@ -127,7 +138,8 @@ void MapperNode::handle_file(const slam::MapFileRequest& request) {
     return reply(id, to_map_result(out.failure), out.message);
   }
   if (request.action() != slam::MAP_IMPORT)
-    return reply(id, slam::MAP_INVALID_REQUEST, "unknown action " + std::to_string(static_cast<int>(request.action())));
+    return reply(id, slam::MAP_INVALID_REQUEST,
+                 "unknown action " + std::to_string(static_cast<int>(request.action())));
   FileOutcome in = read_map_file(path);
   if (!in.ok()) return reply(id, to_map_result(in.failure), in.message);
   auto previous = store_->load_prior();
@@ -158,7 +170,8 @@ void MapperNode::finish_rebuild(RebuildOutcome outcome) {
   ticket_.reset();
   if (!outcome.grid) {
     if (ticket.cause == RebuildCause::Import) {  // put the old prior back: the store matches the map again
-      Status restored = ticket.previous_prior ? store_->save_prior(*ticket.previous_prior) : store_->clear_prior();
+      Status restored =
+          ticket.previous_prior ? store_->save_prior(*ticket.previous_prior) : store_->clear_prior();
       if (!restored) spdlog::error("{}", restored.message());
     }
     for (const Deferred& d : deferred_) store_observation(d.robot_id, d.seq, d.stamp_ns, d.view());

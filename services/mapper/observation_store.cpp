@@ -9,7 +9,8 @@
 
 namespace slam::mapper {
 
-static_assert(std::endian::native == std::endian::little, "point blobs are stored in host (little-endian) order");
+static_assert(std::endian::native == std::endian::little,
+              "point blobs are stored in host (little-endian) order");
 static_assert(sizeof(Point2d) == 2 * sizeof(double), "Point2d must be two packed doubles");
 
 namespace {
@@ -33,7 +34,8 @@ CREATE TABLE IF NOT EXISTS prior(
 )sql";
 
 Status decode_points(const void* blob, int bytes, std::vector<Point2d>* out) {
-  if (bytes < 0 || bytes % static_cast<int>(sizeof(Point2d)) != 0) return Error{"point blob size is not a multiple of 16"};
+  if (bytes < 0 || bytes % static_cast<int>(sizeof(Point2d)) != 0)
+    return Error{"point blob size is not a multiple of 16"};
   out->resize(static_cast<size_t>(bytes) / sizeof(Point2d));
   if (bytes > 0) std::memcpy(out->data(), blob, static_cast<size_t>(bytes));
   return Status::ok();
@@ -67,8 +69,12 @@ constexpr ConfigField kConfigFields[] = {
 
 }  // namespace
 
-void ObservationStore::DbClose::operator()(sqlite3* db) const { sqlite3_close_v2(db); }
-void ObservationStore::StmtFinalize::operator()(sqlite3_stmt* s) const { sqlite3_finalize(s); }
+void ObservationStore::DbClose::operator()(sqlite3* db) const {
+  sqlite3_close_v2(db);
+}
+void ObservationStore::StmtFinalize::operator()(sqlite3_stmt* s) const {
+  sqlite3_finalize(s);
+}
 
 Error ObservationStore::db_error(std::string_view what) const {
   return Error{"observation store " + path_.string() + ": " + std::string(what) + ": " +
@@ -95,13 +101,14 @@ Result<ObservationStore> ObservationStore::open(const std::filesystem::path& pat
   store.path_ = path;
   store.options_ = options;
   sqlite3* raw = nullptr;
-  const int rc = sqlite3_open_v2(path.c_str(), &raw, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE | SQLITE_OPEN_NOMUTEX,
-                                 nullptr);
+  const int rc = sqlite3_open_v2(path.c_str(), &raw,
+                                 SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE | SQLITE_OPEN_NOMUTEX, nullptr);
   store.db_.reset(raw);
   if (rc != SQLITE_OK) return store.db_error("cannot open");
   sqlite3_busy_timeout(raw, 2000);
   // The first statements read the header: a corrupt file or a non-database fails here.
-  if (Status s = store.exec("PRAGMA journal_mode=WAL; PRAGMA synchronous=NORMAL;"); !s) return Error{s.message()};
+  if (Status s = store.exec("PRAGMA journal_mode=WAL; PRAGMA synchronous=NORMAL;"); !s)
+    return Error{s.message()};
   auto version = store.prepare("PRAGMA user_version");
   if (!version) return Error{version.message()};
   if (sqlite3_step(version->get()) != SQLITE_ROW) return store.db_error("cannot read schema version");
@@ -123,7 +130,8 @@ ObservationStore::~ObservationStore() {
   if (db_ && in_batch_) (void)flush();
 }
 
-Status ObservationStore::append(std::string_view robot_id, uint64_t seq, int64_t stamp_ns, const ObservationView& obs) {
+Status ObservationStore::append(std::string_view robot_id, uint64_t seq, int64_t stamp_ns,
+                                const ObservationView& obs) {
   if (!in_batch_) {
     if (Status s = exec("BEGIN"); !s) return s;
     in_batch_ = true;
@@ -157,7 +165,8 @@ Status ObservationStore::flush() {
 
 Status ObservationStore::for_each(const std::function<void(const ObservationRecord&)>& visit) {
   auto q = prepare(
-      "SELECT id, robot, seq, stamp_ns, x, y, theta, has_heading, hits, misses FROM observations ORDER BY id");
+      "SELECT id, robot, seq, stamp_ns, x, y, theta, has_heading, hits, misses FROM observations ORDER BY "
+      "id");
   if (!q) return q.status();
   sqlite3_stmt* st = q->get();
   ObservationRecord rec;
@@ -273,9 +282,13 @@ Result<std::optional<GridConfig>> ObservationStore::load_config() {
     if (key == "legacy_mode") config.legacy_mode = value != 0.0;
     for (const ConfigField& f : kConfigFields) {
       if (key != f.key) continue;
-      if (f.d) config.*f.d = value;
-      else if (value >= INT16_MIN && value <= INT16_MAX) config.log_odds.*f.i = static_cast<int16_t>(value);
-      else return Error{"observation store " + path_.string() + ": stored config " + std::string(key) + " out of range"};
+      if (f.d)
+        config.*f.d = value;
+      else if (value >= INT16_MIN && value <= INT16_MAX)
+        config.log_odds.*f.i = static_cast<int16_t>(value);
+      else
+        return Error{"observation store " + path_.string() + ": stored config " + std::string(key) +
+                     " out of range"};
     }
   }
   if (rc != SQLITE_DONE) return db_error("reading config");
@@ -286,7 +299,8 @@ Result<std::optional<GridConfig>> ObservationStore::load_config() {
 }
 
 Status ObservationStore::save_prior(const MapImage& image) {
-  if (image.cells.size() != size_t{image.width} * image.height) return Error{"prior map: cell count mismatch"};
+  if (image.cells.size() != size_t{image.width} * image.height)
+    return Error{"prior map: cell count mismatch"};
   if (Status s = flush(); !s) return s;
   auto q = prepare(
       "INSERT OR REPLACE INTO prior(id, width, height, resolution, origin_x, origin_y, origin_yaw, cells) "
@@ -310,7 +324,8 @@ Status ObservationStore::clear_prior() {
 }
 
 Result<std::optional<MapImage>> ObservationStore::load_prior() {
-  auto q = prepare("SELECT width, height, resolution, origin_x, origin_y, origin_yaw, cells FROM prior WHERE id = 1");
+  auto q = prepare(
+      "SELECT width, height, resolution, origin_x, origin_y, origin_yaw, cells FROM prior WHERE id = 1");
   if (!q) return Error{q.message()};
   sqlite3_stmt* st = q->get();
   const int rc = sqlite3_step(st);
@@ -320,7 +335,8 @@ Result<std::optional<MapImage>> ObservationStore::load_prior() {
   const int64_t w = sqlite3_column_int64(st, 0);
   const int64_t h = sqlite3_column_int64(st, 1);
   const int bytes = sqlite3_column_bytes(st, 6);
-  if (w <= 0 || h <= 0 || w * h != bytes) return Error{"observation store " + path_.string() + ": stored prior is corrupt"};
+  if (w <= 0 || h <= 0 || w * h != bytes)
+    return Error{"observation store " + path_.string() + ": stored prior is corrupt"};
   image.width = static_cast<uint32_t>(w);
   image.height = static_cast<uint32_t>(h);
   image.resolution = sqlite3_column_double(st, 2);

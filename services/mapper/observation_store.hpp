@@ -15,8 +15,8 @@
 #include <string_view>
 #include <vector>
 
-#include "common/map_io.hpp"
-#include "common/result.hpp"
+#include "common/core/map_io.hpp"
+#include "common/core/result.hpp"
 #include "mapper/grid_config.hpp"
 #include "mapper/occupancy_grid.hpp"
 
@@ -31,7 +31,7 @@ struct StoreOptions {
 
 // One stored row as iteration presents it; the views are valid during the callback only.
 struct ObservationRecord {
-  int64_t id = 0;              // insertion order
+  int64_t id = 0;  // insertion order
   std::string_view robot_id;
   uint64_t seq = 0;
   int64_t stamp_ns = 0;

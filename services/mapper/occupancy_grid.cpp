@@ -12,7 +12,8 @@ namespace slam::mapper {
 namespace {
 
 std::string point_text(const char* kind, size_t i, double x, double y) {
-  return std::string(kind) + " " + std::to_string(i) + " at (" + std::to_string(x) + ", " + std::to_string(y) + ")";
+  return std::string(kind) + " " + std::to_string(i) + " at (" + std::to_string(x) + ", " +
+         std::to_string(y) + ")";
 }
 
 }  // namespace
@@ -37,8 +38,12 @@ Result<OccupancyGrid> OccupancyGrid::create(const GridConfig& config) {
   return OccupancyGrid(config);
 }
 
-double OccupancyGrid::cell_x(double x) const { return std::floor((x - origin_x()) / config_.resolution); }
-double OccupancyGrid::cell_y(double y) const { return std::floor((y - origin_y()) / config_.resolution); }
+double OccupancyGrid::cell_x(double x) const {
+  return std::floor((x - origin_x()) / config_.resolution);
+}
+double OccupancyGrid::cell_y(double y) const {
+  return std::floor((y - origin_y()) / config_.resolution);
+}
 
 bool OccupancyGrid::world_to_cell(double x, double y, int32_t* cx, int32_t* cy) const {
   const double fx = cell_x(x);
@@ -93,8 +98,7 @@ void OccupancyGrid::set_value(size_t i, int32_t value) {
   if (old == value) return;
   cells_[i].log_odds = static_cast<int16_t>(value);
   const uint8_t state = state_of(value);
-  if (state != state_of(old))
-    set_class(i, static_cast<uint8_t>((classes_[i] & ~kCellStateMask) | state));
+  if (state != state_of(old)) set_class(i, static_cast<uint8_t>((classes_[i] & ~kCellStateMask) | state));
 }
 
 bool OccupancyGrid::fits(int64_t bx0, int64_t by0, int64_t bx1, int64_t by1) const {
@@ -135,7 +139,8 @@ void OccupancyGrid::grow(int64_t bx0, int64_t by0, int64_t bx1, int64_t by1) {
     for (int32_t x = 0; x < width_; ++x)  // stamps restart at 0 with epoch_ below
       grown[dst + static_cast<size_t>(x)].log_odds = cells_[src + static_cast<size_t>(x)].log_odds;
     for (int32_t x = 0; x < width_; ++x)  // inflation is recomputed below
-      cls[dst + static_cast<size_t>(x)] = static_cast<uint8_t>(classes_[src + static_cast<size_t>(x)] & ~kCellInflated);
+      cls[dst + static_cast<size_t>(x)] =
+          static_cast<uint8_t>(classes_[src + static_cast<size_t>(x)] & ~kCellInflated);
   }
   cells_ = std::move(grown);
   classes_ = std::move(cls);
@@ -166,7 +171,8 @@ Result<IntegrateStats> OccupancyGrid::integrate(const ObservationView& obs) {
   const auto check = [&](std::span<const Point2d> pts, const char* kind) -> Status {
     for (size_t i = 0; i < pts.size(); ++i) {
       const Point2d& p = pts[i];
-      if (!std::isfinite(p.x) || !std::isfinite(p.y)) return Error{point_text(kind, i, p.x, p.y) + " is not finite"};
+      if (!std::isfinite(p.x) || !std::isfinite(p.y))
+        return Error{point_text(kind, i, p.x, p.y) + " is not finite"};
       const double dx = p.x - obs.x;
       const double dy = p.y - obs.y;
       if (dx * dx + dy * dy > range2)

@@ -8,9 +8,9 @@
 #include <span>
 #include <vector>
 
-#include "common/cell_class.hpp"
-#include "common/map_io.hpp"
-#include "common/result.hpp"
+#include "common/core/cell_class.hpp"
+#include "common/core/map_io.hpp"
+#include "common/core/result.hpp"
 #include "mapper/grid_config.hpp"
 #include "mapper/inflation.hpp"
 
@@ -41,11 +41,11 @@ struct CellBox {
 };
 
 struct IntegrateStats {
-  uint32_t hits = 0;          // hits marked occupied
-  uint32_t misses = 0;        // misses traced
-  uint32_t clipped = 0;       // hits past the maximum extent: their ray was clipped, end not marked
-  int64_t cells_traced = 0;   // cells visited by rays
-  bool grew = false;          // layout changed (publish a snapshot)
+  uint32_t hits = 0;         // hits marked occupied
+  uint32_t misses = 0;       // misses traced
+  uint32_t clipped = 0;      // hits past the maximum extent: their ray was clipped, end not marked
+  int64_t cells_traced = 0;  // cells visited by rays
+  bool grew = false;         // layout changed (publish a snapshot)
 };
 // Why a point is counted in IntegrateStats::clipped, for the caller's log line.
 inline constexpr const char* kClipReason = "point lies beyond the maximum map extent (max_extent_m)";

@@ -27,8 +27,10 @@ Result<OccupancyGrid> rebuild_grid(const GridConfig& config, ObservationStore& s
   if (!prior) return Error{prior.message()};
   if (prior->has_value()) {
     auto cells = grid->apply_prior(**prior);
-    if (cells) st.prior_cells = *cells;
-    else if (st.first_error.empty()) st.first_error = cells.message();
+    if (cells)
+      st.prior_cells = *cells;
+    else if (st.first_error.empty())
+      st.first_error = cells.message();
   }
 
   // SQLite reads and decodes on a second thread while this one ray-casts: together they take

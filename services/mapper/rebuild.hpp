@@ -4,7 +4,7 @@
 #include <cstdint>
 #include <string>
 
-#include "common/result.hpp"
+#include "common/core/result.hpp"
 #include "mapper/grid_config.hpp"
 #include "mapper/observation_store.hpp"
 #include "mapper/occupancy_grid.hpp"
@@ -12,17 +12,18 @@
 namespace slam::mapper {
 
 struct RebuildStats {
-  int64_t observations = 0;   // integrated
-  int64_t rejected = 0;       // refused by the new config (e.g. a smaller max_range_m)
-  int64_t clipped = 0;        // hits past the new maximum extent
-  int64_t obstructions = 0;   // manual obstructions re-applied
-  int64_t prior_cells = 0;    // cells set from the stored prior
-  std::string first_error;    // the first rejection's reason, for the log
+  int64_t observations = 0;  // integrated
+  int64_t rejected = 0;      // refused by the new config (e.g. a smaller max_range_m)
+  int64_t clipped = 0;       // hits past the new maximum extent
+  int64_t obstructions = 0;  // manual obstructions re-applied
+  int64_t prior_cells = 0;   // cells set from the stored prior
+  std::string first_error;   // the first rejection's reason, for the log
 };
 
 // A fresh grid with `config`: the stored prior, then every observation in insertion order, then the
 // manual obstructions. Errors: invalid config, or the store cannot be read; the caller keeps its
 // current grid in that case.
-Result<OccupancyGrid> rebuild_grid(const GridConfig& config, ObservationStore& store, RebuildStats* stats = nullptr);
+Result<OccupancyGrid> rebuild_grid(const GridConfig& config, ObservationStore& store,
+                                   RebuildStats* stats = nullptr);
 
 }  // namespace slam::mapper

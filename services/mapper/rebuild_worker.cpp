@@ -11,8 +11,10 @@ RebuildOutcome run(const GridConfig& config, const std::filesystem::path& path) 
   const auto start = std::chrono::steady_clock::now();
   RebuildStats stats;
   auto store = ObservationStore::open(path);
-  Result<OccupancyGrid> grid = store ? rebuild_grid(config, *store, &stats) : Result<OccupancyGrid>(Error{store.message()});
-  const auto took = std::chrono::duration_cast<std::chrono::milliseconds>(std::chrono::steady_clock::now() - start);
+  Result<OccupancyGrid> grid =
+      store ? rebuild_grid(config, *store, &stats) : Result<OccupancyGrid>(Error{store.message()});
+  const auto took =
+      std::chrono::duration_cast<std::chrono::milliseconds>(std::chrono::steady_clock::now() - start);
   return RebuildOutcome{std::move(grid), std::move(stats), took};
 }
 

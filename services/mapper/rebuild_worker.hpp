@@ -10,7 +10,7 @@
 #include <optional>
 #include <thread>
 
-#include "common/result.hpp"
+#include "common/core/result.hpp"
 #include "mapper/grid_config.hpp"
 #include "mapper/observation_store.hpp"
 #include "mapper/occupancy_grid.hpp"

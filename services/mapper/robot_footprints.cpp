@@ -15,7 +15,8 @@ Status validate(const FootprintConfig& config) {
 }
 
 RobotFootprints::RobotFootprints(const FootprintConfig& config)
-    : radius2_(config.radius_m * config.radius_m), max_age_ns_(static_cast<int64_t>(config.max_age_s * 1e9)) {}
+    : radius2_(config.radius_m * config.radius_m),
+      max_age_ns_(static_cast<int64_t>(config.max_age_s * 1e9)) {}
 
 size_t RobotFootprints::apply(std::string_view robot_id, double x, double y, int64_t now_ns,
                               std::vector<Point2d>* hits, std::vector<Point2d>* misses) {

@@ -10,14 +10,14 @@
 #include <unordered_map>
 #include <vector>
 
-#include "common/result.hpp"
+#include "common/core/result.hpp"
 #include "mapper/occupancy_grid.hpp"
 
 namespace slam::mapper {
 
 struct FootprintConfig {
-  double radius_m = 0.35;    // a robot's radius plus its pose error; 0 turns the filter off
-  double max_age_s = 2.0;    // a pose older than this no longer marks where the robot is
+  double radius_m = 0.35;  // a robot's radius plus its pose error; 0 turns the filter off
+  double max_age_s = 2.0;  // a pose older than this no longer marks where the robot is
 };
 
 Status validate(const FootprintConfig& config);

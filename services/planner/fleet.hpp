@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "common/result.hpp"
+#include "common/core/result.hpp"
 #include "planner/frontier_assignment.hpp"
 #include "planner/frontiers.hpp"
 #include "planner/goal_tracker.hpp"

@@ -8,7 +8,7 @@
 #include <span>
 #include <vector>
 
-#include "common/result.hpp"
+#include "common/core/result.hpp"
 #include "planner/frontiers.hpp"
 #include "planner/plan_types.hpp"
 

@@ -1,13 +1,12 @@
 // GoalStore: the goal file's format, and keeping it current.
 #include "planner/goal_store.hpp"
 
-#include <nlohmann/json.hpp>
-
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <sstream>
 #include <system_error>
 
@@ -22,7 +21,8 @@ constexpr const char* kFormat = "slam-planner-goals";
 constexpr int kVersion = 1;
 constexpr size_t kMaxRobotId = 64;  // NavGoal.robot_id is a string<64>
 
-constexpr std::array<const char*, 7> kModeNames{"idle", "direct", "planned", "square", "explore", "home", "stop"};
+constexpr std::array<const char*, 7> kModeNames{"idle",    "direct", "planned", "square",
+                                                "explore", "home",   "stop"};
 constexpr std::array<const char*, 2> kAnchorNames{"corner", "centred"};
 
 template <size_t N>
@@ -90,7 +90,9 @@ Result<StoredGoal> to_stored_goal(const json& item, size_t index) {
 }
 
 // Robot ids come off the network: invalid UTF-8 is replaced rather than failing the save.
-std::string dump(const nlohmann::ordered_json& value) { return value.dump(-1, ' ', false, nlohmann::ordered_json::error_handler_t::replace); }
+std::string dump(const nlohmann::ordered_json& value) {
+  return value.dump(-1, ' ', false, nlohmann::ordered_json::error_handler_t::replace);
+}
 
 }  // namespace
 
@@ -132,14 +134,15 @@ std::string format_goal_record(const GoalRecord& record) {
   // One goal per line: small enough to read and to diff by hand.
   std::string goals;
   for (const auto& [id, g] : record.goals) {
-    const nlohmann::ordered_json goal{{"robot_id", id},
-                    {"goal_id", g.goal.goal_id},
-                    {"mode", kModeNames[static_cast<size_t>(g.goal.mode)]},
-                    {"target", {g.goal.target.x, g.goal.target.y}},
-                    {"square_size", g.goal.square_size},
-                    {"square_anchor", kAnchorNames[static_cast<size_t>(g.goal.square_anchor)]},
-                    {"sent_ns", g.sent_ns},
-                    {"finished", g.finished}};
+    const nlohmann::ordered_json goal{
+        {"robot_id", id},
+        {"goal_id", g.goal.goal_id},
+        {"mode", kModeNames[static_cast<size_t>(g.goal.mode)]},
+        {"target", {g.goal.target.x, g.goal.target.y}},
+        {"square_size", g.goal.square_size},
+        {"square_anchor", kAnchorNames[static_cast<size_t>(g.goal.square_anchor)]},
+        {"sent_ns", g.sent_ns},
+        {"finished", g.finished}};
     goals += (goals.empty() ? "\n  " : ",\n  ") + dump(goal);
   }
   nlohmann::ordered_json homes = nlohmann::ordered_json::object();

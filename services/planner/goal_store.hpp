@@ -11,13 +11,13 @@
 #include <string_view>
 #include <vector>
 
-#include "common/result.hpp"
+#include "common/core/result.hpp"
 #include "planner/goal_tracker.hpp"
 
 namespace slam::planner {
 
 struct StoredGoal {
-  std::string robot_id;   // one robot or kAllRobots
+  std::string robot_id;  // one robot or kAllRobots
   Goal goal;
   int64_t sent_ns = 0;    // the sender's clock: orders goals across a restart and spots replays
   bool finished = false;  // reached or failed: kept to spot replays, not resumed

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <utility>
 
-#include "common/square_path.hpp"
+#include "common/core/square_path.hpp"
 #include "planner/line_of_sight.hpp"
 
 namespace slam::planner {

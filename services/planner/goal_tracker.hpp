@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "common/result.hpp"
+#include "common/core/result.hpp"
 #include "planner/plan_types.hpp"
 #include "planner/planning_grid.hpp"
 

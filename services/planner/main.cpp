@@ -2,8 +2,8 @@
 // Only wiring: options -> logging -> node (configure) -> heartbeat -> loop -> tear down in reverse.
 #include <iostream>
 
-#include "common/heartbeat.hpp"
-#include "common/shutdown.hpp"
+#include "common/core/shutdown.hpp"
+#include "common/fastdds/heartbeat.hpp"
 #include "planner/planner_node.hpp"
 #include "planner/planner_options.hpp"
 

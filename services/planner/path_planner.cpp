@@ -57,7 +57,8 @@ Status validate(const PlannerConfig& config) {
   return Status::ok();
 }
 
-PathPlanner::PathPlanner(const PlannerConfig& config) : config_(config), ompl_(config.ompl_seed, config.ompl_range_m) {}
+PathPlanner::PathPlanner(const PlannerConfig& config)
+    : config_(config), ompl_(config.ompl_seed, config.ompl_range_m) {}
 
 std::optional<PlanResult> PathPlanner::reject(const PlanningGrid& grid, const PathQuery& query) const {
   if (!finite(query.start)) return failure(PlanStatus::InvalidRequest, "start is not finite");

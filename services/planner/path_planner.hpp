@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "common/result.hpp"
+#include "common/core/result.hpp"
 #include "planner/grid_astar.hpp"
 #include "planner/ompl_planner.hpp"
 #include "planner/plan_types.hpp"

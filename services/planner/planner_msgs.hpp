@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "common/result.hpp"
+#include "common/core/result.hpp"
 #include "planner/goal_tracker.hpp"
 #include "planner/path_planner.hpp"
 #include "planner/planning_grid.hpp"

@@ -7,7 +7,7 @@
 #include <exception>
 #include <utility>
 
-#include "common/clock.hpp"
+#include "common/core/clock.hpp"
 #include "planner/planner_msgs.hpp"
 
 namespace slam::planner {
@@ -135,8 +135,8 @@ void PlannerNode::resume_goals() {
   size_t resumed = 0;
   for (const StoredGoal& g : goals_to_resume(record)) {
     if (auto started = fleet_.set_goal(g.robot_id, g.goal); !started) {
-      warn("resume:" + g.robot_id, "stored goal " + std::to_string(g.goal.goal_id) + " for robot '" + g.robot_id +
-                                       "' not resumed: " + started.message());
+      warn("resume:" + g.robot_id, "stored goal " + std::to_string(g.goal.goal_id) + " for robot '" +
+                                       g.robot_id + "' not resumed: " + started.message());
       continue;
     }
     ++resumed;
@@ -332,7 +332,8 @@ void PlannerNode::publish_paths() {
     auto [it, inserted] = reported_status_.try_emplace(id, t->status());
     if (!inserted && it->second == t->status()) continue;
     it->second = t->status();
-    if (t->status() == GoalStatus::Reached || t->status() == GoalStatus::Failed) goal_store_.finish(id, t->goal().goal_id);
+    if (t->status() == GoalStatus::Reached || t->status() == GoalStatus::Failed)
+      goal_store_.finish(id, t->goal().goal_id);
     if (t->status() == GoalStatus::Reached) {
       bump(metrics_.goals_reached);
       spdlog::info("robot '{}' reached goal {}", id, t->goal().goal_id);

@@ -12,10 +12,10 @@
 #include <string>
 #include <vector>
 
-#include "common/counters.hpp"
-#include "common/fast_topics.hpp"
-#include "common/log.hpp"
-#include "common/result.hpp"
+#include "common/core/counters.hpp"
+#include "common/core/log.hpp"
+#include "common/core/result.hpp"
+#include "common/fastdds/fast_topics.hpp"
 #include "planner/fleet.hpp"
 #include "planner/goal_store.hpp"
 #include "planner/planner_intake.hpp"

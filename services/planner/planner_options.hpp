@@ -4,12 +4,11 @@
 // Flags are named after the core's keys: `goals.reach_tolerance_m` is --goals-reach-tolerance-m
 // on the command line and `goals: {reach_tolerance_m: 0.15}` in a --config file.
 #include <CLI/CLI.hpp>
-
 #include <cstdint>
 #include <string>
 
-#include "common/result.hpp"
-#include "common/service_options.hpp"
+#include "common/core/result.hpp"
+#include "common/core/service_options.hpp"
 #include "planner/fleet.hpp"
 
 namespace slam::planner {

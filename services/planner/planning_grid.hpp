@@ -6,8 +6,8 @@
 #include <span>
 #include <vector>
 
-#include "common/cell_class.hpp"
-#include "common/result.hpp"
+#include "common/core/cell_class.hpp"
+#include "common/core/result.hpp"
 #include "planner/plan_types.hpp"
 
 namespace slam::planner {

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "common/result.hpp"
+#include "common/core/result.hpp"
 
 namespace slam::protocol {
 
@@ -24,10 +24,10 @@ struct DecodedObservation {
   double x = 0.0;
   double y = 0.0;
   double theta = 0.0;
-  bool has_pose = false;     // false only for a v2 points message sent without a pose
+  bool has_pose = false;  // false only for a v2 points message sent without a pose
   bool has_heading = false;
-  std::vector<Point> hits;   // obstacle points: ray end is occupied
-  std::vector<Point> misses; // beams that saw nothing up to max range: ray is free, end unknown
+  std::vector<Point> hits;    // obstacle points: ray end is occupied
+  std::vector<Point> misses;  // beams that saw nothing up to max range: ray is free, end unknown
 
   void clear() {
     x = y = theta = 0.0;
@@ -55,11 +55,11 @@ inline constexpr std::size_t kMaxStateBytes = 32;    // IDL string<32>
 
 // Bounds on what a robot may send. Defaults suit indoor robots; validate() before use.
 struct CodecLimits {
-  double units_per_meter = 100.0;            // v1 robot units per metre (100: centimetres)
-  std::size_t max_points = 4096;             // obstacle points (hits + misses) or beams per message
+  double units_per_meter = 100.0;  // v1 robot units per metre (100: centimetres)
+  std::size_t max_points = 4096;   // obstacle points (hits + misses) or beams per message
   std::size_t max_payload_bytes = 256 * 1024;
-  double max_abs_coordinate_m = 10'000.0;    // any x or y, in metres
-  double max_abs_angle_rad = 100.0;          // headings and beam angles need not be normalised
+  double max_abs_coordinate_m = 10'000.0;  // any x or y, in metres
+  double max_abs_angle_rad = 100.0;        // headings and beam angles need not be normalised
 };
 
 // Rejects limits the codecs cannot work with, naming the key: "units_per_meter must be ...".

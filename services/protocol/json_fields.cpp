@@ -1,9 +1,9 @@
 // Implementation of the bounded JSON field reads used by the v2 codec.
 #include "protocol/json_fields.hpp"
 
-#include <cmath>
-
 #include <fmt/format.h>
+
+#include <cmath>
 
 namespace slam::protocol::json_fields {
 
@@ -20,7 +20,8 @@ std::string FieldName::str() const {
 CodecStatus parse_object(std::span<const std::uint8_t> payload, const CodecLimits& limits, Json& doc) {
   if (payload.empty()) return {RejectReason::EmptyPayload, "v2 payload is empty, expected a JSON object"};
   if (payload.size() > limits.max_payload_bytes)
-    return {RejectReason::Oversized, fmt::format("payload is {} bytes, limit {}", payload.size(), limits.max_payload_bytes)};
+    return {RejectReason::Oversized,
+            fmt::format("payload is {} bytes, limit {}", payload.size(), limits.max_payload_bytes)};
   // Exceptions stay inside this function: they carry the byte offset and tell a syntax error from
   // a number overflow (1e999), which the no-throw parse mode would both report as "discarded".
   try {
@@ -65,7 +66,8 @@ CodecStatus expect_array(const Json& value, const FieldName& name) {
 
 CodecStatus number(const Json& value, const FieldName& name, double bound, double& out) {
   if (!value.is_number())
-    return {RejectReason::JsonType, fmt::format("{} is {}, expected a number", name.str(), value.type_name())};
+    return {RejectReason::JsonType,
+            fmt::format("{} is {}, expected a number", name.str(), value.type_name())};
   const double v = value.get<double>();
   if (!std::isfinite(v)) return {RejectReason::NonFinite, fmt::format("{} is {}", name.str(), v)};
   if (std::abs(v) > bound)
@@ -74,7 +76,8 @@ CodecStatus number(const Json& value, const FieldName& name, double bound, doubl
   return CodecStatus::ok();
 }
 
-CodecStatus member_number(const Json& object, std::string_view key, const FieldName& name, double bound, double& out) {
+CodecStatus member_number(const Json& object, std::string_view key, const FieldName& name, double bound,
+                          double& out) {
   const Json* value = nullptr;
   if (auto status = require(object, key, name, value); !status) return status;
   return number(*value, name, bound, out);

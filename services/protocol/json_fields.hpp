@@ -4,11 +4,10 @@
 // accepting path allocates nothing beyond the JSON document itself. Internal to robot_protocol.
 #include <cstddef>
 #include <cstdint>
+#include <nlohmann/json.hpp>
 #include <span>
 #include <string>
 #include <string_view>
-
-#include <nlohmann/json.hpp>
 
 #include "protocol/codec_types.hpp"
 #include "protocol/reject_reason.hpp"
@@ -20,7 +19,8 @@ using Json = nlohmann::json;
 // Where a value sits, for messages: base, optional [index], optional .member ("points[3].x").
 struct FieldName {
   static constexpr std::size_t kNoIndex = static_cast<std::size_t>(-1);
-  constexpr FieldName(std::string_view b, std::size_t i = kNoIndex, std::string_view m = {})  // NOLINT: braced use
+  constexpr FieldName(std::string_view b, std::size_t i = kNoIndex,
+                      std::string_view m = {})  // NOLINT: braced use
       : base(b), index(i), member(m) {}
   std::string_view base;
   std::size_t index = kNoIndex;
@@ -45,7 +45,8 @@ CodecStatus expect_array(const Json& value, const FieldName& name);
 // A number with |value| <= bound: JsonType, NonFinite or OutOfRange.
 CodecStatus number(const Json& value, const FieldName& name, double bound, double& out);
 // Required numeric member `key` of `object`.
-CodecStatus member_number(const Json& object, std::string_view key, const FieldName& name, double bound, double& out);
+CodecStatus member_number(const Json& object, std::string_view key, const FieldName& name, double bound,
+                          double& out);
 // An [x, y] array of two coordinates within limits.max_abs_coordinate_m.
 CodecStatus point_pair(const Json& value, const FieldName& name, const CodecLimits& limits, Point& out);
 

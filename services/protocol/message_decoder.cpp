@@ -12,11 +12,16 @@ CodecStatus decode_message(TopicKind kind, std::span<const std::uint8_t> payload
   out.observation.clear();
   out.status.clear();
   switch (kind) {
-    case TopicKind::V1Adv: return decode_v1(payload, limits, out.observation);
-    case TopicKind::V2Pose: return decode_v2_pose(payload, limits, out.observation);
-    case TopicKind::V2Points: return decode_v2_points(payload, limits, out.observation);
-    case TopicKind::V2Scan: return decode_v2_scan(payload, limits, out.observation);
-    case TopicKind::V2Status: return decode_v2_status(payload, limits, out.status);
+    case TopicKind::V1Adv:
+      return decode_v1(payload, limits, out.observation);
+    case TopicKind::V2Pose:
+      return decode_v2_pose(payload, limits, out.observation);
+    case TopicKind::V2Points:
+      return decode_v2_points(payload, limits, out.observation);
+    case TopicKind::V2Scan:
+      return decode_v2_scan(payload, limits, out.observation);
+    case TopicKind::V2Status:
+      return decode_v2_status(payload, limits, out.status);
   }
   return {RejectReason::UnknownTopic, "unknown topic kind"};
 }

@@ -13,10 +13,12 @@ struct ReasonText {
 constexpr std::array<ReasonText, kRejectReasonCount> kTexts = {{
     {"empty_payload", "rejected_empty_payload", "payload is empty"},
     {"oversized", "rejected_oversized", "payload is larger than the configured limit"},
-    {"bad_length", "rejected_bad_length", "a length is wrong (v1 payload not a multiple of 4 bytes, or array sizes differ)"},
+    {"bad_length", "rejected_bad_length",
+     "a length is wrong (v1 payload not a multiple of 4 bytes, or array sizes differ)"},
     {"too_many_points", "rejected_too_many_points", "message has more points than the configured limit"},
     {"unknown_topic", "rejected_unknown_topic", "topic is not part of the v1 or v2 robot tree"},
-    {"bad_robot_id", "rejected_bad_robot_id", "robot id is empty, too long, has wildcards, '/', control characters or bad UTF-8"},
+    {"bad_robot_id", "rejected_bad_robot_id",
+     "robot id is empty, too long, has wildcards, '/', control characters or bad UTF-8"},
     {"json_syntax", "rejected_json_syntax", "payload is not valid JSON"},
     {"json_type", "rejected_json_type", "JSON value has the wrong type or shape"},
     {"missing_field", "rejected_missing_field", "a required JSON field is missing"},
@@ -25,13 +27,21 @@ constexpr std::array<ReasonText, kRejectReasonCount> kTexts = {{
     {"bad_text", "rejected_bad_text", "a text field is empty, too long or has control characters"},
 }};
 
-const ReasonText& text(RejectReason reason) { return kTexts[static_cast<std::size_t>(reason)]; }
+const ReasonText& text(RejectReason reason) {
+  return kTexts[static_cast<std::size_t>(reason)];
+}
 
 }  // namespace
 
-std::string_view reason_name(RejectReason reason) { return text(reason).name; }
-std::string_view reason_counter(RejectReason reason) { return text(reason).counter; }
-std::string_view reason_description(RejectReason reason) { return text(reason).description; }
+std::string_view reason_name(RejectReason reason) {
+  return text(reason).name;
+}
+std::string_view reason_counter(RejectReason reason) {
+  return text(reason).counter;
+}
+std::string_view reason_description(RejectReason reason) {
+  return text(reason).description;
+}
 
 std::string CodecStatus::message() const {
   if (!failed_) return "ok";

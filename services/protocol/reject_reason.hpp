@@ -28,10 +28,10 @@ inline constexpr std::size_t kRejectReasonCount = 12;
 
 // Every reason, in enum order: lets a service register all counters at start.
 inline constexpr std::array<RejectReason, kRejectReasonCount> kAllRejectReasons = {
-    RejectReason::EmptyPayload, RejectReason::Oversized,    RejectReason::BadLength,
+    RejectReason::EmptyPayload,  RejectReason::Oversized,    RejectReason::BadLength,
     RejectReason::TooManyPoints, RejectReason::UnknownTopic, RejectReason::BadRobotId,
-    RejectReason::JsonSyntax,   RejectReason::JsonType,     RejectReason::MissingField,
-    RejectReason::NonFinite,    RejectReason::OutOfRange,   RejectReason::BadText};
+    RejectReason::JsonSyntax,    RejectReason::JsonType,     RejectReason::MissingField,
+    RejectReason::NonFinite,     RejectReason::OutOfRange,   RejectReason::BadText};
 
 // Stable snake_case name, e.g. "bad_length". Part of the operator-facing contract: never rename.
 std::string_view reason_name(RejectReason reason);
@@ -45,7 +45,8 @@ std::string_view reason_description(RejectReason reason);
 class [[nodiscard]] CodecStatus {
  public:
   CodecStatus() = default;
-  CodecStatus(RejectReason reason, std::string detail) : detail_(std::move(detail)), reason_(reason), failed_(true) {}
+  CodecStatus(RejectReason reason, std::string detail)
+      : detail_(std::move(detail)), reason_(reason), failed_(true) {}
   static CodecStatus ok() { return {}; }
 
   bool is_ok() const { return !failed_; }

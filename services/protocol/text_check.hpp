@@ -9,8 +9,8 @@
 namespace slam::protocol {
 
 struct TextProblem {
-  std::size_t offset = 0;   // byte where the problem starts
-  std::string_view what;    // "invalid UTF-8" or "control character"
+  std::size_t offset = 0;  // byte where the problem starts
+  std::string_view what;   // "invalid UTF-8" or "control character"
 };
 
 // First problem in `text`: ill-formed UTF-8 (RFC 3629: no overlongs, surrogates or code points

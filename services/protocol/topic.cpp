@@ -24,8 +24,9 @@ constexpr std::array<KindName, 4> kV2Kinds = {{{"pose", TopicKind::V2Pose},
                                                {"status", TopicKind::V2Status}}};
 
 CodecStatus unknown(std::string_view topic) {
-  return {RejectReason::UnknownTopic, "topic '" + escape_for_log(topic) + "' is not v1/robot/<id>/adv or "
-                                      "v2/robot/<id>/{pose,points,scan,status}"};
+  return {RejectReason::UnknownTopic, "topic '" + escape_for_log(topic) +
+                                          "' is not v1/robot/<id>/adv or "
+                                          "v2/robot/<id>/{pose,points,scan,status}"};
 }
 
 }  // namespace
@@ -41,11 +42,16 @@ CodecStatus build_robot_topic(std::string_view robot_id, std::string_view prefix
 
 std::string_view topic_kind_name(TopicKind kind) {
   switch (kind) {
-    case TopicKind::V1Adv: return "v1_adv";
-    case TopicKind::V2Pose: return "v2_pose";
-    case TopicKind::V2Points: return "v2_points";
-    case TopicKind::V2Scan: return "v2_scan";
-    case TopicKind::V2Status: return "v2_status";
+    case TopicKind::V1Adv:
+      return "v1_adv";
+    case TopicKind::V2Pose:
+      return "v2_pose";
+    case TopicKind::V2Points:
+      return "v2_points";
+    case TopicKind::V2Scan:
+      return "v2_scan";
+    case TopicKind::V2Status:
+      return "v2_status";
   }
   return "unknown";
 }
@@ -61,7 +67,8 @@ CodecStatus validate_robot_id(std::string_view robot_id) {
                                           std::string(1, robot_id[at]) + "' at byte " + std::to_string(at)};
   if (const auto problem = find_text_problem(robot_id))
     return {RejectReason::BadRobotId, "robot id '" + escape_for_log(robot_id) + "' has " +
-                                          std::string(problem->what) + " at byte " + std::to_string(problem->offset)};
+                                          std::string(problem->what) + " at byte " +
+                                          std::to_string(problem->offset)};
   return CodecStatus::ok();
 }
 

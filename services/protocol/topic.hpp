@@ -13,7 +13,9 @@ namespace slam::protocol {
 
 enum class TopicKind : std::uint8_t { V1Adv, V2Pose, V2Points, V2Scan, V2Status };
 
-constexpr bool is_v1(TopicKind kind) { return kind == TopicKind::V1Adv; }
+constexpr bool is_v1(TopicKind kind) {
+  return kind == TopicKind::V1Adv;
+}
 // "v1_adv", "v2_pose", "v2_points", "v2_scan", "v2_status".
 std::string_view topic_kind_name(TopicKind kind);
 

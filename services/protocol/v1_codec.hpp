@@ -18,11 +18,13 @@ inline constexpr std::size_t kV1PairBytes = 4;
 // Oversized, BadLength (size % 4 != 0), TooManyPoints (k - 1 > max_points), NonFinite/OutOfRange
 // (bad units_per_meter or a coordinate beyond max_abs_coordinate_m). On success: has_pose, no
 // heading, hits = obstacle points, no misses. On rejection `out` holds nothing meaningful.
-CodecStatus decode_v1(std::span<const std::uint8_t> payload, const CodecLimits& limits, DecodedObservation& out);
+CodecStatus decode_v1(std::span<const std::uint8_t> payload, const CodecLimits& limits,
+                      DecodedObservation& out);
 
 // Metres -> one int16 LE pair (rounded to nearest, halves away from zero). NonFinite for NaN/inf
 // input or units_per_meter, OutOfRange when a value leaves [-32768, 32767] robot units.
-CodecStatus encode_v1_waypoint(Point waypoint, double units_per_meter, std::array<std::uint8_t, kV1PairBytes>& out);
+CodecStatus encode_v1_waypoint(Point waypoint, double units_per_meter,
+                               std::array<std::uint8_t, kV1PairBytes>& out);
 
 // A robot's adv message (position then obstacles), as a v1 robot or the simulator sends it.
 // `out` is replaced, capacity kept; empty on error. Same errors as encode_v1_waypoint.

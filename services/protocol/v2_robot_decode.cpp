@@ -1,9 +1,9 @@
 // Decoders for the v2 robot messages: field shapes, bounds and the scan's polar-to-map transform.
 #include "protocol/v2_robot_decode.hpp"
 
-#include <cmath>
-
 #include <fmt/format.h>
+
+#include <cmath>
 
 #include "protocol/json_fields.hpp"
 #include "protocol/text_check.hpp"
@@ -15,18 +15,21 @@ using json_fields::FieldName;
 using json_fields::Json;
 
 // Reads {x, y, heading} from `object` into `out`. `where` prefixes field names in messages.
-CodecStatus read_pose(const Json& object, std::string_view where, bool heading_required, const CodecLimits& limits,
-                      DecodedObservation& out) {
+CodecStatus read_pose(const Json& object, std::string_view where, bool heading_required,
+                      const CodecLimits& limits, DecodedObservation& out) {
   const double c = limits.max_abs_coordinate_m;
-  if (auto s = json_fields::member_number(object, "x", {where, FieldName::kNoIndex, "x"}, c, out.x); !s) return s;
-  if (auto s = json_fields::member_number(object, "y", {where, FieldName::kNoIndex, "y"}, c, out.y); !s) return s;
+  if (auto s = json_fields::member_number(object, "x", {where, FieldName::kNoIndex, "x"}, c, out.x); !s)
+    return s;
+  if (auto s = json_fields::member_number(object, "y", {where, FieldName::kNoIndex, "y"}, c, out.y); !s)
+    return s;
   out.has_pose = true;
   const FieldName heading_name{where, FieldName::kNoIndex, "heading"};
-  const Json* heading = heading_required ? json_fields::find(object, "heading")
-                                         : json_fields::find_optional(object, "heading");
+  const Json* heading =
+      heading_required ? json_fields::find(object, "heading") : json_fields::find_optional(object, "heading");
   if (heading == nullptr) {
     if (heading_required)
-      return {RejectReason::MissingField, fmt::format("{} is missing (a scan needs the heading)", heading_name.str())};
+      return {RejectReason::MissingField,
+              fmt::format("{} is missing (a scan needs the heading)", heading_name.str())};
     return CodecStatus::ok();
   }
   if (auto s = json_fields::number(*heading, heading_name, limits.max_abs_angle_rad, out.theta); !s) return s;
@@ -35,7 +38,8 @@ CodecStatus read_pose(const Json& object, std::string_view where, bool heading_r
 }
 
 // The nested "pose" object of points and scan messages.
-CodecStatus read_nested_pose(const Json& doc, bool required, const CodecLimits& limits, DecodedObservation& out) {
+CodecStatus read_nested_pose(const Json& doc, bool required, const CodecLimits& limits,
+                             DecodedObservation& out) {
   const Json* pose = json_fields::find_optional(doc, "pose");
   if (pose == nullptr) {
     if (required) return {RejectReason::MissingField, "pose is missing"};
@@ -47,7 +51,8 @@ CodecStatus read_nested_pose(const Json& doc, bool required, const CodecLimits& 
 
 CodecStatus check_count(std::size_t count, std::string_view what, const CodecLimits& limits) {
   if (count <= limits.max_points) return CodecStatus::ok();
-  return {RejectReason::TooManyPoints, fmt::format("{} has {} entries, limit {}", what, count, limits.max_points)};
+  return {RejectReason::TooManyPoints,
+          fmt::format("{} has {} entries, limit {}", what, count, limits.max_points)};
 }
 
 struct SensorOffset {
@@ -72,7 +77,8 @@ CodecStatus read_sensor(const Json& doc, const CodecLimits& limits, SensorOffset
   for (const auto& m : members) {
     const Json* value = json_fields::find_optional(*sensor, m.key);
     if (value == nullptr) continue;
-    if (auto s = json_fields::number(*value, {"sensor", FieldName::kNoIndex, m.key}, m.bound, *m.value); !s) return s;
+    if (auto s = json_fields::number(*value, {"sensor", FieldName::kNoIndex, m.key}, m.bound, *m.value); !s)
+      return s;
   }
   return CodecStatus::ok();
 }
@@ -93,7 +99,8 @@ CodecStatus read_angles(const Json& doc, std::size_t beams, const CodecLimits& l
       return {RejectReason::JsonType, "give either angles or angle_min + angle_increment, not both"};
     if (auto s = json_fields::expect_array(*out.list, {"angles"}); !s) return s;
     if (out.list->size() != beams)
-      return {RejectReason::BadLength, fmt::format("angles has {} entries but ranges has {}", out.list->size(), beams)};
+      return {RejectReason::BadLength,
+              fmt::format("angles has {} entries but ranges has {}", out.list->size(), beams)};
     return CodecStatus::ok();
   }
   if (!has_start && !has_step)
@@ -112,14 +119,16 @@ CodecStatus check_endpoint(Point p, std::size_t beam, const CodecLimits& limits)
 
 }  // namespace
 
-CodecStatus decode_v2_pose(std::span<const std::uint8_t> payload, const CodecLimits& limits, DecodedObservation& out) {
+CodecStatus decode_v2_pose(std::span<const std::uint8_t> payload, const CodecLimits& limits,
+                           DecodedObservation& out) {
   out.clear();
   Json doc;
   if (auto s = json_fields::parse_object(payload, limits, doc); !s) return s;
   return read_pose(doc, "", false, limits, out);
 }
 
-CodecStatus decode_v2_points(std::span<const std::uint8_t> payload, const CodecLimits& limits, DecodedObservation& out) {
+CodecStatus decode_v2_points(std::span<const std::uint8_t> payload, const CodecLimits& limits,
+                             DecodedObservation& out) {
   out.clear();
   Json doc;
   if (auto s = json_fields::parse_object(payload, limits, doc); !s) return s;
@@ -134,7 +143,8 @@ CodecStatus decode_v2_points(std::span<const std::uint8_t> payload, const CodecL
   return CodecStatus::ok();
 }
 
-CodecStatus decode_v2_scan(std::span<const std::uint8_t> payload, const CodecLimits& limits, DecodedObservation& out) {
+CodecStatus decode_v2_scan(std::span<const std::uint8_t> payload, const CodecLimits& limits,
+                           DecodedObservation& out) {
   out.clear();
   Json doc;
   if (auto s = json_fields::parse_object(payload, limits, doc); !s) return s;
@@ -142,9 +152,12 @@ CodecStatus decode_v2_scan(std::span<const std::uint8_t> payload, const CodecLim
   SensorOffset sensor;
   if (auto s = read_sensor(doc, limits, sensor); !s) return s;
   double max_range = 0.0;
-  if (auto s = json_fields::member_number(doc, "max_range", {"max_range"}, limits.max_abs_coordinate_m, max_range); !s)
+  if (auto s =
+          json_fields::member_number(doc, "max_range", {"max_range"}, limits.max_abs_coordinate_m, max_range);
+      !s)
     return s;
-  if (max_range <= 0.0) return {RejectReason::OutOfRange, fmt::format("max_range is {}, must be > 0", max_range)};
+  if (max_range <= 0.0)
+    return {RejectReason::OutOfRange, fmt::format("max_range is {}, must be > 0", max_range)};
   const Json* ranges = nullptr;
   if (auto s = json_fields::require(doc, "ranges", {"ranges"}, ranges); !s) return s;
   if (auto s = json_fields::expect_array(*ranges, {"ranges"}); !s) return s;
@@ -161,7 +174,8 @@ CodecStatus decode_v2_scan(std::span<const std::uint8_t> payload, const CodecLim
   const double heading = out.theta + sensor.theta;
   const double bound = limits.max_abs_coordinate_m;
   if (std::abs(ox) > bound || std::abs(oy) > bound)
-    return {RejectReason::OutOfRange, fmt::format("sensor origin ({}, {}) is beyond max_abs_coordinate_m {}", ox, oy, bound)};
+    return {RejectReason::OutOfRange,
+            fmt::format("sensor origin ({}, {}) is beyond max_abs_coordinate_m {}", ox, oy, bound)};
   out.x = ox;
   out.y = oy;
   out.theta = heading;
@@ -179,7 +193,8 @@ CodecStatus decode_v2_scan(std::span<const std::uint8_t> payload, const CodecLim
     bool hit = false;
     if (!r.is_null()) {
       if (auto s = json_fields::number(r, {"ranges", i}, limits.max_abs_coordinate_m, range); !s) return s;
-      if (range < 0.0) return {RejectReason::OutOfRange, fmt::format("ranges[{}] is {}, must be >= 0", i, range)};
+      if (range < 0.0)
+        return {RejectReason::OutOfRange, fmt::format("ranges[{}] is {}, must be >= 0", i, range)};
       hit = range < max_range;
       if (!hit) range = max_range;
     }
@@ -191,7 +206,8 @@ CodecStatus decode_v2_scan(std::span<const std::uint8_t> payload, const CodecLim
   return CodecStatus::ok();
 }
 
-CodecStatus decode_v2_status(std::span<const std::uint8_t> payload, const CodecLimits& limits, DecodedStatus& out) {
+CodecStatus decode_v2_status(std::span<const std::uint8_t> payload, const CodecLimits& limits,
+                             DecodedStatus& out) {
   out.clear();
   Json doc;
   if (auto s = json_fields::parse_object(payload, limits, doc); !s) return s;

@@ -2,10 +2,10 @@
 // these per robot per report, hundreds of robots at 10 Hz, so the warm path must not allocate.
 #include "protocol/v2_robot_encode.hpp"
 
+#include <fmt/format.h>
+
 #include <charconv>
 #include <cmath>
-
-#include <fmt/format.h>
 
 #include "protocol/text_check.hpp"
 
@@ -75,7 +75,8 @@ void append_array(std::string& out, std::span<const double> values) {
 }
 
 CodecStatus check_scan(const V2Scan& scan, const CodecLimits& limits) {
-  if (!scan.pose.heading) return {RejectReason::MissingField, "pose.heading is missing (a scan needs the heading)"};
+  if (!scan.pose.heading)
+    return {RejectReason::MissingField, "pose.heading is missing (a scan needs the heading)"};
   if (auto s = check_pose(scan.pose, "pose.", limits); !s) return s;
   const double c = limits.max_abs_coordinate_m;
   const double a = limits.max_abs_angle_rad;
@@ -85,9 +86,11 @@ CodecStatus check_scan(const V2Scan& scan, const CodecLimits& limits) {
     if (auto s = check(scan.sensor->theta, "sensor.", "theta", a); !s) return s;
   }
   if (auto s = check(scan.max_range, "", "max_range", c); !s) return s;
-  if (scan.max_range <= 0.0) return {RejectReason::OutOfRange, fmt::format("max_range is {}, must be > 0", scan.max_range)};
+  if (scan.max_range <= 0.0)
+    return {RejectReason::OutOfRange, fmt::format("max_range is {}, must be > 0", scan.max_range)};
   if (scan.ranges.size() > limits.max_points)
-    return {RejectReason::TooManyPoints, fmt::format("ranges has {} entries, limit {}", scan.ranges.size(), limits.max_points)};
+    return {RejectReason::TooManyPoints,
+            fmt::format("ranges has {} entries, limit {}", scan.ranges.size(), limits.max_points)};
   if (scan.angles.empty()) {
     if (auto s = check(scan.angle_min, "", "angle_min", a); !s) return s;
     if (auto s = check(scan.angle_increment, "", "angle_increment", a); !s) return s;
@@ -149,7 +152,8 @@ CodecStatus encode_v2_status(const V2Status& status, std::string& out) {
   out.clear();
   if (status.state.empty()) return {RejectReason::BadText, "state is empty"};
   if (status.state.size() > kMaxStateBytes)
-    return {RejectReason::BadText, fmt::format("state is {} bytes, limit {}", status.state.size(), kMaxStateBytes)};
+    return {RejectReason::BadText,
+            fmt::format("state is {} bytes, limit {}", status.state.size(), kMaxStateBytes)};
   if (const auto problem = find_text_problem(status.state))
     return {RejectReason::BadText, fmt::format("state has {} at byte {}", problem->what, problem->offset)};
   if (status.battery) {

@@ -2,10 +2,10 @@
 // once `out` has grown): waypoints are re-sent every second to every robot with a target.
 #include "protocol/v2_server_codec.hpp"
 
+#include <fmt/format.h>
+
 #include <charconv>
 #include <cmath>
-
-#include <fmt/format.h>
 
 #include "protocol/json_fields.hpp"
 
@@ -68,7 +68,8 @@ CodecStatus encode_v2_path(std::uint64_t seq, std::span<const Point> points, con
                            std::string& out) {
   out.clear();
   if (points.size() > limits.max_points)
-    return {RejectReason::TooManyPoints, fmt::format("path has {} points, limit {}", points.size(), limits.max_points)};
+    return {RejectReason::TooManyPoints,
+            fmt::format("path has {} points, limit {}", points.size(), limits.max_points)};
   for (std::size_t i = 0; i < points.size(); ++i)
     if (auto s = check_point(points[i], {"points", i}, limits); !s) return s;
   out += "{\"seq\":";
@@ -82,7 +83,8 @@ CodecStatus encode_v2_path(std::uint64_t seq, std::span<const Point> points, con
   return CodecStatus::ok();
 }
 
-CodecStatus decode_v2_waypoint(std::span<const std::uint8_t> payload, const CodecLimits& limits, V2Waypoint& out) {
+CodecStatus decode_v2_waypoint(std::span<const std::uint8_t> payload, const CodecLimits& limits,
+                               V2Waypoint& out) {
   out = V2Waypoint{};
   Json doc;
   if (auto s = json_fields::parse_object(payload, limits, doc); !s) return s;
@@ -101,7 +103,8 @@ CodecStatus decode_v2_path(std::span<const std::uint8_t> payload, const CodecLim
   if (auto s = json_fields::require(doc, "points", {"points"}, points); !s) return s;
   if (auto s = json_fields::expect_array(*points, {"points"}); !s) return s;
   if (points->size() > limits.max_points)
-    return {RejectReason::TooManyPoints, fmt::format("points has {} entries, limit {}", points->size(), limits.max_points)};
+    return {RejectReason::TooManyPoints,
+            fmt::format("points has {} entries, limit {}", points->size(), limits.max_points)};
   out.points.resize(points->size());
   for (std::size_t i = 0; i < points->size(); ++i)
     if (auto s = json_fields::point_pair((*points)[i], {"points", i}, limits, out.points[i]); !s) return s;

@@ -36,7 +36,8 @@ CodecStatus encode_v2_path(std::uint64_t seq, std::span<const Point> points, con
 
 // Robot-side decoders with the same checks as the robot -> server ones; seq must be an unsigned
 // integer (JsonType otherwise).
-CodecStatus decode_v2_waypoint(std::span<const std::uint8_t> payload, const CodecLimits& limits, V2Waypoint& out);
+CodecStatus decode_v2_waypoint(std::span<const std::uint8_t> payload, const CodecLimits& limits,
+                               V2Waypoint& out);
 CodecStatus decode_v2_path(std::span<const std::uint8_t> payload, const CodecLimits& limits, V2Path& out);
 
 }  // namespace slam::protocol

@@ -3,7 +3,7 @@
 #include <span>
 #include <string_view>
 
-#include "common/result.hpp"
+#include "common/core/result.hpp"
 #include "simulator/world.hpp"
 
 namespace slam::sim {

@@ -3,7 +3,7 @@
 #include <cstdint>
 #include <numbers>
 
-#include "common/result.hpp"
+#include "common/core/result.hpp"
 
 namespace slam::sim {
 

@@ -1,16 +1,17 @@
 // slam-simulator: options -> world -> service (Cyclone DDS + MQTT) -> run -> tear down.
 #include <iostream>
 
-#include "common/counters.hpp"
-#include "common/service_options.hpp"
-#include "common/shutdown.hpp"
+#include "common/core/counters.hpp"
+#include "common/core/service_options.hpp"
+#include "common/core/shutdown.hpp"
 #include "simulator/sim_node.hpp"
 #include "simulator/sim_options.hpp"
 #include "simulator/world_loader.hpp"
 
 int main(int argc, char** argv) {
-  CLI::App app{"slam-simulator: simulated robots in a hidden world, speaking the robot protocol over MQTT "
-               "and taking commands over DDS"};
+  CLI::App app{
+      "slam-simulator: simulated robots in a hidden world, speaking the robot protocol over MQTT "
+      "and taking commands over DDS"};
   slam::sim::SimOptions options;
   slam::sim::add_sim_options(app, options);
   if (auto code = slam::parse_command_line(app, argc, argv)) return *code;

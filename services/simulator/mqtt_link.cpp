@@ -7,8 +7,8 @@
 #include <cstring>
 #include <thread>
 
-#include "common/counters.hpp"
-#include "common/log.hpp"
+#include "common/core/counters.hpp"
+#include "common/core/log.hpp"
 
 namespace slam::sim {
 namespace {
@@ -37,13 +37,16 @@ Result<std::unique_ptr<MqttLink>> MqttLink::create(MqttLinkOptions options, Mess
   MQTTAsync_createOptions create = MQTTAsync_createOptions_initializer;
   create.sendWhileDisconnected = 0;
   create.maxBufferedMessages = kMaxBufferedMessages;
-  int rc = MQTTAsync_createWithOptions(&link->client_, link->options_.broker.c_str(), link->options_.client_id.c_str(),
-                                       MQTTCLIENT_PERSISTENCE_NONE, nullptr, &create);
+  int rc = MQTTAsync_createWithOptions(&link->client_, link->options_.broker.c_str(),
+                                       link->options_.client_id.c_str(), MQTTCLIENT_PERSISTENCE_NONE, nullptr,
+                                       &create);
   if (rc != MQTTASYNC_SUCCESS)
     return Error{fmt::format("MQTT client '{}' for {}: {}", link->options_.client_id, link->options_.broker,
                              MQTTAsync_strerror(rc))};
-  rc = MQTTAsync_setCallbacks(link->client_, link.get(), &MqttLink::on_connection_lost, &MqttLink::on_message, nullptr);
-  if (rc == MQTTASYNC_SUCCESS) rc = MQTTAsync_setConnected(link->client_, link.get(), &MqttLink::on_connected);
+  rc = MQTTAsync_setCallbacks(link->client_, link.get(), &MqttLink::on_connection_lost, &MqttLink::on_message,
+                              nullptr);
+  if (rc == MQTTASYNC_SUCCESS)
+    rc = MQTTAsync_setConnected(link->client_, link.get(), &MqttLink::on_connected);
   if (rc != MQTTASYNC_SUCCESS) return Error{fmt::format("MQTT callbacks: {}", MQTTAsync_strerror(rc))};
   if (!link->start_connect()) link->connect_failed_ = true;
   return link;
@@ -129,11 +132,12 @@ void MqttLink::on_connected(void* context, char* /*cause*/) {
     std::vector<char*> topics;
     std::vector<int> qos(subs.size(), 1);
     for (const auto& s : subs) topics.push_back(const_cast<char*>(s.c_str()));
-    const int rc = MQTTAsync_subscribeMany(self->client_, static_cast<int>(subs.size()), topics.data(), qos.data(), nullptr);
+    const int rc = MQTTAsync_subscribeMany(self->client_, static_cast<int>(subs.size()), topics.data(),
+                                           qos.data(), nullptr);
     uint64_t dropped = 0;
     if (rc != MQTTASYNC_SUCCESS && link_log_limiter().allow("subscribe", &dropped))
-      spdlog::warn("MQTT subscribe of '{}' failed: {} ({} similar lines suppressed)", self->options_.client_id,
-                   MQTTAsync_strerror(rc), dropped);
+      spdlog::warn("MQTT subscribe of '{}' failed: {} ({} similar lines suppressed)",
+                   self->options_.client_id, MQTTAsync_strerror(rc), dropped);
   }
   self->set_connected(true);
 }
@@ -173,7 +177,8 @@ void MqttLink::on_connect_failure(void* context, MQTTAsync_failureData* data) {
   if (link_log_limiter().allow("connect_failed", &dropped))
     spdlog::warn("MQTT connect of '{}' to {} failed: {}; retrying ({} similar lines suppressed)",
                  self->options_.client_id, self->options_.broker,
-                 data != nullptr && data->message != nullptr ? data->message : MQTTAsync_strerror(data ? data->code : -1),
+                 data != nullptr && data->message != nullptr ? data->message
+                                                             : MQTTAsync_strerror(data ? data->code : -1),
                  dropped);
 }
 

@@ -16,7 +16,7 @@
 #include <string_view>
 #include <vector>
 
-#include "common/result.hpp"
+#include "common/core/result.hpp"
 
 namespace slam::sim {
 

@@ -1,11 +1,10 @@
 // Robot protocol over MQTT for the simulated fleet: topics, encoding, command decoding.
 #include "simulator/robot_link.hpp"
 
+#include <fmt/format.h>
 #include <unistd.h>
 
 #include <cmath>
-
-#include <fmt/format.h>
 
 #include "protocol/reject_reason.hpp"
 #include "protocol/robot_topics.hpp"
@@ -60,7 +59,8 @@ Result<std::unique_ptr<RobotLinks>> RobotLinks::create(Settings settings, Counte
 
 RobotLinks::~RobotLinks() {
   if (settings_.protocol == RobotProtocol::V2)
-    for (auto& [id, e] : endpoints_) send(e, e.status_topic, as_bytes(std::string(protocol::kV2OfflineStatus)));
+    for (auto& [id, e] : endpoints_)
+      send(e, e.status_topic, as_bytes(std::string(protocol::kV2OfflineStatus)));
   // Start every disconnect before waiting on any, so a large fleet closes in one round trip.
   for (auto& [id, e] : endpoints_)
     if (e.own_link) e.own_link->begin_disconnect();
@@ -78,15 +78,18 @@ Result<std::unique_ptr<MqttLink>> RobotLinks::open(const std::string& client_id,
     options.password = settings_.password;
   }
   return MqttLink::create(
-      std::move(options), [this](std::string_view topic, std::span<const uint8_t> payload) { on_message(topic, payload); },
+      std::move(options),
+      [this](std::string_view topic, std::span<const uint8_t> payload) { on_message(topic, payload); },
       link_counters_);
 }
 
 Status RobotLinks::add(const std::string& robot_id) {
-  if (endpoints_.contains(robot_id)) return Error{fmt::format("robot '{}' already has a connection", robot_id)};
+  if (endpoints_.contains(robot_id))
+    return Error{fmt::format("robot '{}' already has a connection", robot_id)};
   Endpoint e;
   const bool v1 = settings_.protocol == RobotProtocol::V1;
-  auto s = v1 ? protocol::v1_adv_topic(robot_id, e.report_topic) : protocol::v2_scan_topic(robot_id, e.report_topic);
+  auto s = v1 ? protocol::v1_adv_topic(robot_id, e.report_topic)
+              : protocol::v2_scan_topic(robot_id, e.report_topic);
   if (s) s = protocol::v2_status_topic(robot_id, e.status_topic);
   if (!s) return Error{s.detail()};
   if (settings_.multiplex) {
@@ -128,7 +131,7 @@ void RobotLinks::send(Endpoint& e, const std::string& topic, std::span<const uin
 
 void RobotLinks::send_status(Endpoint& e, bool driving, double time_s) {
   const auto s = protocol::encode_v2_status({driving ? "driving" : "idle", std::nullopt}, text_);
-  if (!s) return;  // constant states: cannot fail
+  if (!s) return;                                                 // constant states: cannot fail
   if (!e.link->publish(e.status_topic, as_bytes(text_))) return;  // retried with the next report
   e.status_connects = e.link->connects();
   e.status_time_s = time_s;
@@ -168,8 +171,8 @@ void RobotLinks::publish(const RobotReport& report, bool driving) {
     bump(reports_dropped_);
     uint64_t dropped = 0;
     if (log_limiter_.allow("encode", &dropped))
-      spdlog::warn("report of '{}' not sent: {} ({} similar lines suppressed)", report.robot_id, status.message(),
-                   dropped);
+      spdlog::warn("report of '{}' not sent: {} ({} similar lines suppressed)", report.robot_id,
+                   status.message(), dropped);
   }
 }
 
@@ -189,8 +192,8 @@ void RobotLinks::reject(std::string_view robot_id, const std::string& reason, co
   bump(waypoints_rejected_);
   uint64_t dropped = 0;
   if (log_limiter_.allow(reason, &dropped))
-    spdlog::warn("waypoint for '{}' ignored: {}: {} ({} similar lines suppressed)", protocol::escape_for_log(robot_id),
-                 reason, detail, dropped);
+    spdlog::warn("waypoint for '{}' ignored: {}: {} ({} similar lines suppressed)",
+                 protocol::escape_for_log(robot_id), reason, detail, dropped);
 }
 
 void RobotLinks::on_message(std::string_view topic, std::span<const uint8_t> payload) {

@@ -11,9 +11,9 @@
 #include <unordered_map>
 #include <vector>
 
-#include "common/counters.hpp"
-#include "common/log.hpp"
-#include "common/result.hpp"
+#include "common/core/counters.hpp"
+#include "common/core/log.hpp"
+#include "common/core/result.hpp"
 #include "protocol/codec_types.hpp"
 #include "simulator/geometry.hpp"
 #include "simulator/mqtt_link.hpp"
@@ -56,7 +56,8 @@ class RobotLinks {
   void remove(const std::string& robot_id);
 
   // Publishes the robot's report (v1 adv, or v2 scan plus a status when `driving` changed, the
-  // connection is new, or kStatusPeriodS passed, so late subscribers learn it too). Unknown robots and failed publishes are counted, never fatal.
+  // connection is new, or kStatusPeriodS passed, so late subscribers learn it too). Unknown robots and failed
+  // publishes are counted, never fatal.
   void publish(const RobotReport& report, bool driving);
 
   // Connect retries; call every loop iteration.
@@ -71,8 +72,8 @@ class RobotLinks {
     std::string status_topic;
     std::unique_ptr<MqttLink> own_link;  // per-robot mode
     MqttLink* link = nullptr;
-    uint64_t status_connects = 0;  // link->connects() when the last status went out
-    double status_time_s = -1e300;   // simulated time of the last status
+    uint64_t status_connects = 0;   // link->connects() when the last status went out
+    double status_time_s = -1e300;  // simulated time of the last status
     bool driving = false;
   };
 

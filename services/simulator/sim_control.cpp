@@ -16,11 +16,12 @@ Result<ControlOutcome> spawn(Simulation& sim, const ControlCommand& c) {
     return Error{fmt::format("spawn: count {} does not match the {} poses given", c.count, c.poses.size())};
   if (wanted == 0) return Error{"spawn: count is 0 and no poses are given"};
   if (sim.robots().size() + wanted > kMaxFleet)
-    return Error{fmt::format("spawn: {} more robots would make {}, limit {}", wanted, sim.robots().size() + wanted,
-                             kMaxFleet)};
+    return Error{fmt::format("spawn: {} more robots would make {}, limit {}", wanted,
+                             sim.robots().size() + wanted, kMaxFleet)};
   if (!c.robot_id.empty()) {
     if (c.poses.size() != 1)
-      return Error{fmt::format("spawn: robot id '{}' needs exactly one pose, got {}", c.robot_id, c.poses.size())};
+      return Error{
+          fmt::format("spawn: robot id '{}' needs exactly one pose, got {}", c.robot_id, c.poses.size())};
     if (auto s = protocol::validate_robot_id(c.robot_id); !s) return Error{"spawn: " + s.detail()};
   }
   ControlOutcome out;
@@ -49,8 +50,7 @@ Result<ControlOutcome> apply_control(Simulation& sim, const ControlCommand& c) {
     case ControlKind::Spawn:
       return spawn(sim, c);
     case ControlKind::Remove:
-      if (!sim.remove(c.robot_id))
-        return Error{fmt::format("remove: no simulated robot '{}'", c.robot_id)};
+      if (!sim.remove(c.robot_id)) return Error{fmt::format("remove: no simulated robot '{}'", c.robot_id)};
       out.removed.push_back(c.robot_id);
       return out;
     case ControlKind::Pause:

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "common/result.hpp"
+#include "common/core/result.hpp"
 #include "simulator/geometry.hpp"
 #include "simulator/simulation.hpp"
 
@@ -16,10 +16,10 @@ enum class ControlKind : uint8_t { Spawn, Remove, Pause, Resume, SetWorld, SetNo
 struct ControlCommand {
   uint64_t command_id = 0;
   ControlKind kind = ControlKind::Pause;
-  uint32_t count = 0;        // Spawn: robots at random free poses (poses empty) or 0 / poses.size()
-  std::vector<Pose> poses;   // Spawn: explicit poses
-  std::string robot_id;      // Remove: which; Spawn: the id of a single robot at one explicit pose
-  std::string world;         // SetWorld: built-in name or file (see load_world)
+  uint32_t count = 0;       // Spawn: robots at random free poses (poses empty) or 0 / poses.size()
+  std::vector<Pose> poses;  // Spawn: explicit poses
+  std::string robot_id;     // Remove: which; Spawn: the id of a single robot at one explicit pose
+  std::string world;        // SetWorld: built-in name or file (see load_world)
   double range_noise_sd = 0.0;
   double dropout = 0.0;
   double odometry_drift = 0.0;

@@ -7,46 +7,43 @@
 #include <algorithm>
 #include <cstring>
 
-#include "common/bounded_text.hpp"
-#include "common/clock.hpp"
-#include "common/topics.hpp"
+#include "common/core/bounded_text.hpp"
+#include "common/core/clock.hpp"
+#include "common/core/topics.hpp"
 
 namespace slam::sim {
 namespace {
 
 constexpr int kTakeBatch = 16;
 
-Result<dds_entity_t> make_topic(dds_entity_t participant, const dds_topic_descriptor_t* type,
-                                const topics::TopicInfo& info) {
-  const auto qos = cyclone::make_qos(info.qos);
-  const dds_entity_t t = dds_create_topic(participant, type, info.name, qos.get(), nullptr);
-  if (t < 0) return Error{fmt::format("Cyclone topic {}: {}", info.name, dds_strretcode(t))};
-  return t;
-}
-
-Result<dds_entity_t> make_writer(dds_entity_t participant, const dds_topic_descriptor_t* type,
-                                 const topics::TopicInfo& info) {
-  auto topic = make_topic(participant, type, info);
-  if (!topic) return Error{topic.message()};
-  const auto qos = cyclone::make_qos(info.qos);
-  const dds_entity_t w = dds_create_writer(participant, *topic, qos.get(), nullptr);
-  if (w < 0) return Error{fmt::format("Cyclone writer {}: {}", info.name, dds_strretcode(w))};
-  return w;
-}
-
 Result<ControlCommand> to_command(const slam_SimControl& s) {
   ControlCommand c;
   c.command_id = s.command_id;
   switch (s.kind) {
-    case slam_SIM_SPAWN: c.kind = ControlKind::Spawn; break;
-    case slam_SIM_REMOVE: c.kind = ControlKind::Remove; break;
-    case slam_SIM_PAUSE: c.kind = ControlKind::Pause; break;
-    case slam_SIM_RESUME: c.kind = ControlKind::Resume; break;
-    case slam_SIM_SET_WORLD: c.kind = ControlKind::SetWorld; break;
-    case slam_SIM_SET_NOISE: c.kind = ControlKind::SetNoise; break;
-    case slam_SIM_SET_SPEED: c.kind = ControlKind::SetSpeed; break;
+    case slam_SIM_SPAWN:
+      c.kind = ControlKind::Spawn;
+      break;
+    case slam_SIM_REMOVE:
+      c.kind = ControlKind::Remove;
+      break;
+    case slam_SIM_PAUSE:
+      c.kind = ControlKind::Pause;
+      break;
+    case slam_SIM_RESUME:
+      c.kind = ControlKind::Resume;
+      break;
+    case slam_SIM_SET_WORLD:
+      c.kind = ControlKind::SetWorld;
+      break;
+    case slam_SIM_SET_NOISE:
+      c.kind = ControlKind::SetNoise;
+      break;
+    case slam_SIM_SET_SPEED:
+      c.kind = ControlKind::SetSpeed;
+      break;
     default:
-      return Error{fmt::format("control {}: unknown command kind {}", s.command_id, static_cast<int>(s.kind))};
+      return Error{
+          fmt::format("control {}: unknown command kind {}", s.command_id, static_cast<int>(s.kind))};
   }
   c.count = s.count;
   c.poses.reserve(s.poses._length);
@@ -67,30 +64,27 @@ slam_Pose2 to_idl(const Pose& p) {
 
 }  // namespace
 
-void copy_bounded(std::string_view text, char* out, size_t capacity) {
-  const std::string_view cut = bounded_prefix(text, capacity - 1);
-  std::memcpy(out, cut.data(), cut.size());
-  out[cut.size()] = '\0';
-}
-
 Result<std::unique_ptr<SimDds>> SimDds::create(int domain) {
   std::unique_ptr<SimDds> dds(new SimDds());
-  dds->participant_ = cyclone::Entity(dds_create_participant(static_cast<dds_domainid_t>(domain), nullptr, nullptr));
+  dds->participant_ =
+      cyclone::Entity(dds_create_participant(static_cast<dds_domainid_t>(domain), nullptr, nullptr));
   if (!dds->participant_.ok())
-    return Error{fmt::format("Cyclone participant on domain {}: {}", domain, dds_strretcode(dds->participant_.get()))};
+    return Error{
+        fmt::format("Cyclone participant on domain {}: {}", domain, dds_strretcode(dds->participant_.get()))};
   const dds_entity_t p = dds->participant_.get();
 
-  auto control_topic = make_topic(p, &slam_SimControl_desc, topics::kSimControl);
+  auto control_topic = cyclone::make_topic(p, &slam_SimControl_desc, topics::kSimControl);
   if (!control_topic) return Error{control_topic.message()};
   const auto qos = cyclone::make_qos(topics::kSimControl.qos);
   dds->control_reader_ = dds_create_reader(p, *control_topic, qos.get(), nullptr);
   if (dds->control_reader_ < 0)
-    return Error{fmt::format("Cyclone reader {}: {}", topics::kSimControl.name, dds_strretcode(dds->control_reader_))};
+    return Error{
+        fmt::format("Cyclone reader {}: {}", topics::kSimControl.name, dds_strretcode(dds->control_reader_))};
 
-  auto world = make_writer(p, &slam_SimWorld_desc, topics::kSimWorld);
+  auto world = cyclone::make_writer(p, &slam_SimWorld_desc, topics::kSimWorld);
   if (!world) return Error{world.message()};
   dds->world_writer_ = *world;
-  auto truth = make_writer(p, &slam_SimGroundTruth_desc, topics::kSimGroundTruth);
+  auto truth = cyclone::make_writer(p, &slam_SimGroundTruth_desc, topics::kSimGroundTruth);
   if (!truth) return Error{truth.message()};
   dds->truth_writer_ = *truth;
   return dds;
@@ -121,12 +115,14 @@ Status SimDds::publish_world(const World& world) {
   for (size_t i = 0; i < walls.size(); ++i)
     walls_[i] = {{walls[i].a.x, walls[i].a.y}, {walls[i].b.x, walls[i].b.y}};
   slam_SimWorld sample{};
-  copy_bounded(world.name(), sample.name, sizeof sample.name);
+  cyclone::copy_bounded(world.name(), sample.name, sizeof sample.name);
   sample.width_m = world.bounds().width();
   sample.height_m = world.bounds().height();
-  sample.walls = {static_cast<uint32_t>(walls_.size()), static_cast<uint32_t>(walls_.size()), walls_.data(), false};
+  sample.walls = {static_cast<uint32_t>(walls_.size()), static_cast<uint32_t>(walls_.size()), walls_.data(),
+                  false};
   const dds_return_t rc = dds_write(world_writer_, &sample);
-  if (rc != DDS_RETCODE_OK) return Error{fmt::format("writing {}: {}", topics::kSimWorld.name, dds_strretcode(rc))};
+  if (rc != DDS_RETCODE_OK)
+    return Error{fmt::format("writing {}: {}", topics::kSimWorld.name, dds_strretcode(rc))};
   return {};
 }
 
@@ -134,14 +130,15 @@ Status SimDds::publish_truth(const Simulation& sim) {
   const auto robots = sim.robots();
   truth_.resize(robots.size());
   for (size_t i = 0; i < robots.size(); ++i) {
-    copy_bounded(robots[i].id, truth_[i].robot_id, sizeof truth_[i].robot_id);
+    cyclone::copy_bounded(robots[i].id, truth_[i].robot_id, sizeof truth_[i].robot_id);
     truth_[i].true_pose = to_idl(robots[i].true_pose);
     truth_[i].reported_pose = to_idl(robots[i].reported_pose);
   }
   slam_SimGroundTruth sample{};
   sample.stamp_ns = now_ns();
   sample.paused = sim.paused();
-  sample.robots = {static_cast<uint32_t>(truth_.size()), static_cast<uint32_t>(truth_.size()), truth_.data(), false};
+  sample.robots = {static_cast<uint32_t>(truth_.size()), static_cast<uint32_t>(truth_.size()), truth_.data(),
+                   false};
   const dds_return_t rc = dds_write(truth_writer_, &sample);
   if (rc != DDS_RETCODE_OK)
     return Error{fmt::format("writing {}: {}", topics::kSimGroundTruth.name, dds_strretcode(rc))};

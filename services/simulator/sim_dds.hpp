@@ -3,15 +3,14 @@
 // SimGroundTruth out, with QoS only from topics.hpp. Converts between the IDL structs and the
 // core's plain types here and nowhere else. Used from the simulation loop's thread only.
 #include <dds/dds.h>
-
 #include <slam/cyclone/sim.h>
 
 #include <memory>
 #include <string>
 #include <vector>
 
-#include "common/cyclone_qos.hpp"
-#include "common/result.hpp"
+#include "common/core/result.hpp"
+#include "common/cyclone/dds.hpp"
 #include "simulator/sim_control.hpp"
 #include "simulator/simulation.hpp"
 #include "simulator/world.hpp"
@@ -44,9 +43,5 @@ class SimDds {
   std::vector<slam_Segment2> walls_;
   std::vector<slam_SimRobotTruth> truth_;
 };
-
-// Copies `text` into a bounded IDL string (char[N], N including the terminator), cutting at a
-// UTF-8 character boundary when it is too long.
-void copy_bounded(std::string_view text, char* out, size_t capacity);
 
 }  // namespace slam::sim

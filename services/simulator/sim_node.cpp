@@ -6,7 +6,7 @@
 
 #include <algorithm>
 
-#include "common/shutdown.hpp"
+#include "common/core/shutdown.hpp"
 #include "protocol/text_check.hpp"
 
 namespace slam::sim {
@@ -49,7 +49,7 @@ Result<std::unique_ptr<SimNode>> SimNode::create(const SimOptions& options, Worl
   auto dds = SimDds::create(options.service.domain);
   if (!dds) return Error{dds.message()};
   node->dds_ = std::move(*dds);
-  auto heartbeat = CycloneHeartbeat::start(node->dds_->participant(), "simulator", counters);
+  auto heartbeat = cyclone::HeartbeatPublisher::start(node->dds_->participant(), "simulator", counters);
   if (!heartbeat) return Error{heartbeat.message()};
   node->heartbeat_ = std::move(*heartbeat);
 
@@ -126,9 +126,10 @@ void SimNode::apply_orders() {
     if (!bounds.contains(*o.target)) {
       bump(waypoints_rejected_);
       bump(waypoints_outside_world_);
-      warn("outside", fmt::format("waypoint ({:.2f}, {:.2f}) for '{}' ignored: outside world '{}' [{}, {}] x [{}, {}]",
-                                  o.target->x, o.target->y, protocol::escape_for_log(o.robot_id), sim_.world().name(),
-                                  bounds.min.x, bounds.max.x, bounds.min.y, bounds.max.y));
+      warn("outside",
+           fmt::format("waypoint ({:.2f}, {:.2f}) for '{}' ignored: outside world '{}' [{}, {}] x [{}, {}]",
+                       o.target->x, o.target->y, protocol::escape_for_log(o.robot_id), sim_.world().name(),
+                       bounds.min.x, bounds.max.x, bounds.min.y, bounds.max.y));
       continue;
     }
     (void)sim_.set_waypoint(o.robot_id, *o.target);
@@ -159,7 +160,8 @@ void SimNode::publish_truth() {
 
 void SimNode::run() {
   heartbeat_->set_state(slam_SERVICE_RUNNING);
-  spdlog::info("simulating {} robots ({}, {}) in world '{}'; broker {}", sim_.robots().size(), options_.protocol,
+  spdlog::info("simulating {} robots ({}, {}) in world '{}'; broker {}", sim_.robots().size(),
+               options_.protocol,
                options_.mqtt_multiplex ? "one shared MQTT connection" : "one MQTT connection each",
                sim_.world().name(), options_.broker);
   const auto truth_period = std::chrono::duration_cast<Clock::duration>(

@@ -7,10 +7,10 @@
 #include <string>
 #include <vector>
 
-#include "common/counters.hpp"
-#include "common/log.hpp"
-#include "common/result.hpp"
-#include "simulator/cyclone_heartbeat.hpp"
+#include "common/core/counters.hpp"
+#include "common/core/log.hpp"
+#include "common/core/result.hpp"
+#include "common/cyclone/heartbeat.hpp"
 #include "simulator/robot_link.hpp"
 #include "simulator/sim_dds.hpp"
 #include "simulator/sim_options.hpp"
@@ -53,7 +53,7 @@ class SimNode {
 
   // Declared in set-up order, so teardown runs in reverse: robots go offline, then DDS goes.
   std::unique_ptr<SimDds> dds_;
-  std::unique_ptr<CycloneHeartbeat> heartbeat_;
+  std::unique_ptr<cyclone::HeartbeatPublisher> heartbeat_;
   std::unique_ptr<RobotLinks> links_;
 
   std::vector<ControlCommand> controls_;

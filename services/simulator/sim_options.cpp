@@ -17,7 +17,8 @@ constexpr double kDefaultDt = 0.05;
 
 void add_sim_options(CLI::App& app, SimOptions& o) {
   add_service_options(app, o.service);
-  app.add_option("--world", o.world, "built-in world (empty, office, maze, track) or a world file (.txt, .yaml)")
+  app.add_option("--world", o.world,
+                 "built-in world (empty, office, maze, track) or a world file (.txt, .yaml)")
       ->capture_default_str();
   app.add_option("--robots", o.robots, "robots spawned at random free poses at start")
       ->check(CLI::Range(0, static_cast<int>(kMaxFleet)))
@@ -25,12 +26,18 @@ void add_sim_options(CLI::App& app, SimOptions& o) {
   app.add_option("--protocol", o.protocol, "robot protocol: v1 (binary) or v2 (JSON)")
       ->check(CLI::IsMember({"v1", "v2"}))
       ->capture_default_str();
-  app.add_option("--rate", o.rate_hz, "reports per robot per second (Hz)")->check(CLI::Range(0.1, 100.0))->capture_default_str();
-  app.add_option("--noise", o.noise, "range noise standard deviation (m)")->check(CLI::Range(0.0, 10.0))->capture_default_str();
+  app.add_option("--rate", o.rate_hz, "reports per robot per second (Hz)")
+      ->check(CLI::Range(0.1, 100.0))
+      ->capture_default_str();
+  app.add_option("--noise", o.noise, "range noise standard deviation (m)")
+      ->check(CLI::Range(0.0, 10.0))
+      ->capture_default_str();
   app.add_option("--dropout", o.dropout, "probability that a beam returns nothing")
       ->check(CLI::Range(0.0, 1.0))
       ->capture_default_str();
-  app.add_option("--drift", o.drift, "odometry drift (m per sqrt(m) driven)")->check(CLI::Range(0.0, 10.0))->capture_default_str();
+  app.add_option("--drift", o.drift, "odometry drift (m per sqrt(m) driven)")
+      ->check(CLI::Range(0.0, 10.0))
+      ->capture_default_str();
   app.add_option("--seed", o.seed, "random seed (same seed, same run)")->capture_default_str();
   app.add_option("--broker", o.broker, "MQTT broker URL (tcp://HOST:PORT)")->capture_default_str();
   app.add_flag("--random-walk", o.random_walk, "idle robots drive to random reachable targets");
@@ -38,16 +45,21 @@ void add_sim_options(CLI::App& app, SimOptions& o) {
       ->check(CLI::Range(0.01, 100.0))
       ->capture_default_str();
   app.add_flag("--mqtt-multiplex", o.mqtt_multiplex, "one MQTT connection for every robot (large fleets)");
-  app.add_option("--mqtt-password", o.mqtt_password,
-                 "each robot logs in as its robot id with this password (a broker with an ACL; prefer a --config file)");
+  app.add_option(
+      "--mqtt-password", o.mqtt_password,
+      "each robot logs in as its robot id with this password (a broker with an ACL; prefer a --config file)");
   app.add_option("--units-per-meter", o.units_per_meter, "v1 robot units per metre")
       ->check(CLI::Range(1.0, 10000.0))
       ->capture_default_str();
   app.add_option("--truth-rate", o.truth_rate_hz, "ground truth publications per second (Hz)")
       ->check(CLI::Range(0.1, 50.0))
       ->capture_default_str();
-  app.add_option("--beams", o.beams, "range beams per scan")->check(CLI::Range(1, 4096))->capture_default_str();
-  app.add_option("--max-range", o.max_range, "range sensor reach (m)")->check(CLI::Range(0.1, 1000.0))->capture_default_str();
+  app.add_option("--beams", o.beams, "range beams per scan")
+      ->check(CLI::Range(1, 4096))
+      ->capture_default_str();
+  app.add_option("--max-range", o.max_range, "range sensor reach (m)")
+      ->check(CLI::Range(0.1, 1000.0))
+      ->capture_default_str();
 }
 
 Result<SimulationConfig> simulation_config(const SimOptions& o) {
@@ -76,7 +88,8 @@ Status validate(const SimOptions& o) {
   if (!o.broker.starts_with("tcp://") && !o.broker.starts_with("mqtt://"))
     return Error{fmt::format("--broker: '{}' is not tcp://HOST:PORT or mqtt://HOST:PORT", o.broker)};
   if (!o.mqtt_password.empty() && o.mqtt_multiplex)
-    return Error{"--mqtt-password logs each robot in under its own id: drop --mqtt-multiplex (one shared connection)"};
+    return Error{
+        "--mqtt-password logs each robot in under its own id: drop --mqtt-multiplex (one shared connection)"};
   if (auto c = simulation_config(o); !c) return c.status();
   if (auto s = protocol::validate(codec_limits(o)); !s) return Error{"--units-per-meter: " + s.message()};
   return {};

@@ -2,12 +2,11 @@
 // slam-simulator's flags as a plain struct with defaults, the CLI11 binding (each flag range-checked
 // so a bad value exits 2 naming the flag), and the simulation configuration built from them.
 #include <CLI/CLI.hpp>
-
 #include <cstdint>
 #include <string>
 
-#include "common/result.hpp"
-#include "common/service_options.hpp"
+#include "common/core/result.hpp"
+#include "common/core/service_options.hpp"
 #include "protocol/codec_types.hpp"
 #include "simulator/config.hpp"
 
@@ -27,11 +26,11 @@ struct SimOptions {
   uint64_t seed = 1;
   std::string broker = "tcp://127.0.0.1:1883";
   bool random_walk = false;
-  double speed = 1.0;            // simulated seconds per wall-clock second
-  bool mqtt_multiplex = false;   // one MQTT client for every robot instead of one each
-  std::string mqtt_password;     // each robot logs in as its id with it; empty: anonymous
+  double speed = 1.0;           // simulated seconds per wall-clock second
+  bool mqtt_multiplex = false;  // one MQTT client for every robot instead of one each
+  std::string mqtt_password;    // each robot logs in as its id with it; empty: anonymous
   double units_per_meter = 100.0;
-  double truth_rate_hz = 5.0;    // SimGroundTruth publications per second
+  double truth_rate_hz = 5.0;  // SimGroundTruth publications per second
   int beams = 16;
   double max_range = 4.0;
 

@@ -10,7 +10,7 @@
 #include <string_view>
 #include <vector>
 
-#include "common/result.hpp"
+#include "common/core/result.hpp"
 #include "simulator/config.hpp"
 #include "simulator/grid.hpp"
 #include "simulator/report.hpp"

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "common/result.hpp"
+#include "common/core/result.hpp"
 #include "simulator/geometry.hpp"
 #include "simulator/grid.hpp"
 

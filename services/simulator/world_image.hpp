@@ -4,7 +4,7 @@
 // cell. The image border is the world border.
 #include <string>
 
-#include "common/result.hpp"
+#include "common/core/result.hpp"
 #include "simulator/world.hpp"
 
 namespace slam::sim {

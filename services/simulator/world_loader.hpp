@@ -3,8 +3,8 @@
 // PGM) or a Java server world text file (any other path).
 #include <string_view>
 
-#include "common/map_io.hpp"
-#include "common/result.hpp"
+#include "common/core/map_io.hpp"
+#include "common/core/result.hpp"
 #include "simulator/world.hpp"
 
 namespace slam::sim {

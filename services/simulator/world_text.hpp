@@ -5,7 +5,7 @@
 #include <filesystem>
 #include <string_view>
 
-#include "common/result.hpp"
+#include "common/core/result.hpp"
 #include "simulator/world.hpp"
 
 namespace slam::sim {

@@ -8,8 +8,8 @@
 #include <mutex>
 #include <thread>
 
-#include "common/clock.hpp"
-#include "common/shutdown.hpp"
+#include "common/core/clock.hpp"
+#include "common/core/shutdown.hpp"
 #include "slamctl/format.hpp"
 
 namespace slam::ctl {
@@ -37,7 +37,8 @@ int send(Session& s, const dds::Topic<T, P>& topic, const T& sample, const char*
   auto writer = dds::make_writer(s.participant(), topic);
   if (!writer) return fail(writer.message());
   if (!(*writer)->wait_for_readers(s.timeout()))
-    return fail(std::string("no ") + served_by + " on DDS domain " + std::to_string(s.domain()) + " (is it running?)");
+    return fail(std::string("no ") + served_by + " on DDS domain " + std::to_string(s.domain()) +
+                " (is it running?)");
   if (!(*writer)->write(sample)) return fail(std::string("could not write to ") + topic.info.name);
   if (!(*writer)->wait_for_acknowledgments(s.timeout()))
     return fail(std::string(served_by) + " did not acknowledge the request");
@@ -61,12 +62,19 @@ std::optional<Rep> request(Session& s, const dds::Topic<Req, ReqP>& req_topic, c
   }
   // The replier's writer must know this reader before it answers, or the reply goes nowhere.
   if (!(*reader)->wait_for_writers(s.timeout())) {
-    fail(std::string("no ") + served_by + " on DDS domain " + std::to_string(s.domain()) + " (is it running?)");
+    fail(std::string("no ") + served_by + " on DDS domain " + std::to_string(s.domain()) +
+         " (is it running?)");
     return std::nullopt;
   }
   if (send(s, req_topic, req, served_by) != 0) return std::nullopt;
-  if (!wait_until([&] { std::lock_guard lock(mutex); return reply.has_value(); }, s.timeout())) {
-    fail(std::string("no reply from ") + served_by + " within " + std::to_string(s.timeout().count()) + " ms");
+  if (!wait_until(
+          [&] {
+            std::lock_guard lock(mutex);
+            return reply.has_value();
+          },
+          s.timeout())) {
+    fail(std::string("no reply from ") + served_by + " within " + std::to_string(s.timeout().count()) +
+         " ms");
     return std::nullopt;
   }
   std::lock_guard lock(mutex);
@@ -127,12 +135,14 @@ int echo(Session& s, const dds::Topic<T, P>& topic, int count) {
 }  // namespace
 
 uint64_t Session::next_request_id() {
-  return (static_cast<uint64_t>(getpid()) << 32) ^ (static_cast<uint64_t>(now_ns()) & 0xffff0000ULL) ^ ++sequence_;
+  return (static_cast<uint64_t>(getpid()) << 32) ^ (static_cast<uint64_t>(now_ns()) & 0xffff0000ULL) ^
+         ++sequence_;
 }
 
 int cmd_status(Session& s) {
-  Latest<Heartbeat> beats(s, dds::kHeartbeat,
-                          [](const Heartbeat& h) { return h.service().to_string() + "/" + h.instance_id().to_string(); });
+  Latest<Heartbeat> beats(s, dds::kHeartbeat, [](const Heartbeat& h) {
+    return h.service().to_string() + "/" + h.instance_id().to_string();
+  });
   if (!beats.ok()) return 1;
   // Heartbeats come once a second: listen a little longer than that.
   listen_after_match(s, beats, std::min<std::chrono::milliseconds>(s.timeout(), 2500ms));
@@ -145,7 +155,8 @@ int cmd_status(Session& s) {
 
 int cmd_robots(Session& s) {
   Latest<RobotPath> paths(s, dds::kRobotPath, [](const RobotPath& p) { return p.robot_id().to_string(); });
-  Latest<RobotState> states(s, dds::kRobotState, [](const RobotState& r) { return r.robot_id().to_string(); });
+  Latest<RobotState> states(s, dds::kRobotState,
+                            [](const RobotState& r) { return r.robot_id().to_string(); });
   if (!paths.ok() || !states.ok()) return 1;
   // Paths are optional (no planner, no paths): the window follows the robot states' writer.
   listen_after_match(s, states, std::min<std::chrono::milliseconds>(s.timeout(), 1500ms));
@@ -160,7 +171,8 @@ int cmd_robots(Session& s) {
   return 0;
 }
 
-int cmd_goal(Session& s, const std::string& robot, GoalMode mode, const Point2& target, double square_size, bool centred) {
+int cmd_goal(Session& s, const std::string& robot, GoalMode mode, const Point2& target, double square_size,
+             bool centred) {
   NavGoal goal;
   goal.robot_id(robot == "all" ? "*" : robot);
   goal.goal_id(s.next_request_id());
@@ -173,7 +185,8 @@ int cmd_goal(Session& s, const std::string& robot, GoalMode mode, const Point2& 
   return rc;
 }
 
-int cmd_path(Session& s, const Point2& start, const Point2& goal, const std::string& algorithm, double budget_s) {
+int cmd_path(Session& s, const Point2& start, const Point2& goal, const std::string& algorithm,
+             double budget_s) {
   PathRequest req;
   req.request_id(s.next_request_id());
   req.client_id("slamctl:" + std::to_string(getpid()));
@@ -194,7 +207,8 @@ int cmd_map_file(Session& s, MapFileAction action, const std::string& yaml_path)
   req.yaml_path(yaml_path);
   const auto reply = request(s, dds::kMapFileRequest, req, dds::kMapReply, "mapper");
   if (!reply) return 1;
-  if (reply->result() != MAP_OK) return fail(map_result_name(reply->result()) + ": " + reply->message().to_string());
+  if (reply->result() != MAP_OK)
+    return fail(map_result_name(reply->result()) + ": " + reply->message().to_string());
   std::printf("%s\n", reply->message().c_str());
   return 0;
 }

@@ -5,7 +5,7 @@
 #include <memory>
 #include <string>
 
-#include "common/fast_topics.hpp"
+#include "common/fastdds/fast_topics.hpp"
 
 namespace slam::ctl {
 
@@ -27,8 +27,10 @@ class Session {
 
 int cmd_status(Session& s);
 int cmd_robots(Session& s);
-int cmd_goal(Session& s, const std::string& robot, GoalMode mode, const Point2& target, double square_size, bool centred);
-int cmd_path(Session& s, const Point2& start, const Point2& goal, const std::string& algorithm, double budget_s);
+int cmd_goal(Session& s, const std::string& robot, GoalMode mode, const Point2& target, double square_size,
+             bool centred);
+int cmd_path(Session& s, const Point2& start, const Point2& goal, const std::string& algorithm,
+             double budget_s);
 int cmd_map_file(Session& s, MapFileAction action, const std::string& yaml_path);
 int cmd_grid(Session& s, const GridConfig& config);
 int cmd_map_edit(Session& s, MapEditKind kind, const Point2& point, const std::string& robot);

@@ -23,7 +23,9 @@ std::string fmt(const char* f, auto... args) {
   return buf;
 }
 
-std::string point(const Point2& p) { return fmt("(%.2f, %.2f)", p.x(), p.y()); }
+std::string point(const Point2& p) {
+  return fmt("(%.2f, %.2f)", p.x(), p.y());
+}
 
 }  // namespace
 
@@ -41,39 +43,57 @@ std::string goal_mode_name(GoalMode mode) {
 
 std::string goal_status_name(GoalStatus status) {
   switch (status) {
-    case GOAL_STATUS_NONE: return "none";
-    case GOAL_STATUS_ACTIVE: return "active";
-    case GOAL_STATUS_REACHED: return "reached";
-    case GOAL_STATUS_FAILED: return "failed";
+    case GOAL_STATUS_NONE:
+      return "none";
+    case GOAL_STATUS_ACTIVE:
+      return "active";
+    case GOAL_STATUS_REACHED:
+      return "reached";
+    case GOAL_STATUS_FAILED:
+      return "failed";
   }
   return "status " + std::to_string(static_cast<int>(status));
 }
 
 std::string plan_status_name(PlanStatus status) {
   switch (status) {
-    case PLAN_OK: return "OK";
-    case PLAN_START_BLOCKED: return "START_BLOCKED";
-    case PLAN_GOAL_BLOCKED: return "GOAL_BLOCKED";
-    case PLAN_NO_PATH: return "NO_PATH";
-    case PLAN_TIMEOUT: return "TIMEOUT";
-    case PLAN_NO_MAP: return "NO_MAP";
-    case PLAN_INVALID_REQUEST: return "INVALID_REQUEST";
+    case PLAN_OK:
+      return "OK";
+    case PLAN_START_BLOCKED:
+      return "START_BLOCKED";
+    case PLAN_GOAL_BLOCKED:
+      return "GOAL_BLOCKED";
+    case PLAN_NO_PATH:
+      return "NO_PATH";
+    case PLAN_TIMEOUT:
+      return "TIMEOUT";
+    case PLAN_NO_MAP:
+      return "NO_MAP";
+    case PLAN_INVALID_REQUEST:
+      return "INVALID_REQUEST";
   }
   return "status " + std::to_string(static_cast<int>(status));
 }
 
 std::string map_result_name(MapResult result) {
   switch (result) {
-    case MAP_OK: return "OK";
-    case MAP_INVALID_REQUEST: return "INVALID_REQUEST";
-    case MAP_IO_ERROR: return "IO_ERROR";
-    case MAP_BAD_FILE: return "BAD_FILE";
-    case MAP_UNKNOWN_ROBOT: return "UNKNOWN_ROBOT";
+    case MAP_OK:
+      return "OK";
+    case MAP_INVALID_REQUEST:
+      return "INVALID_REQUEST";
+    case MAP_IO_ERROR:
+      return "IO_ERROR";
+    case MAP_BAD_FILE:
+      return "BAD_FILE";
+    case MAP_UNKNOWN_ROBOT:
+      return "UNKNOWN_ROBOT";
   }
   return "result " + std::to_string(static_cast<int>(result));
 }
 
-double age_s(int64_t stamp_ns, int64_t now_ns) { return static_cast<double>(now_ns - stamp_ns) * 1e-9; }
+double age_s(int64_t stamp_ns, int64_t now_ns) {
+  return static_cast<double>(now_ns - stamp_ns) * 1e-9;
+}
 
 std::string format_heartbeat(const Heartbeat& hb, int64_t now_ns) {
   static constexpr const char* kStates[] = {"starting", "running", "stopping"};
@@ -81,23 +101,27 @@ std::string format_heartbeat(const Heartbeat& hb, int64_t now_ns) {
   std::string out = fmt("%-10s %-24s pid %-7u up %8.1f s  %-8s  seen %.1f s ago\n", hb.service().c_str(),
                         hb.instance_id().c_str(), hb.pid(), hb.uptime_s(), state < 3 ? kStates[state] : "?",
                         age_s(hb.stamp_ns(), now_ns));
-  for (const auto& c : hb.counters()) out += fmt("    %-32s %lld\n", c.name().c_str(), static_cast<long long>(c.value()));
+  for (const auto& c : hb.counters())
+    out += fmt("    %-32s %lld\n", c.name().c_str(), static_cast<long long>(c.value()));
   return out;
 }
 
 std::string format_robot(const RobotState& s, const RobotPath* path, int64_t now_ns) {
   std::string mode = path ? goal_mode_name(path->mode()) + "/" + goal_status_name(path->status()) : "-";
-  return fmt("%-16s %-7s %-3s x %8.2f  y %8.2f  %s  seen %6.1f s ago  msgs %llu  pts %llu  rejected %llu  %s\n",
-             s.robot_id().c_str(), s.presence() == PRESENCE_ONLINE ? "online" : "offline",
-             s.protocol() == PROTOCOL_V1 ? "v1" : "v2", s.pose().x(), s.pose().y(),
-             s.has_heading() ? fmt("th %6.2f", s.pose().theta()).c_str() : "th      -", age_s(s.last_seen_ns(), now_ns),
-             static_cast<unsigned long long>(s.messages()), static_cast<unsigned long long>(s.points()),
-             static_cast<unsigned long long>(s.rejected()), mode.c_str());
+  return fmt(
+      "%-16s %-7s %-3s x %8.2f  y %8.2f  %s  seen %6.1f s ago  msgs %llu  pts %llu  rejected %llu  %s\n",
+      s.robot_id().c_str(), s.presence() == PRESENCE_ONLINE ? "online" : "offline",
+      s.protocol() == PROTOCOL_V1 ? "v1" : "v2", s.pose().x(), s.pose().y(),
+      s.has_heading() ? fmt("th %6.2f", s.pose().theta()).c_str() : "th      -",
+      age_s(s.last_seen_ns(), now_ns), static_cast<unsigned long long>(s.messages()),
+      static_cast<unsigned long long>(s.points()), static_cast<unsigned long long>(s.rejected()),
+      mode.c_str());
 }
 
 std::string format_path_reply(const PathReply& r) {
-  std::string out = fmt("%s  length %.2f m  %zu points  planned in %.1f ms", plan_status_name(r.status()).c_str(),
-                        r.length_m(), r.path().size(), r.planning_time_s() * 1e3);
+  std::string out =
+      fmt("%s  length %.2f m  %zu points  planned in %.1f ms", plan_status_name(r.status()).c_str(),
+          r.length_m(), r.path().size(), r.planning_time_s() * 1e3);
   if (r.reason().size() > 0) out += std::string("  (") + r.reason().c_str() + ")";
   out += "\n";
   for (const auto& p : r.path()) out += "  " + point(p) + "\n";
@@ -107,31 +131,36 @@ std::string format_path_reply(const PathReply& r) {
 std::string describe(const RobotObservation& s) {
   return fmt("observation %s seq %llu pose (%.2f, %.2f, %s) hits %zu misses %zu", s.robot_id().c_str(),
              static_cast<unsigned long long>(s.seq()), s.pose().x(), s.pose().y(),
-             s.has_heading() ? fmt("%.2f", s.pose().theta()).c_str() : "-", s.hits().size(), s.misses().size());
+             s.has_heading() ? fmt("%.2f", s.pose().theta()).c_str() : "-", s.hits().size(),
+             s.misses().size());
 }
-std::string describe(const RobotState& s) { return "state " + format_robot(s, nullptr, s.last_seen_ns()); }
+std::string describe(const RobotState& s) {
+  return "state " + format_robot(s, nullptr, s.last_seen_ns());
+}
 std::string describe(const GridSnapshot& s) {
-  return fmt("snapshot layout %u version %llu %ux%u cells at %.3f m, origin (%.2f, %.2f), inflation %.2f m", s.layout_id(),
-             static_cast<unsigned long long>(s.version()), s.info().width(), s.info().height(), s.info().resolution(),
-             s.info().origin().x(), s.info().origin().y(), s.info().inflation_radius());
+  return fmt("snapshot layout %u version %llu %ux%u cells at %.3f m, origin (%.2f, %.2f), inflation %.2f m",
+             s.layout_id(), static_cast<unsigned long long>(s.version()), s.info().width(), s.info().height(),
+             s.info().resolution(), s.info().origin().x(), s.info().origin().y(),
+             s.info().inflation_radius());
 }
 std::string describe(const GridPatch& s) {
-  return fmt("patch layout %u version %llu box (%u, %u) %ux%u", s.layout_id(), static_cast<unsigned long long>(s.version()),
-             s.x0(), s.y0(), s.width(), s.height());
+  return fmt("patch layout %u version %llu box (%u, %u) %ux%u", s.layout_id(),
+             static_cast<unsigned long long>(s.version()), s.x0(), s.y0(), s.width(), s.height());
 }
 std::string describe(const RobotPath& s) {
   return fmt("path %s goal %llu %s/%s target %s waypoint %u of %zu %s", s.robot_id().c_str(),
              static_cast<unsigned long long>(s.goal_id()), goal_mode_name(s.mode()).c_str(),
-             goal_status_name(s.status()).c_str(), point(s.target()).c_str(), s.current(), s.waypoints().size(),
-             s.reason().c_str());
+             goal_status_name(s.status()).c_str(), point(s.target()).c_str(), s.current(),
+             s.waypoints().size(), s.reason().c_str());
 }
 std::string describe(const WaypointCommand& s) {
-  return fmt("waypoint %s seq %llu %s (%zu more)", s.robot_id().c_str(), static_cast<unsigned long long>(s.seq()),
-             point(s.waypoint()).c_str(), s.remaining().size());
+  return fmt("waypoint %s seq %llu %s (%zu more)", s.robot_id().c_str(),
+             static_cast<unsigned long long>(s.seq()), point(s.waypoint()).c_str(), s.remaining().size());
 }
 std::string describe(const NavGoal& s) {
-  return fmt("goal %s id %llu %s target %s", s.robot_id().c_str(), static_cast<unsigned long long>(s.goal_id()),
-             goal_mode_name(s.mode()).c_str(), point(s.target()).c_str());
+  return fmt("goal %s id %llu %s target %s", s.robot_id().c_str(),
+             static_cast<unsigned long long>(s.goal_id()), goal_mode_name(s.mode()).c_str(),
+             point(s.target()).c_str());
 }
 std::string describe(const MqttTraffic& s) {
   std::string hex;
@@ -146,15 +175,16 @@ std::string describe(const SimGroundTruth& s) {
   return out;
 }
 std::string describe(const Heartbeat& s) {
-  return fmt("heartbeat %s %s up %.1f s, %zu counters", s.service().c_str(), s.instance_id().c_str(), s.uptime_s(),
-             s.counters().size());
+  return fmt("heartbeat %s %s up %.1f s, %zu counters", s.service().c_str(), s.instance_id().c_str(),
+             s.uptime_s(), s.counters().size());
 }
 std::string describe(const MapReply& s) {
-  return fmt("map reply %llu %s %s", static_cast<unsigned long long>(s.request_id()), map_result_name(s.result()).c_str(),
-             s.message().c_str());
+  return fmt("map reply %llu %s %s", static_cast<unsigned long long>(s.request_id()),
+             map_result_name(s.result()).c_str(), s.message().c_str());
 }
 std::string describe(const PathReply& s) {
-  return fmt("path reply %llu %s", static_cast<unsigned long long>(s.request_id()), format_path_reply(s).c_str());
+  return fmt("path reply %llu %s", static_cast<unsigned long long>(s.request_id()),
+             format_path_reply(s).c_str());
 }
 
 }  // namespace slam::ctl

@@ -5,7 +5,7 @@
 #include <string>
 #include <string_view>
 
-#include "common/fast_topics.hpp"
+#include "common/fastdds/fast_topics.hpp"
 
 namespace slam::ctl {
 

@@ -2,8 +2,8 @@
 // non-zero with a one-line reason on failure or timeout.
 #include <iostream>
 
-#include "common/service_options.hpp"
-#include "common/shutdown.hpp"
+#include "common/core/service_options.hpp"
+#include "common/core/shutdown.hpp"
 #include "slamctl/commands.hpp"
 #include "slamctl/format.hpp"
 
@@ -25,7 +25,9 @@ int main(int argc, char** argv) {
   options.log_level = "warn";
   slam::add_service_options(app, options);
   double timeout_s = 5.0;
-  app.add_option("--timeout", timeout_s, "seconds to wait for services and replies")->check(CLI::PositiveNumber)->capture_default_str();
+  app.add_option("--timeout", timeout_s, "seconds to wait for services and replies")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
 
   auto* status = app.add_subcommand("status", "services seen, with their heartbeats and counters");
   auto* robots = app.add_subcommand("robots", "known robots: id, pose, last seen, goal mode");
@@ -51,7 +53,8 @@ int main(int argc, char** argv) {
   path->add_option("--budget", budget, "time budget in seconds")->capture_default_str();
 
   std::string map_file;
-  auto* map = app.add_subcommand("map", "save or load the map (ROS map_server YAML + PGM, on the mapper's disk)");
+  auto* map =
+      app.add_subcommand("map", "save or load the map (ROS map_server YAML + PGM, on the mapper's disk)");
   map->require_subcommand(1);
   auto* map_save = map->add_subcommand("save", "export the map to FILE.yaml");
   map_save->add_option("file", map_file, "YAML path")->required();
@@ -103,24 +106,30 @@ int main(int argc, char** argv) {
     std::cerr << "slamctl: " << participant.message() << "\n";
     return 1;
   }
-  slam::ctl::Session session(std::move(*participant), std::chrono::milliseconds(static_cast<int64_t>(timeout_s * 1000)));
+  slam::ctl::Session session(std::move(*participant),
+                             std::chrono::milliseconds(static_cast<int64_t>(timeout_s * 1000)));
 
   if (*status) return slam::ctl::cmd_status(session);
   if (*robots) return slam::ctl::cmd_robots(session);
   if (*goal) {
     const auto mode = slam::ctl::parse_goal_mode(mode_name);
     if (!mode) {
-      std::cerr << "slamctl: unknown mode '" << mode_name << "' (idle, direct, planned, square, explore, home, stop)\n";
+      std::cerr << "slamctl: unknown mode '" << mode_name
+                << "' (idle, direct, planned, square, explore, home, stop)\n";
       return 2;
     }
-    const bool needs_target = *mode == slam::GOAL_DIRECT || *mode == slam::GOAL_PLANNED || *mode == slam::GOAL_SQUARE;
+    const bool needs_target =
+        *mode == slam::GOAL_DIRECT || *mode == slam::GOAL_PLANNED || *mode == slam::GOAL_SQUARE;
     if (needs_target && xy.size() != 2) {
-      std::cerr << "slamctl: mode " << mode_name << " needs a target: goal " << robot << " " << mode_name << " X Y\n";
+      std::cerr << "slamctl: mode " << mode_name << " needs a target: goal " << robot << " " << mode_name
+                << " X Y\n";
       return 2;
     }
-    return slam::ctl::cmd_goal(session, robot, *mode, xy.size() == 2 ? point(xy[0], xy[1]) : point(0, 0), square_size, centred);
+    return slam::ctl::cmd_goal(session, robot, *mode, xy.size() == 2 ? point(xy[0], xy[1]) : point(0, 0),
+                               square_size, centred);
   }
-  if (*path) return slam::ctl::cmd_path(session, point(ends[0], ends[1]), point(ends[2], ends[3]), algorithm, budget);
+  if (*path)
+    return slam::ctl::cmd_path(session, point(ends[0], ends[1]), point(ends[2], ends[3]), algorithm, budget);
   if (*map_save) return slam::ctl::cmd_map_file(session, slam::MAP_EXPORT, map_file);
   if (*map_load) return slam::ctl::cmd_map_file(session, slam::MAP_IMPORT, map_file);
   if (*grid) {
@@ -133,7 +142,8 @@ int main(int argc, char** argv) {
     return slam::ctl::cmd_grid(session, grid_config);
   }
   if (*obstruct) return slam::ctl::cmd_map_edit(session, slam::EDIT_OBSTRUCT, point(cell[0], cell[1]), "");
-  if (*unobstruct) return slam::ctl::cmd_map_edit(session, slam::EDIT_UNOBSTRUCT, point(cell[0], cell[1]), "");
+  if (*unobstruct)
+    return slam::ctl::cmd_map_edit(session, slam::EDIT_UNOBSTRUCT, point(cell[0], cell[1]), "");
   if (*reset) return slam::ctl::cmd_map_edit(session, slam::EDIT_RESET_ROBOT, point(0, 0), robot);
   if (*sim_spawn) return slam::ctl::cmd_sim(session, slam::SIM_SPAWN, count, "");
   if (*sim_remove) return slam::ctl::cmd_sim(session, slam::SIM_REMOVE, 0, robot);

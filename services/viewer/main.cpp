@@ -4,9 +4,9 @@
 
 #include <cstdio>
 
-#include "common/shutdown.hpp"
-#include "viewer/viewer_app.hpp"
-#include "viewer/viewer_node.hpp"
+#include "common/core/shutdown.hpp"
+#include "viewer/dds/viewer_node.hpp"
+#include "viewer/ui/viewer_app.hpp"
 
 int main(int argc, char** argv) {
   using namespace slam::viewer;

@@ -27,8 +27,8 @@
 #include <thread>
 #include <vector>
 
-#include "common/clock.hpp"
-#include "common/fast_topics.hpp"
+#include "common/core/clock.hpp"
+#include "common/fastdds/fast_topics.hpp"
 #include "process_group.hpp"
 
 namespace {
@@ -36,7 +36,7 @@ namespace {
 using namespace std::chrono_literals;
 
 constexpr int64_t kWindow = 256;  // below the DDS stream history (1000): nothing is overwritten
-constexpr char kBaselineTopic[] = "bench/baseline";     // the gateway does not subscribe this
+constexpr char kBaselineTopic[] = "bench/baseline";  // the gateway does not subscribe this
 constexpr char kThroughputTopic[] = "v1/robot/tp/adv";
 constexpr char kLatencyTopic[] = "v1/robot/lat/adv";
 
@@ -49,8 +49,14 @@ int64_t message_count() {
 std::array<uint8_t, 8> payload_for(int64_t index) {
   const auto lo = static_cast<uint16_t>(index & 0x7fff);
   const auto hi = static_cast<uint16_t>((index >> 15) & 0x7fff);
-  return {static_cast<uint8_t>(lo & 0xff), static_cast<uint8_t>(lo >> 8), static_cast<uint8_t>(hi & 0xff),
-          static_cast<uint8_t>(hi >> 8),   0x10, 0x00, 0x20, 0x00};
+  return {static_cast<uint8_t>(lo & 0xff),
+          static_cast<uint8_t>(lo >> 8),
+          static_cast<uint8_t>(hi & 0xff),
+          static_cast<uint8_t>(hi >> 8),
+          0x10,
+          0x00,
+          0x20,
+          0x00};
 }
 int64_t index_from_bytes(const uint8_t* p) {
   return static_cast<int64_t>(p[0] | (p[1] << 8)) | (static_cast<int64_t>(p[2] | (p[3] << 8)) << 15);
@@ -95,9 +101,10 @@ struct LatencyLog {
     return static_cast<double>(got[k]) / 1000.0;
   }
   size_t arrived() const {
-    return static_cast<size_t>(std::count_if(latency_ns.begin(), latency_ns.end(), [](int64_t l) { return l >= 0; }));
+    return static_cast<size_t>(
+        std::count_if(latency_ns.begin(), latency_ns.end(), [](int64_t l) { return l >= 0; }));
   }
-  std::vector<int64_t> sent_ns;   // written by the publishing thread before the message goes out
+  std::vector<int64_t> sent_ns;  // written by the publishing thread before the message goes out
   std::vector<int64_t> latency_ns;
 };
 
@@ -108,14 +115,18 @@ class PahoClient {
   PahoClient(int port, const char* id, OnMessage on_message = nullptr, void* context = nullptr)
       : on_message_(on_message), context_(context) {
     const std::string url = "tcp://127.0.0.1:" + std::to_string(port);
-    if (MQTTAsync_create(&handle_, url.c_str(), id, MQTTCLIENT_PERSISTENCE_NONE, nullptr) != MQTTASYNC_SUCCESS)
+    if (MQTTAsync_create(&handle_, url.c_str(), id, MQTTCLIENT_PERSISTENCE_NONE, nullptr) !=
+        MQTTASYNC_SUCCESS)
       throw std::runtime_error("MQTTAsync_create failed");
     MQTTAsync_setCallbacks(handle_, this, nullptr, &PahoClient::arrived, nullptr);
     MQTTAsync_connectOptions options = MQTTAsync_connectOptions_initializer;
     options.cleansession = 1;
-    options.onSuccess = [](void* c, MQTTAsync_successData*) { static_cast<PahoClient*>(c)->ready_.store(true); };
+    options.onSuccess = [](void* c, MQTTAsync_successData*) {
+      static_cast<PahoClient*>(c)->ready_.store(true);
+    };
     options.context = this;
-    if (MQTTAsync_connect(handle_, &options) != MQTTASYNC_SUCCESS) throw std::runtime_error("MQTTAsync_connect failed");
+    if (MQTTAsync_connect(handle_, &options) != MQTTASYNC_SUCCESS)
+      throw std::runtime_error("MQTTAsync_connect failed");
     wait([&] { return ready_.load(); }, "connect");
   }
   ~PahoClient() {
@@ -127,7 +138,9 @@ class PahoClient {
   void subscribe(const char* filter) {
     subscribed_.store(false);
     MQTTAsync_responseOptions options = MQTTAsync_responseOptions_initializer;
-    options.onSuccess = [](void* c, MQTTAsync_successData*) { static_cast<PahoClient*>(c)->subscribed_.store(true); };
+    options.onSuccess = [](void* c, MQTTAsync_successData*) {
+      static_cast<PahoClient*>(c)->subscribed_.store(true);
+    };
     options.context = this;
     MQTTAsync_subscribe(handle_, filter, 0, &options);
     wait([&] { return subscribed_.load(); }, "subscribe");
@@ -138,7 +151,8 @@ class PahoClient {
     message.payloadlen = static_cast<int>(payload.size());
     message.qos = 0;
     MQTTAsync_responseOptions options = MQTTAsync_responseOptions_initializer;
-    while (MQTTAsync_sendMessage(handle_, topic, &message, &options) != MQTTASYNC_SUCCESS) std::this_thread::yield();
+    while (MQTTAsync_sendMessage(handle_, topic, &message, &options) != MQTTASYNC_SUCCESS)
+      std::this_thread::yield();
   }
 
  private:
@@ -146,13 +160,15 @@ class PahoClient {
   static void wait(Pred pred, const char* what) {
     const auto deadline = std::chrono::steady_clock::now() + 10s;
     while (!pred()) {
-      if (std::chrono::steady_clock::now() > deadline) throw std::runtime_error(std::string("MQTT ") + what + " timed out");
+      if (std::chrono::steady_clock::now() > deadline)
+        throw std::runtime_error(std::string("MQTT ") + what + " timed out");
       std::this_thread::sleep_for(5ms);
     }
   }
   static int arrived(void* context, char* topic, int, MQTTAsync_message* message) {
     auto* self = static_cast<PahoClient*>(context);
-    if (self->on_message_) self->on_message_(self->context_, static_cast<const uint8_t*>(message->payload), message->payloadlen);
+    if (self->on_message_)
+      self->on_message_(self->context_, static_cast<const uint8_t*>(message->payload), message->payloadlen);
     MQTTAsync_freeMessage(&message);
     MQTTAsync_free(topic);
     return 1;
@@ -190,8 +206,9 @@ class Rig {
     auto participant = slam::dds::Participant::create(domain_.id(), "bench-gateway");
     if (!participant) throw std::runtime_error(participant.message());
     participant_ = std::move(*participant);
-    auto reader = slam::dds::make_reader(*participant_, slam::dds::kRobotObservation,
-                                         [this](const slam::RobotObservation& o, const auto&) { observed(o); });
+    auto reader =
+        slam::dds::make_reader(*participant_, slam::dds::kRobotObservation,
+                               [this](const slam::RobotObservation& o, const auto&) { observed(o); });
     if (!reader) throw std::runtime_error(reader.message());
     reader_ = std::move(*reader);
     auto subscriptions = slam::dds::make_reader(*participant_, slam::dds::kMqttSubscriptions,
@@ -200,7 +217,8 @@ class Rig {
                                                 });
     if (!subscriptions) throw std::runtime_error(subscriptions.message());
     subscriptions_ = std::move(*subscriptions);
-    if (!slam::testkit::wait_until([&] { return gateway_connected_.load() && reader_->matched_writers() > 0; }, 30s)) {
+    if (!slam::testkit::wait_until(
+            [&] { return gateway_connected_.load() && reader_->matched_writers() > 0; }, 30s)) {
       throw std::runtime_error("slam-gateway did not come up:\n" + group_.log("gateway"));
     }
     subscriber_ = std::make_unique<PahoClient>(port_, "bench-subscriber", &Rig::baseline_message, this);

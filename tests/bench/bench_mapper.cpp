@@ -92,7 +92,8 @@ void BM_TraceRay(benchmark::State& state) {
   int64_t total = 0;
   for (auto _ : state) {
     for (const Ray& r : rays)
-      total += slam::mapper::trace_ray(r.x0, r.y0, r.x1, r.y1, side, side, false, [&](size_t i) { ++cells[i]; });
+      total +=
+          slam::mapper::trace_ray(r.x0, r.y0, r.x1, r.y1, side, side, false, [&](size_t i) { ++cells[i]; });
     benchmark::DoNotOptimize(cells.data());
   }
   state.counters["cells_per_s"] = benchmark::Counter(static_cast<double>(total), benchmark::Counter::kIsRate);
@@ -116,7 +117,8 @@ void BM_IntegrateScans(benchmark::State& state) {
     cells += r->cells_traced;
     points += static_cast<int64_t>(s.hits.size() + s.misses.size());
   }
-  state.counters["points_per_s"] = benchmark::Counter(static_cast<double>(points), benchmark::Counter::kIsRate);
+  state.counters["points_per_s"] =
+      benchmark::Counter(static_cast<double>(points), benchmark::Counter::kIsRate);
   state.counters["cells_per_s"] = benchmark::Counter(static_cast<double>(cells), benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_IntegrateScans)->Arg(4)->Arg(360);

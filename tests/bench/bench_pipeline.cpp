@@ -15,6 +15,7 @@
 //   SLAM_BENCH_PIPELINE_SECONDS=N (window, default 30), SLAM_BENCH_PIPELINE_ROBOTS=N (default 1000)
 #include <MQTTClient.h>
 #include <benchmark/benchmark.h>
+#include <fmt/format.h>
 #include <unistd.h>
 
 #include <atomic>
@@ -26,9 +27,7 @@
 #include <thread>
 #include <vector>
 
-#include <fmt/format.h>
-
-#include "common/clock.hpp"
+#include "common/core/clock.hpp"
 #include "pipeline_probe.hpp"
 #include "pipeline_rig.hpp"
 
@@ -74,8 +73,8 @@ class ProbeClient {
   Status connect(int port) { return client_.connect(port, "bench-pipeline-probe"); }
   bool publish(const std::vector<uint8_t>& payload) {
     // QoS 0, as the simulator's robots publish; paho copies the payload.
-    return MQTTClient_publish(client_.handle(), kProbeTopic, static_cast<int>(payload.size()), payload.data(), 0, 0,
-                              nullptr) == MQTTCLIENT_SUCCESS;
+    return MQTTClient_publish(client_.handle(), kProbeTopic, static_cast<int>(payload.size()), payload.data(),
+                              0, 0, nullptr) == MQTTCLIENT_SUCCESS;
   }
 
  private:
@@ -98,10 +97,12 @@ class BrokerDrops {
  private:
   static constexpr char kTopic[] = "$SYS/broker/publish/messages/dropped";
   static int arrived(void* context, char* topic, int, MQTTClient_message* message) {
-    const std::string text(static_cast<const char*>(message->payload), static_cast<size_t>(message->payloadlen));
+    const std::string text(static_cast<const char*>(message->payload),
+                           static_cast<size_t>(message->payloadlen));
     char* end = nullptr;
     const long long value = std::strtoll(text.c_str(), &end, 10);
-    if (end != text.c_str()) static_cast<BrokerDrops*>(context)->dropped_.store(value, std::memory_order_release);
+    if (end != text.c_str())
+      static_cast<BrokerDrops*>(context)->dropped_.store(value, std::memory_order_release);
     MQTTClient_freeMessage(&message);
     MQTTClient_free(topic);
     return 1;
@@ -117,7 +118,7 @@ struct WindowEdge {
   std::map<std::string, CounterSample> counters;  // by service
   std::map<std::string, double> cpu_s;            // by process, plus "bench" (this process)
   MachineCpu machine;
-  uint64_t patch_bytes = 0;  // GridPatch cell bytes this process received so far
+  uint64_t patch_bytes = 0;     // GridPatch cell bytes this process received so far
   int64_t broker_dropped = -1;  // mosquitto's dropped count so far (-1: not reported yet)
 };
 
@@ -126,7 +127,8 @@ WindowEdge sample_edge(const PipelineRig& rig, const ProbeSet& probes, const Bro
   e.broker_dropped = broker.dropped();
   e.patch_bytes = probes.patch_bytes();
   e.monotonic_ns = monotonic_ns();
-  for (const char* service : {"gateway", "mapper", "planner", "simulator"}) e.counters[service] = rig.latest(service);
+  for (const char* service : {"gateway", "mapper", "planner", "simulator"})
+    e.counters[service] = rig.latest(service);
   for (const auto& [name, pid] : rig.processes()) e.cpu_s[name] = process_cpu_s(pid);
   e.cpu_s["bench"] = process_cpu_s(::getpid());
   e.machine = machine_cpu();
@@ -163,7 +165,8 @@ Drain drain(PipelineRig& rig, size_t probes_sent, int64_t paused_at_ns, std::chr
   int64_t last_in = -1, last_intake = -1;
   Drain d;
   while (true) {
-    const CounterSample sim = rig.latest("simulator"), gateway = rig.latest("gateway"), mapper = rig.latest("mapper");
+    const CounterSample sim = rig.latest("simulator"), gateway = rig.latest("gateway"),
+                        mapper = rig.latest("mapper");
     const int64_t sent = sim.get("reports_sent") + static_cast<int64_t>(probes_sent);
     const int64_t in = gateway.get("messages_in");
     const int64_t intake = mapper.get("observations") + mapper.get("rejected") + mapper.get("dropped");
@@ -214,8 +217,10 @@ void report(benchmark::State& state, const PipelineSettings& settings, WindowEdg
   c["mapper_obs_per_s"] = mapper_obs;
   c["gateway_over_sim"] = sent > 0 ? gateway_in / sent : 0.0;
   c["mapper_over_gateway"] = gateway_obs > 0 ? mapper_obs / gateway_obs : 0.0;
-  c["points_per_obs"] = delta("mapper", "observations") > 0 ? delta("mapper", "points") / delta("mapper", "observations") : 0.0;
-  c["mapper_backlog_start"] = mapper_backlog(start.counters["gateway"], start.counters["mapper"], gateway_obs);
+  c["points_per_obs"] =
+      delta("mapper", "observations") > 0 ? delta("mapper", "points") / delta("mapper", "observations") : 0.0;
+  c["mapper_backlog_start"] =
+      mapper_backlog(start.counters["gateway"], start.counters["mapper"], gateway_obs);
   c["mapper_backlog_end"] = mapper_backlog(end.counters["gateway"], end.counters["mapper"], gateway_obs);
   c["mapper_dropped"] = delta("mapper", "dropped");
   c["mapper_dds_lost"] = delta("mapper", "observations_lost");
@@ -225,7 +230,7 @@ void report(benchmark::State& state, const PipelineSettings& settings, WindowEdg
                             : -1.0;
   c["mapper_rejected"] = delta("mapper", "rejected");
   c["gateway_rejected"] = static_cast<double>(end.counters["gateway"].sum_prefixed("rejected_") -
-                                             start.counters["gateway"].sum_prefixed("rejected_"));
+                                              start.counters["gateway"].sum_prefixed("rejected_"));
   c["gateway_write_failures"] = delta("gateway", "write_failures") + delta("gateway", "publish_failures");
   c["sim_reports_dropped"] = delta("simulator", "reports_dropped");
   c["sim_loop_overruns"] = delta("simulator", "loop_overruns");
@@ -244,8 +249,9 @@ void report(benchmark::State& state, const PipelineSettings& settings, WindowEdg
     ours += share;
   }
   const double machine_total = end.machine.total_s - start.machine.total_s;
-  const double machine_busy = machine_total > 0 ? (end.machine.busy_s - start.machine.busy_s) / machine_total : 0.0;
-  c["cpu_machine_busy_pct"] = 100.0 * machine_busy;                                // of all cores
+  const double machine_busy =
+      machine_total > 0 ? (end.machine.busy_s - start.machine.busy_s) / machine_total : 0.0;
+  c["cpu_machine_busy_pct"] = 100.0 * machine_busy;                              // of all cores
   c["cpu_others_pct"] = 100.0 * machine_busy * machine_total / window_s - ours;  // of one core
   c["probes_sent"] = static_cast<double>(probe.sent);
   c["probes_seen"] = static_cast<double>(probe.seen);
@@ -254,27 +260,27 @@ void report(benchmark::State& state, const PipelineSettings& settings, WindowEdg
   c["delay_max_ms"] = probe.max_ms;
 
   auto v = [&](const char* name) { return c[name].value; };
-  std::fprintf(stderr,
-               "bench_pipeline: %d robots, %.1f s window\n"
-               "  rate: simulator sent %.0f msg/s, gateway received %.0f msg/s (%.3f), mapper integrated %.0f obs/s "
-               "(%.3f of the gateway's), %.1f points per observation; gateway RobotState %.0f/s\n"
-               "  queues: mapper backlog %.0f -> %.0f observations; dropped: mapper %.0f, simulator %.0f, "
-               "broker %.0f; lost by DDS before the mapper %.0f; simulator loop overruns %.0f\n"
-               "  after pausing the fleet: %s %.1f s; %s: %.0f at the gateway, %.0f at the mapper\n"
-               "  map stream: %.1f patches/s, %.1f MB/s of patch cells to each reader\n"
-               "  delay robot message -> GridPatch: p50 %.0f ms, p99 %.0f ms, max %.0f ms (%zu of %zu probes seen)\n"
-               "  CPU %% of one core: mosquitto %.0f, gateway %.0f, mapper %.0f, planner %.0f, simulator %.0f, "
-               "bench %.0f; other processes %.0f; machine %.0f %% busy\n",
-               settings.robots, window_s, sent, gateway_in, v("gateway_over_sim"), mapper_obs, v("mapper_over_gateway"),
-               v("points_per_obs"), v("gateway_states_per_s"), v("mapper_backlog_start"), v("mapper_backlog_end"),
-               v("mapper_dropped"), v("sim_reports_dropped"), v("broker_dropped"), v("mapper_dds_lost"),
-               v("sim_loop_overruns"),
-               drained.settled ? "queues drained in" : "still draining after", drained.seconds,
-               drained.settled ? "never arrived" : "not arrived yet",
-               v("lost_to_gateway"), v("lost_to_mapper"), v("mapper_patches_per_s"), v("patch_mb_per_s"),
-               probe.p50_ms, probe.p99_ms, probe.max_ms, probe.seen, probe.sent, v("cpu_mosquitto_pct"),
-               v("cpu_gateway_pct"), v("cpu_mapper_pct"), v("cpu_planner_pct"), v("cpu_simulator_pct"),
-               v("cpu_bench_pct"), v("cpu_others_pct"), v("cpu_machine_busy_pct"));
+  std::fprintf(
+      stderr,
+      "bench_pipeline: %d robots, %.1f s window\n"
+      "  rate: simulator sent %.0f msg/s, gateway received %.0f msg/s (%.3f), mapper integrated %.0f obs/s "
+      "(%.3f of the gateway's), %.1f points per observation; gateway RobotState %.0f/s\n"
+      "  queues: mapper backlog %.0f -> %.0f observations; dropped: mapper %.0f, simulator %.0f, "
+      "broker %.0f; lost by DDS before the mapper %.0f; simulator loop overruns %.0f\n"
+      "  after pausing the fleet: %s %.1f s; %s: %.0f at the gateway, %.0f at the mapper\n"
+      "  map stream: %.1f patches/s, %.1f MB/s of patch cells to each reader\n"
+      "  delay robot message -> GridPatch: p50 %.0f ms, p99 %.0f ms, max %.0f ms (%zu of %zu probes seen)\n"
+      "  CPU %% of one core: mosquitto %.0f, gateway %.0f, mapper %.0f, planner %.0f, simulator %.0f, "
+      "bench %.0f; other processes %.0f; machine %.0f %% busy\n",
+      settings.robots, window_s, sent, gateway_in, v("gateway_over_sim"), mapper_obs,
+      v("mapper_over_gateway"), v("points_per_obs"), v("gateway_states_per_s"), v("mapper_backlog_start"),
+      v("mapper_backlog_end"), v("mapper_dropped"), v("sim_reports_dropped"), v("broker_dropped"),
+      v("mapper_dds_lost"), v("sim_loop_overruns"),
+      drained.settled ? "queues drained in" : "still draining after", drained.seconds,
+      drained.settled ? "never arrived" : "not arrived yet", v("lost_to_gateway"), v("lost_to_mapper"),
+      v("mapper_patches_per_s"), v("patch_mb_per_s"), probe.p50_ms, probe.p99_ms, probe.max_ms, probe.seen,
+      probe.sent, v("cpu_mosquitto_pct"), v("cpu_gateway_pct"), v("cpu_mapper_pct"), v("cpu_planner_pct"),
+      v("cpu_simulator_pct"), v("cpu_bench_pct"), v("cpu_others_pct"), v("cpu_machine_busy_pct"));
 }
 
 void BM_Pipeline(benchmark::State& state) {
@@ -309,9 +315,11 @@ void BM_Pipeline(benchmark::State& state) {
     start = sample_edge(**rig, probes, broker);
     const int64_t window_ns = static_cast<int64_t>(settings->seconds * 1e9);
     for (size_t k = 0; k < probes.size(); ++k) {
-      const int64_t due = start.monotonic_ns + static_cast<int64_t>(static_cast<double>(k) * kProbePeriodS * 1e9);
+      const int64_t due =
+          start.monotonic_ns + static_cast<int64_t>(static_cast<double>(k) * kProbePeriodS * 1e9);
       if (due - start.monotonic_ns >= window_ns) break;
-      if (const int64_t wait = due - monotonic_ns(); wait > 0) std::this_thread::sleep_for(std::chrono::nanoseconds(wait));
+      if (const int64_t wait = due - monotonic_ns(); wait > 0)
+        std::this_thread::sleep_for(std::chrono::nanoseconds(wait));
       probes.mark_sent(k, monotonic_ns());
       if (!probe_client.publish(probes.payload(k))) return fail(state, "probe publish failed");
     }
@@ -321,7 +329,12 @@ void BM_Pipeline(benchmark::State& state) {
     if (Status s = (*rig)->control_simulator(SIM_PAUSE); !s) return fail(state, s.message());
     const int64_t paused_at = monotonic_ns();
     // Probes still in flight get 5 s more; unseen ones then count with their age.
-    testkit::wait_until([&] { auto p = probes.summary(monotonic_ns()); return p.seen == p.sent; }, 5s, 50ms);
+    testkit::wait_until(
+        [&] {
+          auto p = probes.summary(monotonic_ns());
+          return p.seen == p.sent;
+        },
+        5s, 50ms);
     probe = probes.summary(monotonic_ns());
     drained = drain(**rig, probe.sent, paused_at, 120s);
     if (Status s = (*rig)->check_running(); !s) return fail(state, s.message());

@@ -1,6 +1,7 @@
 // Per-message cost of the gateway's inbound codecs: v1 binary decode and each v2 JSON decode,
 // with the output reused as the gateway does. Items/s = messages/s per core.
 #include <benchmark/benchmark.h>
+#include <fmt/format.h>
 
 #include <array>
 #include <cmath>
@@ -10,8 +11,6 @@
 #include <span>
 #include <string>
 #include <vector>
-
-#include <fmt/format.h>
 
 #include "protocol/topic.hpp"
 #include "protocol/v1_codec.hpp"
@@ -43,7 +42,8 @@ std::string v2_scan(int n) {
   std::string ranges;
   for (int i = 0; i < n; ++i) {
     if (i > 0) ranges += ',';
-    ranges += i % 5 == 0 ? std::string("null") : fmt::format("{:.3f}", 0.5 + 3.0 * std::abs(std::sin(i * 0.05)));
+    ranges +=
+        i % 5 == 0 ? std::string("null") : fmt::format("{:.3f}", 0.5 + 3.0 * std::abs(std::sin(i * 0.05)));
   }
   return fmt::format(R"({{"pose":{{"x":3.25,"y":-1.5,"heading":0.785}},"sensor":{{"x":0.1,"y":0,"theta":0}},)"
                      R"("angle_min":-2.356,"angle_increment":{:.6f},"ranges":[{}],"max_range":4.0}})",
@@ -52,7 +52,8 @@ std::string v2_scan(int n) {
 
 std::string v2_points(int n) {
   std::string points;
-  for (int i = 0; i < n; ++i) points += fmt::format("{}[{:.3f},{:.3f}]", i > 0 ? "," : "", 1.0 + 0.01 * i, -2.0 + 0.02 * i);
+  for (int i = 0; i < n; ++i)
+    points += fmt::format("{}[{:.3f},{:.3f}]", i > 0 ? "," : "", 1.0 + 0.01 * i, -2.0 + 0.02 * i);
   return fmt::format(R"({{"pose":{{"x":1,"y":2,"heading":0.5}},"points":[{}]}})", points);
 }
 

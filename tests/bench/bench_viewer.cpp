@@ -13,9 +13,9 @@
 #include <random>
 #include <vector>
 
-#include "viewer/gl_window.hpp"
-#include "viewer/grid_layer.hpp"
-#include "viewer/point_layer.hpp"
+#include "viewer/gl/gl_window.hpp"
+#include "viewer/gl/grid_layer.hpp"
+#include "viewer/gl/point_layer.hpp"
 
 namespace {
 

@@ -4,7 +4,7 @@
 # Run: build/bin/bench_pipeline --benchmark_format=json   (SLAM_BENCH_PIPELINE_SECONDS=N: window)
 add_executable(bench_pipeline ${CMAKE_CURRENT_LIST_DIR}/bench_pipeline.cpp ${CMAKE_CURRENT_LIST_DIR}/pipeline_rig.cpp
                               ${CMAKE_CURRENT_LIST_DIR}/pipeline_probe.cpp)
-target_link_libraries(bench_pipeline PRIVATE slam_common slam_testkit robot_protocol
+target_link_libraries(bench_pipeline PRIVATE slam_fastdds slam_testkit robot_protocol
                                              eclipse-paho-mqtt-c::paho-mqtt3c benchmark::benchmark)
 add_dependencies(bench_pipeline slam-gateway slam-mapper slam-planner slam-simulator)
 slam_warnings(bench_pipeline)

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <cstdlib>
 
-#include "common/clock.hpp"
+#include "common/core/clock.hpp"
 #include "protocol/v1_codec.hpp"
 
 namespace slam::bench {
@@ -13,12 +13,12 @@ namespace {
 
 constexpr uint32_t kFirstColumn = 20;  // cells from the grid's left edge
 constexpr uint32_t kColumnStep = 7;
-constexpr uint32_t kFirstRow = 30;     // obstacle rows from the grid's bottom edge
+constexpr uint32_t kFirstRow = 30;  // obstacle rows from the grid's bottom edge
 constexpr uint32_t kRowStep = 15;
-constexpr uint32_t kBands = 4;         // rows 30, 45, 60, 75: below the world's wall at row 100
-constexpr uint32_t kRayCells = 10;     // the probe robot stands this many cells below its point
+constexpr uint32_t kBands = 4;      // rows 30, 45, 60, 75: below the world's wall at row 100
+constexpr uint32_t kRayCells = 10;  // the probe robot stands this many cells below its point
 constexpr double kUnitsPerMetre = 100.0;
-constexpr double kIntoCellCm = 2.0;    // 2 cm into a 5 cm cell: no rounding puts it in a neighbour
+constexpr double kIntoCellCm = 2.0;  // 2 cm into a 5 cm cell: no rounding puts it in a neighbour
 
 uint32_t columns_per_band(const GridLayout& g) {
   const auto side = static_cast<uint32_t>(std::lround(g.side_m / g.resolution));
@@ -32,7 +32,9 @@ double cell_point_m(double origin, double resolution, uint32_t index) {
 
 }  // namespace
 
-size_t ProbeSet::capacity(const GridLayout& grid) { return static_cast<size_t>(columns_per_band(grid)) * kBands; }
+size_t ProbeSet::capacity(const GridLayout& grid) {
+  return static_cast<size_t>(columns_per_band(grid)) * kBands;
+}
 
 ProbeSet::ProbeSet(const GridLayout& grid, size_t count) : grid_(grid) {
   const uint32_t per_band = columns_per_band(grid);
@@ -57,8 +59,8 @@ void ProbeSet::mark_sent(size_t k, int64_t monotonic_ns) {
 void ProbeSet::on_snapshot(const GridSnapshot& s) {
   const int64_t now = monotonic_ns();
   std::lock_guard lock(mutex_);
-  layout_ = Layout{s.layout_id(), s.info().width(), s.info().height(), s.info().origin().x(), s.info().origin().y(),
-                   s.info().resolution()};
+  layout_ = Layout{s.layout_id(),         s.info().width(),      s.info().height(),
+                   s.info().origin().x(), s.info().origin().y(), s.info().resolution()};
   if (s.cells().size() == static_cast<size_t>(s.info().width()) * s.info().height())
     check_box(0, 0, s.info().width(), s.info().height(), s.cells().data(), now);
 }
@@ -79,7 +81,8 @@ void ProbeSet::check_box(uint32_t x0, uint32_t y0, uint32_t width, uint32_t heig
     if (p.sent_ns == 0 || p.delay_ns >= 0) continue;
     const double fx = std::floor((p.x - layout_->origin_x) / layout_->resolution);
     const double fy = std::floor((p.y - layout_->origin_y) / layout_->resolution);
-    if (fx < x0 || fy < y0 || fx >= static_cast<double>(x0) + width || fy >= static_cast<double>(y0) + height) continue;
+    if (fx < x0 || fy < y0 || fx >= static_cast<double>(x0) + width || fy >= static_cast<double>(y0) + height)
+      continue;
     const size_t i = (static_cast<size_t>(fy) - y0) * width + (static_cast<size_t>(fx) - x0);
     if ((cells[i] & CELL_STATE_MASK) == CELL_OCCUPIED) p.delay_ns = now - p.sent_ns;
   }
@@ -98,7 +101,8 @@ ProbeSet::Summary ProbeSet::summary(int64_t now_monotonic_ns) const {
   if (delays.empty()) return out;
   std::sort(delays.begin(), delays.end());
   auto at = [&](double q) {
-    const auto k = std::min(delays.size() - 1, static_cast<size_t>(std::ceil(q * static_cast<double>(delays.size()))) - 1);
+    const auto k = std::min(delays.size() - 1,
+                            static_cast<size_t>(std::ceil(q * static_cast<double>(delays.size()))) - 1);
     return static_cast<double>(delays[k]) / 1e6;
   };
   out.p50_ms = at(0.50);

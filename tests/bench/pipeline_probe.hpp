@@ -12,7 +12,7 @@
 #include <optional>
 #include <vector>
 
-#include "common/fast_topics.hpp"
+#include "common/fastdds/fast_topics.hpp"
 #include "pipeline_rig.hpp"
 
 namespace slam::bench {
@@ -53,8 +53,8 @@ class ProbeSet {
     double x = 0.0;  // the obstacle point (m), as the gateway will decode it
     double y = 0.0;
     std::vector<uint8_t> payload;
-    int64_t sent_ns = 0;      // 0: not sent yet
-    int64_t delay_ns = -1;    // -1: not seen yet
+    int64_t sent_ns = 0;    // 0: not sent yet
+    int64_t delay_ns = -1;  // -1: not seen yet
   };
   struct Layout {
     uint32_t id = 0;
@@ -66,7 +66,8 @@ class ProbeSet {
   };
 
   // Marks every sent, unseen probe whose cell is occupied in the box; `cells` is row-major over it.
-  void check_box(uint32_t x0, uint32_t y0, uint32_t width, uint32_t height, const uint8_t* cells, int64_t now);
+  void check_box(uint32_t x0, uint32_t y0, uint32_t width, uint32_t height, const uint8_t* cells,
+                 int64_t now);
 
   GridLayout grid_;
   mutable std::mutex mutex_;

@@ -1,6 +1,7 @@
 // Starting the whole system for bench_pipeline and reading it from outside: heartbeats, /proc.
 #include "pipeline_rig.hpp"
 
+#include <fmt/format.h>
 #include <unistd.h>
 
 #include <cmath>
@@ -9,8 +10,6 @@
 #include <iterator>
 #include <sstream>
 #include <thread>
-
-#include <fmt/format.h>
 
 namespace slam::bench {
 namespace {
@@ -29,7 +28,9 @@ Status env_number(const char* name, double min, double max, double& out) {
   return Status::ok();
 }
 
-int cm(double metres) { return static_cast<int>(std::lround(metres * 100.0)); }
+int cm(double metres) {
+  return static_cast<int>(std::lround(metres * 100.0));
+}
 
 }  // namespace
 
@@ -37,7 +38,8 @@ Result<PipelineSettings> pipeline_settings_from_env() {
   PipelineSettings s;
   double robots = s.robots;
   if (auto st = env_number("SLAM_BENCH_PIPELINE_ROBOTS", 1, 5000, robots); !st) return Error{st.message()};
-  if (auto st = env_number("SLAM_BENCH_PIPELINE_SECONDS", 2, 3600, s.seconds); !st) return Error{st.message()};
+  if (auto st = env_number("SLAM_BENCH_PIPELINE_SECONDS", 2, 3600, s.seconds); !st)
+    return Error{st.message()};
   s.robots = static_cast<int>(robots);
   return s;
 }
@@ -53,8 +55,10 @@ std::string rooms_world_text(double side_m, double room_m) {
       const double door_hi = door_lo + kDoorM;
       const double b = a + room_m;
       // Vertical wall at x = c, then horizontal wall at y = c, each in two pieces around the door.
-      out += fmt::format("{},{}:{},{} {},{}:{},{}\n", cm(c), cm(a), cm(c), cm(door_lo), cm(c), cm(door_hi), cm(c), cm(b));
-      out += fmt::format("{},{}:{},{} {},{}:{},{}\n", cm(a), cm(c), cm(door_lo), cm(c), cm(door_hi), cm(c), cm(b), cm(c));
+      out += fmt::format("{},{}:{},{} {},{}:{},{}\n", cm(c), cm(a), cm(c), cm(door_lo), cm(c), cm(door_hi),
+                         cm(c), cm(b));
+      out += fmt::format("{},{}:{},{} {},{}:{},{}\n", cm(a), cm(c), cm(door_lo), cm(c), cm(door_hi), cm(c),
+                         cm(b), cm(c));
     }
   }
   return out;
@@ -119,18 +123,36 @@ Status PipelineRig::launch(const PipelineSettings& s) {
   const GridLayout& g = s.grid;
   group_.start("gateway", {testkit::bin_path("slam-gateway"), "--domain", domain, "--broker", broker,
                            "--log-level", "warn"});
-  group_.start("mapper", {testkit::bin_path("slam-mapper"), "--domain", domain, "--store", group_.dir() + "/map.db",
-                          "--grid-resolution", fmt::format("{}", g.resolution), "--grid-origin-x",
-                          fmt::format("{}", g.origin_x), "--grid-origin-y", fmt::format("{}", g.origin_y),
-                          "--grid-width-m", fmt::format("{}", g.side_m), "--grid-height-m",
-                          fmt::format("{}", g.side_m), "--log-level", "warn"});
+  group_.start("mapper", {testkit::bin_path("slam-mapper"), "--domain", domain, "--store",
+                          group_.dir() + "/map.db", "--grid-resolution", fmt::format("{}", g.resolution),
+                          "--grid-origin-x", fmt::format("{}", g.origin_x), "--grid-origin-y",
+                          fmt::format("{}", g.origin_y), "--grid-width-m", fmt::format("{}", g.side_m),
+                          "--grid-height-m", fmt::format("{}", g.side_m), "--log-level", "warn"});
   group_.start("planner", {testkit::bin_path("slam-planner"), "--domain", domain, "--log-level", "warn",
                            "--goal-store", group_.dir() + "/goals.json"});
-  group_.start("simulator",
-               {testkit::bin_path("slam-simulator"), "--domain", domain, "--broker", broker, "--world", world,
-                "--robots", std::to_string(s.robots), "--protocol", "v1", "--rate", "10", "--beams",
-                std::to_string(s.beams), "--max-range", fmt::format("{}", s.max_range_m), "--dropout", "0",
-                "--random-walk", "--mqtt-multiplex", "--log-level", "warn"});
+  group_.start("simulator", {testkit::bin_path("slam-simulator"),
+                             "--domain",
+                             domain,
+                             "--broker",
+                             broker,
+                             "--world",
+                             world,
+                             "--robots",
+                             std::to_string(s.robots),
+                             "--protocol",
+                             "v1",
+                             "--rate",
+                             "10",
+                             "--beams",
+                             std::to_string(s.beams),
+                             "--max-range",
+                             fmt::format("{}", s.max_range_m),
+                             "--dropout",
+                             "0",
+                             "--random-walk",
+                             "--mqtt-multiplex",
+                             "--log-level",
+                             "warn"});
 
   auto participant = dds::Participant::create(domain_.id(), "bench-pipeline");
   if (!participant) return Error{"DDS participant: " + participant.message()};
@@ -151,7 +173,8 @@ Status PipelineRig::launch(const PipelineSettings& s) {
 }
 
 Status PipelineRig::control_simulator(SimCommandKind kind) {
-  if (!sim_control_->wait_for_readers(std::chrono::seconds(10))) return Error{"the simulator's SimControl reader did not match"};
+  if (!sim_control_->wait_for_readers(std::chrono::seconds(10)))
+    return Error{"the simulator's SimControl reader did not match"};
   SimControl c;
   c.command_id(++commands_sent_);
   c.kind(kind);
@@ -166,7 +189,8 @@ Status PipelineRig::wait_until_running(std::chrono::seconds timeout) {
   while (std::chrono::steady_clock::now() < until) {
     if (Status s = check_running(); !s) return s;
     bool all = true;
-    for (const char* service : {"gateway", "mapper", "planner", "simulator"}) all = all && latest(service).stamp_ns > 0;
+    for (const char* service : {"gateway", "mapper", "planner", "simulator"})
+      all = all && latest(service).stamp_ns > 0;
     const int64_t observations = latest("mapper").get("observations");
     if (all && latest("simulator").get("robots") >= robots_ && observations > 0) {
       if (first_observations < 0) first_observations = observations;
@@ -179,9 +203,9 @@ Status PipelineRig::wait_until_running(std::chrono::seconds timeout) {
     const CounterSample s = latest(service);
     missing += fmt::format(" {}: {}", service, s.stamp_ns > 0 ? "heartbeat seen" : "no heartbeat");
   }
-  return Error{fmt::format("the pipeline did not start within {} s (simulator robots {}, mapper observations {});{}",
-                           timeout.count(), latest("simulator").get("robots"), latest("mapper").get("observations"),
-                           missing)};
+  return Error{fmt::format(
+      "the pipeline did not start within {} s (simulator robots {}, mapper observations {});{}",
+      timeout.count(), latest("simulator").get("robots"), latest("mapper").get("observations"), missing)};
 }
 
 Status PipelineRig::check_running() {
@@ -199,7 +223,8 @@ CounterSample PipelineRig::latest(const std::string& service) const {
 
 std::vector<std::pair<std::string, pid_t>> PipelineRig::processes() const {
   std::vector<std::pair<std::string, pid_t>> out;
-  for (const char* name : {"mosquitto", "gateway", "mapper", "planner", "simulator"}) out.emplace_back(name, group_.pid(name));
+  for (const char* name : {"mosquitto", "gateway", "mapper", "planner", "simulator"})
+    out.emplace_back(name, group_.pid(name));
   return out;
 }
 

@@ -12,8 +12,8 @@
 #include <string>
 #include <vector>
 
-#include "common/fast_topics.hpp"
-#include "common/result.hpp"
+#include "common/core/result.hpp"
+#include "common/fastdds/fast_topics.hpp"
 #include "process_group.hpp"
 
 namespace slam::bench {

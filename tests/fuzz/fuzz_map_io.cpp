@@ -7,7 +7,7 @@
 #include <span>
 #include <string_view>
 
-#include "common/map_io.hpp"
+#include "common/core/map_io.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const auto* split = static_cast<const uint8_t*>(std::memchr(data, 0, size));
@@ -27,8 +27,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   auto yaml2 = slam::parse_map_yaml(slam::encode_map_yaml(*map, "again.pgm"), "again.yaml");
   if (!pgm2 || !yaml2) std::abort();
   auto map2 = slam::decode_map(*yaml2, *pgm2, "again.pgm");
-  if (!map2 || map2->cells != map->cells || map2->resolution != map->resolution || map2->origin_x != map->origin_x ||
-      map2->origin_y != map->origin_y || map2->origin_yaw != map->origin_yaw)
+  if (!map2 || map2->cells != map->cells || map2->resolution != map->resolution ||
+      map2->origin_x != map->origin_x || map2->origin_y != map->origin_y ||
+      map2->origin_yaw != map->origin_yaw)
     std::abort();
   return 0;
 }

@@ -19,7 +19,8 @@ void check(bool condition) {
   if (!condition) std::abort();
 }
 
-void check_decoded(std::span<const std::uint8_t> payload, const CodecLimits& limits, const DecodedObservation& out) {
+void check_decoded(std::span<const std::uint8_t> payload, const CodecLimits& limits,
+                   const DecodedObservation& out) {
   check(out.has_pose && !out.has_heading && out.misses.empty());
   check(out.hits.size() == payload.size() / kV1PairBytes - 1 && out.hits.size() <= limits.max_points);
   auto bounded = [&](double v) { return std::isfinite(v) && std::abs(v) <= limits.max_abs_coordinate_m; };
@@ -32,7 +33,7 @@ void check_decoded(std::span<const std::uint8_t> payload, const CodecLimits& lim
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::span<const std::uint8_t> payload(data, size);
 
-  static DecodedObservation out;     // reused like the gateway does
+  static DecodedObservation out;  // reused like the gateway does
   static std::vector<std::uint8_t> re_encoded;
   const CodecLimits defaults;
   if (decode_v1(payload, defaults, out)) {

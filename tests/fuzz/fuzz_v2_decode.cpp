@@ -47,8 +47,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::string_view input(reinterpret_cast<const char*>(data), size);
   const std::size_t newline = input.find('\n');
   const std::string_view topic = input.substr(0, newline);
-  const std::span<const std::uint8_t> payload =
-      newline == std::string_view::npos ? std::span<const std::uint8_t>{} : std::span(data + newline + 1, size - newline - 1);
+  const std::span<const std::uint8_t> payload = newline == std::string_view::npos
+                                                    ? std::span<const std::uint8_t>{}
+                                                    : std::span(data + newline + 1, size - newline - 1);
 
   CodecLimits limits;
   limits.max_points = 64;  // small enough for the fuzzer to reach the limit
@@ -82,7 +83,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   static std::string text;
   if (decode_v2_path(payload, limits, path)) {
     check(encode_v2_path(path.seq, path.points, limits, text).is_ok());
-    const std::span<const std::uint8_t> encoded(reinterpret_cast<const std::uint8_t*>(text.data()), text.size());
+    const std::span<const std::uint8_t> encoded(reinterpret_cast<const std::uint8_t*>(text.data()),
+                                                text.size());
     check(decode_v2_path(encoded, limits, again).is_ok());
     check(again.seq == path.seq && again.points == path.points);
   }

@@ -27,8 +27,12 @@ void mutate(std::vector<uint8_t>& data, std::mt19937& rng) {
       case 0:
         if (!data.empty()) data[pos % data.size()] ^= static_cast<uint8_t>(1u << (rng() % 8));
         break;
-      case 1: data.insert(data.begin() + static_cast<std::ptrdiff_t>(pos), static_cast<uint8_t>(rng())); break;
-      case 2: data.resize(pos); break;
+      case 1:
+        data.insert(data.begin() + static_cast<std::ptrdiff_t>(pos), static_cast<uint8_t>(rng()));
+        break;
+      case 2:
+        data.resize(pos);
+        break;
       default:
         if (!data.empty()) data[pos % data.size()] = static_cast<uint8_t>(rng());
         break;

@@ -64,8 +64,8 @@ class Account {
   // QoS 1 and waits for the PUBACK: the broker has routed the message (or dropped it) by then.
   bool publish(const std::string& topic, const std::string& payload) {
     MQTTClient_deliveryToken token = 0;
-    if (MQTTClient_publish(client_, topic.c_str(), static_cast<int>(payload.size()), const_cast<char*>(payload.data()), 1,
-                           0, &token) != MQTTCLIENT_SUCCESS)
+    if (MQTTClient_publish(client_, topic.c_str(), static_cast<int>(payload.size()),
+                           const_cast<char*>(payload.data()), 1, 0, &token) != MQTTCLIENT_SUCCESS)
       return false;
     return MQTTClient_waitForCompletion(client_, token, 2000) == MQTTCLIENT_SUCCESS;
   }
@@ -77,9 +77,11 @@ class Account {
       char* topic = nullptr;
       int topic_len = 0;
       MQTTClient_message* message = nullptr;
-      if (MQTTClient_receive(client_, &topic, &topic_len, &message, 200) != MQTTCLIENT_SUCCESS || !message) continue;
+      if (MQTTClient_receive(client_, &topic, &topic_len, &message, 200) != MQTTCLIENT_SUCCESS || !message)
+        continue;
       got.push_back({topic_len > 0 ? std::string(topic, static_cast<size_t>(topic_len)) : std::string(topic),
-                     std::string(static_cast<const char*>(message->payload), static_cast<size_t>(message->payloadlen))});
+                     std::string(static_cast<const char*>(message->payload),
+                                 static_cast<size_t>(message->payloadlen))});
       MQTTClient_freeMessage(&message);
       MQTTClient_free(topic);
       if (got.back().topic == marker_topic) return got;
@@ -109,8 +111,11 @@ class BrokerAclTest : public ::testing::Test {
  protected:
   void SetUp() override {
     const std::string passwords = group_.dir() + "/passwords";
-    const std::pair<std::string, std::string> users[] = {
-        {"gateway", "gateway-pw"}, {"robot-a", "a-pw"}, {"robot-b", "b-pw"}, {"sim-1", "sim-pw"}, {"sim-2", "sim-pw"}};
+    const std::pair<std::string, std::string> users[] = {{"gateway", "gateway-pw"},
+                                                         {"robot-a", "a-pw"},
+                                                         {"robot-b", "b-pw"},
+                                                         {"sim-1", "sim-pw"},
+                                                         {"sim-2", "sim-pw"}};
     for (const auto& [user, password] : users) {
       std::vector<std::string> argv{"mosquitto_passwd", "-b", passwords, user, password};
       if (!fs::exists(passwords)) argv.insert(argv.begin() + 1, "-c");
@@ -162,7 +167,8 @@ class BrokerAclTest : public ::testing::Test {
   // A connected account (the test fails if the broker refuses it).
   std::unique_ptr<Account> login(const std::string& user, const std::string& password) {
     auto account = std::make_unique<Account>(port_, user, password);
-    EXPECT_EQ(account->connect(), MQTTCLIENT_SUCCESS) << user << " was refused; broker log:\n" << group_.log("mosquitto");
+    EXPECT_EQ(account->connect(), MQTTCLIENT_SUCCESS) << user << " was refused; broker log:\n"
+                                                      << group_.log("mosquitto");
     return account;
   }
 
@@ -202,13 +208,15 @@ TEST_F(BrokerAclTest, RobotCannotPublishUnderAnotherRobotsId) {
   EXPECT_EQ(at_gateway->size(), 1u) << "forged robot-b messages were delivered: " << topics_of(*at_gateway);
   const auto at_b = robot_b->receive_until("v1/server/robot-b/cmd");
   ASSERT_TRUE(at_b) << "the gateway's command to robot-b did not arrive";
-  EXPECT_EQ(at_b->front().payload, std::string("\x02\x00\x02\x00", 4)) << "robot-a's forged command reached robot-b";
+  EXPECT_EQ(at_b->front().payload, std::string("\x02\x00\x02\x00", 4))
+      << "robot-a's forged command reached robot-b";
 }
 
 TEST_F(BrokerAclTest, RobotReadsOnlyItsOwnCommands) {
   auto robot_a = login("robot-a", "a-pw");
   robot_a->subscribe("v1/server/robot-a/cmd");
-  for (const char* filter : {"v1/server/+/cmd", "v2/server/#", "v1/robot/#", "v2/robot/#"}) robot_a->subscribe(filter);
+  for (const char* filter : {"v1/server/+/cmd", "v2/server/#", "v1/robot/#", "v2/robot/#"})
+    robot_a->subscribe(filter);
   auto robot_b = login("robot-b", "b-pw");
   auto gateway = login("gateway", "gateway-pw");
   ASSERT_TRUE(robot_b->publish("v1/robot/robot-b/adv", std::string("\x03\x00\x03\x00", 4)));
@@ -239,8 +247,9 @@ TEST_F(BrokerAclTest, SimulatedRobotsLogInUnderTheirOwnIds) {
   auto gateway = login("gateway", "gateway-pw");
   gateway->subscribe("v1/robot/+/adv");
   DomainLease lease;
-  group_.start("simulator", {bin_path("slam-simulator"), "--domain", std::to_string(lease.id()), "--broker",
-                             "tcp://127.0.0.1:" + std::to_string(port_), "--robots", "2", "--mqtt-password", "sim-pw"});
+  group_.start("simulator",
+               {bin_path("slam-simulator"), "--domain", std::to_string(lease.id()), "--broker",
+                "tcp://127.0.0.1:" + std::to_string(port_), "--robots", "2", "--mqtt-password", "sim-pw"});
   bool sim1 = false, sim2 = false;
   for (int i = 0; i < 20 && !(sim1 && sim2); ++i) {
     const auto got = gateway->receive_until(sim1 ? "v1/robot/sim-2/adv" : "v1/robot/sim-1/adv");
@@ -249,7 +258,8 @@ TEST_F(BrokerAclTest, SimulatedRobotsLogInUnderTheirOwnIds) {
     sim2 = sim2 || contains_topic(*got, "v1/robot/sim-2/adv");
   }
   EXPECT_TRUE(sim1 && sim2) << "simulated robots' reports did not reach the gateway; broker log:\n"
-                            << group_.log("mosquitto") << "\nsimulator log:\n" << group_.log("simulator");
+                            << group_.log("mosquitto") << "\nsimulator log:\n"
+                            << group_.log("simulator");
 }
 
 }  // namespace

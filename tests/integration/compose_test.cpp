@@ -21,7 +21,8 @@ const fs::path kComposeDir = fs::path(SLAM_SOURCE_DIR) / "compose";
 const fs::path kComposeFile = kComposeDir / "docker-compose.yml";
 
 // Runs argv to completion in `group` as `name`; returns (exit code, stdout+stderr).
-std::pair<int, std::string> run(ProcessGroup& group, const std::string& name, const std::vector<std::string>& argv) {
+std::pair<int, std::string> run(ProcessGroup& group, const std::string& name,
+                                const std::vector<std::string>& argv) {
   group.start(name, argv);
   const int code = group.wait_exit(name, 60s);
   return {code, group.log(name)};
@@ -58,7 +59,8 @@ bool help_lists(const std::string& help, const std::string& flag) {
   for (size_t at = help.find(flag); at != std::string::npos; at = help.find(flag, at + 1)) {
     const size_t end = at + flag.size();
     const bool starts = at == 0 || help[at - 1] == ' ' || help[at - 1] == ',' || help[at - 1] == '\n';
-    const bool ends = end == help.size() || help[end] == ' ' || help[end] == ',' || help[end] == '=' || help[end] == '\n';
+    const bool ends =
+        end == help.size() || help[end] == ' ' || help[end] == ',' || help[end] == '=' || help[end] == '\n';
     if (starts && ends) return true;
   }
   return false;
@@ -69,7 +71,8 @@ std::pair<std::string, std::string> split_mount(const std::string& spec) {
   const size_t colon = spec.find(':');
   if (colon == std::string::npos) return {spec, ""};
   const size_t second = spec.find(':', colon + 1);
-  return {spec.substr(0, colon), spec.substr(colon + 1, second == std::string::npos ? std::string::npos : second - colon - 1)};
+  return {spec.substr(0, colon),
+          spec.substr(colon + 1, second == std::string::npos ? std::string::npos : second - colon - 1)};
 }
 
 TEST(ComposeTest, ValidatorAcceptsTheComposeFile) {
@@ -91,8 +94,9 @@ TEST(ComposeTest, ServiceCommandsUseFlagsTheirProgramsOffer) {
     const std::vector<std::string> argv = command_of(entry.second);
     if (argv.empty()) continue;  // an image's own entry point (the broker)
     const std::string program = resolve_program(group, argv[0]);
-    ASSERT_FALSE(program.empty()) << "service " << service << " runs '" << argv[0]
-                                  << "', which is neither built nor installed (scripts/setup.sh installs tools)";
+    ASSERT_FALSE(program.empty())
+        << "service " << service << " runs '" << argv[0]
+        << "', which is neither built nor installed (scripts/setup.sh installs tools)";
     // The program plus its subcommand words ("fastdds discovery"), then --help.
     std::vector<std::string> help_argv{program};
     for (size_t i = 1; i < argv.size() && argv[i].rfind('-', 0) != 0; ++i) help_argv.push_back(argv[i]);
@@ -114,12 +118,15 @@ TEST(ComposeTest, ServiceCommandsUseFlagsTheirProgramsOffer) {
       }
     }
     for (const auto& flag : flags) {
-      EXPECT_TRUE(help_lists(help, flag)) << "service " << service << " passes " << flag << " (command or config file), which "
-                                          << argv[0] << " does not offer:\n" << help;
+      EXPECT_TRUE(help_lists(help, flag))
+          << "service " << service << " passes " << flag << " (command or config file), which " << argv[0]
+          << " does not offer:\n"
+          << help;
       ++checked;
     }
   }
-  EXPECT_GT(checked, 0) << "no service command passed any flag; is " << kComposeFile << " the deployment file?";
+  EXPECT_GT(checked, 0) << "no service command passed any flag; is " << kComposeFile
+                        << " the deployment file?";
 }
 
 TEST(ComposeTest, MountedFilesExistOrHaveAnExample) {

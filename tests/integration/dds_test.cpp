@@ -6,7 +6,7 @@
 #include <mutex>
 #include <set>
 
-#include "common/fast_topics.hpp"
+#include "common/fastdds/fast_topics.hpp"
 #include "process_group.hpp"
 
 namespace slam::testkit {
@@ -41,7 +41,13 @@ TEST(DdsTest, FiveHundredRobotStatesAllArrive) {
     s.robot_id("robot-" + std::to_string(i));
     ASSERT_TRUE((*writer)->write(s)) << "write " << i;
   }
-  EXPECT_TRUE(wait_until([&] { std::lock_guard lock(mutex); return seen.size() == 500; }, 10s)) << seen.size();
+  EXPECT_TRUE(wait_until(
+      [&] {
+        std::lock_guard lock(mutex);
+        return seen.size() == 500;
+      },
+      10s))
+      << seen.size();
 }
 
 TEST(DdsTest, LateJoinerGetsTheLatestStatePerKey) {
@@ -57,7 +63,13 @@ TEST(DdsTest, LateJoinerGetsTheLatestStatePerKey) {
   std::vector<RobotState> got;
   auto reader = dds::make_reader(*p.b, dds::kRobotState);
   ASSERT_TRUE(reader);
-  ASSERT_TRUE(wait_until([&] { (*reader)->take(got); return got.size() >= 25; }, 10s)) << got.size();
+  ASSERT_TRUE(wait_until(
+      [&] {
+        (*reader)->take(got);
+        return got.size() >= 25;
+      },
+      10s))
+      << got.size();
   EXPECT_EQ(got.size(), 25u);
   for (const auto& r : got) EXPECT_GE(r.messages(), 25u) << "an older sample of " << r.robot_id().to_string();
 }

@@ -19,7 +19,7 @@
 #include <string>
 #include <vector>
 
-#include "common/fast_topics.hpp"
+#include "common/fastdds/fast_topics.hpp"
 #include "process_group.hpp"
 #include "simulator/builtin_worlds.hpp"
 #include "world_truth.hpp"
@@ -122,7 +122,8 @@ TEST(Explore, ThreeRobotsMapTheMaze) {
   group.start("gateway", {testkit::bin_path("slam-gateway"), "--domain", domain, "--broker", broker});
   group.start("mapper", {testkit::bin_path("slam-mapper"), "--domain", domain, "--store",
                          group.dir() + "/map.db", "--snapshot-period", "1"});
-  group.start("planner", {testkit::bin_path("slam-planner"), "--domain", domain, "--goal-store", group.dir() + "/goals.json"});
+  group.start("planner", {testkit::bin_path("slam-planner"), "--domain", domain, "--goal-store",
+                          group.dir() + "/goals.json"});
   group.start("simulator", {testkit::bin_path("slam-simulator"), "--domain", domain, "--broker", broker,
                             "--world", kWorld, "--robots", std::to_string(kRobots), "--speed",
                             std::to_string(kSpeed), "--drift", "0", "--seed", "7", "--beams", "32"});

@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "common/fast_topics.hpp"
+#include "common/fastdds/fast_topics.hpp"
 #include "process_group.hpp"
 
 namespace slam::testkit {
@@ -38,7 +38,9 @@ class TestMqtt {
     options.keepAliveInterval = 10;
     return MQTTClient_connect(client_, &options) == MQTTCLIENT_SUCCESS;
   }
-  bool subscribe(const std::string& filter) { return MQTTClient_subscribe(client_, filter.c_str(), 1) == MQTTCLIENT_SUCCESS; }
+  bool subscribe(const std::string& filter) {
+    return MQTTClient_subscribe(client_, filter.c_str(), 1) == MQTTCLIENT_SUCCESS;
+  }
   bool publish(const std::string& topic, const std::string& payload, int qos = 1) {
     MQTTClient_deliveryToken token = 0;
     const int rc = MQTTClient_publish(client_, topic.c_str(), static_cast<int>(payload.size()),
@@ -51,7 +53,8 @@ class TestMqtt {
     char* topic = nullptr;
     int topic_len = 0;
     MQTTClient_message* message = nullptr;
-    if (MQTTClient_receive(client_, &topic, &topic_len, &message, timeout_ms) != MQTTCLIENT_SUCCESS || !message) {
+    if (MQTTClient_receive(client_, &topic, &topic_len, &message, timeout_ms) != MQTTCLIENT_SUCCESS ||
+        !message) {
       return std::nullopt;
     }
     std::pair<std::string, std::string> out{
@@ -81,15 +84,18 @@ class DdsProbe {
  public:
   explicit DdsProbe(int domain) {
     participant_ = take(dds::Participant::create(domain, "gateway-test"));
-    observations_ = take(dds::make_reader(*participant_, dds::kRobotObservation,
-                                      [this](const RobotObservation& o, const auto&) { keep(observations_seen_, o); }));
+    observations_ = take(
+        dds::make_reader(*participant_, dds::kRobotObservation,
+                         [this](const RobotObservation& o, const auto&) { keep(observations_seen_, o); }));
     states_ = take(dds::make_reader(*participant_, dds::kRobotState,
-                                [this](const RobotState& s, const auto&) { keep(states_seen_, s); }));
-    subscriptions_ = take(dds::make_reader(*participant_, dds::kMqttSubscriptions,
-                                       [this](const MqttSubscriptions& s, const auto&) { keep(subscriptions_seen_, s); }));
-    heartbeats_ = take(dds::make_reader(*participant_, dds::kHeartbeat, [this](const Heartbeat& h, const auto&) {
-      if (h.service() == std::string("gateway")) keep(heartbeats_seen_, h);
-    }));
+                                    [this](const RobotState& s, const auto&) { keep(states_seen_, s); }));
+    subscriptions_ = take(
+        dds::make_reader(*participant_, dds::kMqttSubscriptions,
+                         [this](const MqttSubscriptions& s, const auto&) { keep(subscriptions_seen_, s); }));
+    heartbeats_ =
+        take(dds::make_reader(*participant_, dds::kHeartbeat, [this](const Heartbeat& h, const auto&) {
+          if (h.service() == std::string("gateway")) keep(heartbeats_seen_, h);
+        }));
     waypoints_ = take(dds::make_writer(*participant_, dds::kWaypointCommand));
   }
 
@@ -122,7 +128,8 @@ class DdsProbe {
       if (c.name() == name) return c.value();
     return -1;
   }
-  void send_waypoint(const std::string& robot, uint64_t seq, double x, double y, std::vector<Point2> rest = {}) {
+  void send_waypoint(const std::string& robot, uint64_t seq, double x, double y,
+                     std::vector<Point2> rest = {}) {
     WaypointCommand c;
     c.robot_id(robot);
     c.seq(seq);
@@ -155,19 +162,27 @@ class DdsProbe {
 
 std::string hex_bytes(const std::string& hex) {
   std::string out;
-  for (size_t i = 0; i + 1 < hex.size(); i += 2) out += static_cast<char>(std::stoi(hex.substr(i, 2), nullptr, 16));
+  for (size_t i = 0; i + 1 < hex.size(); i += 2)
+    out += static_cast<char>(std::stoi(hex.substr(i, 2), nullptr, 16));
   return out;
 }
 
 class GatewayTest : public ::testing::Test {
  protected:
   void start_gateway(std::vector<std::string> extra = {}) {
-    std::vector<std::string> argv{bin_path("slam-gateway"), "--domain", std::to_string(domain.id()), "--broker",
-                                  "tcp://127.0.0.1:" + std::to_string(port), "--reconnect-max-s", "1",
-                                  "--log-level", "debug"};
+    std::vector<std::string> argv{bin_path("slam-gateway"),
+                                  "--domain",
+                                  std::to_string(domain.id()),
+                                  "--broker",
+                                  "tcp://127.0.0.1:" + std::to_string(port),
+                                  "--reconnect-max-s",
+                                  "1",
+                                  "--log-level",
+                                  "debug"};
     argv.insert(argv.end(), extra.begin(), extra.end());
     group.start("gateway", argv);
-    ASSERT_TRUE(wait_until([&] { return probe.connected(); }, 20s)) << "gateway never reported an MQTT connection";
+    ASSERT_TRUE(wait_until([&] { return probe.connected(); }, 20s))
+        << "gateway never reported an MQTT connection";
     ASSERT_TRUE(wait_until([&] { return probe.waypoint_reader_matched(); }, 10s));
   }
   // Publishes a v1 adv payload from a file with mosquitto_pub, as a legacy robot's tooling would.
@@ -224,7 +239,8 @@ TEST_F(GatewayTest, V1RobotObservationInMetresAndWaypointAsExactlyFourBytes) {
   EXPECT_EQ(probe.latest_state("r1")->presence(), PRESENCE_ONLINE);
   EXPECT_EQ(probe.latest_state("r1")->messages(), 1u);
 
-  group.start("sub", {"mosquitto_sub", "-p", std::to_string(port), "-C", "1", "-F", "%x", "-t", "v1/server/r1/cmd"});
+  group.start("sub",
+              {"mosquitto_sub", "-p", std::to_string(port), "-C", "1", "-F", "%x", "-t", "v1/server/r1/cmd"});
   // The planner re-sends every second; here the test does, until mosquitto_sub has subscribed and got one.
   uint64_t seq = 0;
   ASSERT_TRUE(wait_until(
@@ -341,18 +357,18 @@ TEST_F(GatewayTest, MalformedFloodLeavesAValidRobotUnaffected) {
   ASSERT_TRUE(robot.connect());
 
   const std::vector<std::pair<std::string, std::string>> bad{
-      {"v1/robot/bad/adv", "abc"},                            // bad_length
-      {"v1/robot/bad/adv", ""},                               // empty_payload
-      {"v2/robot/bad/pose", "{\"x\": 1"},                     // json_syntax
-      {"v2/robot/bad/pose", R"({"x": "1", "y": 0})"},         // json_type
-      {"v2/robot/bad/pose", R"({"y": 0})"},                   // missing_field
-      {"v2/robot/bad/pose", R"({"x": 1e999, "y": 0})"},       // non_finite
-      {"v2/robot/bad/pose", R"({"x": 1e6, "y": 0})"},         // out_of_range
-      {"v2/robot/bad/status", R"({"state": ""})"},            // bad_text
-      {"v2/robot/bad/Pose", "{}"},                            // unknown_topic
-      {"v2/robot/*/pose", R"({"x": 1, "y": 0})"},             // bad_robot_id ('*' means every robot)
+      {"v1/robot/bad/adv", "abc"},                       // bad_length
+      {"v1/robot/bad/adv", ""},                          // empty_payload
+      {"v2/robot/bad/pose", "{\"x\": 1"},                // json_syntax
+      {"v2/robot/bad/pose", R"({"x": "1", "y": 0})"},    // json_type
+      {"v2/robot/bad/pose", R"({"y": 0})"},              // missing_field
+      {"v2/robot/bad/pose", R"({"x": 1e999, "y": 0})"},  // non_finite
+      {"v2/robot/bad/pose", R"({"x": 1e6, "y": 0})"},    // out_of_range
+      {"v2/robot/bad/status", R"({"state": ""})"},       // bad_text
+      {"v2/robot/bad/Pose", "{}"},                       // unknown_topic
+      {"v2/robot/*/pose", R"({"x": 1, "y": 0})"},        // bad_robot_id ('*' means every robot)
   };
-  constexpr int kRounds = 300;   // 3000 bad messages
+  constexpr int kRounds = 300;  // 3000 bad messages
   constexpr int kGood = 50;
   for (int i = 0; i < kRounds; ++i) {
     // QoS 0: as fast as the socket takes them (paho's synchronous QoS 1 waits ~100 ms per message).
@@ -362,7 +378,8 @@ TEST_F(GatewayTest, MalformedFloodLeavesAValidRobotUnaffected) {
     }
   }
   ASSERT_TRUE(wait_until([&] { return probe.observations("good").size() == kGood; }, 20s))
-      << "valid robot got " << probe.observations("good").size() << " of " << kGood << "\n" << group.log("gateway");
+      << "valid robot got " << probe.observations("good").size() << " of " << kGood << "\n"
+      << group.log("gateway");
   const auto good = probe.observations("good");
   for (size_t i = 0; i < good.size(); ++i) EXPECT_EQ(good[i].seq(), i + 1);
   EXPECT_TRUE(probe.observations("bad").empty());
@@ -380,7 +397,8 @@ TEST_F(GatewayTest, MalformedFloodLeavesAValidRobotUnaffected) {
   // Rate-limited: a few lines per robot and reason, not thousands.
   const std::string log = group.log("gateway");
   size_t lines = 0;
-  for (size_t at = log.find("rejected "); at != std::string::npos; at = log.find("rejected ", at + 1)) ++lines;
+  for (size_t at = log.find("rejected "); at != std::string::npos; at = log.find("rejected ", at + 1))
+    ++lines;
   EXPECT_LT(lines, 200u);
   EXPECT_NE(log.find("bad_length: payload is 3 bytes"), std::string::npos);
   EXPECT_TRUE(group.running("gateway"));

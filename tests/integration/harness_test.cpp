@@ -12,7 +12,9 @@
 namespace slam::testkit {
 namespace {
 
-bool alive(pid_t pid) { return ::kill(pid, 0) == 0; }
+bool alive(pid_t pid) {
+  return ::kill(pid, 0) == 0;
+}
 
 // Pids of every process whose process group is `pgid`, from /proc.
 std::vector<pid_t> group_members(pid_t pgid) {

@@ -18,8 +18,8 @@
 #include <thread>
 #include <vector>
 
-#include "common/fast_topics.hpp"
-#include "common/map_io.hpp"
+#include "common/core/map_io.hpp"
+#include "common/fastdds/fast_topics.hpp"
 #include "process_group.hpp"
 
 namespace slam {
@@ -77,7 +77,8 @@ struct Map {
   uint8_t state(double x, double y) const { return static_cast<uint8_t>(at(x, y) & CELL_STATE_MASK); }
 };
 
-std::optional<Map> assemble(const std::vector<GridSnapshot>& snapshots, const std::vector<GridPatch>& patches) {
+std::optional<Map> assemble(const std::vector<GridSnapshot>& snapshots,
+                            const std::vector<GridPatch>& patches) {
   if (snapshots.empty()) return std::nullopt;
   const GridSnapshot& s = snapshots.back();
   Map m{s.layout_id(), s.version(), s.info(), s.cells()};
@@ -88,13 +89,15 @@ std::optional<Map> assemble(const std::vector<GridSnapshot>& snapshots, const st
     if (version != m.version + 1) break;
     for (uint32_t row = 0; row < p->height(); ++row)
       for (uint32_t col = 0; col < p->width(); ++col)
-        m.cells[size_t{p->y0() + row} * m.info.width() + p->x0() + col] = p->cells()[size_t{row} * p->width() + col];
+        m.cells[size_t{p->y0() + row} * m.info.width() + p->x0() + col] =
+            p->cells()[size_t{row} * p->width() + col];
     m.version = version;
   }
   return m;
 }
 
-RobotObservation observation(const std::string& robot, uint64_t seq, Point2 pose, const std::vector<Point2>& hits) {
+RobotObservation observation(const std::string& robot, uint64_t seq, Point2 pose,
+                             const std::vector<Point2>& hits) {
   RobotObservation o;
   o.robot_id(robot);
   o.seq(seq);
@@ -151,10 +154,27 @@ class MapperTest : public ::testing::Test {
 
   // Starts the mapper (snapshots only on change unless asked) and waits until it matches every topic.
   void start_mapper(const std::string& snapshot_period = "600") {
-    group_.start("mapper", {testkit::bin_path("slam-mapper"), "--domain", std::to_string(domain_.id()), "--store",
-                            store(), "--grid-resolution", "0.1", "--grid-origin-x", "-5", "--grid-origin-y", "-5",
-                            "--grid-width-m", "10", "--grid-height-m", "10", "--patch-rate", "10",
-                            "--snapshot-period", snapshot_period, "--log-level", "debug"});
+    group_.start("mapper", {testkit::bin_path("slam-mapper"),
+                            "--domain",
+                            std::to_string(domain_.id()),
+                            "--store",
+                            store(),
+                            "--grid-resolution",
+                            "0.1",
+                            "--grid-origin-x",
+                            "-5",
+                            "--grid-origin-y",
+                            "-5",
+                            "--grid-width-m",
+                            "10",
+                            "--grid-height-m",
+                            "10",
+                            "--patch-rate",
+                            "10",
+                            "--snapshot-period",
+                            snapshot_period,
+                            "--log-level",
+                            "debug"});
     ASSERT_TRUE(wait_until(
         [&] {
           return observations_->matched_readers() > 0 && configs_->matched_readers() > 0 &&
@@ -163,7 +183,8 @@ class MapperTest : public ::testing::Test {
                  reply_reader_->matched_writers() > 0;
         },
         60s))
-        << "slam-mapper never matched the test's topics\n" << group_.log("mapper");
+        << "slam-mapper never matched the test's topics\n"
+        << group_.log("mapper");
     // Matching is seen from this side first; let the mapper's writers match our readers too.
     std::this_thread::sleep_for(dds::kMatchSettle);
   }
@@ -184,8 +205,10 @@ class MapperTest : public ::testing::Test {
   // Sends the wall `times` times from (0, 0) and waits until the mapper integrated and published it.
   void send_wall(int times, uint64_t first_seq = 1) {
     for (int i = 0; i < times; ++i)
-      ASSERT_TRUE(observations_->write(observation("r1", first_seq + static_cast<uint64_t>(i), pt(0, 0), wall_hits())));
-    ASSERT_TRUE(wait_until([&] { return counter("observations") >= times; }, 60s)) << "observations never integrated";
+      ASSERT_TRUE(observations_->write(
+          observation("r1", first_seq + static_cast<uint64_t>(i), pt(0, 0), wall_hits())));
+    ASSERT_TRUE(wait_until([&] { return counter("observations") >= times; }, 60s))
+        << "observations never integrated";
     ASSERT_TRUE(wait_until(
         [&] {
           auto m = current();
@@ -260,7 +283,8 @@ TEST_F(MapperTest, ObservationsBecomePatchesWithFreeRaysAndOccupiedHits) {
   EXPECT_GT(m.version, first.version()) << "patches continue the snapshot's version";
   for (const Point2& h : wall_hits()) {
     EXPECT_EQ(m.state(h.x(), h.y()), CELL_OCCUPIED) << "hit at (" << h.x() << ", " << h.y() << ")";
-    EXPECT_EQ(m.state(0.5 * h.x(), 0.5 * h.y()), CELL_FREE) << "middle of the ray to (" << h.x() << ", " << h.y() << ")";
+    EXPECT_EQ(m.state(0.5 * h.x(), 0.5 * h.y()), CELL_FREE)
+        << "middle of the ray to (" << h.x() << ", " << h.y() << ")";
   }
   EXPECT_EQ(m.state(3.03, 0.03), CELL_UNKNOWN) << "nothing is known behind the wall";
   EXPECT_NE(m.at(1.93, 0.03) & CELL_FLAG_INFLATED, 0) << "free cells next to the wall are inflated";
@@ -312,7 +336,8 @@ TEST_F(MapperTest, KillNineAndRestartRestoresTheSameMapFromTheStore) {
     o.misses({pt(x, -4.0), pt(x + 1.0, -4.0)});
     ASSERT_TRUE(observations_->write(o));
   }
-  ASSERT_TRUE(wait_until([&] { return counter("observations") == kSent; }, 60s)) << "not all observations integrated";
+  ASSERT_TRUE(wait_until([&] { return counter("observations") == kSent; }, 60s))
+      << "not all observations integrated";
   // Flushed: the mapper commits every patch tick. Wait until the published map stops changing.
   std::optional<Map> before;
   ASSERT_TRUE(wait_until(
@@ -337,7 +362,8 @@ TEST_F(MapperTest, KillNineAndRestartRestoresTheSameMapFromTheStore) {
   EXPECT_DOUBLE_EQ(after.info().resolution(), before->info.resolution());
   EXPECT_DOUBLE_EQ(after.info().origin().x(), before->info.origin().x());
   EXPECT_DOUBLE_EQ(after.info().origin().y(), before->info.origin().y());
-  EXPECT_TRUE(after.cells() == before->cells) << "the restarted mapper's map differs from the one before kill -9";
+  EXPECT_TRUE(after.cells() == before->cells)
+      << "the restarted mapper's map differs from the one before kill -9";
   EXPECT_TRUE(wait_until([&] { return counter("store_observations") == kSent; }, 30s));
 
   // Killed in the middle of a stream: at most the last patch period is lost, the store stays usable.
@@ -347,7 +373,8 @@ TEST_F(MapperTest, KillNineAndRestartRestoresTheSameMapFromTheStore) {
   group_.stop("mapper", SIGKILL);
   const size_t seen2 = snapshots_.size();
   start_mapper();
-  ASSERT_TRUE(wait_until([&] { return snapshots_.size() > seen2; }, 60s)) << "no snapshot after the second restart";
+  ASSERT_TRUE(wait_until([&] { return snapshots_.size() > seen2; }, 60s))
+      << "no snapshot after the second restart";
   EXPECT_EQ(current().value().state(2.03, 0.03), CELL_OCCUPIED);
   ASSERT_TRUE(wait_until([&] { return counter("store_observations") >= kSent; }, 30s));
   EXPECT_LE(counter("store_observations"), kSent + 200);
@@ -378,7 +405,12 @@ TEST_F(MapperTest, GridConfigWithANewResolutionRebuildsWithTheSameWalls) {
   ASSERT_TRUE(configs_->write(good));
   const MapReply done = wait_reply(8);
   ASSERT_EQ(done.result(), MAP_OK) << done.message();
-  ASSERT_TRUE(wait_until([&] { auto m = current(); return m && m->info.resolution() == 0.05; }, 60s));
+  ASSERT_TRUE(wait_until(
+      [&] {
+        auto m = current();
+        return m && m->info.resolution() == 0.05;
+      },
+      60s));
   const Map m = current().value();
   EXPECT_EQ(m.info.width(), 200u);
   for (const Point2& h : wall_hits()) {
@@ -400,7 +432,12 @@ TEST_F(MapperTest, ExportsImportsEditsAndAnswersBadRequestsWithReasons) {
   start_mapper();
   send_wall(1);
   ASSERT_EQ(edit(1, EDIT_OBSTRUCT, pt(-3.95, -3.95)).result(), MAP_OK);
-  ASSERT_TRUE(wait_until([&] { auto m = current(); return m && (m->at(-3.95, -3.95) & CELL_FLAG_OBSTRUCTED); }, 30s));
+  ASSERT_TRUE(wait_until(
+      [&] {
+        auto m = current();
+        return m && (m->at(-3.95, -3.95) & CELL_FLAG_OBSTRUCTED);
+      },
+      30s));
   const Map m = current().value();
 
   const std::string yaml = group_.dir() + "/export.yaml";
@@ -414,7 +451,8 @@ TEST_F(MapperTest, ExportsImportsEditsAndAnswersBadRequestsWithReasons) {
   EXPECT_DOUBLE_EQ(image->origin_x, m.info.origin().x());
   size_t occupied = 0;
   for (size_t i = 0; i < m.cells.size(); ++i) {
-    const bool blocked = (m.cells[i] & CELL_STATE_MASK) == CELL_OCCUPIED || (m.cells[i] & CELL_FLAG_OBSTRUCTED);
+    const bool blocked =
+        (m.cells[i] & CELL_STATE_MASK) == CELL_OCCUPIED || (m.cells[i] & CELL_FLAG_OBSTRUCTED);
     EXPECT_EQ(image->cells[i] == kMapOccupied, blocked) << "cell " << i;
     occupied += blocked ? 1 : 0;
   }
@@ -445,20 +483,31 @@ TEST_F(MapperTest, ExportsImportsEditsAndAnswersBadRequestsWithReasons) {
   // Reset: the robot's observations go, the operator's obstruction stays.
   const MapReply reset = edit(30, EDIT_RESET_ROBOT, pt(0, 0), "r1");
   ASSERT_EQ(reset.result(), MAP_OK) << reset.message();
-  ASSERT_TRUE(wait_until([&] { auto c = current(); return c && c->state(2.03, 0.03) == CELL_UNKNOWN; }, 60s));
+  ASSERT_TRUE(wait_until(
+      [&] {
+        auto c = current();
+        return c && c->state(2.03, 0.03) == CELL_UNKNOWN;
+      },
+      60s));
   EXPECT_NE(current().value().at(-3.95, -3.95) & CELL_FLAG_OBSTRUCTED, 0);
 
   // Import the exported map as the prior: the wall is back without any observation.
   const MapReply imported = file_request(31, MAP_IMPORT, yaml);
   ASSERT_EQ(imported.result(), MAP_OK) << imported.message();
-  ASSERT_TRUE(wait_until([&] { auto c = current(); return c && c->state(2.03, 0.03) == CELL_OCCUPIED; }, 60s));
+  ASSERT_TRUE(wait_until(
+      [&] {
+        auto c = current();
+        return c && c->state(2.03, 0.03) == CELL_OCCUPIED;
+      },
+      60s));
 }
 
 TEST_F(MapperTest, CommandLineHelpBadFlagsCorruptStoreAndOfflineExport) {
   const std::string bin = testkit::bin_path("slam-mapper");
   group_.start("help", {bin, "--help"});
   EXPECT_EQ(group_.wait_exit("help", 60s), 0);
-  EXPECT_NE(group_.log("help").find("--export"), std::string::npos) << "--help documents the offline commands";
+  EXPECT_NE(group_.log("help").find("--export"), std::string::npos)
+      << "--help documents the offline commands";
   group_.start("badflag", {bin, "--no-such-flag"});
   EXPECT_EQ(group_.wait_exit("badflag", 60s), 2);
   group_.start("badrate", {bin, "--patch-rate", "0"});
@@ -477,8 +526,9 @@ TEST_F(MapperTest, CommandLineHelpBadFlagsCorruptStoreAndOfflineExport) {
   std::this_thread::sleep_for(500ms);  // a patch tick commits the batch; SIGTERM commits the rest anyway
   group_.stop("mapper", SIGTERM);
   const std::string yaml = group_.dir() + "/offline.yaml";
-  group_.start("export", {bin, "--store", store(), "--grid-resolution", "0.1", "--grid-origin-x", "-5",
-                          "--grid-origin-y", "-5", "--grid-width-m", "10", "--grid-height-m", "10", "--export", yaml});
+  group_.start("export",
+               {bin, "--store", store(), "--grid-resolution", "0.1", "--grid-origin-x", "-5",
+                "--grid-origin-y", "-5", "--grid-width-m", "10", "--grid-height-m", "10", "--export", yaml});
   ASSERT_EQ(group_.wait_exit("export", 60s), 0) << group_.log("export");
   auto image = read_ros_map(yaml);
   ASSERT_TRUE(image) << image.message();
@@ -488,7 +538,8 @@ TEST_F(MapperTest, CommandLineHelpBadFlagsCorruptStoreAndOfflineExport) {
 
   group_.start("import", {bin, "--store", group_.dir() + "/fresh.db", "--import", yaml});
   EXPECT_EQ(group_.wait_exit("import", 60s), 0) << group_.log("import");
-  group_.start("import_bad", {bin, "--store", group_.dir() + "/fresh.db", "--import", group_.dir() + "/nope.yaml"});
+  group_.start("import_bad",
+               {bin, "--store", group_.dir() + "/fresh.db", "--import", group_.dir() + "/nope.yaml"});
   EXPECT_EQ(group_.wait_exit("import_bad", 60s), 1);
 }
 

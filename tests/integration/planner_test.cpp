@@ -13,7 +13,7 @@
 #include <thread>
 #include <vector>
 
-#include "common/fast_topics.hpp"
+#include "common/fastdds/fast_topics.hpp"
 #include "process_group.hpp"
 
 namespace slam {
@@ -128,10 +128,9 @@ std::unique_ptr<dds::Reader<T>> reader(dds::Participant& p, const dds::Topic<T, 
 class PlannerTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    group_.start("planner",
-                 {testkit::bin_path("slam-planner"), "--domain", std::to_string(domain_.id()),
-                  "--goals-resend-period-s", "0.5", "--request-workers", "2",
-                  "--goal-store", group_.dir() + "/goals.json"});
+    group_.start("planner", {testkit::bin_path("slam-planner"), "--domain", std::to_string(domain_.id()),
+                             "--goals-resend-period-s", "0.5", "--request-workers", "2", "--goal-store",
+                             group_.dir() + "/goals.json"});
     auto p = dds::Participant::create(domain_.id(), "planner_test");
     ASSERT_TRUE(p) << p.message();
     participant_ = std::move(*p);

@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "common/fast_topics.hpp"
+#include "common/fastdds/fast_topics.hpp"
 #include "process_group.hpp"
 #include "protocol/v1_codec.hpp"
 #include "protocol/v2_robot_decode.hpp"
@@ -39,9 +39,11 @@ class TestMqtt {
  public:
   explicit TestMqtt(int port) {
     const std::string url = "tcp://127.0.0.1:" + std::to_string(port);
-    EXPECT_EQ(MQTTClient_create(&client_, url.c_str(), "simulator_test", MQTTCLIENT_PERSISTENCE_NONE, nullptr),
+    EXPECT_EQ(
+        MQTTClient_create(&client_, url.c_str(), "simulator_test", MQTTCLIENT_PERSISTENCE_NONE, nullptr),
+        MQTTCLIENT_SUCCESS);
+    EXPECT_EQ(MQTTClient_setCallbacks(client_, this, nullptr, &TestMqtt::arrived, nullptr),
               MQTTCLIENT_SUCCESS);
-    EXPECT_EQ(MQTTClient_setCallbacks(client_, this, nullptr, &TestMqtt::arrived, nullptr), MQTTCLIENT_SUCCESS);
     MQTTClient_connectOptions options = MQTTClient_connectOptions_initializer;
     options.cleansession = 1;
     EXPECT_EQ(MQTTClient_connect(client_, &options), MQTTCLIENT_SUCCESS);
@@ -54,10 +56,13 @@ class TestMqtt {
     EXPECT_EQ(MQTTClient_subscribe(client_, filter.c_str(), 1), MQTTCLIENT_SUCCESS);
   }
   void publish(const std::string& topic, const Bytes& payload) {
-    EXPECT_EQ(MQTTClient_publish(client_, topic.c_str(), static_cast<int>(payload.size()), payload.data(), 1, 0, nullptr),
+    EXPECT_EQ(MQTTClient_publish(client_, topic.c_str(), static_cast<int>(payload.size()), payload.data(), 1,
+                                 0, nullptr),
               MQTTCLIENT_SUCCESS);
   }
-  void publish(const std::string& topic, const std::string& text) { publish(topic, Bytes(text.begin(), text.end())); }
+  void publish(const std::string& topic, const std::string& text) {
+    publish(topic, Bytes(text.begin(), text.end()));
+  }
   std::vector<Message> messages() {
     std::lock_guard lock(mutex_);
     return messages_;
@@ -100,7 +105,8 @@ protocol::DecodedObservation decode_adv(const Bytes& payload) {
 
 double wall_distance(const sim::World& world, protocol::Point p) {
   double best = INFINITY;
-  for (const sim::Segment& s : world.walls()) best = std::min(best, std::sqrt(sim::distance_sq({p.x, p.y}, s)));
+  for (const sim::Segment& s : world.walls())
+    best = std::min(best, std::sqrt(sim::distance_sq({p.x, p.y}, s)));
   return best;
 }
 
@@ -115,9 +121,15 @@ class SimulatorTest : public ::testing::Test {
  protected:
   void start(std::vector<std::string> extra) {
     port_ = group_.start_mosquitto();
-    std::vector<std::string> argv = {testkit::bin_path("slam-simulator"), "--domain", std::to_string(domain_.id()),
-                                     "--broker", "tcp://127.0.0.1:" + std::to_string(port_), "--world", "empty",
-                                     "--seed", "7"};
+    std::vector<std::string> argv = {testkit::bin_path("slam-simulator"),
+                                     "--domain",
+                                     std::to_string(domain_.id()),
+                                     "--broker",
+                                     "tcp://127.0.0.1:" + std::to_string(port_),
+                                     "--world",
+                                     "empty",
+                                     "--seed",
+                                     "7"};
     argv.insert(argv.end(), extra.begin(), extra.end());
     group_.start("simulator", argv);
     mqtt_ = std::make_unique<TestMqtt>(port_);
@@ -202,7 +214,8 @@ TEST_F(SimulatorTest, V1RobotDrivesToWaypointAndSeesTheTrueWalls) {
   const double tx = start_pose.x < 5.0 ? 7.5 : 2.5;
   const double ty = start_pose.y < 5.0 ? 7.0 : 3.0;
   mqtt_->publish("v1/server/" + id + "/cmd", v1_waypoint(tx, ty));
-  EXPECT_TRUE(arrives_v1(id, tx, ty, 30s)) << "robot never reported a position near (" << tx << ", " << ty << ")";
+  EXPECT_TRUE(arrives_v1(id, tx, ty, 30s))
+      << "robot never reported a position near (" << tx << ", " << ty << ")";
 }
 
 TEST_F(SimulatorTest, GroundTruthWorldAndHeartbeatReachFastDds) {
@@ -215,17 +228,24 @@ TEST_F(SimulatorTest, GroundTruthWorldAndHeartbeatReachFastDds) {
     world = w;
   });
   ASSERT_TRUE(world_reader) << world_reader.message();
-  auto truth_reader = dds::make_reader(*participant_, dds::kSimGroundTruth, [&](const SimGroundTruth& t, const auto&) {
-    std::lock_guard lock(m);
-    truth = t;
-  });
+  auto truth_reader =
+      dds::make_reader(*participant_, dds::kSimGroundTruth, [&](const SimGroundTruth& t, const auto&) {
+        std::lock_guard lock(m);
+        truth = t;
+      });
   ASSERT_TRUE(truth_reader) << truth_reader.message();
   watch_heartbeat();
 
   // SimWorld is transient-local: this late reader still gets it.
-  ASSERT_TRUE(wait_until([&] { std::lock_guard lock(m); return world && truth; }, 30s));
+  ASSERT_TRUE(wait_until(
+      [&] {
+        std::lock_guard lock(m);
+        return world && truth;
+      },
+      30s));
   // Counters come from the Cyclone heartbeat; wait before taking `m`, which the listeners need.
-  EXPECT_TRUE(wait_until([&] { return counter("robots") == 2; }, 10s)) << "robots counter " << counter("robots");
+  EXPECT_TRUE(wait_until([&] { return counter("robots") == 2; }, 10s))
+      << "robots counter " << counter("robots");
   std::lock_guard lock(m);
   EXPECT_EQ(world->name(), "empty");
   EXPECT_DOUBLE_EQ(world->width_m(), 10.0);
@@ -246,14 +266,20 @@ TEST_F(SimulatorTest, SimControlFromFastDdsSpawnsRobots) {
   std::mutex m;
   size_t robots = 0;
   std::vector<std::string> ids;
-  auto truth_reader = dds::make_reader(*participant_, dds::kSimGroundTruth, [&](const SimGroundTruth& t, const auto&) {
-    std::lock_guard lock(m);
-    robots = t.robots().size();
-    ids.clear();
-    for (const auto& r : t.robots()) ids.push_back(r.robot_id().to_string());
-  });
+  auto truth_reader =
+      dds::make_reader(*participant_, dds::kSimGroundTruth, [&](const SimGroundTruth& t, const auto&) {
+        std::lock_guard lock(m);
+        robots = t.robots().size();
+        ids.clear();
+        for (const auto& r : t.robots()) ids.push_back(r.robot_id().to_string());
+      });
   ASSERT_TRUE(truth_reader) << truth_reader.message();
-  ASSERT_TRUE(wait_until([&] { std::lock_guard lock(m); return robots == 1; }, 30s));
+  ASSERT_TRUE(wait_until(
+      [&] {
+        std::lock_guard lock(m);
+        return robots == 1;
+      },
+      30s));
   watch_heartbeat();
 
   auto writer = dds::make_writer(*participant_, dds::kSimControl);
@@ -280,12 +306,19 @@ TEST_F(SimulatorTest, SimControlFromFastDdsSpawnsRobots) {
   impossible.speed_factor(-1.0);
   (*writer)->write(impossible);
 
-  EXPECT_TRUE(wait_until([&] { std::lock_guard lock(m); return robots == 4; }, 20s)) << "robots: " << robots;
+  EXPECT_TRUE(wait_until(
+      [&] {
+        std::lock_guard lock(m);
+        return robots == 4;
+      },
+      20s))
+      << "robots: " << robots;
   {
     std::lock_guard lock(m);
     EXPECT_NE(std::find(ids.begin(), ids.end(), "visitor"), ids.end());
   }
-  EXPECT_TRUE(wait_until([&] { return counter("controls_rejected") == 1 && counter("controls_applied") == 2; }, 10s))
+  EXPECT_TRUE(
+      wait_until([&] { return counter("controls_rejected") == 1 && counter("controls_applied") == 2; }, 10s))
       << "applied " << counter("controls_applied") << ", rejected " << counter("controls_rejected");
   // The new robots speak MQTT as well.
   mqtt_->subscribe("v1/robot/visitor/adv");
@@ -302,11 +335,11 @@ TEST_F(SimulatorTest, MalformedWaypointsAreIgnoredAndTheGoalKept) {
   const double ty = start_pose.y < 5.0 ? 8.0 : 2.0;
   const std::string cmd = "v1/server/" + id + "/cmd";
   mqtt_->publish(cmd, v1_waypoint(tx, ty));
-  mqtt_->publish(cmd, Bytes{0x01, 0x02, 0x03});                    // 3 bytes
-  mqtt_->publish(cmd, Bytes{0x64, 0x00, 0x64, 0x00, 0x64});        // 5 bytes
-  mqtt_->publish(cmd, Bytes(8, 0x10));                             // two pairs
-  mqtt_->publish(cmd, Bytes{});                                     // empty
-  mqtt_->publish(cmd, v1_waypoint(50.0, 50.0));                    // outside the 10 m world
+  mqtt_->publish(cmd, Bytes{0x01, 0x02, 0x03});              // 3 bytes
+  mqtt_->publish(cmd, Bytes{0x64, 0x00, 0x64, 0x00, 0x64});  // 5 bytes
+  mqtt_->publish(cmd, Bytes(8, 0x10));                       // two pairs
+  mqtt_->publish(cmd, Bytes{});                              // empty
+  mqtt_->publish(cmd, v1_waypoint(50.0, 50.0));              // outside the 10 m world
   EXPECT_TRUE(wait_until([&] { return counter("waypoints_rejected") == 5; }, 15s))
       << "waypoints_rejected " << counter("waypoints_rejected");
   EXPECT_EQ(counter("waypoints_outside_world"), 1);
@@ -339,13 +372,14 @@ TEST_F(SimulatorTest, MultiplexedV2RobotSendsScansAndFollowsJsonWaypoints) {
   std::string good;
   ASSERT_TRUE(protocol::encode_v2_waypoint({1, {tx, 5.0}}, {}, good).is_ok());
   mqtt_->publish(topic, good);
-  mqtt_->publish(topic, std::string("{\"seq\":2,\"x\":"));     // bad JSON
+  mqtt_->publish(topic, std::string("{\"seq\":2,\"x\":"));                // bad JSON
   mqtt_->publish(topic, std::string("{\"seq\":3,\"x\":\"1\",\"y\":2}"));  // wrong type
   EXPECT_TRUE(wait_until(
       [&] {
         const auto m = mqtt_->last(scan_topic);
         protocol::DecodedObservation o;
-        return m && protocol::decode_v2_scan(m->payload, {}, o).is_ok() && std::hypot(o.x - tx, o.y - 5.0) < 0.07;
+        return m && protocol::decode_v2_scan(m->payload, {}, o).is_ok() &&
+               std::hypot(o.x - tx, o.y - 5.0) < 0.07;
       },
       30s, 50ms));
   EXPECT_TRUE(wait_until([&] { return counter("waypoints_rejected") == 2; }, 10s));

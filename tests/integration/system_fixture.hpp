@@ -18,7 +18,7 @@
 #include <thread>
 #include <vector>
 
-#include "common/fast_topics.hpp"
+#include "common/fastdds/fast_topics.hpp"
 
 namespace slam::system_test {
 
@@ -30,7 +30,9 @@ struct Vec {
   double y = 0.0;
 };
 
-inline double distance(Vec a, Vec b) { return std::hypot(a.x - b.x, a.y - b.y); }
+inline double distance(Vec a, Vec b) {
+  return std::hypot(a.x - b.x, a.y - b.y);
+}
 
 inline double point_segment_distance(Vec p, Vec a, Vec b) {
   const double dx = b.x - a.x, dy = b.y - a.y;
@@ -39,14 +41,16 @@ inline double point_segment_distance(Vec p, Vec a, Vec b) {
   return distance(p, Vec{a.x + t * dx, a.y + t * dy});
 }
 
-inline double cross(Vec o, Vec a, Vec b) { return (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x); }
+inline double cross(Vec o, Vec a, Vec b) {
+  return (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x);
+}
 
 // Shortest distance between segments ab and cd; 0 when they cross.
 inline double segment_distance(Vec a, Vec b, Vec c, Vec d) {
   const double d1 = cross(a, b, c), d2 = cross(a, b, d), d3 = cross(c, d, a), d4 = cross(c, d, b);
   if (((d1 > 0 && d2 < 0) || (d1 < 0 && d2 > 0)) && ((d3 > 0 && d4 < 0) || (d3 < 0 && d4 > 0))) return 0.0;
-  return std::min({point_segment_distance(a, c, d), point_segment_distance(b, c, d), point_segment_distance(c, a, b),
-                   point_segment_distance(d, a, b)});
+  return std::min({point_segment_distance(a, c, d), point_segment_distance(b, c, d),
+                   point_segment_distance(c, a, b), point_segment_distance(d, a, b)});
 }
 
 // v1 adv payload: int16 LE pairs in centimetres, the position first.
@@ -70,7 +74,8 @@ inline std::string v1_adv(Vec position, const std::vector<Vec>& points = {}) {
 inline std::optional<Vec> v1_cmd(const std::string& bytes) {
   if (bytes.size() != 4) return std::nullopt;
   const auto at = [&bytes](size_t i) {
-    const auto u = static_cast<uint16_t>(static_cast<uint8_t>(bytes[i]) | (static_cast<uint8_t>(bytes[i + 1]) << 8));
+    const auto u =
+        static_cast<uint16_t>(static_cast<uint8_t>(bytes[i]) | (static_cast<uint8_t>(bytes[i + 1]) << 8));
     return static_cast<int16_t>(u) / 100.0;
   };
   return Vec{at(0), at(2)};
@@ -78,7 +83,8 @@ inline std::optional<Vec> v1_cmd(const std::string& bytes) {
 
 inline std::string from_hex(const std::string& hex) {
   std::string out;
-  for (size_t i = 0; i + 1 < hex.size(); i += 2) out += static_cast<char>(std::stoi(hex.substr(i, 2), nullptr, 16));
+  for (size_t i = 0; i + 1 < hex.size(); i += 2)
+    out += static_cast<char>(std::stoi(hex.substr(i, 2), nullptr, 16));
   return out;
 }
 
@@ -170,7 +176,8 @@ inline Map assemble(const GridSnapshot& s, const std::vector<GridPatch>& patches
     if (version != m.version + 1) break;
     for (uint32_t row = 0; row < p->height(); ++row)
       for (uint32_t col = 0; col < p->width(); ++col)
-        m.cells[size_t{p->y0() + row} * m.info.width() + p->x0() + col] = p->cells()[size_t{row} * p->width() + col];
+        m.cells[size_t{p->y0() + row} * m.info.width() + p->x0() + col] =
+            p->cells()[size_t{row} * p->width() + col];
     m.version = version;
   }
   return m;
@@ -187,23 +194,26 @@ class Probe {
  public:
   explicit Probe(int domain) {
     participant_ = take(dds::Participant::create(domain, "system-test"));
-    snapshot_reader_ = take(dds::make_reader(*participant_, dds::kGridSnapshot, [this](const GridSnapshot& s, const auto&) {
-      std::lock_guard lock(mutex_);
-      snapshots_.push_back(s);
-    }));
-    patch_reader_ = take(dds::make_reader(*participant_, dds::kGridPatch, [this](const GridPatch& p, const auto&) {
-      std::lock_guard lock(mutex_);
-      patches_.push_back(p);
-    }));
+    snapshot_reader_ =
+        take(dds::make_reader(*participant_, dds::kGridSnapshot, [this](const GridSnapshot& s, const auto&) {
+          std::lock_guard lock(mutex_);
+          snapshots_.push_back(s);
+        }));
+    patch_reader_ =
+        take(dds::make_reader(*participant_, dds::kGridPatch, [this](const GridPatch& p, const auto&) {
+          std::lock_guard lock(mutex_);
+          patches_.push_back(p);
+        }));
     observation_reader_ = take(dds::make_reader(*participant_, dds::kRobotObservation,
                                                 [this](const RobotObservation& o, const auto&) {
                                                   std::lock_guard lock(mutex_);
                                                   observed_[o.robot_id().to_string()].push_back(Clock::now());
                                                 }));
-    heartbeat_reader_ = take(dds::make_reader(*participant_, dds::kHeartbeat, [this](const Heartbeat& h, const auto&) {
-      std::lock_guard lock(mutex_);
-      heartbeats_[h.service().to_string()] = h;
-    }));
+    heartbeat_reader_ =
+        take(dds::make_reader(*participant_, dds::kHeartbeat, [this](const Heartbeat& h, const auto&) {
+          std::lock_guard lock(mutex_);
+          heartbeats_[h.service().to_string()] = h;
+        }));
     goals_ = take(dds::make_writer(*participant_, dds::kNavGoal));
   }
 
@@ -214,7 +224,8 @@ class Probe {
     std::lock_guard lock(mutex_);
     const GridSnapshot* newest = nullptr;
     for (const GridSnapshot& s : snapshots_)
-      if (!newest || std::pair(s.layout_id(), s.version()) >= std::pair(newest->layout_id(), newest->version()))
+      if (!newest ||
+          std::pair(s.layout_id(), s.version()) >= std::pair(newest->layout_id(), newest->version()))
         newest = &s;
     if (!newest) return std::nullopt;
     return assemble(*newest, patches_);
@@ -233,7 +244,8 @@ class Probe {
   }
 
   // When the first observation of `robot` after `since` arrived on DDS.
-  std::optional<Clock::time_point> observation_after(const std::string& robot, Clock::time_point since) const {
+  std::optional<Clock::time_point> observation_after(const std::string& robot,
+                                                     Clock::time_point since) const {
     std::lock_guard lock(mutex_);
     auto it = observed_.find(robot);
     if (it == observed_.end()) return std::nullopt;
@@ -287,8 +299,8 @@ class PahoRobot {
   PahoRobot(int port, std::string id, std::string adv, std::chrono::milliseconds period = 100ms)
       : id_(std::move(id)), adv_(std::move(adv)), period_(period) {
     const std::string url = "tcp://127.0.0.1:" + std::to_string(port);
-    if (MQTTClient_create(&client_, url.c_str(), ("robot-" + id_).c_str(), MQTTCLIENT_PERSISTENCE_NONE, nullptr) !=
-        MQTTCLIENT_SUCCESS)
+    if (MQTTClient_create(&client_, url.c_str(), ("robot-" + id_).c_str(), MQTTCLIENT_PERSISTENCE_NONE,
+                          nullptr) != MQTTCLIENT_SUCCESS)
       throw std::runtime_error("MQTTClient_create failed");
     MQTTClient_setCallbacks(client_, this, nullptr, &PahoRobot::on_message, nullptr);
     thread_ = std::thread([this] { loop(); });
@@ -351,12 +363,15 @@ class PahoRobot {
       std::string payload;
       {
         std::lock_guard lock(mutex_);
-        if (!once_.empty()) payload = std::exchange(once_, {});
-        else if (!paused_) payload = adv_;
+        if (!once_.empty())
+          payload = std::exchange(once_, {});
+        else if (!paused_)
+          payload = adv_;
       }
       // QoS 0: a lost report is replaced by the next one, as on a robot's radio link.
       if (!payload.empty())
-        MQTTClient_publish(client_, adv_topic.c_str(), static_cast<int>(payload.size()), payload.data(), 0, 0, nullptr);
+        MQTTClient_publish(client_, adv_topic.c_str(), static_cast<int>(payload.size()), payload.data(), 0, 0,
+                           nullptr);
       std::this_thread::sleep_for(period_);
     }
   }

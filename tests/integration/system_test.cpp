@@ -27,7 +27,9 @@ using testkit::wait_until;
 constexpr auto kPromise = 3s;
 constexpr auto kBound = 7s;
 
-double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+double seconds_since(Clock::time_point t) {
+  return std::chrono::duration<double>(Clock::now() - t).count();
+}
 
 // " (over the promise)" when `seconds` exceeds `promise`, for the timing lines.
 std::string mark(double seconds, std::chrono::milliseconds promise) {
@@ -42,16 +44,19 @@ class SystemTest : public ::testing::Test {
       group_.start(service, {bin_path("slam-gateway"), "--domain", domain, "--broker",
                              "tcp://127.0.0.1:" + std::to_string(port_)});
     } else if (service == "mapper") {
-      group_.start(service, {bin_path("slam-mapper"), "--domain", domain, "--store", group_.dir() + "/map.db"});
+      group_.start(service,
+                   {bin_path("slam-mapper"), "--domain", domain, "--store", group_.dir() + "/map.db"});
     } else {
-      group_.start(service, {bin_path("slam-planner"), "--domain", domain, "--goal-store", group_.dir() + "/goals.json"});
+      group_.start(service, {bin_path("slam-planner"), "--domain", domain, "--goal-store",
+                             group_.dir() + "/goals.json"});
     }
   }
   // Waits until `service` (this very process) sends heartbeats.
   void wait_up(const std::string& service) {
     const auto pid = static_cast<uint32_t>(group_.pid(service));
     ASSERT_TRUE(wait_until([&] { return probe_.heartbeat(service, pid).has_value(); }, 30s))
-        << service << " never sent a heartbeat\n" << group_.log(service);
+        << service << " never sent a heartbeat\n"
+        << group_.log(service);
   }
   void start_all() {
     for (const char* s : {"gateway", "mapper", "planner"}) start(s);
@@ -73,8 +78,8 @@ class SystemTest : public ::testing::Test {
     const std::string name = "pub" + std::to_string(++pubs_);
     const std::string file = group_.dir() + "/" + name + ".bin";
     std::ofstream(file, std::ios::binary) << payload;
-    group_.start(name, {"mosquitto_pub", "-p", std::to_string(port_), "-q", "1", "-t", "v1/robot/" + robot + "/adv",
-                        "-f", file});
+    group_.start(name, {"mosquitto_pub", "-p", std::to_string(port_), "-q", "1", "-t",
+                        "v1/robot/" + robot + "/adv", "-f", file});
     ASSERT_EQ(group_.wait_exit(name, 10s), 0) << group_.log(name);
   }
   // The published map shows the scene: the wall, and free space at the start and at the goal.
@@ -114,7 +119,8 @@ TEST_F(SystemTest, LegacyRobotIsDiscoveredListedAndSteeredAroundTheWallItReporte
         return wait_until([&] { return scene_mapped(); }, 3s);
       },
       60s, 0ms))
-      << "the legacy robot's wall and free space never reached the map\n" << group_.log("gateway") << group_.log("mapper");
+      << "the legacy robot's wall and free space never reached the map\n"
+      << group_.log("gateway") << group_.log("mapper");
   std::cout << "[ timing ] survey mapped " << seconds_since(survey_started) << " s after the first message\n";
 
   const std::string robots = ctl("robots1", {"robots"});
@@ -128,7 +134,8 @@ TEST_F(SystemTest, LegacyRobotIsDiscoveredListedAndSteeredAroundTheWallItReporte
 
   // Standing still, the robot hears its first waypoint about every second, as 4 bytes.
   ASSERT_TRUE(wait_until([&] { return sub_lines(group_.log("cmd")).size() >= 4; }, 30s))
-      << "no waypoint stream\n" << group_.log("cmd") << group_.log("planner") << group_.log("gateway");
+      << "no waypoint stream\n"
+      << group_.log("cmd") << group_.log("planner") << group_.log("gateway");
   const auto heard = sub_lines(group_.log("cmd"));
   std::cout << "[ timing ] waypoint gaps (s):";
   for (size_t i = 1; i < heard.size(); ++i) std::cout << " " << heard[i].first - heard[i - 1].first;
@@ -156,21 +163,26 @@ TEST_F(SystemTest, LegacyRobotIsDiscoveredListedAndSteeredAroundTheWallItReporte
         return distance(route.back(), Scene::kGoal) < 0.015;
       },
       60s, 100ms))
-      << "the robot never got to the goal; route so far has " << route.size() << " points\n" << group_.log("planner");
+      << "the robot never got to the goal; route so far has " << route.size() << " points\n"
+      << group_.log("planner");
   ASSERT_GE(route.size(), 3u) << "a route around the wall bends at least once";
   double clearance = 1e9;
   for (size_t i = 1; i < route.size(); ++i) {
     const double d = segment_distance(route[i - 1], route[i], Scene::kWallA, Scene::kWallB);
     clearance = std::min(clearance, d);
-    EXPECT_GT(d, 0.05) << "segment (" << route[i - 1].x << ", " << route[i - 1].y << ") -> (" << route[i].x << ", "
-                       << route[i].y << ") crosses or grazes the reported wall";
+    EXPECT_GT(d, 0.05) << "segment (" << route[i - 1].x << ", " << route[i - 1].y << ") -> (" << route[i].x
+                       << ", " << route[i].y << ") crosses or grazes the reported wall";
   }
-  std::cout << "[ route  ] " << route.size() - 1 << " waypoints, closest approach to the wall " << clearance << " m:";
+  std::cout << "[ route  ] " << route.size() - 1 << " waypoints, closest approach to the wall " << clearance
+            << " m:";
   for (const Vec& p : route) std::cout << " (" << p.x << ", " << p.y << ")";
   std::cout << "\n";
 
   ASSERT_TRUE(wait_until(
-      [&] { return ctl("robots" + std::to_string(++pubs_), {"robots"}, false).find("planned/reached") != std::string::npos; },
+      [&] {
+        return ctl("robots" + std::to_string(++pubs_), {"robots"}, false).find("planned/reached") !=
+               std::string::npos;
+      },
       30s, 0ms))
       << "slamctl never listed the goal as reached";
 }
@@ -207,8 +219,9 @@ Recovery recovery(const Probe& probe, const PahoRobot& robot, const std::string&
 // The restarted mapper's first snapshot (from index `from` on) is the map before kill -9, cell for cell.
 void expect_restored(const Probe& probe, size_t from, const Map& before) {
   std::optional<GridSnapshot> restored;
-  ASSERT_TRUE(wait_until([&] { return (restored = probe.snapshot_of_another_layout(from, before.layout_id)).has_value(); },
-                         kBound))
+  ASSERT_TRUE(wait_until(
+      [&] { return (restored = probe.snapshot_of_another_layout(from, before.layout_id)).has_value(); },
+      kBound))
       << "no snapshot from the restarted mapper";
   const GridSnapshot& after = *restored;
   EXPECT_EQ(after.info().width(), before.info.width());
@@ -222,11 +235,11 @@ void expect_restored(const Probe& probe, size_t from, const Map& before) {
     if (after.cells()[i] == before.cells[i] || ++count > 12) continue;
     const double res = before.info.resolution();
     differ << " (" << before.info.origin().x() + res * static_cast<double>(i % before.info.width()) << ", "
-           << before.info.origin().y() + res * static_cast<double>(i / before.info.width()) << "): "
-           << int{before.cells[i]} << " -> " << int{after.cells()[i]};
+           << before.info.origin().y() + res * static_cast<double>(i / before.info.width())
+           << "): " << int{before.cells[i]} << " -> " << int{after.cells()[i]};
   }
-  EXPECT_TRUE(after.cells() == before.cells)
-      << count << " cells differ from the map before kill -9 (version " << before.version << "):" << differ.str();
+  EXPECT_TRUE(after.cells() == before.cells) << count << " cells differ from the map before kill -9 (version "
+                                             << before.version << "):" << differ.str();
 }
 
 TEST_F(SystemTest, KillNineOfEachServiceAndABrokerRestartLeaveTheRobotDriving) {
@@ -250,10 +263,12 @@ TEST_F(SystemTest, KillNineOfEachServiceAndABrokerRestartLeaveTheRobotDriving) {
         return wait_until([&] { return scene_mapped(); }, 3s);
       },
       60s, 0ms))
-      << "the robot's scene never reached the map\n" << group_.log("gateway") << group_.log("mapper");
+      << "the robot's scene never reached the map\n"
+      << group_.log("gateway") << group_.log("mapper");
   // Sent by slamctl, which exits: after a planner restart only the planner's goal store has it.
   ctl("goal", {"goal", id, "planned", std::to_string(Scene::kGoal.x), std::to_string(Scene::kGoal.y)});
-  ASSERT_TRUE(wait_until([&] { return !robot.commands().empty(); }, 30s)) << "no waypoint\n" << group_.log("planner");
+  ASSERT_TRUE(wait_until([&] { return !robot.commands().empty(); }, 30s)) << "no waypoint\n"
+                                                                          << group_.log("planner");
   // The robot stands at the start: every waypoint it hears must be a first step around the wall.
   const auto first_step = [](const std::string& payload) {
     const auto w = v1_cmd(payload);
@@ -271,7 +286,12 @@ TEST_F(SystemTest, KillNineOfEachServiceAndABrokerRestartLeaveTheRobotDriving) {
       std::this_thread::sleep_for(300ms);
       const Vec last = new_obstacle();
       robot.send_once(v1_adv(Scene::kStart, {last}));
-      ASSERT_TRUE(wait_until([&] { auto m = probe_.map(); return m && m->state(last) == CELL_OCCUPIED; }, 10s))
+      ASSERT_TRUE(wait_until(
+          [&] {
+            auto m = probe_.map();
+            return m && m->state(last) == CELL_OCCUPIED;
+          },
+          10s))
           << group_.log("mapper");
       before = probe_.map();
     }
@@ -300,14 +320,16 @@ TEST_F(SystemTest, KillNineOfEachServiceAndABrokerRestartLeaveTheRobotDriving) {
     std::cout << "[ timing ] " << (broker ? "restart " : "kill -9 ") << service << ": waypoint " << r.waypoint
               << " s" << mark(r.waypoint, promise) << " after the restart; ";
     if (before) {
-      std::cout << "map restored, robot resumed " << seconds_since(restarted) - seconds_since(resumed) << " s after it; ";
+      std::cout << "map restored, robot resumed " << seconds_since(restarted) - seconds_since(resumed)
+                << " s after it; ";
     }
     std::cout << "observation on DDS " << r.observation << " s" << mark(r.observation, promise)
               << ", new obstacle in the map " << r.mapped << " s" << mark(r.mapped, promise) << " after "
               << (before ? "resuming" : "the restart") << "\n";
     EXPECT_GE(r.waypoint, 0.0) << "no waypoint within the bound after restarting " << service;
     EXPECT_GE(r.observation, 0.0) << "no observation within the bound after restarting " << service;
-    EXPECT_GE(r.mapped, 0.0) << "a new report did not reach the map within the bound after restarting " << service;
+    EXPECT_GE(r.mapped, 0.0) << "a new report did not reach the map within the bound after restarting "
+                             << service;
     for (const auto& [at, payload] : robot.commands(restarted))
       EXPECT_TRUE(first_step(payload)) << "not a first step around the wall: " << payload.size() << " bytes";
     if (broker) {
@@ -379,10 +401,10 @@ TEST_F(SystemTest, ALateJoinerSeesTheWholeMapAndEveryRobotAtOnce) {
   auto participant = take(dds::Participant::create(domain_.id(), "late-joiner"));
   Inbox<GridSnapshot> snapshots;
   Inbox<RobotState> states;
-  auto snapshot_reader = take(dds::make_reader(*participant, dds::kGridSnapshot,
-                                               [&](const GridSnapshot& s, const auto&) { snapshots.push(s); }));
-  auto state_reader =
-      take(dds::make_reader(*participant, dds::kRobotState, [&](const RobotState& s, const auto&) { states.push(s); }));
+  auto snapshot_reader = take(dds::make_reader(
+      *participant, dds::kGridSnapshot, [&](const GridSnapshot& s, const auto&) { snapshots.push(s); }));
+  auto state_reader = take(dds::make_reader(*participant, dds::kRobotState,
+                                            [&](const RobotState& s, const auto&) { states.push(s); }));
   const auto full_map = [&] {
     for (const GridSnapshot& s : snapshots.items())
       if (s.cells() == reference->cells) return true;
@@ -407,8 +429,8 @@ TEST_F(SystemTest, ALateJoinerSeesTheWholeMapAndEveryRobotAtOnce) {
       },
       kBound);
   std::cout << "[ timing ] late DDS reader: full map " << map_s << " s" << mark(map_s, 2s) << ", every robot "
-            << robots_s << " s" << mark(robots_s, 2s) << " after joining (" << snapshots.size() << " snapshot(s), "
-            << states.size() << " state sample(s))\n";
+            << robots_s << " s" << mark(robots_s, 2s) << " after joining (" << snapshots.size()
+            << " snapshot(s), " << states.size() << " state sample(s))\n";
   EXPECT_GE(map_s, 0.0) << "the late joiner never got the whole map";
   EXPECT_GE(robots_s, 0.0) << "the late joiner did not get every robot";
 }

@@ -10,16 +10,16 @@
 #define STB_IMAGE_IMPLEMENTATION
 #include <stb/stb_image.h>
 
-#include <csignal>
 #include <cmath>
+#include <csignal>
 #include <filesystem>
 #include <regex>
 #include <sstream>
 
-#include "common/fast_topics.hpp"
+#include "common/fastdds/fast_topics.hpp"
 #include "process_group.hpp"
-#include "viewer/cell_colors.hpp"
-#include "viewer/view_transform.hpp"
+#include "viewer/core/cell_colors.hpp"
+#include "viewer/core/view_transform.hpp"
 
 namespace slam {
 namespace {
@@ -91,7 +91,9 @@ RobotObservation observation(const std::string& id, Pose2 p, double cx, double c
   return o;
 }
 
-bool have_xvfb() { return ::access("/usr/bin/xvfb-run", X_OK) == 0 && ::access("/usr/bin/Xvfb", X_OK) == 0; }
+bool have_xvfb() {
+  return ::access("/usr/bin/xvfb-run", X_OK) == 0 && ::access("/usr/bin/Xvfb", X_OK) == 0;
+}
 
 // Starts Xvfb as "xvfb" in `group` (its own process, so the viewer can be stopped alone, as
 // compose/launch.sh does) and returns its DISPLAY, or "" when it did not come up. -displayfd 1
@@ -101,10 +103,12 @@ std::string start_xvfb(ProcessGroup& group) {
   const std::regex number("(^|\\n)([0-9]+)\\n");
   std::smatch m;
   std::string log;
-  if (!wait_until([&] {
-        log = group.log("xvfb");
-        return std::regex_search(log, m, number);
-      }, 20s))
+  if (!wait_until(
+          [&] {
+            log = group.log("xvfb");
+            return std::regex_search(log, m, number);
+          },
+          20s))
     return "";
   std::string display = m[2].str();
   return display.insert(0, 1, ':');
@@ -118,7 +122,8 @@ struct Image {
     const Vec2 s = v.world_to_screen(world);
     const int x = static_cast<int>(std::lround(s.x)), y = static_cast<int>(std::lround(s.y));
     if (x < 0 || y < 0 || x >= w || y >= h) return {-1, -1, -1, -1};
-    const unsigned char* px = &rgb[(static_cast<size_t>(y) * static_cast<size_t>(w) + static_cast<size_t>(x)) * 3];
+    const unsigned char* px =
+        &rgb[(static_cast<size_t>(y) * static_cast<size_t>(w) + static_cast<size_t>(x)) * 3];
     return {px[0] / 255.0f, px[1] / 255.0f, px[2] / 255.0f, 1.0f};
   }
 };
@@ -141,7 +146,9 @@ Result<ViewTransform> last_view(const std::string& log) {
   return ViewTransform::parse(log.substr(at, log.find('\n', at) - at));
 }
 
-float brightness(const Rgba& c) { return (c.r + c.g + c.b) / 3.0f; }
+float brightness(const Rgba& c) {
+  return (c.r + c.g + c.b) / 3.0f;
+}
 bool close_to(const Rgba& a, const Rgba& b) {
   return std::abs(a.r - b.r) < 0.08f && std::abs(a.g - b.g) < 0.08f && std::abs(a.b - b.b) < 0.08f;
 }
@@ -167,11 +174,32 @@ TEST(ViewerTest, RendersGridRobotsAndPointsAndSendsClicks) {
 
   ProcessGroup group;
   const std::string png = group.dir() + "/viewer.png";
-  group.start("viewer", {"xvfb-run", "-a", "-s", "-screen 0 1280x800x24", bin_path("slam-viewer"), "--domain",
-                         std::to_string(domain.id()), "--width", "1280", "--height", "800", "--screenshot", png,
-                         "--frames", "20", "--wait-map", "--wait-robots", "2", "--max-wait", "60", "--click",
-                         "900,420,left@3", "--click", "1000,300,right@4"});
-  ASSERT_TRUE(wait_until([&] { return (*obs_w)->matched_readers() > 0 && (*grid_w)->matched_readers() > 0; }, 60s))
+  group.start("viewer", {"xvfb-run",
+                         "-a",
+                         "-s",
+                         "-screen 0 1280x800x24",
+                         bin_path("slam-viewer"),
+                         "--domain",
+                         std::to_string(domain.id()),
+                         "--width",
+                         "1280",
+                         "--height",
+                         "800",
+                         "--screenshot",
+                         png,
+                         "--frames",
+                         "20",
+                         "--wait-map",
+                         "--wait-robots",
+                         "2",
+                         "--max-wait",
+                         "60",
+                         "--click",
+                         "900,420,left@3",
+                         "--click",
+                         "1000,300,right@4"});
+  ASSERT_TRUE(
+      wait_until([&] { return (*obs_w)->matched_readers() > 0 && (*grid_w)->matched_readers() > 0; }, 60s))
       << group.log("viewer");
 
   // Delivery is checked through the screenshot, not through write()'s result.
@@ -200,10 +228,11 @@ TEST(ViewerTest, RendersGridRobotsAndPointsAndSendsClicks) {
   ASSERT_EQ(img.h, 800);
 
   // Points in each robot's colour where they were observed; robots drawn at their poses.
-  for (const auto& [id, where] : {std::pair<std::string, Vec2>{"alpha", {-1.0, 1.0}}, {"bravo", {-1.0, -2.0}}}) {
+  for (const auto& [id, where] :
+       {std::pair<std::string, Vec2>{"alpha", {-1.0, 1.0}}, {"bravo", {-1.0, -2.0}}}) {
     const Rgba want = viewer::default_robot_color(id);
-    EXPECT_TRUE(close_to(img.at(*view, where), want)) << id << " points: got " << str(img.at(*view, where))
-                                                       << " want " << str(want);
+    EXPECT_TRUE(close_to(img.at(*view, where), want))
+        << id << " points: got " << str(img.at(*view, where)) << " want " << str(want);
   }
   EXPECT_TRUE(close_to(img.at(*view, {-3.0, 2.0}), viewer::default_robot_color("alpha")))
       << "robot alpha: got " << str(img.at(*view, {-3.0, 2.0}));
@@ -222,7 +251,8 @@ TEST(ViewerTest, RendersGridRobotsAndPointsAndSendsClicks) {
   std::vector<MapEdit> edits;
   ASSERT_TRUE(wait_until([&] { return (*goal_r)->take(goals) + goals.size() > 0; }, 10s));
   ASSERT_TRUE(wait_until([&] { return (*edit_r)->take(edits) + edits.size() > 0; }, 10s));
-  const Vec2 goal_at = view->screen_to_world({900.0, 420.0}), edit_at = view->screen_to_world({1000.0, 300.0});
+  const Vec2 goal_at = view->screen_to_world({900.0, 420.0}),
+             edit_at = view->screen_to_world({1000.0, 300.0});
   EXPECT_EQ(goals.back().robot_id().to_string(), "*");
   EXPECT_EQ(goals.back().mode(), GOAL_DIRECT);
   EXPECT_NEAR(goals.back().target().x(), goal_at.x, 1e-6);
@@ -247,9 +277,11 @@ TEST(ViewerTest, SnapshotsPeriodicallyAndFitsToDataThatArrivesLater) {
   const std::filesystem::path dir = group.dir() + "/snapshots";
   const std::string display = start_xvfb(group);
   ASSERT_FALSE(display.empty()) << group.log("xvfb");
-  group.start("viewer", {"env", "DISPLAY=" + display, bin_path("slam-viewer"), "--domain", std::to_string(domain.id()),
-                         "--snapshot-dir", dir.string(), "--snapshot-period", "1", "--fps", "20"});
-  ASSERT_TRUE(wait_until([&] { return (*obs_w)->matched_readers() > 0 && (*grid_w)->matched_readers() > 0; }, 60s))
+  group.start("viewer",
+              {"env", "DISPLAY=" + display, bin_path("slam-viewer"), "--domain", std::to_string(domain.id()),
+               "--snapshot-dir", dir.string(), "--snapshot-period", "1", "--fps", "20"});
+  ASSERT_TRUE(
+      wait_until([&] { return (*obs_w)->matched_readers() > 0 && (*grid_w)->matched_readers() > 0; }, 60s))
       << group.log("viewer");
 
   // Everything arrives after the viewer started: it must fit the view to it by itself.
@@ -260,15 +292,20 @@ TEST(ViewerTest, SnapshotsPeriodicallyAndFitsToDataThatArrivesLater) {
 
   // The second snapshot taken with the data in (the log lines name them): by then the view has
   // held still long enough for the point texture to be complete.
-  const std::regex with_data("snapshot (\\S+) written \\(1280x800, [^)]*1/1 robots online, 441 points, map 100x80");
+  const std::regex with_data(
+      "snapshot (\\S+) written \\(1280x800, [^)]*1/1 robots online, 441 points, map 100x80");
   std::vector<std::string> shots;
   std::string log;
-  ASSERT_TRUE(wait_until([&] {
-    log = group.log("viewer");
-    shots.clear();
-    for (std::sregex_iterator it(log.begin(), log.end(), with_data), end; it != end; ++it) shots.push_back((*it)[1]);
-    return shots.size() >= 2;
-  }, 60s)) << log;
+  ASSERT_TRUE(wait_until(
+      [&] {
+        log = group.log("viewer");
+        shots.clear();
+        for (std::sregex_iterator it(log.begin(), log.end(), with_data), end; it != end; ++it)
+          shots.push_back((*it)[1]);
+        return shots.size() >= 2;
+      },
+      60s))
+      << log;
   const std::string shot = shots[1];
   ASSERT_TRUE(wait_until([&] { return std::filesystem::exists(dir / "snapshot-0002.png"); }, 30s)) << log;
 

@@ -74,7 +74,8 @@ bool wait_port_open(int port, std::chrono::milliseconds timeout) {
       timeout, 20ms);
 }
 
-bool wait_until(const std::function<bool()>& pred, std::chrono::milliseconds timeout, std::chrono::milliseconds poll) {
+bool wait_until(const std::function<bool()>& pred, std::chrono::milliseconds timeout,
+                std::chrono::milliseconds poll) {
   const auto until = std::chrono::steady_clock::now() + timeout;
   while (true) {
     if (pred()) return true;
@@ -83,7 +84,9 @@ bool wait_until(const std::function<bool()>& pred, std::chrono::milliseconds tim
   }
 }
 
-std::string bin_path(const std::string& name) { return std::string(SLAM_BIN_DIR) + "/" + name; }
+std::string bin_path(const std::string& name) {
+  return std::string(SLAM_BIN_DIR) + "/" + name;
+}
 
 ProcessGroup::ProcessGroup() {
   char tmpl[] = "/tmp/slamfleet-test-XXXXXX";
@@ -96,7 +99,8 @@ ProcessGroup::~ProcessGroup() {
     if (!c.reaped) ::kill(-c.pid, SIGTERM);
   const auto until = std::chrono::steady_clock::now() + 3s;
   for (auto& [name, c] : children_) {
-    while (!c.reaped && !reap(c, false) && std::chrono::steady_clock::now() < until) std::this_thread::sleep_for(10ms);
+    while (!c.reaped && !reap(c, false) && std::chrono::steady_clock::now() < until)
+      std::this_thread::sleep_for(10ms);
     if (!c.reaped) {
       ::kill(-c.pid, SIGKILL);
       reap(c, true);
@@ -118,7 +122,7 @@ pid_t ProcessGroup::start(const std::string& name, const std::vector<std::string
   const pid_t pid = ::fork();
   if (pid < 0) throw std::runtime_error("fork failed");
   if (pid == 0) {
-    ::setpgid(0, 0);                    // own group: teardown kills its children too
+    ::setpgid(0, 0);                     // own group: teardown kills its children too
     ::prctl(PR_SET_PDEATHSIG, SIGKILL);  // and a crashed test takes it down
     const int fd = ::open(log_path.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
     ::dup2(fd, 1);
@@ -154,7 +158,8 @@ int ProcessGroup::start_mosquitto(const std::string& name) {
 void ProcessGroup::restart_mosquitto(const std::string& name, int port) {
   write_mosquitto_config(name, port);
   start(name, {"mosquitto", "-c", dir_ + "/" + name + ".conf"});
-  if (!wait_port_open(port, 5s)) throw std::runtime_error("mosquitto did not open port " + std::to_string(port));
+  if (!wait_port_open(port, 5s))
+    throw std::runtime_error("mosquitto did not open port " + std::to_string(port));
 }
 
 bool ProcessGroup::reap(Child& c, bool block) {

@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "common/cyclone_qos.hpp"
+#include "common/cyclone/dds.hpp"
 #include "interop_topics.hpp"
 
 namespace {
@@ -48,7 +48,9 @@ const EchoTopic kTopics[] = {
 };
 
 volatile std::sig_atomic_t g_stop = 0;
-extern "C" void on_signal(int) { g_stop = 1; }
+extern "C" void on_signal(int) {
+  g_stop = 1;
+}
 
 struct Pipe {
   slam::cyclone::Entity reader;
@@ -74,9 +76,11 @@ int main(int argc, char** argv) {
   std::vector<Pipe> pipes;
   for (const auto& t : kTopics) {
     auto qos = slam::cyclone::make_qos(t.info.qos);
-    const dds_entity_t in = dds_create_topic(participant.get(), t.descriptor, t.info.name, qos.get(), nullptr);
+    const dds_entity_t in =
+        dds_create_topic(participant.get(), t.descriptor, t.info.name, qos.get(), nullptr);
     const std::string echo = slam::interop::echo_name(t.info.name);
-    const dds_entity_t out = dds_create_topic(participant.get(), t.descriptor, echo.c_str(), qos.get(), nullptr);
+    const dds_entity_t out =
+        dds_create_topic(participant.get(), t.descriptor, echo.c_str(), qos.get(), nullptr);
     if (in < 0 || out < 0) {
       std::fprintf(stderr, "dds_create_topic %s: %s\n", t.info.name, dds_strretcode(in < 0 ? in : out));
       return 1;

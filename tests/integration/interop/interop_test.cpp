@@ -54,8 +54,10 @@ void round_trip(const dds::Topic<T, P>& topic, const T& sample) {
   ASSERT_TRUE(writer) << writer.message();
   auto reader = dds::make_reader(env.participant(), echo_topic);
   ASSERT_TRUE(reader) << reader.message();
-  ASSERT_TRUE(testkit::wait_until([&] { return (*writer)->matched_readers() > 0 && (*reader)->matched_writers() > 0; }, 20s))
-      << "Cyclone echo never matched " << topic.info.name << " (readers of ours: " << (*writer)->matched_readers()
+  ASSERT_TRUE(testkit::wait_until(
+      [&] { return (*writer)->matched_readers() > 0 && (*reader)->matched_writers() > 0; }, 20s))
+      << "Cyclone echo never matched " << topic.info.name
+      << " (readers of ours: " << (*writer)->matched_readers()
       << ", writers of the echo: " << (*reader)->matched_writers() << ")";
 
   std::vector<T> got;
@@ -66,7 +68,8 @@ void round_trip(const dds::Topic<T, P>& topic, const T& sample) {
       },
       20s, 1ms);
   ASSERT_TRUE(echoed) << "no echo on " << echo << "\n" << env.group().log("cyclone_echo");
-  EXPECT_TRUE(got.front() == sample) << "the sample on " << topic.info.name << " changed crossing Fast DDS -> Cyclone -> Fast DDS";
+  EXPECT_TRUE(got.front() == sample) << "the sample on " << topic.info.name
+                                     << " changed crossing Fast DDS -> Cyclone -> Fast DDS";
 }
 
 template <class T, class P>
@@ -102,12 +105,18 @@ const std::vector<Case>& cases() {
 
 class InteropTest : public ::testing::TestWithParam<size_t> {};
 
-TEST_P(InteropTest, CrossesFastDdsToCycloneAndBack) { cases()[GetParam()].run(); }
+TEST_P(InteropTest, CrossesFastDdsToCycloneAndBack) {
+  cases()[GetParam()].run();
+}
 
 INSTANTIATE_TEST_SUITE_P(AllTypes, InteropTest, ::testing::Range<size_t>(0, 20),
-                         [](const ::testing::TestParamInfo<size_t>& param) { return cases()[param.param].type; });
+                         [](const ::testing::TestParamInfo<size_t>& param) {
+                           return cases()[param.param].type;
+                         });
 
-TEST(InteropCoverage, EveryTopicTypeHasACase) { EXPECT_EQ(cases().size(), 20u); }
+TEST(InteropCoverage, EveryTopicTypeHasACase) {
+  EXPECT_EQ(cases().size(), 20u);
+}
 
 }  // namespace
 }  // namespace slam::interop

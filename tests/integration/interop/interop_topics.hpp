@@ -3,10 +3,12 @@
 // echo topic on which the other vendor sends back exactly what it decoded.
 #include <string>
 
-#include "common/topics.hpp"
+#include "common/core/topics.hpp"
 
 namespace slam::interop {
 
-inline std::string echo_name(const char* topic) { return std::string(topic) + "/echo"; }
+inline std::string echo_name(const char* topic) {
+  return std::string(topic) + "/echo";
+}
 
 }  // namespace slam::interop

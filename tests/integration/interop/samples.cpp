@@ -20,7 +20,8 @@ Pose2 pose(double x, double y, double theta) {
 
 std::vector<Point2> points(size_t n, double scale) {
   std::vector<Point2> out;
-  for (size_t i = 0; i < n; ++i) out.push_back(point(scale * static_cast<double>(i) + 0.125, -scale * static_cast<double>(i) - 1e-9));
+  for (size_t i = 0; i < n; ++i)
+    out.push_back(point(scale * static_cast<double>(i) + 0.125, -scale * static_cast<double>(i) - 1e-9));
   return out;
 }
 

@@ -1,7 +1,7 @@
 #pragma once
 // One non-trivial sample per IDL topic type (Fast DDS types): long sequences, non-ASCII strings,
 // every enum away from its first value, keys set, so a lost or misaligned field shows.
-#include "common/fast_topics.hpp"
+#include "common/fastdds/fast_topics.hpp"
 
 namespace slam::interop {
 

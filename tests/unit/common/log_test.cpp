@@ -1,10 +1,11 @@
 // Rate-limited logging and counters: what keeps a flood of bad input from flooding the log.
+#include "common/core/log.hpp"
+
 #include <gtest/gtest.h>
 
 #include <thread>
 
-#include "common/counters.hpp"
-#include "common/log.hpp"
+#include "common/core/counters.hpp"
 
 namespace slam {
 namespace {

@@ -1,6 +1,6 @@
 // ROS map_server PGM + YAML: round trip, row order, P2 and 16-bit input, negate/thresholds,
 // relative image paths, and bad files whose errors name the file and the problem.
-#include "common/map_io.hpp"
+#include "common/core/map_io.hpp"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -41,8 +41,8 @@ MapImage sample() {
   m.origin_x = -1.25;
   m.origin_y = 2.5;
   m.origin_yaw = 0.1;
-  m.cells = {kMapFree, kMapOccupied, kMapUnknown,  // bottom row
-             kMapOccupied, kMapUnknown, kMapFree};
+  m.cells = {kMapFree,     kMapOccupied, kMapUnknown,  // bottom row
+             kMapOccupied, kMapUnknown,  kMapFree};
   return m;
 }
 
@@ -76,8 +76,9 @@ TEST_F(MapIo, PgmFirstRowIsTheTopOfTheMap) {
 TEST_F(MapIo, AcceptsAsciiSixteenBitCommentsAndRelativeImage) {
   std::filesystem::create_directories(dir_ / "img");
   write("img/a.pgm", "P2\n# made by hand\n2 2\n# max\n65535\n0 65535\n 52685 65535\n");
-  write("a.yaml", "image: img/a.pgm\nresolution: 0.1\norigin: [0, 0, 0]\nnegate: 0\noccupied_thresh: 0.65\n"
-                  "free_thresh: 0.196\n");
+  write("a.yaml",
+        "image: img/a.pgm\nresolution: 0.1\norigin: [0, 0, 0]\nnegate: 0\noccupied_thresh: 0.65\n"
+        "free_thresh: 0.196\n");
   auto m = read_ros_map(dir_ / "a.yaml");
   ASSERT_TRUE(m.is_ok()) << m.message();
   EXPECT_EQ(m->cells, (std::vector<uint8_t>{kMapUnknown, kMapFree, kMapOccupied, kMapFree}));
@@ -111,7 +112,8 @@ TEST_F(MapIo, BadFilesNameTheFileAndProblem) {
   expect_error("image: bad.pgm\nresolution: 0.05\norigin: [0, 0]\n", good_pgm, "origin");
   expect_error("image: bad.pgm\nresolution: abc\norigin: [0, 0, 0]\n", good_pgm, "invalid YAML");
   expect_error("image: bad.pgm\nresolution: 0.05\norigin: [0, 0, 0]\nmode: raw\n", good_pgm, "raw");
-  expect_error("image: bad.pgm\nresolution: 0.05\norigin: [0, 0, 0]\nfree_thresh: 0.9\n", good_pgm, "free_thresh");
+  expect_error("image: bad.pgm\nresolution: 0.05\norigin: [0, 0, 0]\nfree_thresh: 0.9\n", good_pgm,
+               "free_thresh");
   expect_error("[1, 2", good_pgm, "invalid YAML");
   expect_error(good_yaml, "P6 1 1 255\n\x01\x02\x03", "P5 or P2");
   expect_error(good_yaml, "P5 4 4 255\n\x01\x02", "truncated");

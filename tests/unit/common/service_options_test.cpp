@@ -1,6 +1,6 @@
 // Command-line parsing shared by every service: flags, YAML config files and their precedence,
 // and the exit codes for --help and bad input.
-#include "common/service_options.hpp"
+#include "common/core/service_options.hpp"
 
 #include <gtest/gtest.h>
 
@@ -31,7 +31,8 @@ Parsed parse(std::vector<std::string> args) {
 }
 
 std::string write_config(const std::string& text) {
-  const auto path = std::filesystem::temp_directory_path() / ("slam_options_test_" + std::to_string(::getpid()) + ".yaml");
+  const auto path =
+      std::filesystem::temp_directory_path() / ("slam_options_test_" + std::to_string(::getpid()) + ".yaml");
   std::ofstream(path) << text;
   return path.string();
 }
@@ -43,7 +44,9 @@ TEST(ServiceOptionsTest, DefaultsWithoutArguments) {
   EXPECT_EQ(p.options.log_level, "info");
 }
 
-TEST(ServiceOptionsTest, HelpExitsZero) { EXPECT_EQ(parse({"--help"}).exit, 0); }
+TEST(ServiceOptionsTest, HelpExitsZero) {
+  EXPECT_EQ(parse({"--help"}).exit, 0);
+}
 
 TEST(ServiceOptionsTest, BadValuesExitTwo) {
   EXPECT_EQ(parse({"--domain", "500"}).exit, 2);

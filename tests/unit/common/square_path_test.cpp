@@ -1,6 +1,6 @@
 // The calibration square's corners: shared by the planner (square goals) and the viewer (corner
 // buttons), for any plain point type.
-#include "common/square_path.hpp"
+#include "common/core/square_path.hpp"
 
 #include <gtest/gtest.h>
 

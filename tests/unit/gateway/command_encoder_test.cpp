@@ -48,7 +48,8 @@ TEST(CommandEncoderTest, V2SendsWaypointAndWholePathStartingWithTheWaypointOnce)
 TEST(CommandEncoderTest, BadIdsAndNonFiniteWaypointsAreErrors) {
   CommandEncoder encoder{protocol::CodecLimits{}};
   CommandMessages out;
-  EXPECT_EQ(encoder.encode("a/b", Protocol::V1, 1, {0, 0}, {}, out).reason(), protocol::RejectReason::BadRobotId);
+  EXPECT_EQ(encoder.encode("a/b", Protocol::V1, 1, {0, 0}, {}, out).reason(),
+            protocol::RejectReason::BadRobotId);
   EXPECT_EQ(encoder.encode("r", Protocol::V2, 1, {std::nan(""), 0}, {}, out).reason(),
             protocol::RejectReason::NonFinite);
   EXPECT_EQ(out.count, 0u);

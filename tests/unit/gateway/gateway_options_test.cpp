@@ -27,9 +27,22 @@ TEST(GatewayOptionsTest, FlagsBind) {
   CLI::App app;
   GatewayOptions o;
   add_gateway_options(app, o);
-  std::vector<std::string> args{"slam-gateway", "--broker", "mqtt://broker:1884", "--qos", "0", "--client-id", "gw",
-                                "--persistent-session", "--subscribe", "a/+", "--subscribe", "b/#",
-                                "--units-per-meter", "1000", "--offline-after-s", "2"};
+  std::vector<std::string> args{"slam-gateway",
+                                "--broker",
+                                "mqtt://broker:1884",
+                                "--qos",
+                                "0",
+                                "--client-id",
+                                "gw",
+                                "--persistent-session",
+                                "--subscribe",
+                                "a/+",
+                                "--subscribe",
+                                "b/#",
+                                "--units-per-meter",
+                                "1000",
+                                "--offline-after-s",
+                                "2"};
   std::vector<char*> argv;
   for (auto& a : args) argv.push_back(a.data());
   app.parse(static_cast<int>(argv.size()), argv.data());

@@ -12,7 +12,9 @@ namespace {
 
 constexpr int64_t kSecond = 1'000'000'000;
 
-Instant at(int64_t s) { return {1'700'000'000 * kSecond + s * kSecond, s * kSecond}; }
+Instant at(int64_t s) {
+  return {1'700'000'000 * kSecond + s * kSecond, s * kSecond};
+}
 
 protocol::DecodedObservation pose_at(double x, double y, size_t hits = 0) {
   protocol::DecodedObservation o;

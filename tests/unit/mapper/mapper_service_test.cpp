@@ -73,11 +73,14 @@ TEST(MapperOptions, ValidationNamesTheBadKey) {
     return validate(o).message();
   };
   EXPECT_NE(error([](MapperOptions& o) { o.patch_rate_hz = 0; }).find("patch_rate"), std::string::npos);
-  EXPECT_NE(error([](MapperOptions& o) { o.grid.resolution = -1; }).find("grid.resolution"), std::string::npos);
-  EXPECT_NE(error([](MapperOptions& o) { o.snapshot_period_s = 1e9; }).find("snapshot_period"), std::string::npos);
+  EXPECT_NE(error([](MapperOptions& o) { o.grid.resolution = -1; }).find("grid.resolution"),
+            std::string::npos);
+  EXPECT_NE(error([](MapperOptions& o) { o.snapshot_period_s = 1e9; }).find("snapshot_period"),
+            std::string::npos);
   EXPECT_NE(error([](MapperOptions& o) { o.store.clear(); }).find("store"), std::string::npos);
   MapperOptions both;
-  EXPECT_FALSE(parse(both, {"--export", "a.yaml", "--import", "b.yaml"})) << "--export and --import exclude each other";
+  EXPECT_FALSE(parse(both, {"--export", "a.yaml", "--import", "b.yaml"}))
+      << "--export and --import exclude each other";
 }
 
 TEST(MapFiles, ExportReadsBackAndFailuresAreSorted) {

@@ -26,8 +26,15 @@ struct Row {
 std::vector<Row> read_all(ObservationStore& s) {
   std::vector<Row> rows;
   const Status st = s.for_each([&](const ObservationRecord& r) {
-    rows.push_back({std::string(r.robot_id), r.seq, r.stamp_ns, r.obs.x, r.obs.y, r.obs.theta, r.obs.has_heading,
-                    {r.obs.hits.begin(), r.obs.hits.end()}, {r.obs.misses.begin(), r.obs.misses.end()}});
+    rows.push_back({std::string(r.robot_id),
+                    r.seq,
+                    r.stamp_ns,
+                    r.obs.x,
+                    r.obs.y,
+                    r.obs.theta,
+                    r.obs.has_heading,
+                    {r.obs.hits.begin(), r.obs.hits.end()},
+                    {r.obs.misses.begin(), r.obs.misses.end()}});
   });
   EXPECT_TRUE(st.is_ok()) << st.message();
   return rows;
@@ -43,8 +50,15 @@ TEST(ObservationStore, RoundTripInInsertionOrderAcrossReopen) {
   const auto path = dir.path() / "map.db";
   std::vector<Row> rows;
   for (int i = 0; i < 25; ++i)
-    rows.push_back({i % 2 ? "alpha" : "beta", static_cast<uint64_t>(i + 1), 1000 + i, 0.1 * i, -0.2 * i, 0.3,
-                    i % 3 == 0, {{1.0 + i, 2.0}, {3.0, 4.0 + 1e-9 * i}}, i % 4 ? std::vector<Point2d>{} : std::vector<Point2d>{{5, 6}}});
+    rows.push_back({i % 2 ? "alpha" : "beta",
+                    static_cast<uint64_t>(i + 1),
+                    1000 + i,
+                    0.1 * i,
+                    -0.2 * i,
+                    0.3,
+                    i % 3 == 0,
+                    {{1.0 + i, 2.0}, {3.0, 4.0 + 1e-9 * i}},
+                    i % 4 ? std::vector<Point2d>{} : std::vector<Point2d>{{5, 6}}});
   {
     auto s = ObservationStore::open(path, StoreOptions{7});
     ASSERT_TRUE(s.is_ok()) << s.message();
@@ -63,7 +77,8 @@ TEST(ObservationStore, DeleteByRobot) {
   TempDir dir;
   auto s = ObservationStore::open(dir.path() / "map.db");
   ASSERT_TRUE(s.is_ok());
-  for (int i = 0; i < 10; ++i) ASSERT_TRUE(put(*s, {i < 4 ? "r1" : "r2", 1, 0, 0, 0, 0, false, {{1, 1}}, {}}).is_ok());
+  for (int i = 0; i < 10; ++i)
+    ASSERT_TRUE(put(*s, {i < 4 ? "r1" : "r2", 1, 0, 0, 0, 0, false, {{1, 1}}, {}}).is_ok());
   auto gone = s->delete_robot("r1");
   ASSERT_TRUE(gone.is_ok()) << gone.message();
   EXPECT_EQ(*gone, 4);

@@ -31,7 +31,8 @@ OccupancyGrid make(const GridConfig& c = small_config()) {
   return std::move(*g);
 }
 
-Result<IntegrateStats> shoot(OccupancyGrid& g, Point2d from, std::vector<Point2d> hits, std::vector<Point2d> misses = {}) {
+Result<IntegrateStats> shoot(OccupancyGrid& g, Point2d from, std::vector<Point2d> hits,
+                             std::vector<Point2d> misses = {}) {
   ObservationView v;
   v.x = from.x;
   v.y = from.y;
@@ -40,7 +41,9 @@ Result<IntegrateStats> shoot(OccupancyGrid& g, Point2d from, std::vector<Point2d
   return g.integrate(v);
 }
 
-uint8_t state(const OccupancyGrid& g, int x, int y) { return g.cell_class(x, y) & kCellStateMask; }
+uint8_t state(const OccupancyGrid& g, int x, int y) {
+  return g.cell_class(x, y) & kCellStateMask;
+}
 
 TEST(OccupancyGrid, StartsUnknown) {
   const OccupancyGrid g = make();
@@ -114,8 +117,10 @@ TEST(OccupancyGrid, StampWrapAroundKeepsCountingUpdates) {
 
 TEST(OccupancyGrid, PassingRobotCannotEraseEstablishedWall) {
   OccupancyGrid g = make();
-  for (int i = 0; i < 10; ++i) ASSERT_TRUE(shoot(g, {0.5, 0.5}, {{5.5, 0.5}}).is_ok());  // several robots saw it
-  for (int i = 0; i < 10; ++i) ASSERT_TRUE(shoot(g, {0.5, 0.5}, {}, {{9.5, 0.5}}).is_ok());  // one sees through
+  for (int i = 0; i < 10; ++i)
+    ASSERT_TRUE(shoot(g, {0.5, 0.5}, {{5.5, 0.5}}).is_ok());  // several robots saw it
+  for (int i = 0; i < 10; ++i)
+    ASSERT_TRUE(shoot(g, {0.5, 0.5}, {}, {{9.5, 0.5}}).is_ok());  // one sees through
   EXPECT_EQ(state(g, 5, 0), kCellOccupied);
 }
 
@@ -125,7 +130,8 @@ TEST(OccupancyGrid, InflationFollowsOccupiedCells) {
   OccupancyGrid g = make(c);
   ASSERT_TRUE(shoot(g, {0.5, 5.5}, {{5.5, 5.5}}).is_ok());
   for (int dy = -1; dy <= 1; ++dy)
-    for (int dx = -1; dx <= 1; ++dx) EXPECT_TRUE(g.cell_class(5 + dx, 5 + dy) & kCellInflated) << dx << "," << dy;
+    for (int dx = -1; dx <= 1; ++dx)
+      EXPECT_TRUE(g.cell_class(5 + dx, 5 + dy) & kCellInflated) << dx << "," << dy;
   EXPECT_FALSE(g.cell_class(7, 5) & kCellInflated);
   EXPECT_FALSE(g.cell_class(5, 7) & kCellInflated);
   EXPECT_EQ(g.inflation_count(5, 6), 1);
@@ -171,7 +177,7 @@ TEST(OccupancyGrid, GrowsInChunksAndKeepsContents) {
   EXPECT_TRUE(r->grew);
   EXPECT_GT(g.layout_version(), layout);
   EXPECT_DOUBLE_EQ(g.origin_x(), -5.0);  // grew by one 5-cell chunk to the left
-  EXPECT_EQ(g.width(), 20);             // and one to the right
+  EXPECT_EQ(g.width(), 20);              // and one to the right
   EXPECT_EQ(g.height(), 10);
   int32_t cx = 0, cy = 0;
   ASSERT_TRUE(g.world_to_cell(5.5, 0.5, &cx, &cy));

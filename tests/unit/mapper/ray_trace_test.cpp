@@ -14,7 +14,8 @@ using Cells = std::vector<std::pair<int, int>>;
 Cells trace(int x0, int y0, int x1, int y1, int w, int h, bool include_end, int64_t* count = nullptr) {
   Cells out;
   const int64_t n = trace_ray(x0, y0, x1, y1, w, h, include_end, [&](size_t i) {
-    out.emplace_back(static_cast<int>(i % static_cast<size_t>(w)), static_cast<int>(i / static_cast<size_t>(w)));
+    out.emplace_back(static_cast<int>(i % static_cast<size_t>(w)),
+                     static_cast<int>(i / static_cast<size_t>(w)));
   });
   if (count) *count = n;
   return out;

@@ -33,10 +33,14 @@ void feed(OccupancyGrid& grid, ObservationStore& store) {
     std::vector<Point2d> misses;
     for (int k = 0; k < 12; ++k) {
       const double wall = 3.0;
-      if (k % 4 == 0) hits.push_back({wall, ry + 0.3 * (k - 6)});
-      else if (k % 4 == 1) hits.push_back({rx + 0.3 * (k - 6), wall});
-      else if (k % 4 == 2) hits.push_back({-wall, ry - 0.2 * k});
-      else misses.push_back({rx + 0.1 * k, -2.9});
+      if (k % 4 == 0)
+        hits.push_back({wall, ry + 0.3 * (k - 6)});
+      else if (k % 4 == 1)
+        hits.push_back({rx + 0.3 * (k - 6), wall});
+      else if (k % 4 == 2)
+        hits.push_back({-wall, ry - 0.2 * k});
+      else
+        misses.push_back({rx + 0.1 * k, -2.9});
     }
     ObservationView v{rx, ry, 0.0, false, hits, misses};
     ASSERT_TRUE(grid.integrate(v).is_ok());

@@ -29,7 +29,8 @@ struct ScratchDir {
 
 GoalRecord sample_record() {
   GoalRecord r;
-  r.goals["r1"] = StoredGoal{"r1", Goal{11, GoalMode::Planned, {2.5, -1.25}, 0.0, SquareAnchor::Corner}, 300, false};
+  r.goals["r1"] =
+      StoredGoal{"r1", Goal{11, GoalMode::Planned, {2.5, -1.25}, 0.0, SquareAnchor::Corner}, 300, false};
   r.goals["r2"] = StoredGoal{"r2", Goal{12, GoalMode::Square, {1, 1}, 2.0, SquareAnchor::Centred}, 100, true};
   r.goals["*"] = StoredGoal{"*", Goal{13, GoalMode::Explore, {}, 0.0, SquareAnchor::Corner}, 200, false};
   r.homes["r1"] = Vec2{0.5, 0.75};

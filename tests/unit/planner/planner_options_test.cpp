@@ -31,8 +31,8 @@ TEST(PlannerOptionsTest, DefaultsAreValid) {
 TEST(PlannerOptionsTest, FlagsSetTheCoreConfiguration) {
   PlannerOptions o;
   ASSERT_EQ(parse(o, {"--domain", "7", "--goals-reach-tolerance-m", "0.3", "--goals-resend-period-s", "0.5",
-                      "--planner-unknown", "allowed", "--planner-ompl-seed", "42", "--planner-ompl-range-m", "2.5",
-                      "--explore-min-cluster-cells", "9", "--request-workers", "3"}),
+                      "--planner-unknown", "allowed", "--planner-ompl-seed", "42", "--planner-ompl-range-m",
+                      "2.5", "--explore-min-cluster-cells", "9", "--request-workers", "3"}),
             "");
   EXPECT_EQ(o.service.domain, 7);
   EXPECT_DOUBLE_EQ(o.fleet.goals.reach_tolerance_m, 0.3);

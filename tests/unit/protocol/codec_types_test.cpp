@@ -8,7 +8,9 @@
 namespace slam::protocol {
 namespace {
 
-TEST(CodecLimits, DefaultsAreValid) { EXPECT_TRUE(validate(CodecLimits{}).is_ok()); }
+TEST(CodecLimits, DefaultsAreValid) {
+  EXPECT_TRUE(validate(CodecLimits{}).is_ok());
+}
 
 TEST(CodecLimits, BadValuesNameTheirKey) {
   const double nan = std::numeric_limits<double>::quiet_NaN();

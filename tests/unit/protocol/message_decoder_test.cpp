@@ -30,9 +30,10 @@ TEST(DecodeMessage, EachV2Kind) {
   EXPECT_TRUE(out.observation.has_heading);
   ASSERT_TRUE(decode_message(TopicKind::V2Points, bytes(R"({"points":[[1,2]]})"), {}, out).is_ok());
   EXPECT_EQ(out.observation.hits.size(), 1u);
-  ASSERT_TRUE(decode_message(TopicKind::V2Scan,
-                             bytes(R"({"pose":{"x":0,"y":0,"heading":0},"angles":[0],"ranges":[null],"max_range":3})"),
-                             {}, out)
+  ASSERT_TRUE(decode_message(
+                  TopicKind::V2Scan,
+                  bytes(R"({"pose":{"x":0,"y":0,"heading":0},"angles":[0],"ranges":[null],"max_range":3})"),
+                  {}, out)
                   .is_ok());
   EXPECT_EQ(out.observation.misses.size(), 1u);
   ASSERT_TRUE(decode_message(TopicKind::V2Status, bytes(R"({"state":"offline"})"), {}, out).is_ok());
@@ -43,8 +44,10 @@ TEST(DecodeMessage, EachV2Kind) {
 
 TEST(DecodeMessage, WrongProtocolForKindIsRejected) {
   DecodedMessage out;
-  EXPECT_EQ(decode_message(TopicKind::V1Adv, bytes(R"({"x":1,"y":2})"), {}, out).reason(), RejectReason::BadLength);
-  EXPECT_EQ(decode_message(TopicKind::V2Pose, bytes("\x64\x00\x06\xff"), {}, out).reason(), RejectReason::JsonSyntax);
+  EXPECT_EQ(decode_message(TopicKind::V1Adv, bytes(R"({"x":1,"y":2})"), {}, out).reason(),
+            RejectReason::BadLength);
+  EXPECT_EQ(decode_message(TopicKind::V2Pose, bytes("\x64\x00\x06\xff"), {}, out).reason(),
+            RejectReason::JsonSyntax);
 }
 
 }  // namespace

@@ -56,10 +56,11 @@ TEST(ParseCommandTopic, ClassifiesWhatTheGatewaySends) {
 
 TEST(ParseCommandTopic, RejectsOtherTopicsAndBadIds) {
   ParsedCommandTopic parsed;
-  for (const char* topic : {"", "v1/server/cmd", "v1/robot/r1/adv", "v2/server/r1/cmd", "v1/server/r1/waypoint",
-                            "v2/server/r1/Path", "x/v1/server/r1/cmd"})
+  for (const char* topic : {"", "v1/server/cmd", "v1/robot/r1/adv", "v2/server/r1/cmd",
+                            "v1/server/r1/waypoint", "v2/server/r1/Path", "x/v1/server/r1/cmd"})
     EXPECT_EQ(parse_command_topic(topic, parsed).reason(), RejectReason::UnknownTopic) << topic;
-  for (const char* topic : {"v1/server//cmd", "v1/server/a/b/cmd", "v2/server/*/waypoint", "v2/server/+/path"})
+  for (const char* topic :
+       {"v1/server//cmd", "v1/server/a/b/cmd", "v2/server/*/waypoint", "v2/server/+/path"})
     EXPECT_EQ(parse_command_topic(topic, parsed).reason(), RejectReason::BadRobotId) << topic;
 }
 

@@ -28,9 +28,10 @@ TEST(ParseTopic, ClassifiesEveryKind) {
 }
 
 TEST(ParseTopic, UnknownTopics) {
-  for (const char* topic : {"", "v1", "v1/robot/", "v1/robot/r1", "v1/robot/r1/cmd", "v1/server/r1/cmd",
-                            "v2/robot/r1/adv", "v2/robot/r1/Pose", "v2/robot/r1/", "v3/robot/r1/pose",
-                            "/v1/robot/r1/adv", "V1/robot/r1/adv", "v2/server/r1/waypoint", "v1/robot/r1/adv/"}) {
+  for (const char* topic :
+       {"", "v1", "v1/robot/", "v1/robot/r1", "v1/robot/r1/cmd", "v1/server/r1/cmd", "v2/robot/r1/adv",
+        "v2/robot/r1/Pose", "v2/robot/r1/", "v3/robot/r1/pose", "/v1/robot/r1/adv", "V1/robot/r1/adv",
+        "v2/server/r1/waypoint", "v1/robot/r1/adv/"}) {
     ParsedTopic parsed;
     const CodecStatus status = parse_topic(topic, parsed);
     ASSERT_FALSE(status.is_ok()) << topic;

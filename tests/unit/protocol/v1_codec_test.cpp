@@ -80,7 +80,7 @@ TEST(DecodeV1, RejectsBadUnits) {
 
 TEST(DecodeV1, RejectsCoordinatesBeyondTheBound) {
   CodecLimits limits;
-  limits.units_per_meter = 1.0;        // int16 extremes become +/-32 km
+  limits.units_per_meter = 1.0;  // int16 extremes become +/-32 km
   limits.max_abs_coordinate_m = 100.0;
   DecodedObservation out;
   EXPECT_TRUE(decode_v1(Bytes{0x64, 0x00, 0x9C, 0xFF}, limits, out).is_ok());  // (100, -100): inclusive

@@ -15,10 +15,18 @@ namespace {
 using test::bytes;
 constexpr double kPi = std::numbers::pi;
 
-CodecStatus pose(std::string_view json, DecodedObservation& out) { return decode_v2_pose(bytes(json), {}, out); }
-CodecStatus points(std::string_view json, DecodedObservation& out) { return decode_v2_points(bytes(json), {}, out); }
-CodecStatus scan(std::string_view json, DecodedObservation& out) { return decode_v2_scan(bytes(json), {}, out); }
-CodecStatus status(std::string_view json, DecodedStatus& out) { return decode_v2_status(bytes(json), {}, out); }
+CodecStatus pose(std::string_view json, DecodedObservation& out) {
+  return decode_v2_pose(bytes(json), {}, out);
+}
+CodecStatus points(std::string_view json, DecodedObservation& out) {
+  return decode_v2_points(bytes(json), {}, out);
+}
+CodecStatus scan(std::string_view json, DecodedObservation& out) {
+  return decode_v2_scan(bytes(json), {}, out);
+}
+CodecStatus status(std::string_view json, DecodedStatus& out) {
+  return decode_v2_status(bytes(json), {}, out);
+}
 
 TEST(DecodeV2Pose, WithAndWithoutHeading) {
   DecodedObservation out;
@@ -80,7 +88,8 @@ TEST(DecodeV2Pose, DeepNestingIsRejectedWithoutCrashing) {
 
 TEST(DecodeV2Points, WithAndWithoutPose) {
   DecodedObservation out;
-  ASSERT_TRUE(points(R"({"pose": {"x": 1, "y": 2, "heading": 3}, "points": [[0.5, -1], [7, 8]]})", out).is_ok());
+  ASSERT_TRUE(
+      points(R"({"pose": {"x": 1, "y": 2, "heading": 3}, "points": [[0.5, -1], [7, 8]]})", out).is_ok());
   EXPECT_TRUE(out.has_pose);
   EXPECT_TRUE(out.has_heading);
   EXPECT_DOUBLE_EQ(out.theta, 3.0);
@@ -152,7 +161,9 @@ TEST(DecodeV2Scan, HitsAndMissesInTheMapFrame) {
 TEST(DecodeV2Scan, RangeEqualToMaxIsAMiss) {
   DecodedObservation out;
   ASSERT_TRUE(scan(R"({"pose": {"x": 0, "y": 0, "heading": 0}, "angles": [0, 0],
-      "ranges": [4.0, 3.999], "max_range": 4.0})", out).is_ok());
+      "ranges": [4.0, 3.999], "max_range": 4.0})",
+                   out)
+                  .is_ok());
   EXPECT_EQ(out.misses.size(), 1u);
   EXPECT_EQ(out.hits.size(), 1u);
 }
@@ -175,8 +186,9 @@ TEST(DecodeV2Scan, SensorOffsetMovesTheOrigin) {
 
 TEST(DecodeV2Scan, EmptyScanIsAPoseUpdate) {
   DecodedObservation out;
-  ASSERT_TRUE(scan(R"({"pose": {"x": 0, "y": 0, "heading": 0}, "angles": [], "ranges": [], "max_range": 1})", out)
-                  .is_ok());
+  ASSERT_TRUE(
+      scan(R"({"pose": {"x": 0, "y": 0, "heading": 0}, "angles": [], "ranges": [], "max_range": 1})", out)
+          .is_ok());
   EXPECT_TRUE(out.hits.empty());
   EXPECT_TRUE(out.misses.empty());
 }
@@ -191,7 +203,8 @@ TEST(DecodeV2Scan, Rejections) {
       {"{" + p + R"("angles": [0], "ranges": [1]})", "missing_field", "max_range is missing"},
       {"{" + p + R"("angles": [0], "max_range": 2})", "missing_field", "ranges is missing"},
       {"{" + p + R"("ranges": [1], "max_range": 2})", "missing_field", "angle_min and angle_increment"},
-      {"{" + p + R"("angle_min": 0, "ranges": [1], "max_range": 2})", "missing_field", "angle_increment is missing"},
+      {"{" + p + R"("angle_min": 0, "ranges": [1], "max_range": 2})", "missing_field",
+       "angle_increment is missing"},
       {"{" + p + R"("angles": [0], "angle_min": 0, "ranges": [1], "max_range": 2})", "json_type", "not both"},
       {"{" + p + R"("angles": [0, 1], "ranges": [1], "max_range": 2})", "bad_length", "angles has 2"},
       {"{" + p + R"("angles": 0, "ranges": [1], "max_range": 2})", "json_type", "angles is number"},
@@ -208,8 +221,8 @@ TEST(DecodeV2Scan, Rejections) {
        "angle_increment is string"},
       {"{" + p + R"("sensor": [0, 0], "angles": [0], "ranges": [1], "max_range": 2})", "json_type",
        "sensor is array"},
-      {"{" + p + R"("sensor": {"theta": 1000}, "angles": [0], "ranges": [1], "max_range": 2})", "out_of_range",
-       "sensor.theta"},
+      {"{" + p + R"("sensor": {"theta": 1000}, "angles": [0], "ranges": [1], "max_range": 2})",
+       "out_of_range", "sensor.theta"},
       {R"({"pose": {"x": 9999, "y": 0, "heading": 0}, "angles": [0], "ranges": [5], "max_range": 9})",
        "out_of_range", "beam 0 ends at"},
       {R"({"pose": {"x": 9999, "y": 0, "heading": 0}, "sensor": {"x": 5}, "angles": [], "ranges": [],
@@ -224,7 +237,8 @@ TEST(DecodeV2Scan, Rejections) {
   }
   CodecLimits few;
   few.max_points = 2;
-  EXPECT_EQ(decode_v2_scan(bytes("{" + p + R"("angles": [0, 0, 0], "ranges": [1, 1, 1], "max_range": 2})"), few, out)
+  EXPECT_EQ(decode_v2_scan(bytes("{" + p + R"("angles": [0, 0, 0], "ranges": [1, 1, 1], "max_range": 2})"),
+                           few, out)
                 .reason(),
             RejectReason::TooManyPoints);
 }

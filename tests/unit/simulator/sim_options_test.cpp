@@ -41,9 +41,10 @@ TEST(SimOptions, DefaultsMatchTheDocumentedOnes) {
 
 TEST(SimOptions, FlagsReachTheConfiguration) {
   SimOptions o;
-  ASSERT_EQ(parse(o, {"--protocol", "v2", "--rate", "50", "--noise", "0.03", "--dropout", "0.2", "--drift", "0.1",
-                      "--seed", "9", "--speed", "2", "--random-walk", "--mqtt-multiplex", "--robots", "500"}),
-            "");
+  ASSERT_EQ(
+      parse(o, {"--protocol", "v2", "--rate", "50", "--noise", "0.03", "--dropout", "0.2", "--drift", "0.1",
+                "--seed", "9", "--speed", "2", "--random-walk", "--mqtt-multiplex", "--robots", "500"}),
+      "");
   EXPECT_EQ(o.robot_protocol(), RobotProtocol::V2);
   EXPECT_TRUE(o.mqtt_multiplex);
   auto c = simulation_config(o);

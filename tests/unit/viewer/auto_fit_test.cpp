@@ -1,7 +1,7 @@
 // The automatic fit: the grid's extent while nothing is mapped, then the content (padded, with
 // room to grow), again when the content outgrows the box, the grid is re-laid out or the window
 // resized; never after the operator moved the view.
-#include "viewer/auto_fit.hpp"
+#include "viewer/core/auto_fit.hpp"
 
 #include <gtest/gtest.h>
 
@@ -57,7 +57,8 @@ TEST(AutoFitTest, ARelaidGridOrAResizedWindowRefits) {
   EXPECT_FALSE(fit.update(content, kGrid, 1, kWindow, false));
   EXPECT_TRUE(fit.update(content, WorldBox{-10.0, -10.0, 20.0, 10.0}, 2, kWindow, false));
   EXPECT_FALSE(fit.update(content, WorldBox{-10.0, -10.0, 20.0, 10.0}, 2, kWindow, false));
-  EXPECT_TRUE(fit.update(content, WorldBox{-10.0, -10.0, 20.0, 10.0}, 2, Viewport{420.0, 0.0, 1500.0, 1000.0}, false));
+  EXPECT_TRUE(fit.update(content, WorldBox{-10.0, -10.0, 20.0, 10.0}, 2, Viewport{420.0, 0.0, 1500.0, 1000.0},
+                         false));
 }
 
 TEST(AutoFitTest, NeverAfterTheOperatorMovedTheView) {

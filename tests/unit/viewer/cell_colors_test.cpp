@@ -1,12 +1,14 @@
 // Colour mapping of cell octets (state bits and flags) and robot colours.
-#include "viewer/cell_colors.hpp"
+#include "viewer/core/cell_colors.hpp"
 
 #include <gtest/gtest.h>
 
 namespace slam::viewer {
 namespace {
 
-float brightness(const Rgba& c) { return (c.r + c.g + c.b) / 3.0f; }
+float brightness(const Rgba& c) {
+  return (c.r + c.g + c.b) / 3.0f;
+}
 
 TEST(CellColorsTest, StatesMapToTheirColours) {
   const GridColors c;

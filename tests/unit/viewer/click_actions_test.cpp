@@ -1,5 +1,5 @@
 // Click actions: which command a click sends, and their names.
-#include "viewer/click_actions.hpp"
+#include "viewer/core/click_actions.hpp"
 
 #include <gtest/gtest.h>
 
@@ -36,7 +36,8 @@ TEST(ClickActionsTest, ObstructAndUnobstructSendMapEdits) {
 }
 
 TEST(ClickActionsTest, NamesRoundTrip) {
-  for (auto a : {ClickAction::Nothing, ClickAction::SetTarget, ClickAction::Obstruct, ClickAction::Unobstruct}) {
+  for (auto a :
+       {ClickAction::Nothing, ClickAction::SetTarget, ClickAction::Obstruct, ClickAction::Unobstruct}) {
     auto parsed = parse_click_action(click_action_name(a));
     ASSERT_TRUE(parsed);
     EXPECT_EQ(*parsed, a);

@@ -1,10 +1,10 @@
 // Drive tab goals: the corner buttons send the selected robot (or every robot) to the square's
 // corners as the planner drives them; the other buttons carry the target and square settings.
-#include "viewer/drive_goals.hpp"
+#include "viewer/core/drive_goals.hpp"
 
 #include <gtest/gtest.h>
 
-#include "common/square_path.hpp"
+#include "common/core/square_path.hpp"
 
 namespace slam::viewer {
 namespace {

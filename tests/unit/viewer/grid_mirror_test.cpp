@@ -1,6 +1,6 @@
 // Snapshot and patch application: in-order patches update the cells and the dirty box; stale,
 // gapped, mis-laid-out and malformed patches do not.
-#include "viewer/grid_mirror.hpp"
+#include "viewer/core/grid_mirror.hpp"
 
 #include <gtest/gtest.h>
 
@@ -16,7 +16,8 @@ GridSnapshotData snapshot(uint32_t layout, uint64_t version, uint32_t w = 4, uin
   return s;
 }
 
-GridPatchData patch(uint32_t layout, uint64_t version, uint32_t x0, uint32_t y0, uint32_t w, uint32_t h, uint8_t v) {
+GridPatchData patch(uint32_t layout, uint64_t version, uint32_t x0, uint32_t y0, uint32_t w, uint32_t h,
+                    uint8_t v) {
   return {layout, version, x0, y0, w, h, std::vector<uint8_t>(size_t{w} * h, v)};
 }
 
@@ -39,10 +40,10 @@ TEST(GridMirrorTest, KnownBoundsCoverFreeAndOccupiedCellsAndGrowWithPatches) {
   GridMirror m;
   WorldBox b;
   EXPECT_FALSE(m.known_bounds(&b));
-  auto s = snapshot(1, 1);  // 4 x 3 cells of 0.5 m from (-1, -2)
-  s.cells[1 * 4 + 1] = 1;   // free at (1, 1)
+  auto s = snapshot(1, 1);     // 4 x 3 cells of 0.5 m from (-1, -2)
+  s.cells[1 * 4 + 1] = 1;      // free at (1, 1)
   s.cells[1 * 4 + 2] = 2 | 4;  // occupied + inflated at (2, 1)
-  s.cells[2 * 4 + 3] = 3;   // state 3 is not a known state
+  s.cells[2 * 4 + 3] = 3;      // state 3 is not a known state
   ASSERT_TRUE(m.apply_snapshot(std::move(s)));
   ASSERT_TRUE(m.known_bounds(&b));
   EXPECT_DOUBLE_EQ(b.min_x, -0.5);

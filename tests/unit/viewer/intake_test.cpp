@@ -1,6 +1,6 @@
 // The intake between listener threads and the render thread: drain hands over everything once,
 // a snapshot drops the patches before it, state topics keep the newest per robot, MQTT is bounded.
-#include "viewer/intake.hpp"
+#include "viewer/core/intake.hpp"
 
 #include <gtest/gtest.h>
 

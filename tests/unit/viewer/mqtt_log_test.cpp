@@ -1,5 +1,5 @@
 // MQTT log bounding: by entry count and by bytes, oldest evicted first, counts kept.
-#include "viewer/mqtt_log.hpp"
+#include "viewer/core/mqtt_log.hpp"
 
 #include <gtest/gtest.h>
 
@@ -7,7 +7,8 @@ namespace slam::viewer {
 namespace {
 
 MqttEntry entry(uint64_t seq, size_t payload, bool inbound = true) {
-  return {seq, 0, inbound, "v1/robot/r/adv", std::vector<uint8_t>(payload, 0xab), static_cast<uint32_t>(payload)};
+  return {
+      seq, 0, inbound, "v1/robot/r/adv", std::vector<uint8_t>(payload, 0xab), static_cast<uint32_t>(payload)};
 }
 
 TEST(MqttLogTest, BoundedByEntries) {

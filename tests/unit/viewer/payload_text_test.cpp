@@ -1,5 +1,5 @@
 // Hex dumps and parsing, v1 pair encoding (range-checked) and payload decoding for display.
-#include "viewer/payload_text.hpp"
+#include "viewer/core/payload_text.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // PNG files: pixels survive encoding (bottom-up rows come out top-down), writes are atomic (the
 // final name appears complete, no temp file is left), and failures name the file.
-#include "viewer/png_file.hpp"
+#include "viewer/core/png_file.hpp"
 
 #include <gtest/gtest.h>
 #include <unistd.h>

@@ -1,5 +1,5 @@
 // PointPacer: steps sized from measured frames so a re-render frame stays near its target time.
-#include "viewer/point_pacer.hpp"
+#include "viewer/core/point_pacer.hpp"
 
 #include <gtest/gtest.h>
 
@@ -66,7 +66,8 @@ TEST(PointPacerTest, OneStallShrinksTheNextStepButDoesNotCollapseIt) {
   EXPECT_LT(after, steady * 3 / 4);
   EXPECT_GT(after, steady / 3);
   // Back to normal: the budget recovers within a few frames.
-  EXPECT_NEAR(static_cast<double>(settle(p, 10.0, 0.0005, 20)), static_cast<double>(steady), static_cast<double>(steady) * 0.05);
+  EXPECT_NEAR(static_cast<double>(settle(p, 10.0, 0.0005, 20)), static_cast<double>(steady),
+              static_cast<double>(steady) * 0.05);
 }
 
 TEST(PointPacerTest, StaysWithinMinAndMax) {

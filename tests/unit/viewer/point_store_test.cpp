@@ -1,9 +1,9 @@
 // Point store: append, bounds, last-N ranges, reset generation, and the per-robot cap.
-#include "viewer/point_store.hpp"
+#include "viewer/core/point_store.hpp"
 
 #include <gtest/gtest.h>
 
-#include "viewer/robot_registry.hpp"
+#include "viewer/core/robot_registry.hpp"
 
 namespace slam::viewer {
 namespace {

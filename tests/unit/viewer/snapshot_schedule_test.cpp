@@ -1,6 +1,6 @@
 // Snapshot names and timing: numbering, temp names beside the final ones, one period between
 // snapshots without bursts after a stall, retention.
-#include "viewer/snapshot_schedule.hpp"
+#include "viewer/core/snapshot_schedule.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,7 +1,7 @@
 // The snapshot writer thread and directory: numbering continues after earlier runs, a job ends as
 // a numbered PNG plus latest.png with no temp file left, retention deletes the oldest, errors are
 // counted rather than fatal, and the destructor writes what is still pending.
-#include "viewer/snapshot_writer.hpp"
+#include "viewer/core/snapshot_writer.hpp"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -69,7 +69,8 @@ TEST(SnapshotWriterTest, WritesNumberedAndLatestAndHonoursKeep) {
   }
   EXPECT_EQ(writer.written(), 3u);
   EXPECT_EQ(writer.failed(), 0u);
-  EXPECT_EQ(listing(dir.path), (std::vector<std::string>{"latest.png", "snapshot-0002.png", "snapshot-0003.png"}));
+  EXPECT_EQ(listing(dir.path),
+            (std::vector<std::string>{"latest.png", "snapshot-0002.png", "snapshot-0003.png"}));
   EXPECT_EQ(fs::file_size(dir.path / "latest.png"), fs::file_size(dir.path / "snapshot-0003.png"));
 }
 

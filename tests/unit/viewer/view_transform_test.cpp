@@ -1,6 +1,6 @@
 // View transforms: screen <-> world with pan, zoom, rotation and flip; round trips; fit; the
 // log line a test uses to reproduce the viewer's transform.
-#include "viewer/view_transform.hpp"
+#include "viewer/core/view_transform.hpp"
 
 #include <gtest/gtest.h>
 
@@ -50,8 +50,10 @@ TEST(ViewTransformTest, RoundTripWithPanZoomRotateFlip) {
   v.zoom_about({321.0, 123.0}, 2.7);
   v.rotate_about({600.0, 200.0}, 0.7);
   v.set_flip_y(true);
-  for (Vec2 s : {Vec2{0.0, 0.0}, Vec2{100.0, 599.0}, Vec2{899.5, 13.25}}) expect_near(v.world_to_screen(v.screen_to_world(s)), s, 1e-7);
-  for (Vec2 w : {Vec2{-5.0, 2.0}, Vec2{1e3, -1e3}}) expect_near(v.screen_to_world(v.world_to_screen(w)), w, 1e-7);
+  for (Vec2 s : {Vec2{0.0, 0.0}, Vec2{100.0, 599.0}, Vec2{899.5, 13.25}})
+    expect_near(v.world_to_screen(v.screen_to_world(s)), s, 1e-7);
+  for (Vec2 w : {Vec2{-5.0, 2.0}, Vec2{1e3, -1e3}})
+    expect_near(v.screen_to_world(v.world_to_screen(w)), w, 1e-7);
 }
 
 TEST(ViewTransformTest, ZoomKeepsPointUnderCursor) {

@@ -1,5 +1,5 @@
 // slam-viewer options: defaults validate, bad values name their flag, --click specs parse.
-#include "viewer/viewer_options.hpp"
+#include "viewer/core/viewer_options.hpp"
 
 #include <gtest/gtest.h>
 
@@ -23,7 +23,8 @@ std::string error_for(F change) {
 
 TEST(ViewerOptionsTest, BadValuesNameTheFlag) {
   EXPECT_NE(error_for([](ViewerOptions& o) { o.width = 10; }).find("--width"), std::string::npos);
-  EXPECT_NE(error_for([](ViewerOptions& o) { o.right_click = "boom"; }).find("--right-click"), std::string::npos);
+  EXPECT_NE(error_for([](ViewerOptions& o) { o.right_click = "boom"; }).find("--right-click"),
+            std::string::npos);
   EXPECT_NE(error_for([](ViewerOptions& o) { o.tab = "nope"; }).find("--tab"), std::string::npos);
   EXPECT_NE(error_for([](ViewerOptions& o) { o.click_texts = {"1,2,middle@3"}; }).find("--click"),
             std::string::npos);
@@ -31,13 +32,17 @@ TEST(ViewerOptionsTest, BadValuesNameTheFlag) {
             std::string::npos);
   EXPECT_NE(error_for([](ViewerOptions& o) { o.snapshot_period_s = 0.0; }).find("--snapshot-period"),
             std::string::npos);
-  EXPECT_NE(error_for([](ViewerOptions& o) { o.snapshot_dir = "d", o.screenshot = "x.png"; }).find("--snapshot-dir"),
+  EXPECT_NE(error_for([](ViewerOptions& o) {
+              o.snapshot_dir = "d", o.screenshot = "x.png";
+            }).find("--snapshot-dir"),
             std::string::npos);
 }
 
 TEST(ViewerOptionsTest, PointPacingComesFromItsFlags) {
-  EXPECT_NE(error_for([](ViewerOptions& o) { o.point_frame_ms = 0.5; }).find("--point-frame-ms"), std::string::npos);
-  EXPECT_NE(error_for([](ViewerOptions& o) { o.point_budget = 10; }).find("--point-budget"), std::string::npos);
+  EXPECT_NE(error_for([](ViewerOptions& o) { o.point_frame_ms = 0.5; }).find("--point-frame-ms"),
+            std::string::npos);
+  EXPECT_NE(error_for([](ViewerOptions& o) { o.point_budget = 10; }).find("--point-budget"),
+            std::string::npos);
   ViewerOptions o;
   o.point_budget = 2'000;  // below the pacer's usual minimum and first step: both follow it down
   o.point_frame_ms = 45.0;

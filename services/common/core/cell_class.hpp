@@ -1,0 +1,15 @@
+#pragma once
+// The cell class octet of GridSnapshot.cells / GridPatch.cells (map.idl CELL_*), for the cores that
+// must not include generated DDS headers (mapper, planner, viewer). One definition for all of them.
+#include <cstdint>
+
+namespace slam {
+
+inline constexpr uint8_t kCellUnknown = 0;
+inline constexpr uint8_t kCellFree = 1;
+inline constexpr uint8_t kCellOccupied = 2;
+inline constexpr uint8_t kCellStateMask = 3;   // low two bits: the observed state
+inline constexpr uint8_t kCellInflated = 4;    // within robot radius of an occupied cell
+inline constexpr uint8_t kCellObstructed = 8;  // obstructed by hand by the operator
+
+}  // namespace slam

@@ -1,0 +1,47 @@
+#include "common/core/service_options.hpp"
+
+#include <filesystem>
+#include <iostream>
+
+#include "common/core/config_file.hpp"
+#include "common/core/log.hpp"
+
+namespace slam {
+
+void add_service_options(CLI::App& app, ServiceOptions& options) {
+  app.add_option("--domain", options.domain, "DDS domain id")
+      ->check(CLI::Range(0, 232))
+      ->capture_default_str();
+  app.add_option("--log-level", options.log_level, "trace, debug, info, warn, error or off")
+      ->capture_default_str();
+  app.config_formatter(std::make_shared<YamlConfig>());
+  app.set_config("--config", "", "YAML file of option: value pairs (command-line flags win)");
+  app.allow_config_extras(CLI::config_extras_mode::error);  // a misspelt key is an error, not ignored
+}
+
+std::optional<int> parse_command_line(CLI::App& app, int argc, char** argv) {
+  // Name the program by its file name, not the path it was started by, in usage and errors.
+  if (app.get_name().empty() && argc > 0) app.name(std::filesystem::path(argv[0]).filename().string());
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp&) {
+    std::cout << app.help();
+    return 0;
+  } catch (const CLI::CallForAllHelp&) {
+    std::cout << app.help("", CLI::AppFormatMode::All);
+    return 0;
+  } catch (const CLI::ParseError& e) {
+    std::cerr << app.get_name() << ": error: " << e.what() << " (see --help)\n";
+    return 2;
+  }
+  return std::nullopt;
+}
+
+bool start_logging(const std::string& service, const ServiceOptions& options) {
+  if (setup_logging(service, options.log_level)) return true;
+  std::cerr << service << ": error: --log-level " << options.log_level
+            << " is not one of trace, debug, info, warn, error, off\n";
+  return false;
+}
+
+}  // namespace slam

@@ -1,0 +1,55 @@
+#pragma once
+// The one table of DDS topic names and their QoS, vendor-neutral: the Fast DDS edge (dds.hpp)
+// and the Cyclone edge (simulator, interop test) both translate QosSpec from here.
+// docs/topics.md mirrors this table for readers.
+#include <cstdint>
+
+namespace slam::topics {
+
+struct QosSpec {
+  bool reliable;
+  bool transient_local;  // late joiners get the last `depth` samples per instance
+  int32_t depth;         // keep-last depth per instance
+  int32_t lease_ms;      // automatic liveliness lease; 0 = infinite
+};
+
+// Latest value per key, kept for late joiners (robot state, map snapshot, paths, goals).
+inline constexpr QosSpec kStateQos{true, true, 1, 0};
+// Reliable data stream with a deep history (per key) so bursts are not lost (observations, patches).
+inline constexpr QosSpec kStreamQos{true, false, 200, 0};
+// Requests and replies: reliable, volatile, moderate depth.
+inline constexpr QosSpec kCommandQos{true, false, 64, 0};
+// Heartbeats: latest per service, liveliness tells when a service died.
+inline constexpr QosSpec kHeartbeatQos{true, false, 1, 3000};
+// High-rate telemetry where only fresh data matters (ground truth, MQTT traffic log).
+inline constexpr QosSpec kTelemetryQos{false, false, 64, 0};
+
+struct TopicInfo {
+  const char* name;
+  QosSpec qos;
+};
+
+inline constexpr TopicInfo kRobotObservation{"slam/robot/observation", kStreamQos};
+inline constexpr TopicInfo kRobotState{"slam/robot/state", kStateQos};
+inline constexpr TopicInfo kGridSnapshot{"slam/map/snapshot", kStateQos};
+inline constexpr TopicInfo kGridPatch{"slam/map/patch", kStreamQos};
+inline constexpr TopicInfo kGridConfig{"slam/map/config", kStateQos};
+inline constexpr TopicInfo kMapEdit{"slam/map/edit", kCommandQos};
+inline constexpr TopicInfo kMapFileRequest{"slam/map/file_request", kCommandQos};
+inline constexpr TopicInfo kMapReply{"slam/map/reply", kCommandQos};
+inline constexpr TopicInfo kNavGoal{"slam/nav/goal", kStateQos};
+inline constexpr TopicInfo kRobotPath{"slam/nav/path", kStateQos};
+inline constexpr TopicInfo kWaypointCommand{"slam/nav/waypoint", kCommandQos};
+inline constexpr TopicInfo kPathRequest{"slam/nav/path_request", kCommandQos};
+inline constexpr TopicInfo kPathReply{"slam/nav/path_reply", kCommandQos};
+inline constexpr TopicInfo kMqttTraffic{"slam/mqtt/traffic", kTelemetryQos};
+inline constexpr TopicInfo kMqttRequest{"slam/mqtt/request", kCommandQos};
+inline constexpr TopicInfo kMqttReply{"slam/mqtt/reply", kCommandQos};
+inline constexpr TopicInfo kMqttSubscriptions{"slam/mqtt/subscriptions", kStateQos};
+inline constexpr TopicInfo kSimControl{"slam/sim/control", kCommandQos};
+inline constexpr TopicInfo kSimReply{"slam/sim/reply", kCommandQos};
+inline constexpr TopicInfo kSimWorld{"slam/sim/world", kStateQos};
+inline constexpr TopicInfo kSimGroundTruth{"slam/sim/ground_truth", kTelemetryQos};
+inline constexpr TopicInfo kHeartbeat{"slam/system/heartbeat", kHeartbeatQos};
+
+}  // namespace slam::topics

@@ -1,0 +1,38 @@
+#pragma once
+// topics.hpp bound to the Fast DDS generated types: use these with dds::make_writer / make_reader.
+#include <slam/fastdds/mapPubSubTypes.h>
+#include <slam/fastdds/mqttPubSubTypes.h>
+#include <slam/fastdds/navPubSubTypes.h>
+#include <slam/fastdds/robotPubSubTypes.h>
+#include <slam/fastdds/simPubSubTypes.h>
+#include <slam/fastdds/systemPubSubTypes.h>
+
+#include "common/fastdds/dds.hpp"
+
+namespace slam::dds {
+
+inline const Topic<RobotObservation, RobotObservationPubSubType> kRobotObservation{topics::kRobotObservation};
+inline const Topic<RobotState, RobotStatePubSubType> kRobotState{topics::kRobotState};
+inline const Topic<GridSnapshot, GridSnapshotPubSubType> kGridSnapshot{topics::kGridSnapshot};
+inline const Topic<GridPatch, GridPatchPubSubType> kGridPatch{topics::kGridPatch};
+inline const Topic<GridConfig, GridConfigPubSubType> kGridConfig{topics::kGridConfig};
+inline const Topic<MapEdit, MapEditPubSubType> kMapEdit{topics::kMapEdit};
+inline const Topic<MapFileRequest, MapFileRequestPubSubType> kMapFileRequest{topics::kMapFileRequest};
+inline const Topic<MapReply, MapReplyPubSubType> kMapReply{topics::kMapReply};
+inline const Topic<NavGoal, NavGoalPubSubType> kNavGoal{topics::kNavGoal};
+inline const Topic<RobotPath, RobotPathPubSubType> kRobotPath{topics::kRobotPath};
+inline const Topic<WaypointCommand, WaypointCommandPubSubType> kWaypointCommand{topics::kWaypointCommand};
+inline const Topic<PathRequest, PathRequestPubSubType> kPathRequest{topics::kPathRequest};
+inline const Topic<PathReply, PathReplyPubSubType> kPathReply{topics::kPathReply};
+inline const Topic<MqttTraffic, MqttTrafficPubSubType> kMqttTraffic{topics::kMqttTraffic};
+inline const Topic<MqttRequest, MqttRequestPubSubType> kMqttRequest{topics::kMqttRequest};
+inline const Topic<MqttReply, MqttReplyPubSubType> kMqttReply{topics::kMqttReply};
+inline const Topic<MqttSubscriptions, MqttSubscriptionsPubSubType> kMqttSubscriptions{
+    topics::kMqttSubscriptions};
+inline const Topic<SimControl, SimControlPubSubType> kSimControl{topics::kSimControl};
+inline const Topic<SimReply, SimReplyPubSubType> kSimReply{topics::kSimReply};
+inline const Topic<SimWorld, SimWorldPubSubType> kSimWorld{topics::kSimWorld};
+inline const Topic<SimGroundTruth, SimGroundTruthPubSubType> kSimGroundTruth{topics::kSimGroundTruth};
+inline const Topic<Heartbeat, HeartbeatPubSubType> kHeartbeat{topics::kHeartbeat};
+
+}  // namespace slam::dds

@@ -1,0 +1,67 @@
+#pragma once
+// The viewer's copy of the mapper's grid: snapshots replace it, patches update it in order
+// (same layout, version == last + 1), and the changed box is remembered so the GPU texture is
+// updated with that box only. The box of known cells is kept too, so the view can fit the part of
+// the grid that has been mapped rather than its whole (mostly unknown) extent.
+#include <cstdint>
+#include <vector>
+
+#include "common/core/result.hpp"
+#include "viewer/core/intake_types.hpp"
+
+namespace slam::viewer {
+
+struct CellBox {
+  uint32_t x0 = 0, y0 = 0, width = 0, height = 0;
+  bool empty() const { return width == 0 || height == 0; }
+  void unite(const CellBox& o);
+};
+
+enum class PatchResult {
+  Applied,
+  Stale,        // already included in the snapshot (version <= current)
+  Gap,          // a version was missed: wait for the next snapshot
+  WrongLayout,  // the grid was re-laid out: wait for the next snapshot
+  NoGrid,       // no snapshot yet
+  Invalid       // box outside the grid or cell count mismatch
+};
+
+class GridMirror {
+ public:
+  Status apply_snapshot(GridSnapshotData&& snapshot);
+  PatchResult apply_patch(const GridPatchData& patch);
+
+  bool has_grid() const { return has_grid_; }
+  const GridInfoData& info() const { return info_; }
+  const std::vector<uint8_t>& cells() const { return cells_; }
+  uint32_t layout_id() const { return layout_id_; }
+  uint64_t version() const { return version_; }
+  bool waiting_for_snapshot() const { return waiting_; }
+  WorldBox bounds() const;
+  // Map-frame box around every free or occupied cell; false while the whole grid is unknown.
+  // Patches only widen it (a cell that turns unknown again is rare); a snapshot recomputes it.
+  bool known_bounds(WorldBox* box) const;
+
+  // The cell octet at a map-frame point; false when outside the grid.
+  bool cell_at(Vec2 world, uint8_t* cell) const;
+
+  // Cells changed since the last call (the whole grid after a snapshot), then forgets them.
+  CellBox take_dirty();
+  // True once after a snapshot changed size or layout (the texture must be re-created).
+  bool take_layout_changed();
+
+ private:
+  bool has_grid_ = false;
+  bool waiting_ = false;
+  bool layout_changed_ = false;
+  uint32_t layout_id_ = 0;
+  uint64_t version_ = 0;
+  GridInfoData info_;
+  std::vector<uint8_t> cells_;
+  CellBox dirty_;
+  CellBox known_;
+
+  void include_known(const CellBox& area);
+};
+
+}  // namespace slam::viewer

@@ -1,0 +1,128 @@
+#pragma once
+// Plain copies of what the viewer receives, converted from the IDL types at the DDS edge
+// (viewer_node.cpp), so the core and the panels never include middleware headers.
+// Enumerations keep the IDL's order so the edge converts them with a static_cast.
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "viewer/core/view_transform.hpp"
+
+namespace slam::viewer {
+
+enum class GoalMode : uint8_t { Idle, Direct, Planned, Square, Explore, Home, Stop };
+enum class GoalStatus : uint8_t { None, Active, Reached, Failed };
+enum class ServiceState : uint8_t { Starting, Running, Stopping };
+
+const char* goal_mode_name(GoalMode m);
+const char* goal_status_name(GoalStatus s);
+
+struct Pose {
+  double x = 0.0, y = 0.0, theta = 0.0;
+};
+
+struct GridInfoData {
+  uint32_t width = 0;
+  uint32_t height = 0;
+  double resolution = 0.0;
+  Vec2 origin;
+  double inflation_radius = 0.0;
+};
+
+struct GridSnapshotData {
+  uint32_t layout_id = 0;
+  uint64_t version = 0;
+  GridInfoData info;
+  std::vector<uint8_t> cells;
+};
+
+struct GridPatchData {
+  uint32_t layout_id = 0;
+  uint64_t version = 0;
+  uint32_t x0 = 0, y0 = 0, width = 0, height = 0;
+  std::vector<uint8_t> cells;
+};
+
+struct ObservationData {
+  std::string robot_id;
+  uint64_t seq = 0;
+  Pose pose;
+  std::vector<float> hits_xy;  // x0, y0, x1, y1, ... (map frame, metres)
+};
+
+struct RobotStateData {
+  std::string robot_id;
+  bool protocol_v2 = false;
+  bool online = false;
+  Pose pose;
+  bool has_heading = false;
+  int64_t first_seen_ns = 0;
+  int64_t last_seen_ns = 0;
+  uint64_t messages = 0;
+  uint64_t points = 0;
+  uint64_t rejected = 0;
+  float battery = -1.0f;
+  std::string status;
+};
+
+struct RobotPathData {
+  std::string robot_id;
+  uint64_t goal_id = 0;
+  GoalMode mode = GoalMode::Idle;
+  GoalStatus status = GoalStatus::None;
+  Vec2 target;
+  std::vector<Vec2> waypoints;
+  uint32_t current = 0;
+  std::string reason;
+};
+
+struct HeartbeatData {
+  std::string service;
+  std::string instance_id;
+  uint32_t pid = 0;
+  std::string host;
+  double uptime_s = 0.0;
+  ServiceState state = ServiceState::Starting;
+  std::vector<std::pair<std::string, int64_t>> counters;
+};
+
+struct MqttEntry {
+  uint64_t seq = 0;
+  int64_t stamp_ns = 0;
+  bool inbound = true;
+  std::string topic;
+  std::vector<uint8_t> payload;  // at most 1024 octets (the gateway truncates)
+  uint32_t payload_size = 0;     // real size
+};
+
+struct MqttSubscriptionsData {
+  bool connected = false;
+  std::string broker;
+  std::vector<std::string> filters;
+};
+
+struct SimWorldData {
+  std::string name;
+  double width_m = 0.0, height_m = 0.0;
+  std::vector<std::pair<Vec2, Vec2>> walls;
+};
+
+struct SimRobotTruthData {
+  std::string robot_id;
+  Pose true_pose;
+  Pose reported_pose;
+};
+
+struct SimTruthData {
+  bool paused = false;
+  std::vector<SimRobotTruthData> robots;
+};
+
+struct MapReplyData {
+  uint64_t request_id = 0;
+  int result = 0;  // idl MapResult: 0 = MAP_OK
+  std::string message;
+};
+
+}  // namespace slam::viewer

@@ -1,0 +1,81 @@
+// Robots as the viewer knows them (see robot_registry.hpp).
+#include "viewer/core/robot_registry.hpp"
+
+#include <algorithm>
+
+namespace slam::viewer {
+
+RobotView& RobotRegistry::get_or_add(const std::string& id) {
+  if (RobotView* r = find(id)) return *r;
+  index_.emplace(id, robots_.size());
+  auto& r = robots_.emplace_back(std::make_unique<RobotView>(id, max_points_));
+  r->settings = defaults_;
+  r->settings.color = default_robot_color(id);
+  r->settings.color.a = defaults_.color.a;
+  return *r;
+}
+
+RobotView* RobotRegistry::find(const std::string& id) {
+  const auto it = index_.find(id);
+  return it == index_.end() ? nullptr : robots_[it->second].get();
+}
+
+void RobotRegistry::ingest(const ObservationData& o) {
+  RobotView& r = get_or_add(o.robot_id);
+  ++r.observations;
+  r.last_observed_pose = o.pose;
+  r.points.append(o.hits_xy.data(), o.hits_xy.size() / 2);
+}
+
+void RobotRegistry::ingest(RobotStateData&& s) {
+  RobotView& r = get_or_add(s.robot_id);
+  r.state = std::move(s);
+  r.has_state = true;
+}
+
+void RobotRegistry::ingest(RobotPathData&& p) {
+  RobotView& r = get_or_add(p.robot_id);
+  r.path = std::move(p);
+  r.has_path = true;
+}
+
+void RobotRegistry::apply_defaults_to_all() {
+  for (auto& r : robots_) {
+    const Rgba keep = r->settings.color;
+    r->settings = defaults_;
+    r->settings.color = {keep.r, keep.g, keep.b, defaults_.color.a};
+  }
+}
+
+size_t RobotRegistry::online() const {
+  return static_cast<size_t>(std::count_if(robots_.begin(), robots_.end(),
+                                           [](const auto& r) { return r->has_state && r->state.online; }));
+}
+
+size_t RobotRegistry::total_points() const {
+  size_t n = 0;
+  for (const auto& r : robots_) n += r->points.size();
+  return n;
+}
+
+bool RobotRegistry::bounds(WorldBox* box) const {
+  bool any = false;
+  auto add = [&](double x0, double y0, double x1, double y1) {
+    if (!any) *box = {x0, y0, x1, y1};
+    box->min_x = std::min(box->min_x, x0);
+    box->min_y = std::min(box->min_y, y0);
+    box->max_x = std::max(box->max_x, x1);
+    box->max_y = std::max(box->max_y, y1);
+    any = true;
+  };
+  for (const auto& r : robots_) {
+    if (r->has_state) add(r->state.pose.x, r->state.pose.y, r->state.pose.x, r->state.pose.y);
+    if (!r->points.empty()) {
+      const WorldBox& b = r->points.bounds();
+      add(b.min_x, b.min_y, b.max_x, b.max_y);
+    }
+  }
+  return any;
+}
+
+}  // namespace slam::viewer

@@ -1,0 +1,71 @@
+#pragma once
+// Every robot the viewer has heard of: what it reported (state, path, points) and how the
+// operator wants it shown (colour, size, point radius, last N points, its own goal mode).
+// Robots are never removed, so indices are stable and the GPU layer keeps one buffer per index.
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include "viewer/core/cell_colors.hpp"
+#include "viewer/core/intake_types.hpp"
+#include "viewer/core/point_store.hpp"
+
+namespace slam::viewer {
+
+struct RobotSettings {
+  Rgba color{1.0f, 1.0f, 1.0f, 1.0f};  // replaced by default_robot_color() for new robots
+  float size_m = 0.35f;                // drawn triangle length
+  float point_radius_px = 2.0f;
+  uint32_t last_n = 0;  // 0: every point
+  bool visible = true;
+  bool show_path = true;
+  GoalMode mode = GoalMode::Direct;
+};
+
+struct RobotView {
+  explicit RobotView(std::string robot_id, size_t max_points) : id(std::move(robot_id)), points(max_points) {}
+  std::string id;
+  RobotSettings settings;
+  bool has_state = false;
+  RobotStateData state;
+  bool has_path = false;
+  RobotPathData path;
+  PointStore points;
+  uint64_t observations = 0;
+  Pose last_observed_pose;
+};
+
+class RobotRegistry {
+ public:
+  explicit RobotRegistry(size_t max_points_per_robot = size_t{16} << 20)
+      : max_points_(max_points_per_robot) {}
+
+  RobotView& get_or_add(const std::string& id);
+  RobotView* find(const std::string& id);
+  size_t size() const { return robots_.size(); }
+  RobotView& at(size_t index) { return *robots_[index]; }
+  const RobotView& at(size_t index) const { return *robots_[index]; }
+
+  void ingest(const ObservationData& o);
+  void ingest(RobotStateData&& s);
+  void ingest(RobotPathData&& p);
+
+  // Settings given to robots seen from now on; apply_defaults_to_all() pushes them to every robot.
+  RobotSettings& defaults() { return defaults_; }
+  void apply_defaults_to_all();
+
+  size_t online() const;
+  size_t total_points() const;
+  // Box around every robot position and point; false when there is nothing.
+  bool bounds(WorldBox* box) const;
+
+ private:
+  size_t max_points_;
+  RobotSettings defaults_;
+  std::vector<std::unique_ptr<RobotView>> robots_;
+  std::unordered_map<std::string, size_t> index_;  // id -> position in robots_
+};
+
+}  // namespace slam::viewer

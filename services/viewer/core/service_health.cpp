@@ -1,0 +1,30 @@
+// Latest heartbeat per service instance (see service_health.hpp).
+#include "viewer/core/service_health.hpp"
+
+#include <algorithm>
+#include <tuple>
+#include <utility>
+
+namespace slam::viewer {
+
+void ServiceHealth::update(HeartbeatData&& hb, int64_t now_ns) {
+  for (auto& e : entries_)
+    if (e.heartbeat.service == hb.service && e.heartbeat.instance_id == hb.instance_id) {
+      e.heartbeat = std::move(hb);
+      e.last_seen_ns = now_ns;
+      ++e.beats;
+      return;
+    }
+  entries_.push_back({std::move(hb), now_ns, 1});
+  std::sort(entries_.begin(), entries_.end(), [](const ServiceEntry& a, const ServiceEntry& b) {
+    return std::tie(a.heartbeat.service, a.heartbeat.instance_id) <
+           std::tie(b.heartbeat.service, b.heartbeat.instance_id);
+  });
+}
+
+size_t ServiceHealth::alive_count(int64_t now_ns) const {
+  return static_cast<size_t>(std::count_if(entries_.begin(), entries_.end(),
+                                           [&](const ServiceEntry& e) { return alive(e, now_ns); }));
+}
+
+}  // namespace slam::viewer

@@ -1,0 +1,191 @@
+// IDL <-> plain viewer types (see node_convert.hpp).
+#include "viewer/dds/node_convert.hpp"
+
+namespace slam::viewer {
+namespace {
+
+Pose pose(const slam::Pose2& p) {
+  return {p.x(), p.y(), p.theta()};
+}
+Vec2 vec(const slam::Point2& p) {
+  return {p.x(), p.y()};
+}
+slam::Point2 point(Vec2 v) {
+  slam::Point2 p;
+  p.x(v.x);
+  p.y(v.y);
+  return p;
+}
+
+}  // namespace
+
+GridSnapshotData from_idl(const slam::GridSnapshot& s) {
+  GridSnapshotData d;
+  d.layout_id = s.layout_id();
+  d.version = s.version();
+  d.info = {s.info().width(), s.info().height(), s.info().resolution(), vec(s.info().origin()),
+            s.info().inflation_radius()};
+  d.cells = s.cells();
+  return d;
+}
+
+GridPatchData from_idl(const slam::GridPatch& p) {
+  return {p.layout_id(), p.version(), p.x0(), p.y0(), p.width(), p.height(), p.cells()};
+}
+
+ObservationData from_idl(const slam::RobotObservation& o) {
+  ObservationData d;
+  d.robot_id = o.robot_id().to_string();
+  d.seq = o.seq();
+  d.pose = pose(o.pose());
+  d.hits_xy.reserve(o.hits().size() * 2);
+  for (const auto& h : o.hits()) {
+    d.hits_xy.push_back(static_cast<float>(h.x()));
+    d.hits_xy.push_back(static_cast<float>(h.y()));
+  }
+  return d;
+}
+
+RobotStateData from_idl(const slam::RobotState& s) {
+  RobotStateData d;
+  d.robot_id = s.robot_id().to_string();
+  d.protocol_v2 = s.protocol() == slam::PROTOCOL_V2;
+  d.online = s.presence() == slam::PRESENCE_ONLINE;
+  d.pose = pose(s.pose());
+  d.has_heading = s.has_heading();
+  d.first_seen_ns = s.first_seen_ns();
+  d.last_seen_ns = s.last_seen_ns();
+  d.messages = s.messages();
+  d.points = s.points();
+  d.rejected = s.rejected();
+  d.battery = s.battery();
+  d.status = s.status().to_string();
+  return d;
+}
+
+RobotPathData from_idl(const slam::RobotPath& p) {
+  RobotPathData d;
+  d.robot_id = p.robot_id().to_string();
+  d.goal_id = p.goal_id();
+  d.mode = static_cast<GoalMode>(p.mode());
+  d.status = static_cast<GoalStatus>(p.status());
+  d.target = vec(p.target());
+  d.waypoints.reserve(p.waypoints().size());
+  for (const auto& w : p.waypoints()) d.waypoints.push_back(vec(w));
+  d.current = p.current();
+  d.reason = p.reason().to_string();
+  return d;
+}
+
+HeartbeatData from_idl(const slam::Heartbeat& h) {
+  HeartbeatData d;
+  d.service = h.service().to_string();
+  d.instance_id = h.instance_id().to_string();
+  d.pid = h.pid();
+  d.host = h.host().to_string();
+  d.uptime_s = h.uptime_s();
+  d.state = static_cast<ServiceState>(h.state());
+  for (const auto& c : h.counters()) d.counters.emplace_back(c.name().to_string(), c.value());
+  return d;
+}
+
+MqttEntry from_idl(const slam::MqttTraffic& t) {
+  return {t.seq(),     t.stamp_ns(),    t.direction() == slam::MQTT_INBOUND, t.topic().to_string(),
+          t.payload(), t.payload_size()};
+}
+
+MqttSubscriptionsData from_idl(const slam::MqttSubscriptions& s) {
+  MqttSubscriptionsData d;
+  d.connected = s.connected();
+  d.broker = s.broker().to_string();
+  for (const auto& f : s.filters()) d.filters.push_back(f.to_string());
+  return d;
+}
+
+SimWorldData from_idl(const slam::SimWorld& w) {
+  SimWorldData d;
+  d.name = w.name().to_string();
+  d.width_m = w.width_m();
+  d.height_m = w.height_m();
+  for (const auto& s : w.walls()) d.walls.emplace_back(vec(s.a()), vec(s.b()));
+  return d;
+}
+
+SimTruthData from_idl(const slam::SimGroundTruth& t) {
+  SimTruthData d;
+  d.paused = t.paused();
+  for (const auto& r : t.robots())
+    d.robots.push_back({r.robot_id().to_string(), pose(r.true_pose()), pose(r.reported_pose())});
+  return d;
+}
+
+MapReplyData from_idl(const slam::MapReply& r) {
+  return {r.request_id(), static_cast<int>(r.result()), r.message().to_string()};
+}
+
+slam::NavGoal to_idl(const GoalCommand& c, uint64_t goal_id) {
+  slam::NavGoal g;
+  g.robot_id(c.robot_id);
+  g.goal_id(goal_id);
+  g.mode(static_cast<slam::GoalMode>(c.mode));
+  g.target(point(c.target));
+  g.square_size(c.square_size);
+  g.square_anchor(c.square_centred ? slam::SQUARE_CENTRED : slam::SQUARE_CORNER);
+  return g;
+}
+
+slam::MapEdit to_idl(const MapEditCommand& c, uint64_t request_id) {
+  slam::MapEdit e;
+  e.request_id(request_id);
+  e.kind(static_cast<slam::MapEditKind>(c.kind));
+  e.point(point(c.point));
+  e.robot_id(c.robot_id);
+  return e;
+}
+
+slam::GridConfig to_idl(const GridConfigCommand& c, uint64_t request_id) {
+  slam::GridConfig g;
+  g.request_id(request_id);
+  g.resolution(c.resolution);
+  g.origin(point(c.origin));
+  g.width_m(c.width_m);
+  g.height_m(c.height_m);
+  g.inflation_radius(c.inflation_radius);
+  g.legacy_mode(c.legacy_mode);
+  return g;
+}
+
+slam::MqttRequest to_idl(const MqttRequestCommand& c, uint64_t request_id) {
+  slam::MqttRequest r;
+  r.request_id(request_id);
+  r.kind(static_cast<slam::MqttRequestKind>(c.kind));
+  r.topic(c.topic);
+  r.payload(c.payload);
+  r.qos(c.qos);
+  r.retain(c.retain);
+  return r;
+}
+
+slam::SimControl to_idl(const SimCommand& c, uint64_t command_id) {
+  slam::SimControl s;
+  s.command_id(command_id);
+  s.kind(static_cast<slam::SimCommandKind>(c.kind));
+  s.count(c.count);
+  s.robot_id(c.robot_id);
+  s.world(c.world);
+  s.range_noise_sd(c.range_noise_sd);
+  s.dropout(c.dropout);
+  s.odometry_drift(c.odometry_drift);
+  s.speed_factor(c.speed_factor);
+  return s;
+}
+
+slam::MapFileRequest to_idl(const MapFileCommand& c, uint64_t request_id) {
+  slam::MapFileRequest r;
+  r.request_id(request_id);
+  r.action(c.import ? slam::MAP_IMPORT : slam::MAP_EXPORT);
+  r.yaml_path(c.yaml_path);
+  return r;
+}
+
+}  // namespace slam::viewer

@@ -1,0 +1,29 @@
+#pragma once
+// IDL samples <-> the viewer's plain types, at the DDS edge only. Enumerations share the IDL
+// order, so they convert with a cast.
+#include "common/fastdds/fast_topics.hpp"
+#include "viewer/core/commands.hpp"
+#include "viewer/core/intake_types.hpp"
+
+namespace slam::viewer {
+
+GridSnapshotData from_idl(const slam::GridSnapshot& s);
+GridPatchData from_idl(const slam::GridPatch& p);
+ObservationData from_idl(const slam::RobotObservation& o);
+RobotStateData from_idl(const slam::RobotState& s);
+RobotPathData from_idl(const slam::RobotPath& p);
+HeartbeatData from_idl(const slam::Heartbeat& h);
+MqttEntry from_idl(const slam::MqttTraffic& t);
+MqttSubscriptionsData from_idl(const slam::MqttSubscriptions& s);
+SimWorldData from_idl(const slam::SimWorld& w);
+SimTruthData from_idl(const slam::SimGroundTruth& t);
+MapReplyData from_idl(const slam::MapReply& r);
+
+slam::NavGoal to_idl(const GoalCommand& c, uint64_t goal_id);
+slam::MapEdit to_idl(const MapEditCommand& c, uint64_t request_id);
+slam::GridConfig to_idl(const GridConfigCommand& c, uint64_t request_id);
+slam::MqttRequest to_idl(const MqttRequestCommand& c, uint64_t request_id);
+slam::SimControl to_idl(const SimCommand& c, uint64_t command_id);
+slam::MapFileRequest to_idl(const MapFileCommand& c, uint64_t request_id);
+
+}  // namespace slam::viewer

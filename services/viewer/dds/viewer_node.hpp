@@ -1,0 +1,66 @@
+#pragma once
+// The viewer's DDS edge: one reader per topic it shows (each converts the sample and pushes it
+// into the Intake on the listener thread; nothing else), one writer per command it sends, and
+// its heartbeat. configure() undoes itself on failure by returning nothing half-built.
+#include <atomic>
+#include <memory>
+
+#include "common/core/counters.hpp"
+#include "common/fastdds/fast_topics.hpp"
+#include "common/fastdds/heartbeat.hpp"
+#include "viewer/core/commands.hpp"
+#include "viewer/core/intake.hpp"
+
+namespace slam::viewer {
+
+class ViewerNode final : public CommandSink {
+ public:
+  static Result<std::unique_ptr<ViewerNode>> configure(int domain, Intake& intake, Counters& counters);
+  ~ViewerNode() override;
+
+  void set_running() { heartbeat_->set_state(SERVICE_RUNNING); }
+  void set_stopping() { heartbeat_->set_state(SERVICE_STOPPING); }
+
+  uint64_t send(const GoalCommand& c) override;
+  uint64_t send(const MapEditCommand& c) override;
+  uint64_t send(const GridConfigCommand& c) override;
+  uint64_t send(const MqttRequestCommand& c) override;
+  uint64_t send(const SimCommand& c) override;
+  uint64_t send(const MapFileCommand& c) override;
+
+ private:
+  ViewerNode(Intake& intake, Counters& counters);
+  Status create_readers();
+  Status create_writers();
+  template <class W, class S>
+  uint64_t write(W& writer, const S& sample, uint64_t id);
+
+  Intake& intake_;
+  std::atomic<int64_t>& received_;
+  std::atomic<int64_t>& sent_;
+  std::atomic<int64_t>& send_failed_;
+  uint64_t next_id_;  // request ids: start from the clock so restarts never reuse one
+
+  // Declaration order = construction order; members are destroyed in reverse (readers first).
+  std::unique_ptr<dds::Participant> participant_;
+  std::unique_ptr<HeartbeatPublisher> heartbeat_;
+  std::unique_ptr<dds::Writer<NavGoal>> goal_writer_;
+  std::unique_ptr<dds::Writer<MapEdit>> edit_writer_;
+  std::unique_ptr<dds::Writer<GridConfig>> config_writer_;
+  std::unique_ptr<dds::Writer<MqttRequest>> mqtt_writer_;
+  std::unique_ptr<dds::Writer<SimControl>> sim_writer_;
+  std::unique_ptr<dds::Writer<MapFileRequest>> file_writer_;
+  std::unique_ptr<dds::Reader<GridSnapshot>> snapshot_reader_;
+  std::unique_ptr<dds::Reader<GridPatch>> patch_reader_;
+  std::unique_ptr<dds::Reader<RobotObservation>> observation_reader_;
+  std::unique_ptr<dds::Reader<RobotState>> state_reader_;
+  std::unique_ptr<dds::Reader<RobotPath>> path_reader_;
+  std::unique_ptr<dds::Reader<Heartbeat>> heartbeat_reader_;
+  std::unique_ptr<dds::Reader<MqttTraffic>> traffic_reader_;
+  std::unique_ptr<dds::Reader<MqttSubscriptions>> subscriptions_reader_;
+  std::unique_ptr<dds::Reader<SimWorld>> world_reader_;
+  std::unique_ptr<dds::Reader<SimGroundTruth>> truth_reader_;
+  std::unique_ptr<dds::Reader<MapReply>> reply_reader_;
+};
+
+}  // namespace slam::viewer

@@ -1,0 +1,116 @@
+// Pan, zoom, rotate, flip, fit and click handling over the map (see map_input.hpp).
+#include "viewer/ui/map_input.hpp"
+
+#include <imgui.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "viewer/core/auto_fit.hpp"
+#include "viewer/gl/gl_api.hpp"
+
+namespace slam::viewer {
+namespace {
+
+constexpr double kClickSlopPx = 4.0;  // a press that moves less than this is a click, not a drag
+constexpr double kRotateStep = M_PI / 12.0;
+
+bool inside(const Viewport& vp, Vec2 p) {
+  return p.x >= vp.x && p.y >= vp.y && p.x < vp.x + vp.width && p.y < vp.y + vp.height;
+}
+
+}  // namespace
+
+std::optional<WorldBox> content_box(const ViewerState& state) {
+  std::optional<WorldBox> content;
+  auto add = [&](const WorldBox& b) { content = content ? unite(*content, b) : b; };
+  WorldBox b;
+  if (state.grid.known_bounds(&b)) add(b);
+  if (state.robots.bounds(&b)) add(b);
+  // A simulated world's walls, when shown: the map then fills in inside a view that already
+  // holds the whole world, instead of the view following the exploration.
+  if (state.show_world && state.world)
+    for (const auto& [a, z] : state.world->walls)
+      add({std::min(a.x, z.x), std::min(a.y, z.y), std::max(a.x, z.x), std::max(a.y, z.y)});
+  return content;
+}
+
+bool fit_box(const ViewerState& state, WorldBox* box) {
+  if (auto content = content_box(state)) {
+    *box = *content;
+    return true;
+  }
+  if (!state.grid.has_grid()) return false;
+  *box = state.grid.bounds();
+  return true;
+}
+
+void apply_click(ViewerState& state, CommandSink& sink, Vec2 screen, int button) {
+  const ClickAction action = button == 0 ? state.left_click : state.right_click;
+  const Vec2 w = state.view.screen_to_world(screen);
+  const ClickOutcome out =
+      click_outcome(action, w, state.selected_robot, state.mode_for(state.selected_robot), state.square_size,
+                    state.square_centred);
+  char where[64];
+  std::snprintf(where, sizeof where, "(%.2f, %.2f)", w.x, w.y);
+  if (out.goal) {
+    const uint64_t id = sink.send(*out.goal);
+    state.status_line =
+        std::string(id ? "goal sent to " : "goal NOT sent to ") + state.selected_robot + " at " + where;
+  }
+  if (out.edit) {
+    const uint64_t id = sink.send(*out.edit);
+    state.status_line = std::string(id ? "" : "NOT sent: ") + click_action_name(action) + " at " + where;
+  }
+}
+
+void MapInput::handle(ViewerState& state, CommandSink& sink) {
+  ImGuiIO& io = ImGui::GetIO();
+  const Vec2 mouse{io.MousePos.x, io.MousePos.y};
+  const bool over_map = inside(state.view.viewport(), mouse) && !io.WantCaptureMouse;
+
+  if (drag_button_ < 0 && over_map) {
+    for (int b : {1, 2})
+      if (ImGui::IsMouseClicked(b)) {
+        drag_button_ = b;
+        press_ = last_ = mouse;
+        dragged_ = false;
+      }
+    if (ImGui::IsMouseClicked(0)) apply_click(state, sink, mouse, 0);
+    if (io.MouseWheel != 0.0f) {
+      if (io.KeyShift) {
+        state.view.rotate_about(mouse, io.MouseWheel * kRotateStep);
+      } else {
+        state.view.zoom_about(mouse, std::pow(1.2, static_cast<double>(io.MouseWheel)));
+      }
+      state.view_touched = true;
+    }
+  }
+  if (drag_button_ >= 0) {
+    if (std::hypot(mouse.x - press_.x, mouse.y - press_.y) > kClickSlopPx) dragged_ = true;
+    if (dragged_ && (mouse.x != last_.x || mouse.y != last_.y)) {
+      state.view.pan_pixels(last_, mouse);
+      state.view_touched = true;
+    }
+    last_ = mouse;
+    if (!ImGui::IsMouseDown(drag_button_)) {
+      if (!dragged_ && drag_button_ == 1) apply_click(state, sink, press_, 1);
+      drag_button_ = -1;
+    }
+  }
+  if (!io.WantCaptureKeyboard) {
+    const Viewport& vp = state.view.viewport();
+    const Vec2 centre{vp.x + vp.width / 2.0, vp.y + vp.height / 2.0};
+    if (ImGui::IsKeyPressed(GLFW_KEY_Q)) state.view.rotate_about(centre, kRotateStep);
+    if (ImGui::IsKeyPressed(GLFW_KEY_E)) state.view.rotate_about(centre, -kRotateStep);
+    if (ImGui::IsKeyPressed(GLFW_KEY_V)) state.view.set_flip_y(!state.view.flip_y());
+    WorldBox box;
+    if (ImGui::IsKeyPressed(GLFW_KEY_F) && fit_box(state, &box)) state.view.fit(box);
+    if (ImGui::IsKeyPressed(GLFW_KEY_Q) || ImGui::IsKeyPressed(GLFW_KEY_E) ||
+        ImGui::IsKeyPressed(GLFW_KEY_V) || ImGui::IsKeyPressed(GLFW_KEY_F))
+      state.view_touched = true;
+  }
+}
+
+}  // namespace slam::viewer

@@ -1,0 +1,33 @@
+#pragma once
+// Mouse and keys over the map: pan (middle or right drag), zoom about the cursor (wheel), rotate
+// (Shift+wheel, or Q/E), flip (V), fit (F), and clicks that send what the Clicks tab chose.
+// Synthetic clicks from --click go through apply_click() exactly like real ones.
+#include <optional>
+
+#include "viewer/core/commands.hpp"
+#include "viewer/ui/viewer_state.hpp"
+
+namespace slam::viewer {
+
+// What there is to see: the mapped (free or occupied) cells, every robot and point, and the
+// simulated world's walls when they are shown; nothing before any of them arrived.
+std::optional<WorldBox> content_box(const ViewerState& state);
+// The box Fit (button or F) shows: the content, else the grid's extent; false when there is nothing.
+bool fit_box(const ViewerState& state, WorldBox* box);
+
+// Sends the command a click with `button` (0 left, 1 right) at window point `screen` asks for.
+void apply_click(ViewerState& state, CommandSink& sink, Vec2 screen, int button);
+
+class MapInput {
+ public:
+  // Call once per frame after ImGui::NewFrame(), before the panels consume input.
+  void handle(ViewerState& state, CommandSink& sink);
+
+ private:
+  int drag_button_ = -1;  // 1 right, 2 middle; -1 none
+  Vec2 press_{};
+  Vec2 last_{};
+  bool dragged_ = false;
+};
+
+}  // namespace slam::viewer

@@ -1,0 +1,129 @@
+// Robots tab: the default goal mode for every robot, and per robot its display settings, its own
+// goal, a reset of its observations, and its counters.
+#include <imgui.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include "viewer/ui/panels.hpp"
+
+namespace slam::viewer {
+namespace {
+
+constexpr const char* kModes[] = {"idle", "direct", "planned", "square", "explore", "home", "stop"};
+
+bool mode_combo(const char* label, GoalMode* mode) {
+  int m = static_cast<int>(*mode);
+  if (!ImGui::Combo(label, &m, kModes, IM_ARRAYSIZE(kModes))) return false;
+  *mode = static_cast<GoalMode>(m);
+  return true;
+}
+
+std::string sent(uint64_t id, const std::string& what) {
+  return (id ? "" : "NOT sent: ") + what;
+}
+
+void robot_details(ViewerState& state, CommandSink& sink, RobotView& r) {
+  RobotSettings& s = r.settings;
+  ImGui::ColorEdit4("colour", &s.color.r, ImGuiColorEditFlags_NoInputs | ImGuiColorEditFlags_AlphaBar);
+  ImGui::SameLine();
+  ImGui::Checkbox("visible", &s.visible);
+  ImGui::SameLine();
+  ImGui::Checkbox("path", &s.show_path);
+  ImGui::SliderFloat("point radius px", &s.point_radius_px, 0.5f, 8.0f, "%.1f");
+  ImGui::SliderFloat("size m", &s.size_m, 0.05f, 2.0f, "%.2f");
+  int last_n = static_cast<int>(s.last_n);
+  if (ImGui::InputInt("last N points (0 all)", &last_n, 100, 1000))
+    s.last_n = static_cast<uint32_t>(std::max(0, last_n));
+
+  ImGui::SetNextItemWidth(ImGui::GetContentRegionAvail().x * 0.45f);  // room for the buttons beside it
+  mode_combo("mode", &s.mode);
+  ImGui::SameLine();
+  if (ImGui::SmallButton("send")) {
+    const Vec2 target = r.has_path ? r.path.target : Vec2{r.state.pose.x, r.state.pose.y};
+    state.status_line =
+        sent(sink.send(GoalCommand{r.id, s.mode, target, state.square_size, state.square_centred}),
+             std::string(goal_mode_name(s.mode)) + " goal for " + r.id);
+  }
+  ImGui::SameLine();
+  if (ImGui::SmallButton("select")) state.selected_robot = r.id;
+  if (ImGui::Button("reset robot (delete its observations)")) {
+    const uint64_t id = sink.send(MapEditCommand{MapEditKind::ResetRobot, {}, r.id});
+    if (id) r.points.reset();
+    state.status_line = sent(id, "reset of " + r.id);
+  }
+
+  if (r.has_state) {
+    const RobotStateData& st = r.state;
+    ImGui::Text("%s %s  pose (%.2f, %.2f, %.0f deg)%s", st.protocol_v2 ? "v2" : "v1",
+                st.online ? "online" : "OFFLINE", st.pose.x, st.pose.y, st.pose.theta * 180.0 / M_PI,
+                st.has_heading ? "" : " no heading");
+    ImGui::Text("messages %llu  points %llu  rejected %llu", static_cast<unsigned long long>(st.messages),
+                static_cast<unsigned long long>(st.points), static_cast<unsigned long long>(st.rejected));
+    if (st.battery >= 0.0f) ImGui::Text("battery %.0f %%  status %s", st.battery * 100.0f, st.status.c_str());
+  }
+  ImGui::Text("here: %llu observations, %zu points stored, %llu dropped",
+              static_cast<unsigned long long>(r.observations), r.points.size(),
+              static_cast<unsigned long long>(r.points.dropped()));
+  if (r.has_path)
+    ImGui::Text("goal %s %s, waypoint %u/%zu %s", goal_mode_name(r.path.mode),
+                goal_status_name(r.path.status), r.path.current, r.path.waypoints.size(),
+                r.path.reason.c_str());
+}
+
+}  // namespace
+
+void RobotsPanel::draw(ViewerState& state, CommandSink& sink) {
+  section_title("Every robot");
+  RobotSettings& d = state.robots.defaults();
+  ImGui::SetNextItemWidth(ImGui::GetContentRegionAvail().x * 0.45f);  // room for the button beside it
+  mode_combo("default mode", &d.mode);
+  ImGui::SameLine();
+  if (ImGui::Button("send to all")) {
+    state.status_line = sent(sink.send(GoalCommand{"*", d.mode, {}, state.square_size, state.square_centred}),
+                             std::string(goal_mode_name(d.mode)) + " goal for every robot");
+  }
+  ImGui::SliderFloat("default point radius", &d.point_radius_px, 0.5f, 8.0f, "%.1f");
+  ImGui::SliderFloat("default size m", &d.size_m, 0.05f, 2.0f, "%.2f");
+  ImGui::SliderFloat("default alpha", &d.color.a, 0.05f, 1.0f, "%.2f");
+  int last_n = static_cast<int>(d.last_n);
+  if (ImGui::InputInt("default last N", &last_n, 100, 1000))
+    d.last_n = static_cast<uint32_t>(std::max(0, last_n));
+  if (ImGui::Button("apply defaults to every robot")) state.robots.apply_defaults_to_all();
+  robot_selector(state, "goals go to");
+
+  section_title("Robots");
+  ImGui::SetNextItemWidth(-1.0f);
+  ImGui::InputTextWithHint("##robot-filter", "filter by id...", robot_filter, sizeof robot_filter);
+  if (state.robots.size() == 0) ImGui::TextDisabled("no robot seen yet");
+  for (size_t i = 0; i < state.robots.size(); ++i) {
+    RobotView& r = state.robots.at(i);
+    if (robot_filter[0] != '\0' && r.id.find(robot_filter) == std::string::npos) continue;
+    ImGui::PushID(r.id.c_str());
+    ImGui::ColorButton("##c", ImVec4(r.settings.color.r, r.settings.color.g, r.settings.color.b, 1.0f),
+                       ImGuiColorEditFlags_NoTooltip, ImVec2(14, 14));
+    ImGui::SameLine();
+    if (ImGui::TreeNode("robot", "%s  %s  %zu pts", r.id.c_str(),
+                        r.has_state && r.state.online ? "online" : "offline", r.points.size())) {
+      robot_details(state, sink, r);
+      ImGui::TreePop();
+    }
+    ImGui::PopID();
+  }
+}
+
+void robot_selector(ViewerState& state, const char* label) {
+  const char* shown = state.selected_robot == "*" ? "every robot" : state.selected_robot.c_str();
+  if (ImGui::BeginCombo(label, shown)) {
+    if (ImGui::Selectable("every robot", state.selected_robot == "*"))
+      state.selected_robot.assign(1, '*');  // not = "*": GCC 12 -Wrestrict false positive
+    for (size_t i = 0; i < state.robots.size(); ++i) {
+      const std::string& id = state.robots.at(i).id;
+      if (ImGui::Selectable(id.c_str(), state.selected_robot == id)) state.selected_robot = id;
+    }
+    ImGui::EndCombo();
+  }
+}
+
+}  // namespace slam::viewer

@@ -1,0 +1,70 @@
+// Feeding the render thread's state from a drained intake batch (see viewer_state.hpp).
+#include "viewer/ui/viewer_state.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <utility>
+
+namespace slam::viewer {
+
+void MessageRates::tick(int64_t now_ns) {
+  observations.tick(now_ns);
+  points.tick(now_ns);
+  patches.tick(now_ns);
+  mqtt_in.tick(now_ns);
+  mqtt_out.tick(now_ns);
+}
+
+void ViewerState::ingest(IntakeBatch& batch, int64_t now_ns) {
+  if (batch.snapshot) {
+    if (Status s = grid.apply_snapshot(std::move(*batch.snapshot)); !s) {
+      grid_error = s.message();
+      spdlog::warn("ignoring grid snapshot: {}", s.message());
+    } else {
+      grid_error.clear();
+      ++snapshots;
+    }
+  }
+  for (const auto& p : batch.patches) {
+    const PatchResult r = grid.apply_patch(p);
+    if (r == PatchResult::Applied) {
+      rates.patches.add();
+    } else if (r != PatchResult::Stale) {
+      ++patches_dropped;
+    }
+  }
+  for (const auto& o : batch.observations) {
+    robots.ingest(o);
+    rates.observations.add();
+    rates.points.add(o.hits_xy.size() / 2);
+  }
+  for (auto& s : batch.states) robots.ingest(std::move(s));
+  for (auto& p : batch.paths) robots.ingest(std::move(p));
+  for (auto& h : batch.heartbeats) services.update(std::move(h), now_ns);
+  for (auto& e : batch.mqtt) {
+    (e.inbound ? rates.mqtt_in : rates.mqtt_out).add();
+    mqtt.push(std::move(e));
+  }
+  mqtt_dropped += batch.mqtt_dropped;
+  if (batch.subscriptions) {
+    subscriptions = std::move(*batch.subscriptions);
+    have_subscriptions = true;
+  }
+  if (batch.world) world = std::move(batch.world);
+  if (batch.truth) truth = std::move(batch.truth);
+  for (auto& r : batch.replies) {
+    status_line =
+        "request " + std::to_string(r.request_id) + (r.result == 0 ? ": ok " : ": failed ") + r.message;
+    replies.push_front(std::move(r));
+    if (replies.size() > 16) replies.pop_back();
+  }
+  rates.tick(now_ns);
+}
+
+GoalMode ViewerState::mode_for(const std::string& robot_id) {
+  if (robot_id != "*")
+    if (RobotView* r = robots.find(robot_id)) return r->settings.mode;
+  return robots.defaults().mode;
+}
+
+}  // namespace slam::viewer

@@ -1,0 +1,81 @@
+#pragma once
+// Everything the render thread owns, in one struct (no function statics, no globals): the data
+// drained from the intake each frame, the view, and the operator's local choices. Panels read
+// and edit it; only ingest() feeds it from the intake.
+#include <cstdint>
+#include <deque>
+#include <optional>
+#include <string>
+
+#include "viewer/core/cell_colors.hpp"
+#include "viewer/core/click_actions.hpp"
+#include "viewer/core/grid_mirror.hpp"
+#include "viewer/core/intake.hpp"
+#include "viewer/core/mqtt_log.hpp"
+#include "viewer/core/rate_meter.hpp"
+#include "viewer/core/robot_registry.hpp"
+#include "viewer/core/service_health.hpp"
+
+namespace slam::viewer {
+
+struct MessageRates {
+  RateMeter observations;
+  RateMeter points;
+  RateMeter patches;
+  RateMeter mqtt_in;
+  RateMeter mqtt_out;
+  void tick(int64_t now_ns);
+};
+
+struct ViewerState {
+  explicit ViewerState(size_t max_points_per_robot) : robots(max_points_per_robot) {}
+
+  // Data from other services.
+  GridMirror grid;
+  RobotRegistry robots;
+  MqttLog mqtt;
+  MqttSubscriptionsData subscriptions;
+  bool have_subscriptions = false;
+  ServiceHealth services;
+  MessageRates rates;
+  std::optional<SimWorldData> world;
+  std::optional<SimTruthData> truth;
+  std::deque<MapReplyData> replies;  // newest first, a few kept
+  uint64_t snapshots = 0;
+  uint64_t patches_dropped = 0;
+  uint64_t mqtt_dropped = 0;
+  std::string grid_error;
+
+  // View and display choices.
+  ViewTransform view;
+  bool view_touched = false;  // the operator moved the view: stop fitting automatically
+  GridColors grid_colors;
+  bool show_grid = true;
+  bool show_points = true;
+  bool show_robots = true;
+  bool show_paths = true;
+  bool show_truth = true;
+  bool show_world = true;
+  bool show_names = true;
+
+  // Operator choices that shape commands.
+  ClickAction left_click = ClickAction::SetTarget;
+  ClickAction right_click = ClickAction::Obstruct;
+  std::string selected_robot = "*";  // goals and manual drive go here; "*" = every robot
+  double square_size = 1.0;
+  bool square_centred = false;
+
+  // Process info.
+  int64_t started_ns = 0;  // monotonic
+  uint64_t frames = 0;
+  double frame_ms = 0.0;
+  std::string renderer;
+  std::string status_line;  // last command result shown under the tabs
+
+  // Moves one drained batch into the state (the only writer of received data).
+  void ingest(IntakeBatch& batch, int64_t now_ns);
+  // The goal mode for `robot_id` ("*": the default mode).
+  GoalMode mode_for(const std::string& robot_id);
+};
+
+}  // namespace slam::viewer
