@@ -1,5 +1,7 @@
 #pragma once
 // Errors as values at boundaries: Status (ok or a message) and Result<T> (a value or a message).
+// Propagating a failure is one line: `SLAM_TRY(call());` when the value is not needed, else
+// `if (!r) return r.error();`.
 #include <string>
 #include <utility>
 #include <variant>
@@ -19,6 +21,8 @@ class [[nodiscard]] Status {
   bool is_ok() const { return !failed_; }
   explicit operator bool() const { return !failed_; }
   const std::string& message() const { return error_; }
+  // The failure as an Error, to return from a function that returns Status or Result<U>.
+  Error error() const { return Error{error_}; }
 
  private:
   std::string error_;
@@ -41,9 +45,19 @@ class [[nodiscard]] Result {
   const T* operator->() const { return &value(); }
   const std::string& message() const { return std::get<1>(v_).message; }
   Status status() const { return is_ok() ? Status{} : Status{std::get<1>(v_)}; }
+  // The failure as an Error, to return from a function that returns Status or Result<U>.
+  Error error() const { return std::get<1>(v_); }
 
  private:
   std::variant<T, Error> v_;
 };
 
 }  // namespace slam
+
+// Evaluates `expr` (a Status or Result) and returns its failure from the enclosing function, which
+// returns Status or any Result<U>.
+#define SLAM_TRY(expr)                                                    \
+  do {                                                                    \
+    if (auto slam_try_outcome_ = (expr); !slam_try_outcome_)              \
+      return ::slam::Error{std::move(slam_try_outcome_).error().message}; \
+  } while (0)
