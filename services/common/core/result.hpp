@@ -56,8 +56,7 @@ class [[nodiscard]] Result {
 
 // Evaluates `expr` (a Status or Result) and returns its failure from the enclosing function, which
 // returns Status or any Result<U>.
-#define SLAM_TRY(expr)                                                    \
-  do {                                                                    \
-    if (auto slam_try_outcome_ = (expr); !slam_try_outcome_)              \
-      return ::slam::Error{std::move(slam_try_outcome_).error().message}; \
+#define SLAM_TRY(expr)                                                                         \
+  do {                                                                                         \
+    if (auto slam_try_outcome_ = (expr); !slam_try_outcome_) return slam_try_outcome_.error(); \
   } while (0)

@@ -5,8 +5,12 @@
 namespace slam {
 namespace {
 
-Status fails(const char* why) { return Error{why}; }
-Status succeeds() { return {}; }
+Status fails(const char* why) {
+  return Error{why};
+}
+Status succeeds() {
+  return {};
+}
 Result<int> number(bool ok) {
   if (!ok) return Error{"no number"};
   return 7;
