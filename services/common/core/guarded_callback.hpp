@@ -28,8 +28,8 @@ inline void log_callback_failure(const char* where, const char* what) noexcept {
 // Runs `fn()` and returns its result; when it throws, logs "<where> callback failed: ..." and
 // returns `safe` instead.
 template <class F, class R = std::invoke_result_t<F&>>
-  requires(!std::is_void_v<R>)
-R guarded_callback(const char* where, R safe, F&& fn) noexcept {
+requires(!std::is_void_v<R>) R guarded_callback(const char* where, R safe, F&& fn)
+noexcept {
   try {
     return fn();
   } catch (const std::exception& e) {
@@ -42,7 +42,7 @@ R guarded_callback(const char* where, R safe, F&& fn) noexcept {
 
 // Runs `fn()`; when it throws, logs "<where> callback failed: ..." and returns normally.
 template <class F>
-  requires std::is_void_v<std::invoke_result_t<F&>>
+requires std::is_void_v<std::invoke_result_t<F&>>
 void guarded_callback(const char* where, F&& fn) noexcept {
   try {
     fn();

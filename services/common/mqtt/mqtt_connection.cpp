@@ -106,8 +106,12 @@ struct Connection::Paho {
   static void disconnect_done(void* context) {
     static_cast<Connection*>(context)->disconnect_done_.store(true, std::memory_order_release);
   }
-  static void disconnect_success(void* context, MQTTAsync_successData* /*response*/) { disconnect_done(context); }
-  static void disconnect_failure(void* context, MQTTAsync_failureData* /*response*/) { disconnect_done(context); }
+  static void disconnect_success(void* context, MQTTAsync_successData* /*response*/) {
+    disconnect_done(context);
+  }
+  static void disconnect_failure(void* context, MQTTAsync_failureData* /*response*/) {
+    disconnect_done(context);
+  }
 
   static void request_success(void* context, MQTTAsync_successData* response) {
     auto* request = static_cast<Request*>(context);
@@ -130,7 +134,8 @@ struct Connection::Paho {
     auto* request = static_cast<Request*>(context);
     guarded_callback("MQTT subscribe", [&] {
       request->connection->finish_request(request, std::vector<bool>(request->filters.size(), true),
-                                          response ? response->code : -1, response ? response->message : nullptr);
+                                          response ? response->code : -1,
+                                          response ? response->message : nullptr);
     });
   }
 };
@@ -163,7 +168,8 @@ Status Connection::open() {
   int rc = MQTTAsync_createWithOptions(&handle, options_.broker.c_str(), options_.client_id.c_str(),
                                        MQTTCLIENT_PERSISTENCE_NONE, nullptr, &create);
   if (rc != MQTTASYNC_SUCCESS) {
-    return Error{"MQTT client '" + options_.client_id + "' for " + options_.broker + ": " + MQTTAsync_strerror(rc)};
+    return Error{"MQTT client '" + options_.client_id + "' for " + options_.broker + ": " +
+                 MQTTAsync_strerror(rc)};
   }
   handle_ = handle;
   rc = MQTTAsync_setCallbacks(handle_, this, &Paho::connection_lost, &Paho::message_arrived,
@@ -273,8 +279,9 @@ void Connection::schedule_retry(const std::string& why, bool lost) {
     }
   } else if (first) {
     if (log_limiter().allow("connect", &suppressed)) {
-      spdlog::warn("MQTT '{}' cannot connect to {}: {}; retrying with backoff up to {} s{}", options_.client_id,
-                   options_.broker, why, options_.reconnect_max_s, suppressed_suffix(suppressed));
+      spdlog::warn("MQTT '{}' cannot connect to {}: {}; retrying with backoff up to {} s{}",
+                   options_.client_id, options_.broker, why, options_.reconnect_max_s,
+                   suppressed_suffix(suppressed));
     }
   } else {
     spdlog::debug("MQTT connect of '{}' to {} failed again: {}; next attempt in {} ms", options_.client_id,
@@ -333,7 +340,8 @@ Status Connection::subscribe(const std::string& filter, int qos) {
   bool now = false;
   {
     std::lock_guard lock(mutex_);
-    auto it = std::find_if(filters_.begin(), filters_.end(), [&](const Filter& f) { return f.filter == filter; });
+    auto it =
+        std::find_if(filters_.begin(), filters_.end(), [&](const Filter& f) { return f.filter == filter; });
     if (it != filters_.end()) {
       it->qos = qos;
     } else {
@@ -350,7 +358,8 @@ Status Connection::unsubscribe(const std::string& filter) {
   bool now = false;
   {
     std::lock_guard lock(mutex_);
-    auto it = std::find_if(filters_.begin(), filters_.end(), [&](const Filter& f) { return f.filter == filter; });
+    auto it =
+        std::find_if(filters_.begin(), filters_.end(), [&](const Filter& f) { return f.filter == filter; });
     if (it == filters_.end()) return Error{"not subscribed to '" + filter + "'"};
     filters_.erase(it);
     now = link_ == Link::Connected;
@@ -408,8 +417,9 @@ void Connection::finish_request(Request* request, const std::vector<bool>& refus
   }
   std::uint64_t suppressed = 0;
   if (!accepted_filters.empty() && log_limiter().allow("subscribed", &suppressed)) {
-    spdlog::info("MQTT '{}' {} {}{}", options_.client_id, request->subscribe ? "subscribed to" : "unsubscribed from",
-                 quoted_list(accepted_filters), suppressed_suffix(suppressed));
+    spdlog::info("MQTT '{}' {} {}{}", options_.client_id,
+                 request->subscribe ? "subscribed to" : "unsubscribed from", quoted_list(accepted_filters),
+                 suppressed_suffix(suppressed));
   }
   if (!refused_filters.empty() && log_limiter().allow("refused", &suppressed)) {
     spdlog::warn("MQTT broker refused '{}' to {} {}: {} (code {}){}", options_.client_id,

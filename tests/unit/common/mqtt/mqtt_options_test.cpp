@@ -28,7 +28,8 @@ TEST(MqttConnectionOptions, NamesTheBadSetting) {
   EXPECT_NE(error_with([](auto& o) { o.persistent_session = true; }).find("client-id"), std::string::npos);
   EXPECT_NE(error_with([](auto& o) { o.password = "secret"; }).find("username"), std::string::npos);
   EXPECT_NE(error_with([](auto& o) { o.keepalive_s = 0; }).find("keepalive-s"), std::string::npos);
-  EXPECT_NE(error_with([](auto& o) { o.connect_timeout_s = 0; }).find("connect-timeout-s"), std::string::npos);
+  EXPECT_NE(error_with([](auto& o) { o.connect_timeout_s = 0; }).find("connect-timeout-s"),
+            std::string::npos);
   EXPECT_NE(error_with([](auto& o) { o.reconnect_min_s = 0.0; }).find("reconnect-min-s"), std::string::npos);
   EXPECT_NE(error_with([](auto& o) { o.reconnect_max_s = 0.1; }).find("reconnect-max-s"), std::string::npos);
   EXPECT_NE(error_with([](auto& o) { o.subscriptions.emplace_back(); }).find("subscribe"), std::string::npos);
