@@ -1,5 +1,7 @@
 // slam::mqtt::Connection against a real mosquitto: connect, subscribe, publish round trip, and
 // reconnection with re-subscription after the broker restarts.
+#include "common/mqtt/mqtt_connection.hpp"
+
 #include <gtest/gtest.h>
 
 #include <atomic>
@@ -8,7 +10,6 @@
 #include <thread>
 #include <vector>
 
-#include "common/mqtt/mqtt_connection.hpp"
 #include "process_group.hpp"
 
 namespace slam::mqtt {
@@ -101,8 +102,8 @@ TEST(MqttConnection, PublishesAndReceivesThroughTheBroker) {
   const int port = group.start_mosquitto();
   Peer receiver(port, "receiver", {"test/+/in"});
   Peer sender(port, "sender", {});
-  ASSERT_TRUE(wait_until([&] { return receiver.connection().connected() && sender.connection().connected(); },
-                         10s));
+  ASSERT_TRUE(
+      wait_until([&] { return receiver.connection().connected() && sender.connection().connected(); }, 10s));
   EXPECT_EQ(receiver.connection().filters(), std::vector<std::string>{"test/+/in"});
   EXPECT_TRUE(round_trip(sender, receiver, "test/a/in", "hello"));
 
@@ -120,8 +121,8 @@ TEST(MqttConnection, ReconnectsAndSubscribesAgainAfterTheBrokerRestarts) {
   Peer receiver(port, "receiver", {"test/+/in"});
   ASSERT_TRUE(receiver.connection().subscribe("added/#", 1));
   Peer sender(port, "sender", {});
-  ASSERT_TRUE(wait_until([&] { return receiver.connection().connected() && sender.connection().connected(); },
-                         10s));
+  ASSERT_TRUE(
+      wait_until([&] { return receiver.connection().connected() && sender.connection().connected(); }, 10s));
   ASSERT_TRUE(round_trip(sender, receiver, "test/a/in", "before"));
 
   group.stop("mosquitto");
@@ -129,8 +130,8 @@ TEST(MqttConnection, ReconnectsAndSubscribesAgainAfterTheBrokerRestarts) {
   EXPECT_FALSE(sender.connection().publish("test/a/in", bytes("lost"), 0, false));
   group.restart_mosquitto("mosquitto", port);
 
-  ASSERT_TRUE(wait_until([&] { return receiver.connection().connected() && sender.connection().connected(); },
-                         15s))
+  ASSERT_TRUE(
+      wait_until([&] { return receiver.connection().connected() && sender.connection().connected(); }, 15s))
       << group.log("mosquitto");
   EXPECT_GE(receiver.connection().reconnects(), 1u);
   EXPECT_GE(receiver.reconnect_callbacks(), 1);
