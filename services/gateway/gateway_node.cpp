@@ -80,12 +80,14 @@ Status GatewayNode::configure() {
   if (!traffic) return Error{traffic.message()};
   traffic_publisher_ = std::move(*traffic);
 
-  const std::string client_id =
-      options_.mqtt.client_id.empty() ? default_client_id() : options_.mqtt.client_id;
-  auto mqtt = MqttClient::create(options_.mqtt, client_id,
-                                 [this](std::string_view topic, std::span<const std::uint8_t> payload) {
-                                   on_mqtt_message(topic, payload);
-                                 });
+  mqtt::ConnectionOptions connection = options_.mqtt;
+  if (connection.client_id.empty()) connection.client_id = default_client_id();
+  const std::string client_id = connection.client_id;
+  mqtt::Callbacks callbacks;
+  callbacks.message = [this](std::string_view topic, std::span<const std::uint8_t> payload) {
+    on_mqtt_message(topic, payload);
+  };
+  auto mqtt = mqtt::Connection::create(std::move(connection), std::move(callbacks));
   if (!mqtt) return Error{mqtt.message()};
   mqtt_ = std::move(*mqtt);
 
@@ -112,7 +114,8 @@ void GatewayNode::run_once() {
   went_offline_.clear();
   {
     std::unique_lock lock(registry_mutex_);
-    loop_wake_.wait_for(lock, period_, [&] { return urgent_; });
+    const auto wake = std::min(std::chrono::steady_clock::now() + period_, mqtt_->next_attempt());
+    loop_wake_.wait_until(lock, wake, [&] { return urgent_; });
     urgent_ = false;
     now = {now_ns(), monotonic_ns()};
     registry_.expire(now, [&](const RobotRecord& r) { went_offline_.push_back(r.id); });
@@ -123,6 +126,7 @@ void GatewayNode::run_once() {
     spdlog::info("robot '{}' offline: silent for {} s", protocol::escape_for_log(id),
                  options_.offline_after_s);
   }
+  mqtt_->poll(std::chrono::steady_clock::now());
   publish_states();
   metrics_.robots_online.store(static_cast<int64_t>(online), std::memory_order_relaxed);
   metrics_.reconnects.store(static_cast<int64_t>(mqtt_->reconnects()), std::memory_order_relaxed);

@@ -19,10 +19,10 @@
 #include "common/core/log.hpp"
 #include "common/core/result.hpp"
 #include "common/fastdds/fast_topics.hpp"
+#include "common/mqtt/mqtt_connection.hpp"
 #include "gateway/command_encoder.hpp"
 #include "gateway/gateway_options.hpp"
 #include "gateway/inbound_decoder.hpp"
-#include "gateway/mqtt_client.hpp"
 #include "gateway/robot_registry.hpp"
 #include "gateway/traffic_publisher.hpp"
 #include "gateway/traffic_queue.hpp"
@@ -40,8 +40,9 @@ class GatewayNode {
 
   dds::Participant& participant() { return *participant_; }
 
-  // One loop pass: waits up to the state period (less when a robot appears or changes presence),
-  // marks silent robots offline, publishes changed RobotStates and, when changed, MqttSubscriptions.
+  // One loop pass: waits up to the state period (less when a robot appears or changes presence, or
+  // an MQTT reconnection attempt is due), starts a due attempt, marks silent robots offline, publishes
+  // changed RobotStates and, when changed, MqttSubscriptions.
   void run_once();
 
  private:
@@ -122,7 +123,7 @@ class GatewayNode {
   std::unique_ptr<dds::Writer<slam::RobotState>> state_writer_;
   std::unique_ptr<dds::Writer<slam::MqttSubscriptions>> subscriptions_writer_;
   std::unique_ptr<TrafficPublisher> traffic_publisher_;
-  std::unique_ptr<MqttClient> mqtt_;
+  std::unique_ptr<mqtt::Connection> mqtt_;
   std::unique_ptr<dds::Reader<slam::WaypointCommand>> waypoint_reader_;
   std::unique_ptr<dds::Reader<slam::MqttRequest>> request_reader_;
 };

@@ -2,24 +2,12 @@
 #include "gateway/gateway_options.hpp"
 
 #include <cmath>
-#include <fstream>
 
 #include "gateway/topic_filter.hpp"
 
 namespace slam::gateway {
 
 namespace {
-
-bool starts_with(const std::string& s, const char* prefix) {
-  return s.rfind(prefix, 0) == 0;
-}
-
-Status readable(const char* key, const std::string& path) {
-  if (path.empty()) return Status::ok();
-  std::ifstream f(path);
-  if (!f) return Error{std::string(key) + ": cannot read '" + path + "'"};
-  return Status::ok();
-}
 
 Status seconds(const char* key, double value, double min, double max) {
   if (!std::isfinite(value) || value < min || value > max) {
@@ -30,10 +18,6 @@ Status seconds(const char* key, double value, double min, double max) {
 }
 
 }  // namespace
-
-bool uses_tls(const std::string& broker) {
-  return starts_with(broker, "ssl://") || starts_with(broker, "mqtts://");
-}
 
 void add_gateway_options(CLI::App& app, GatewayOptions& o) {
   add_service_options(app, o.service);
@@ -88,30 +72,7 @@ void add_gateway_options(CLI::App& app, GatewayOptions& o) {
 
 Status validate(const GatewayOptions& o) {
   const MqttOptions& m = o.mqtt;
-  const bool tls = uses_tls(m.broker);
-  const bool known_scheme = tls || starts_with(m.broker, "tcp://") || starts_with(m.broker, "mqtt://");
-  if (!known_scheme || m.broker.find("://") + 3 >= m.broker.size()) {
-    return Error{"broker '" + m.broker + "' must look like tcp://host:port, mqtt://, ssl:// or mqtts://"};
-  }
-  if (m.qos < 0 || m.qos > 2) return Error{"qos must be 0, 1 or 2, not " + std::to_string(m.qos)};
-  if (m.persistent_session && m.client_id.empty()) {
-    return Error{"persistent-session needs a fixed client-id (the broker keeps the session under that id)"};
-  }
-  if (m.client_id.size() > 65535) return Error{"client-id is longer than 65535 bytes"};
-  if (!m.password.empty() && m.username.empty()) return Error{"password is set but username is not"};
-  const bool tls_files = !m.tls_ca_file.empty() || !m.tls_cert_file.empty() || !m.tls_key_file.empty();
-  if (tls_files && !tls)
-    return Error{"tls-* files are set but broker '" + m.broker + "' is not ssl:// or mqtts://"};
-  if (!m.tls_key_file.empty() && m.tls_cert_file.empty())
-    return Error{"tls-key-file is set but tls-cert-file is not"};
-  if (auto s = readable("tls-ca-file", m.tls_ca_file); !s) return s;
-  if (auto s = readable("tls-cert-file", m.tls_cert_file); !s) return s;
-  if (auto s = readable("tls-key-file", m.tls_key_file); !s) return s;
-  if (m.keepalive_s < 1 || m.keepalive_s > 3600) return Error{"keepalive-s must be between 1 and 3600"};
-  if (m.connect_timeout_s < 1 || m.connect_timeout_s > 300)
-    return Error{"connect-timeout-s must be between 1 and 300"};
-  if (auto s = seconds("reconnect-min-s", m.reconnect_min_s, 0.01, 60.0); !s) return s;
-  if (auto s = seconds("reconnect-max-s", m.reconnect_max_s, m.reconnect_min_s, 3600.0); !s) return s;
+  if (auto s = mqtt::validate(m); !s) return s;
   for (const std::string& filter : m.subscriptions) {
     if (auto s = validate_filter(filter); !s) return Error{"subscribe: " + s.message()};
   }

@@ -10,30 +10,24 @@
 
 #include "common/core/result.hpp"
 #include "common/core/service_options.hpp"
+#include "common/mqtt/mqtt_options.hpp"
 #include "protocol/codec_types.hpp"
 
 namespace slam::gateway {
 
-struct MqttOptions {
-  std::string broker = "tcp://127.0.0.1:1883";  // tcp://, mqtt://, ssl:// or mqtts://
-  std::string client_id;                        // empty: slam-gateway-<host>-<pid>
-  int qos = 1;                                  // subscriptions and commands
-  bool persistent_session = false;              // false: clean session, re-subscribe on reconnect
-  std::string username;
-  std::string password;
-  std::string tls_ca_file;    // PEM trust store; TLS when the broker URL is ssl:// or mqtts://
-  std::string tls_cert_file;  // PEM client certificate chain (mutual TLS)
-  std::string tls_key_file;   // PEM private key when not inside tls_cert_file
-  int keepalive_s = 20;
-  int connect_timeout_s = 5;
-  double reconnect_min_s = 0.25;
-  double reconnect_max_s = 30.0;
-  std::vector<std::string> subscriptions{"v1/robot/+/adv", "v2/robot/+/+"};
-};
+// The MQTT connection's settings; client_id empty: slam-gateway-<host>-<pid>.
+using MqttOptions = mqtt::ConnectionOptions;
+
+// The common connection defaults plus the robot topics the gateway listens to.
+inline MqttOptions default_mqtt_options() {
+  MqttOptions m;
+  m.subscriptions = {"v1/robot/+/adv", "v2/robot/+/+"};
+  return m;
+}
 
 struct GatewayOptions {
   ServiceOptions service;
-  MqttOptions mqtt;
+  MqttOptions mqtt = default_mqtt_options();
   protocol::CodecLimits limits;
   double offline_after_s = 5.0;  // silence that turns a robot offline
   double state_period_s = 0.1;   // RobotState is published at most this often per robot
@@ -47,8 +41,5 @@ void add_gateway_options(CLI::App& app, GatewayOptions& options);
 
 // Ok, or the first bad key with the reason ("qos must be 0, 1 or 2, not 3").
 Status validate(const GatewayOptions& options);
-
-// True for ssl:// and mqtts:// broker URLs.
-bool uses_tls(const std::string& broker);
 
 }  // namespace slam::gateway

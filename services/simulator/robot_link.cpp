@@ -20,6 +20,12 @@ namespace {
 
 // Commands waiting for the loop; beyond this a flood is dropped (and counted) instead of growing.
 constexpr size_t kMaxPendingOrders = 65'536;
+// A robot's connection: a short keep-alive, and quick retries after a broker restart.
+constexpr int kKeepAliveS = 10;
+constexpr double kReconnectMinS = 1.0;
+constexpr double kReconnectMaxS = 4.0;
+// QoS 0 reports queue inside paho while the socket drains; this bounds that queue.
+constexpr int kMaxBufferedMessages = 100'000;
 // Ranges are sent to 0.1 mm: finer digits are noise and only lengthen every v2 scan. Dividing by
 // the exact integer gives the double nearest the decimal, which prints in its short form.
 constexpr double kRangeSteps = 1e4;  // per metre
@@ -37,8 +43,9 @@ RobotLinks::RobotLinks(Settings settings, Counters& counters)
       waypoints_received_(counters.get("waypoints_received")),
       waypoints_rejected_(counters.get("waypoints_rejected")),
       orders_dropped_(counters.get("waypoints_dropped")),
-      link_counters_{&counters.get("mqtt_connected"), &counters.get("mqtt_reconnects"),
-                     &counters.get("mqtt_connect_failures")} {}
+      mqtt_connected_(counters.get("mqtt_connected")),
+      mqtt_reconnects_(counters.get("mqtt_reconnects")),
+      mqtt_connect_failures_(counters.get("mqtt_connect_failures")) {}
 
 Result<std::unique_ptr<RobotLinks>> RobotLinks::create(Settings settings, Counters& counters) {
   std::unique_ptr<RobotLinks> links(new RobotLinks(std::move(settings), counters));
@@ -67,20 +74,35 @@ RobotLinks::~RobotLinks() {
   if (shared_link_) shared_link_->begin_disconnect();
   endpoints_.clear();
   shared_link_.reset();
+  mqtt_connected_.store(0, std::memory_order_relaxed);
 }
 
-Result<std::unique_ptr<MqttLink>> RobotLinks::open(const std::string& client_id,
-                                                   std::vector<std::string> subscriptions,
-                                                   std::optional<MqttWill> will) {
-  MqttLinkOptions options{settings_.broker, client_id, "", "", std::move(subscriptions), std::move(will)};
+Result<std::unique_ptr<mqtt::Connection>> RobotLinks::open(const std::string& client_id,
+                                                           std::vector<std::string> subscriptions,
+                                                           std::optional<mqtt::Will> will) {
+  mqtt::ConnectionOptions options;
+  options.broker = settings_.broker;
+  options.client_id = client_id;
   if (!settings_.password.empty() && !settings_.multiplex) {
     options.username = client_id;  // a robot's connection is named by its robot id
     options.password = settings_.password;
   }
-  return MqttLink::create(
-      std::move(options),
-      [this](std::string_view topic, std::span<const uint8_t> payload) { on_message(topic, payload); },
-      link_counters_);
+  options.qos = 1;
+  options.subscriptions = std::move(subscriptions);
+  options.will = std::move(will);
+  options.keepalive_s = kKeepAliveS;
+  options.reconnect_min_s = kReconnectMinS;
+  options.reconnect_max_s = kReconnectMaxS;
+  options.max_buffered_messages = kMaxBufferedMessages;
+  mqtt::Callbacks callbacks;
+  callbacks.message = [this](std::string_view topic, std::span<const uint8_t> payload) {
+    on_message(topic, payload);
+  };
+  callbacks.connected = [this](bool reconnect) {
+    if (reconnect) bump(mqtt_reconnects_);
+  };
+  callbacks.connect_failed = [this](const std::string&) { bump(mqtt_connect_failures_); };
+  return mqtt::Connection::create(std::move(options), std::move(callbacks));
 }
 
 Status RobotLinks::add(const std::string& robot_id) {
@@ -103,8 +125,8 @@ Status RobotLinks::add(const std::string& robot_id) {
       if (s) s = protocol::v2_path_topic(robot_id, subscriptions[1]);
     }
     if (!s) return Error{s.detail()};
-    std::optional<MqttWill> will;
-    if (!v1) will = MqttWill{e.status_topic, std::string(protocol::kV2OfflineStatus)};
+    std::optional<mqtt::Will> will;
+    if (!v1) will = mqtt::Will{e.status_topic, std::string(protocol::kV2OfflineStatus)};
     auto link = open(robot_id, std::move(subscriptions), std::move(will));
     if (!link) return Error{link.message()};
     e.own_link = std::move(*link);
@@ -123,7 +145,7 @@ void RobotLinks::remove(const std::string& robot_id) {
 }
 
 void RobotLinks::send(Endpoint& e, const std::string& topic, std::span<const uint8_t> payload) {
-  if (e.link->publish(topic, payload))
+  if (e.link->publish(topic, payload, 0, false))
     bump(reports_sent_);
   else
     bump(reports_dropped_);
@@ -131,8 +153,8 @@ void RobotLinks::send(Endpoint& e, const std::string& topic, std::span<const uin
 
 void RobotLinks::send_status(Endpoint& e, bool driving, double time_s) {
   const auto s = protocol::encode_v2_status({driving ? "driving" : "idle", std::nullopt}, text_);
-  if (!s) return;                                                 // constant states: cannot fail
-  if (!e.link->publish(e.status_topic, as_bytes(text_))) return;  // retried with the next report
+  if (!s) return;                                                           // constant states: cannot fail
+  if (!e.link->publish(e.status_topic, as_bytes(text_), 0, false)) return;  // retried with the next report
   e.status_connects = e.link->connects();
   e.status_time_s = time_s;
   e.driving = driving;
@@ -177,9 +199,15 @@ void RobotLinks::publish(const RobotReport& report, bool driving) {
 }
 
 void RobotLinks::poll(std::chrono::steady_clock::time_point now) {
-  if (shared_link_) shared_link_->retry_connect(now);
+  int64_t connected = 0;
+  const auto poll_one = [&](mqtt::Connection& link) {
+    link.poll(now);
+    if (link.connected()) ++connected;
+  };
+  if (shared_link_) poll_one(*shared_link_);
   for (auto& [id, e] : endpoints_)
-    if (e.own_link) e.own_link->retry_connect(now);
+    if (e.own_link) poll_one(*e.own_link);
+  mqtt_connected_.store(connected, std::memory_order_relaxed);
 }
 
 void RobotLinks::drain_orders(std::vector<WaypointOrder>& out) {

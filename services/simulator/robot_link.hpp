@@ -14,9 +14,9 @@
 #include "common/core/counters.hpp"
 #include "common/core/log.hpp"
 #include "common/core/result.hpp"
+#include "common/mqtt/mqtt_connection.hpp"
 #include "protocol/codec_types.hpp"
 #include "simulator/geometry.hpp"
-#include "simulator/mqtt_link.hpp"
 #include "simulator/report.hpp"
 #include "simulator/sim_options.hpp"
 
@@ -60,7 +60,7 @@ class RobotLinks {
   // publishes are counted, never fatal.
   void publish(const RobotReport& report, bool driving);
 
-  // Connect retries; call every loop iteration.
+  // Reconnection attempts that are due and the mqtt_connected gauge; call every loop iteration.
   void poll(std::chrono::steady_clock::time_point now);
 
   // Moves the commands received since the last call into `out` (cleared first).
@@ -70,16 +70,17 @@ class RobotLinks {
   struct Endpoint {
     std::string report_topic;
     std::string status_topic;
-    std::unique_ptr<MqttLink> own_link;  // per-robot mode
-    MqttLink* link = nullptr;
+    std::unique_ptr<mqtt::Connection> own_link;  // per-robot mode
+    mqtt::Connection* link = nullptr;
     uint64_t status_connects = 0;   // link->connects() when the last status went out
     double status_time_s = -1e300;  // simulated time of the last status
     bool driving = false;
   };
 
   RobotLinks(Settings settings, Counters& counters);
-  Result<std::unique_ptr<MqttLink>> open(const std::string& client_id, std::vector<std::string> subscriptions,
-                                         std::optional<MqttWill> will);
+  Result<std::unique_ptr<mqtt::Connection>> open(const std::string& client_id,
+                                                 std::vector<std::string> subscriptions,
+                                                 std::optional<mqtt::Will> will);
   void on_message(std::string_view topic, std::span<const uint8_t> payload);
   void reject(std::string_view robot_id, const std::string& reason, const std::string& detail);
   void send(Endpoint& e, const std::string& topic, std::span<const uint8_t> payload);
@@ -91,10 +92,12 @@ class RobotLinks {
   std::atomic<int64_t>& waypoints_received_;
   std::atomic<int64_t>& waypoints_rejected_;
   std::atomic<int64_t>& orders_dropped_;
-  MqttLinkCounters link_counters_;
+  std::atomic<int64_t>& mqtt_connected_;  // gauge, refreshed by poll()
+  std::atomic<int64_t>& mqtt_reconnects_;
+  std::atomic<int64_t>& mqtt_connect_failures_;
   RateLimiter log_limiter_;
 
-  std::unique_ptr<MqttLink> shared_link_;  // multiplexed mode
+  std::unique_ptr<mqtt::Connection> shared_link_;  // multiplexed mode
   std::unordered_map<std::string, Endpoint> endpoints_;
 
   std::mutex intake_mutex_;

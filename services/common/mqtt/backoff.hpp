@@ -5,7 +5,7 @@
 #include <chrono>
 #include <cstdint>
 
-namespace slam::gateway {
+namespace slam::mqtt {
 
 class Backoff {
  public:
@@ -25,4 +25,4 @@ class Backoff {
   std::uint32_t failures_ = 0;
 };
 
-}  // namespace slam::gateway
+}  // namespace slam::mqtt

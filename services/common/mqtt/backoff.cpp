@@ -1,9 +1,9 @@
 // Backoff: exponential with a ceiling.
-#include "gateway/backoff.hpp"
+#include "common/mqtt/backoff.hpp"
 
 #include <algorithm>
 
-namespace slam::gateway {
+namespace slam::mqtt {
 
 Backoff::Backoff(std::chrono::milliseconds initial, std::chrono::milliseconds ceiling)
     : initial_(std::max(initial, std::chrono::milliseconds(1))),
@@ -22,4 +22,4 @@ void Backoff::reset() {
   failures_ = 0;
 }
 
-}  // namespace slam::gateway
+}  // namespace slam::mqtt
