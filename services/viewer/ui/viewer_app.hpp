@@ -20,7 +20,7 @@
 #include "viewer/gl/point_layer.hpp"
 #include "viewer/ui/map_input.hpp"
 #include "viewer/ui/panels.hpp"
-#include "viewer/ui/viewer_state.hpp"
+#include "viewer/core/viewer_state.hpp"
 
 namespace slam::viewer {
 
