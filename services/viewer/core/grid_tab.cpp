@@ -43,8 +43,8 @@ void GridTab::apply(ViewerState& state, CommandSink& sink) {
 }
 
 void GridTab::clear_obstructions(ViewerState& state, CommandSink& sink) {
-  state.note_sent(sink.send(MapEditCommand{MapEditKind::ClearObstructions, {}, {}}), "clear manual obstructions",
-                  error);
+  state.note_sent(sink.send(MapEditCommand{MapEditKind::ClearObstructions, {}, {}}),
+                  "clear manual obstructions", error);
 }
 
 }  // namespace slam::viewer

@@ -31,7 +31,8 @@ Result<std::vector<uint8_t>> payload_bytes(PayloadKind kind, const std::string& 
 
 void send_tracked(ViewerState& state, CommandSink& sink, const MqttRequestCommand& c, const std::string& what,
                   std::string& error, int64_t now_ns) {
-  if (const uint64_t id = state.note_sent(sink.send(c), what, error)) state.mqtt_requests.sent(id, what, now_ns);
+  if (const uint64_t id = state.note_sent(sink.send(c), what, error))
+    state.mqtt_requests.sent(id, what, now_ns);
 }
 
 }  // namespace
@@ -80,8 +81,8 @@ void MqttTab::publish(ViewerState& state, CommandSink& sink, int64_t now_ns) {
   }
   const std::string what = "publish " + std::to_string(bytes->size()) + " octets to " + topic;
   send_tracked(state, sink,
-               MqttRequestCommand{MqttRequestKind::Publish, topic, std::move(*bytes), static_cast<uint8_t>(qos),
-                                  retain},
+               MqttRequestCommand{MqttRequestKind::Publish, topic, std::move(*bytes),
+                                  static_cast<uint8_t>(qos), retain},
                what, error, now_ns);
 }
 

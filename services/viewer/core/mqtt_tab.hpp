@@ -40,7 +40,8 @@ struct MqttTab {
   std::string error;  // the last refused input, shown in red
 
   void subscribe(ViewerState& state, CommandSink& sink, int64_t now_ns);
-  void unsubscribe(ViewerState& state, CommandSink& sink, const std::string& subscribed_filter, int64_t now_ns);
+  void unsubscribe(ViewerState& state, CommandSink& sink, const std::string& subscribed_filter,
+                   int64_t now_ns);
   void publish(ViewerState& state, CommandSink& sink, int64_t now_ns);
   static void clear_log(ViewerState& state) { state.mqtt.clear(); }
 };

@@ -30,7 +30,8 @@ void SimTab::send(ViewerState& state, CommandSink& sink, SimCommandKind kind, co
   c.dropout = dropout;
   c.odometry_drift = odometry_drift;
   c.speed_factor = speed_factor;
-  if (const uint64_t id = state.note_sent(sink.send(c), what, error)) state.sim_requests.sent(id, what, now_ns);
+  if (const uint64_t id = state.note_sent(sink.send(c), what, error))
+    state.sim_requests.sent(id, what, now_ns);
 }
 
 void SimTab::spawn(ViewerState& state, CommandSink& sink, int64_t now_ns) {
@@ -38,8 +39,8 @@ void SimTab::spawn(ViewerState& state, CommandSink& sink, int64_t now_ns) {
     error = "spawn: count must be 1.." + std::to_string(kMaxSpawn);
     return;
   }
-  send(state, sink, SimCommandKind::Spawn, "spawn " + std::to_string(count) + (count == 1 ? " robot" : " robots"),
-       now_ns);
+  send(state, sink, SimCommandKind::Spawn,
+       "spawn " + std::to_string(count) + (count == 1 ? " robot" : " robots"), now_ns);
 }
 
 void SimTab::remove(ViewerState& state, CommandSink& sink, int64_t now_ns) {
@@ -67,12 +68,14 @@ void SimTab::set_world(ViewerState& state, CommandSink& sink, int64_t now_ns) {
 }
 
 void SimTab::set_noise(ViewerState& state, CommandSink& sink, int64_t now_ns) {
-  if (!in_range(range_noise_sd, 0.0, 10.0) || !in_range(dropout, 0.0, 1.0) || !in_range(odometry_drift, 0.0, 10.0)) {
+  if (!in_range(range_noise_sd, 0.0, 10.0) || !in_range(dropout, 0.0, 1.0) ||
+      !in_range(odometry_drift, 0.0, 10.0)) {
     error = "set noise: range noise sd and odometry drift must be 0..10, dropout 0..1";
     return;
   }
   send(state, sink, SimCommandKind::SetNoise,
-       "set noise (sd " + num(range_noise_sd) + " m, dropout " + num(dropout) + ", drift " + num(odometry_drift) + ")",
+       "set noise (sd " + num(range_noise_sd) + " m, dropout " + num(dropout) + ", drift " +
+           num(odometry_drift) + ")",
        now_ns);
 }
 

@@ -33,7 +33,8 @@ struct SimTab {
   void set_speed(ViewerState& state, CommandSink& sink, int64_t now_ns);
 
  private:
-  void send(ViewerState& state, CommandSink& sink, SimCommandKind kind, const std::string& what, int64_t now_ns);
+  void send(ViewerState& state, CommandSink& sink, SimCommandKind kind, const std::string& what,
+            int64_t now_ns);
 };
 
 }  // namespace slam::viewer

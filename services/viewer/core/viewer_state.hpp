@@ -42,8 +42,8 @@ struct ViewerState {
   std::optional<SimWorldData> world;
   std::optional<SimTruthData> truth;
   std::deque<MapReplyData> replies;  // newest first, a few kept
-  RequestTracker mqtt_requests;       // the MQTT tab's last request and the gateway's reply
-  RequestTracker sim_requests;        // the Sim tab's last command and the simulator's reply
+  RequestTracker mqtt_requests;      // the MQTT tab's last request and the gateway's reply
+  RequestTracker sim_requests;       // the Sim tab's last command and the simulator's reply
   uint64_t snapshots = 0;
   uint64_t patches_dropped = 0;
   uint64_t mqtt_dropped = 0;
