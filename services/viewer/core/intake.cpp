@@ -51,6 +51,8 @@ void IntakeBatch::clear() {
   world.reset();
   truth.reset();
   replies.clear();
+  mqtt_replies.clear();
+  sim_replies.clear();
   mqtt_dropped = 0;
 }
 
@@ -122,6 +124,16 @@ void Intake::push(SimTruthData&& t) {
 void Intake::push(MapReplyData&& r) {
   std::lock_guard lock(mutex_);
   pending_.replies.push_back(std::move(r));
+}
+
+void Intake::push(MqttReplyData&& r) {
+  std::lock_guard lock(mutex_);
+  pending_.mqtt_replies.push_back(std::move(r));
+}
+
+void Intake::push(SimReplyData&& r) {
+  std::lock_guard lock(mutex_);
+  pending_.sim_replies.push_back(std::move(r));
 }
 
 void Intake::drain(IntakeBatch& out) {

@@ -24,6 +24,8 @@ struct IntakeBatch {
   std::optional<SimWorldData> world;
   std::optional<SimTruthData> truth;
   std::vector<MapReplyData> replies;
+  std::vector<MqttReplyData> mqtt_replies;
+  std::vector<SimReplyData> sim_replies;
   uint64_t mqtt_dropped = 0;  // entries dropped because the render thread fell behind
 
   void clear();
@@ -45,6 +47,8 @@ class Intake {
   void push(SimWorldData&& w);
   void push(SimTruthData&& t);
   void push(MapReplyData&& r);
+  void push(MqttReplyData&& r);
+  void push(SimReplyData&& r);
 
   // Moves everything pending into `out` (cleared first); `out`'s buffers are reused next time.
   void drain(IntakeBatch& out);

@@ -125,4 +125,13 @@ struct MapReplyData {
   std::string message;
 };
 
+// The gateway's and the simulator's replies: one shape, two types so the intake keeps them apart.
+struct RequestReplyData {
+  uint64_t request_id = 0;  // SimReply: command_id
+  bool ok = false;
+  std::string message;
+};
+struct MqttReplyData : RequestReplyData {};
+struct SimReplyData : RequestReplyData {};
+
 }  // namespace slam::viewer

@@ -123,6 +123,14 @@ MapReplyData from_idl(const slam::MapReply& r) {
   return {r.request_id(), static_cast<int>(r.result()), r.message().to_string()};
 }
 
+MqttReplyData from_idl(const slam::MqttReply& r) {
+  return {{r.request_id(), r.ok(), r.message().to_string()}};
+}
+
+SimReplyData from_idl(const slam::SimReply& r) {
+  return {{r.command_id(), r.ok(), r.message().to_string()}};
+}
+
 slam::NavGoal to_idl(const GoalCommand& c, uint64_t goal_id) {
   slam::NavGoal g;
   g.robot_id(c.robot_id);

@@ -18,6 +18,8 @@ MqttSubscriptionsData from_idl(const slam::MqttSubscriptions& s);
 SimWorldData from_idl(const slam::SimWorld& w);
 SimTruthData from_idl(const slam::SimGroundTruth& t);
 MapReplyData from_idl(const slam::MapReply& r);
+MqttReplyData from_idl(const slam::MqttReply& r);
+SimReplyData from_idl(const slam::SimReply& r);
 
 slam::NavGoal to_idl(const GoalCommand& c, uint64_t goal_id);
 slam::MapEdit to_idl(const MapEditCommand& c, uint64_t request_id);

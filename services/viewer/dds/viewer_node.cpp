@@ -79,7 +79,9 @@ Status ViewerNode::create_readers() {
                    make_intake_reader(p, dds::kMqttSubscriptions, in, rx, subscriptions_reader_),
                    make_intake_reader(p, dds::kSimWorld, in, rx, world_reader_),
                    make_intake_reader(p, dds::kSimGroundTruth, in, rx, truth_reader_),
-                   make_intake_reader(p, dds::kMapReply, in, rx, reply_reader_)})
+                   make_intake_reader(p, dds::kMapReply, in, rx, reply_reader_),
+                   make_intake_reader(p, dds::kMqttReply, in, rx, mqtt_reply_reader_),
+                   make_intake_reader(p, dds::kSimReply, in, rx, sim_reply_reader_)})
     if (!s) return s;
   return {};
 }

@@ -61,6 +61,8 @@ class ViewerNode final : public CommandSink {
   std::unique_ptr<dds::Reader<SimWorld>> world_reader_;
   std::unique_ptr<dds::Reader<SimGroundTruth>> truth_reader_;
   std::unique_ptr<dds::Reader<MapReply>> reply_reader_;
+  std::unique_ptr<dds::Reader<MqttReply>> mqtt_reply_reader_;
+  std::unique_ptr<dds::Reader<SimReply>> sim_reply_reader_;
 };
 
 }  // namespace slam::viewer

@@ -5,9 +5,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 
 #include "viewer/core/auto_fit.hpp"
+#include "viewer/core/clicks_tab.hpp"
 #include "viewer/gl/gl_api.hpp"
 
 namespace slam::viewer {
@@ -46,25 +46,6 @@ bool fit_box(const ViewerState& state, WorldBox* box) {
   return true;
 }
 
-void apply_click(ViewerState& state, CommandSink& sink, Vec2 screen, int button) {
-  const ClickAction action = button == 0 ? state.left_click : state.right_click;
-  const Vec2 w = state.view.screen_to_world(screen);
-  const ClickOutcome out =
-      click_outcome(action, w, state.selected_robot, state.mode_for(state.selected_robot), state.square_size,
-                    state.square_centred);
-  char where[64];
-  std::snprintf(where, sizeof where, "(%.2f, %.2f)", w.x, w.y);
-  if (out.goal) {
-    const uint64_t id = sink.send(*out.goal);
-    state.status_line =
-        std::string(id ? "goal sent to " : "goal NOT sent to ") + state.selected_robot + " at " + where;
-  }
-  if (out.edit) {
-    const uint64_t id = sink.send(*out.edit);
-    state.status_line = std::string(id ? "" : "NOT sent: ") + click_action_name(action) + " at " + where;
-  }
-}
-
 void MapInput::handle(ViewerState& state, CommandSink& sink) {
   ImGuiIO& io = ImGui::GetIO();
   const Vec2 mouse{io.MousePos.x, io.MousePos.y};
@@ -77,7 +58,7 @@ void MapInput::handle(ViewerState& state, CommandSink& sink) {
         press_ = last_ = mouse;
         dragged_ = false;
       }
-    if (ImGui::IsMouseClicked(0)) apply_click(state, sink, mouse, 0);
+    if (ImGui::IsMouseClicked(0)) apply_click(state, sink, mouse, MouseButton::Left);
     if (io.MouseWheel != 0.0f) {
       if (io.KeyShift) {
         state.view.rotate_about(mouse, io.MouseWheel * kRotateStep);
@@ -95,7 +76,7 @@ void MapInput::handle(ViewerState& state, CommandSink& sink) {
     }
     last_ = mouse;
     if (!ImGui::IsMouseDown(drag_button_)) {
-      if (!dragged_ && drag_button_ == 1) apply_click(state, sink, press_, 1);
+      if (!dragged_ && drag_button_ == 1) apply_click(state, sink, press_, MouseButton::Right);
       drag_button_ = -1;
     }
   }

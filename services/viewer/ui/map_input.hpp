@@ -1,11 +1,11 @@
 #pragma once
 // Mouse and keys over the map: pan (middle or right drag), zoom about the cursor (wheel), rotate
 // (Shift+wheel, or Q/E), flip (V), fit (F), and clicks that send what the Clicks tab chose.
-// Synthetic clicks from --click go through apply_click() exactly like real ones.
+// Clicks go through apply_click() (core/clicks_tab.hpp), as synthetic clicks from --click do.
 #include <optional>
 
 #include "viewer/core/commands.hpp"
-#include "viewer/ui/viewer_state.hpp"
+#include "viewer/core/viewer_state.hpp"
 
 namespace slam::viewer {
 
@@ -14,9 +14,6 @@ namespace slam::viewer {
 std::optional<WorldBox> content_box(const ViewerState& state);
 // The box Fit (button or F) shows: the content, else the grid's extent; false when there is nothing.
 bool fit_box(const ViewerState& state, WorldBox* box);
-
-// Sends the command a click with `button` (0 left, 1 right) at window point `screen` asks for.
-void apply_click(ViewerState& state, CommandSink& sink, Vec2 screen, int button);
 
 class MapInput {
  public:

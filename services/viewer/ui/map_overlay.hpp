@@ -2,7 +2,7 @@
 // What is drawn over the map with ImGui's background draw list (few shapes, so no GL buffers):
 // robots as oriented triangles with names, paths with waypoint markers and targets, the
 // simulator's walls and true poses; and the small view bar (fit, flip, rotate, cursor position).
-#include "viewer/ui/viewer_state.hpp"
+#include "viewer/core/viewer_state.hpp"
 
 namespace slam::viewer {
 

@@ -36,7 +36,7 @@ const char* state_name(ServiceState s) {
 
 }  // namespace
 
-void MainPanel::draw(const ViewerState& state, int64_t now_ns) {
+void draw_main_tab(const ViewerState& state, int64_t now_ns) {
   const double uptime = static_cast<double>(now_ns - state.started_ns) / 1e9;
   ImGui::Text("Uptime %02d:%02d:%02d   frame %.1f ms", static_cast<int>(uptime / 3600),
               static_cast<int>(uptime / 60) % 60, static_cast<int>(uptime) % 60, state.frame_ms);

@@ -1,10 +1,9 @@
 // Robots tab: the default goal mode for every robot, and per robot its display settings, its own
 // goal, a reset of its observations, and its counters.
 #include <imgui.h>
+#include <imgui_stdlib.h>
 
-#include <algorithm>
 #include <cmath>
-#include <cstring>
 
 #include "viewer/ui/panels.hpp"
 
@@ -20,11 +19,7 @@ bool mode_combo(const char* label, GoalMode* mode) {
   return true;
 }
 
-std::string sent(uint64_t id, const std::string& what) {
-  return (id ? "" : "NOT sent: ") + what;
-}
-
-void robot_details(ViewerState& state, CommandSink& sink, RobotView& r) {
+void robot_details(RobotsTab& tab, ViewerState& state, CommandSink& sink, RobotView& r) {
   RobotSettings& s = r.settings;
   ImGui::ColorEdit4("colour", &s.color.r, ImGuiColorEditFlags_NoInputs | ImGuiColorEditFlags_AlphaBar);
   ImGui::SameLine();
@@ -34,25 +29,15 @@ void robot_details(ViewerState& state, CommandSink& sink, RobotView& r) {
   ImGui::SliderFloat("point radius px", &s.point_radius_px, 0.5f, 8.0f, "%.1f");
   ImGui::SliderFloat("size m", &s.size_m, 0.05f, 2.0f, "%.2f");
   int last_n = static_cast<int>(s.last_n);
-  if (ImGui::InputInt("last N points (0 all)", &last_n, 100, 1000))
-    s.last_n = static_cast<uint32_t>(std::max(0, last_n));
+  if (ImGui::InputInt("last N points (0 all)", &last_n, 100, 1000)) RobotsTab::set_last_n(s, last_n);
 
   ImGui::SetNextItemWidth(ImGui::GetContentRegionAvail().x * 0.45f);  // room for the buttons beside it
   mode_combo("mode", &s.mode);
   ImGui::SameLine();
-  if (ImGui::SmallButton("send")) {
-    const Vec2 target = r.has_path ? r.path.target : Vec2{r.state.pose.x, r.state.pose.y};
-    state.status_line =
-        sent(sink.send(GoalCommand{r.id, s.mode, target, state.square_size, state.square_centred}),
-             std::string(goal_mode_name(s.mode)) + " goal for " + r.id);
-  }
+  if (ImGui::SmallButton("send")) tab.send_robot_mode(state, sink, r);
   ImGui::SameLine();
-  if (ImGui::SmallButton("select")) state.selected_robot = r.id;
-  if (ImGui::Button("reset robot (delete its observations)")) {
-    const uint64_t id = sink.send(MapEditCommand{MapEditKind::ResetRobot, {}, r.id});
-    if (id) r.points.reset();
-    state.status_line = sent(id, "reset of " + r.id);
-  }
+  if (ImGui::SmallButton("select")) RobotsTab::select(state, r.id);
+  if (ImGui::Button("reset robot (delete its observations)")) tab.reset_robot(state, sink, r);
 
   if (r.has_state) {
     const RobotStateData& st = r.state;
@@ -74,39 +59,36 @@ void robot_details(ViewerState& state, CommandSink& sink, RobotView& r) {
 
 }  // namespace
 
-void RobotsPanel::draw(ViewerState& state, CommandSink& sink) {
+void draw_robots_tab(RobotsTab& tab, ViewerState& state, CommandSink& sink) {
   section_title("Every robot");
   RobotSettings& d = state.robots.defaults();
   ImGui::SetNextItemWidth(ImGui::GetContentRegionAvail().x * 0.45f);  // room for the button beside it
   mode_combo("default mode", &d.mode);
   ImGui::SameLine();
-  if (ImGui::Button("send to all")) {
-    state.status_line = sent(sink.send(GoalCommand{"*", d.mode, {}, state.square_size, state.square_centred}),
-                             std::string(goal_mode_name(d.mode)) + " goal for every robot");
-  }
+  if (ImGui::Button("send to all")) tab.send_default_mode(state, sink);
   ImGui::SliderFloat("default point radius", &d.point_radius_px, 0.5f, 8.0f, "%.1f");
   ImGui::SliderFloat("default size m", &d.size_m, 0.05f, 2.0f, "%.2f");
   ImGui::SliderFloat("default alpha", &d.color.a, 0.05f, 1.0f, "%.2f");
   int last_n = static_cast<int>(d.last_n);
-  if (ImGui::InputInt("default last N", &last_n, 100, 1000))
-    d.last_n = static_cast<uint32_t>(std::max(0, last_n));
-  if (ImGui::Button("apply defaults to every robot")) state.robots.apply_defaults_to_all();
+  if (ImGui::InputInt("default last N", &last_n, 100, 1000)) RobotsTab::set_last_n(d, last_n);
+  if (ImGui::Button("apply defaults to every robot")) RobotsTab::apply_defaults(state);
   robot_selector(state, "goals go to");
+  error_line(tab.error);
 
   section_title("Robots");
   ImGui::SetNextItemWidth(-1.0f);
-  ImGui::InputTextWithHint("##robot-filter", "filter by id...", robot_filter, sizeof robot_filter);
+  ImGui::InputTextWithHint("##robot-filter", "filter by id...", &tab.filter);
   if (state.robots.size() == 0) ImGui::TextDisabled("no robot seen yet");
   for (size_t i = 0; i < state.robots.size(); ++i) {
     RobotView& r = state.robots.at(i);
-    if (robot_filter[0] != '\0' && r.id.find(robot_filter) == std::string::npos) continue;
+    if (!tab.shows(r)) continue;
     ImGui::PushID(r.id.c_str());
     ImGui::ColorButton("##c", ImVec4(r.settings.color.r, r.settings.color.g, r.settings.color.b, 1.0f),
                        ImGuiColorEditFlags_NoTooltip, ImVec2(14, 14));
     ImGui::SameLine();
     if (ImGui::TreeNode("robot", "%s  %s  %zu pts", r.id.c_str(),
                         r.has_state && r.state.online ? "online" : "offline", r.points.size())) {
-      robot_details(state, sink, r);
+      robot_details(tab, state, sink, r);
       ImGui::TreePop();
     }
     ImGui::PopID();
@@ -116,11 +98,10 @@ void RobotsPanel::draw(ViewerState& state, CommandSink& sink) {
 void robot_selector(ViewerState& state, const char* label) {
   const char* shown = state.selected_robot == "*" ? "every robot" : state.selected_robot.c_str();
   if (ImGui::BeginCombo(label, shown)) {
-    if (ImGui::Selectable("every robot", state.selected_robot == "*"))
-      state.selected_robot.assign(1, '*');  // not = "*": GCC 12 -Wrestrict false positive
+    if (ImGui::Selectable("every robot", state.selected_robot == "*")) RobotsTab::select(state, "*");
     for (size_t i = 0; i < state.robots.size(); ++i) {
       const std::string& id = state.robots.at(i).id;
-      if (ImGui::Selectable(id.c_str(), state.selected_robot == id)) state.selected_robot = id;
+      if (ImGui::Selectable(id.c_str(), state.selected_robot == id)) RobotsTab::select(state, id);
     }
     ImGui::EndCombo();
   }

@@ -1,10 +1,10 @@
 // The smaller tabs (Clicks, Grid, Simulation, Map) and the panel window holding every tab.
 #include <imgui.h>
+#include <imgui_stdlib.h>
 
-#include <algorithm>
 #include <cstdarg>
-#include <cstring>
 
+#include "viewer/core/clicks_tab.hpp"
 #include "viewer/ui/panels.hpp"
 
 namespace slam::viewer {
@@ -21,6 +21,9 @@ void color_edit(const char* label, Rgba* c) {
   ImGui::ColorEdit3(label, &c->r, ImGuiColorEditFlags_NoInputs);
 }
 
+const ImVec4 kOkColor{0.5f, 0.9f, 0.5f, 1.0f};
+const ImVec4 kFailedColor{1.0f, 0.45f, 0.45f, 1.0f};
+
 }  // namespace
 
 void section_title(const char* label) {
@@ -29,9 +32,11 @@ void section_title(const char* label) {
   ImGui::TextDisabled("%s", label);
 }
 
-void ClicksPanel::draw(ViewerState& state) {
-  action_combo("left click", &state.left_click);
-  action_combo("right click", &state.right_click);
+void draw_clicks_tab(ViewerState& state) {
+  ClickAction left = state.left_click;
+  if (action_combo("left click", &left)) set_click_action(state, MouseButton::Left, left);
+  ClickAction right = state.right_click;
+  if (action_combo("right click", &right)) set_click_action(state, MouseButton::Right, right);
   robot_selector(state, "targets go to");
   hint(
       "Right or middle drag pans; wheel zooms about the cursor; Shift+wheel or Q/E rotate; V flips the "
@@ -48,16 +53,27 @@ void hint(const char* fmt, ...) {
   ImGui::PopStyleColor();
 }
 
-void GridPanel::draw(ViewerState& state, CommandSink& sink) {
-  if (!initialised && state.grid.has_grid()) {
-    const auto& g = state.grid.info();
-    request.resolution = g.resolution;
-    request.origin = g.origin;
-    request.width_m = g.width * g.resolution;
-    request.height_m = g.height * g.resolution;
-    request.inflation_radius = g.inflation_radius;
-    initialised = true;
-  }
+void error_line(const std::string& error) {
+  if (error.empty()) return;
+  ImGui::PushStyleColor(ImGuiCol_Text, kFailedColor);
+  ImGui::TextWrapped("%s", error.c_str());
+  ImGui::PopStyleColor();
+}
+
+void request_line(const RequestTracker& requests) {
+  if (!requests.last()) return;
+  const RequestOutcome& r = *requests.last();
+  const ImVec4 colour = r.state == RequestState::Ok        ? kOkColor
+                        : r.state == RequestState::Waiting ? ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled)
+                                                           : kFailedColor;
+  ImGui::PushStyleColor(ImGuiCol_Text, colour);
+  ImGui::TextWrapped("last request %s", describe(r).c_str());
+  ImGui::PopStyleColor();
+}
+
+void draw_grid_tab(GridTab& tab, ViewerState& state, CommandSink& sink) {
+  tab.adopt(state.grid);
+  GridConfigCommand& request = tab.request;
   section_title("Mapper (sent as GridConfig)");
   ImGui::InputDouble("resolution m", &request.resolution, 0.01, 0.05, "%.3f");
   ImGui::InputDouble("origin x", &request.origin.x, 1.0, 5.0, "%.2f");
@@ -66,18 +82,10 @@ void GridPanel::draw(ViewerState& state, CommandSink& sink) {
   ImGui::InputDouble("height m", &request.height_m, 1.0, 10.0, "%.1f");
   ImGui::InputDouble("inflation m", &request.inflation_radius, 0.05, 0.1, "%.2f");
   ImGui::Checkbox("legacy mode (2019: points obstruct, nothing cleared)", &request.legacy_mode);
-  if (ImGui::Button("apply")) {
-    if (!(request.resolution > 0.0) || !(request.width_m > 0.0) || !(request.height_m > 0.0) ||
-        request.inflation_radius < 0.0) {
-      state.status_line = "grid: resolution, width and height must be positive, inflation not negative";
-    } else {
-      state.status_line = sink.send(request) ? "grid config sent" : "grid config NOT sent";
-    }
-  }
+  if (ImGui::Button("apply")) tab.apply(state, sink);
   ImGui::SameLine();
-  if (ImGui::Button("clear manual obstructions"))
-    state.status_line =
-        sink.send(MapEditCommand{MapEditKind::ClearObstructions, {}, {}}) ? "clear sent" : "clear NOT sent";
+  if (ImGui::Button("clear manual obstructions")) tab.clear_obstructions(state, sink);
+  error_line(tab.error);
 
   section_title("Display (this viewer only)");
   GridColors& c = state.grid_colors;
@@ -105,14 +113,7 @@ void GridPanel::draw(ViewerState& state, CommandSink& sink) {
   ImGui::SliderFloat("mix", &c.inflation_mix, 0.0f, 1.0f, "%.2f");
 }
 
-void SimPanel::draw(ViewerState& state, CommandSink& sink) {
-  auto send = [&](SimCommandKind kind, const char* what) {
-    SimCommand c = command;
-    c.kind = kind;
-    c.world = world;
-    c.robot_id = robot_id;
-    state.status_line = std::string(sink.send(c) ? "" : "NOT sent: ") + what;
-  };
+void draw_sim_tab(SimTab& tab, ViewerState& state, CommandSink& sink, int64_t now_ns) {
   if (state.truth)
     ImGui::Text("simulator: %zu robots, %s", state.truth->robots.size(),
                 state.truth->paused ? "paused" : "running");
@@ -124,42 +125,41 @@ void SimPanel::draw(ViewerState& state, CommandSink& sink) {
   ImGui::Checkbox("show true poses", &state.show_truth);
   ImGui::SameLine();
   ImGui::Checkbox("show walls", &state.show_world);
+  request_line(state.sim_requests);
+  error_line(tab.error);
 
   section_title("Robots");
-  int count = static_cast<int>(command.count);
-  if (ImGui::InputInt("count", &count)) command.count = static_cast<uint32_t>(std::clamp(count, 1, 1000));
-  if (ImGui::Button("spawn")) send(SimCommandKind::Spawn, "spawn");
-  ImGui::InputText("robot id", robot_id, sizeof robot_id);
-  if (ImGui::Button("remove") && robot_id[0] != '\0') send(SimCommandKind::Remove, "remove");
-  if (ImGui::Button("pause")) send(SimCommandKind::Pause, "pause");
+  ImGui::InputInt("count", &tab.count);
+  if (ImGui::Button("spawn")) tab.spawn(state, sink, now_ns);
+  ImGui::InputText("robot id", &tab.robot_id);
+  if (ImGui::Button("remove")) tab.remove(state, sink, now_ns);
+  if (ImGui::Button("pause")) tab.pause(state, sink, now_ns);
   ImGui::SameLine();
-  if (ImGui::Button("resume")) send(SimCommandKind::Resume, "resume");
+  if (ImGui::Button("resume")) tab.resume(state, sink, now_ns);
 
   section_title("World and noise");
-  ImGui::InputText("world (name or file)", world, sizeof world);
-  if (ImGui::Button("set world")) send(SimCommandKind::SetWorld, "set world");
-  ImGui::InputDouble("range noise sd m", &command.range_noise_sd, 0.005, 0.01, "%.3f");
+  ImGui::InputText("world (name or file)", &tab.world);
+  if (ImGui::Button("set world")) tab.set_world(state, sink, now_ns);
+  ImGui::InputDouble("range noise sd m", &tab.range_noise_sd, 0.005, 0.01, "%.3f");
   const double lo = 0.0, hi = 1.0;
-  ImGui::SliderScalar("dropout", ImGuiDataType_Double, &command.dropout, &lo, &hi, "%.2f");
-  ImGui::InputDouble("odometry drift", &command.odometry_drift, 0.001, 0.01, "%.3f");
-  if (ImGui::Button("set noise")) send(SimCommandKind::SetNoise, "set noise");
-  ImGui::InputDouble("speed factor", &command.speed_factor, 0.5, 1.0, "%.1f");
-  if (ImGui::Button("set speed")) send(SimCommandKind::SetSpeed, "set speed");
+  ImGui::SliderScalar("dropout", ImGuiDataType_Double, &tab.dropout, &lo, &hi, "%.2f");
+  ImGui::InputDouble("odometry drift", &tab.odometry_drift, 0.001, 0.01, "%.3f");
+  if (ImGui::Button("set noise")) tab.set_noise(state, sink, now_ns);
+  ImGui::InputDouble("speed factor", &tab.speed_factor, 0.5, 1.0, "%.1f");
+  if (ImGui::Button("set speed")) tab.set_speed(state, sink, now_ns);
 }
 
-void MapPanel::draw(ViewerState& state, CommandSink& sink) {
+void draw_map_tab(MapTab& tab, ViewerState& state, CommandSink& sink) {
   ImGui::TextWrapped("ROS map_server format (PGM + YAML), on the mapper's file system.");
-  ImGui::InputText("YAML path", path, sizeof path);
-  const bool ok = std::strlen(path) > 0;
-  if (ImGui::Button("export") && ok)
-    state.status_line = sink.send(MapFileCommand{false, path}) ? "export requested" : "export NOT sent";
+  ImGui::InputText("YAML path", &tab.path);
+  if (ImGui::Button("export")) tab.export_map(state, sink);
   ImGui::SameLine();
-  if (ImGui::Button("import") && ok)
-    state.status_line = sink.send(MapFileCommand{true, path}) ? "import requested" : "import NOT sent";
+  if (ImGui::Button("import")) tab.import_map(state, sink);
+  error_line(tab.error);
   section_title("Replies");
   if (state.replies.empty()) ImGui::TextDisabled("none yet");
   for (const auto& r : state.replies)
-    ImGui::TextColored(r.result == 0 ? ImVec4(0.5f, 0.9f, 0.5f, 1) : ImVec4(1, 0.5f, 0.5f, 1), "#%llu %s %s",
+    ImGui::TextColored(r.result == 0 ? kOkColor : kFailedColor, "#%llu %s %s",
                        static_cast<unsigned long long>(r.request_id), r.result == 0 ? "ok" : "failed",
                        r.message.c_str());
 }
@@ -179,28 +179,28 @@ void ControlPanel::draw(ViewerState& state, CommandSink& sink, float width, floa
       ImGui::BeginChild("tab");
       switch (i) {
         case 0:
-          main.draw(state, now_ns);
+          draw_main_tab(state, now_ns);
           break;
         case 1:
-          mqtt.draw(state, sink);
+          draw_mqtt_tab(mqtt, state, sink, now_ns);
           break;
         case 2:
-          clicks.draw(state);
+          draw_clicks_tab(state);
           break;
         case 3:
-          robots.draw(state, sink);
+          draw_robots_tab(robots, state, sink);
           break;
         case 4:
-          drive.draw(state, sink);
+          draw_drive_tab(drive, state, sink);
           break;
         case 5:
-          grid.draw(state, sink);
+          draw_grid_tab(grid, state, sink);
           break;
         case 6:
-          sim.draw(state, sink);
+          draw_sim_tab(sim, state, sink, now_ns);
           break;
         default:
-          map.draw(state, sink);
+          draw_map_tab(map, state, sink);
           break;
       }
       ImGui::EndChild();

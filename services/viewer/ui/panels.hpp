@@ -1,95 +1,53 @@
 #pragma once
-// The control panel: one ImGui tab per job. Each panel is a struct holding only its own UI state
-// (text fields, toggles); received data lives in ViewerState and is fed by ViewerState::ingest(),
-// never by Draw(). Commands leave through the CommandSink.
+// The control panel: one ImGui tab per job. What a control does lives in core/*_tab.hpp (plain
+// structs with the tab's inputs and its actions, unit-tested without ImGui); the draw functions
+// here only lay out widgets bound to those inputs and call the actions. Received data lives in
+// ViewerState and is fed by ViewerState::ingest(), never by drawing. Commands leave through the
+// CommandSink.
 #include <imgui.h>
 
 #include <cstdint>
 
 #include "viewer/core/commands.hpp"
-#include "viewer/ui/viewer_state.hpp"
+#include "viewer/core/drive_tab.hpp"
+#include "viewer/core/grid_tab.hpp"
+#include "viewer/core/map_tab.hpp"
+#include "viewer/core/mqtt_tab.hpp"
+#include "viewer/core/robots_tab.hpp"
+#include "viewer/core/sim_tab.hpp"
+#include "viewer/core/viewer_state.hpp"
 
 namespace slam::viewer {
 
-struct MainPanel {
-  void draw(const ViewerState& state, int64_t now_ns);
-};
-
-struct MqttPanel {
-  char filter[256] = "v1/robot/+/adv";
-  char topic[256] = "v1/server/robot1/cmd";
-  char payload[4096] = "";
-  int payload_kind = 0;  // 0 SLAM v1 pairs, 1 raw hex, 2 text
-  int qos = 0;
-  bool retain = false;
-  bool autoscroll = true;
-  bool decoded = true;
-  bool show_inbound = true;
-  bool show_outbound = true;
-  char search[128] = "";
-  std::string error;
-  void draw(ViewerState& state, CommandSink& sink);
-
- private:
-  void draw_subscriptions(ViewerState& state, CommandSink& sink);
-  void draw_publish(ViewerState& state, CommandSink& sink);
-  void draw_log(ViewerState& state);
-};
-
-struct ClicksPanel {
-  void draw(ViewerState& state);
-};
-
-struct RobotsPanel {
-  char robot_filter[64] = "";
-  void draw(ViewerState& state, CommandSink& sink);
-};
-
-struct DrivePanel {
-  double target_x = 0.0;
-  double target_y = 0.0;
-  int corner_mode = 0;  // corner buttons send 0 direct, 1 planned goals
-  void draw(ViewerState& state, CommandSink& sink);
-};
-
-struct GridPanel {
-  GridConfigCommand request;
-  bool initialised = false;  // request starts from the first grid seen
-  void draw(ViewerState& state, CommandSink& sink);
-};
-
-struct SimPanel {
-  SimCommand command;
-  char world[1024] = "office";
-  char robot_id[64] = "";
-  void draw(ViewerState& state, CommandSink& sink);
-};
-
-struct MapPanel {
-  char path[1024] = "/tmp/slam-map.yaml";
-  void draw(ViewerState& state, CommandSink& sink);
-};
-
-// The panel window (left of the map) with every tab.
+// The panel window (left of the map): every tab's inputs in one struct.
 struct ControlPanel {
-  MainPanel main;
-  MqttPanel mqtt;
-  ClicksPanel clicks;
-  RobotsPanel robots;
-  DrivePanel drive;
-  GridPanel grid;
-  SimPanel sim;
-  MapPanel map;
+  MqttTab mqtt;
+  RobotsTab robots;
+  DriveTab drive;
+  GridTab grid;
+  SimTab sim;
+  MapTab map;
   int open_tab = -1;  // select this tab once (0 = Main ... 7 = Map); for screenshots
   void draw(ViewerState& state, CommandSink& sink, float width, float height, int64_t now_ns);
 };
 
+void draw_main_tab(const ViewerState& state, int64_t now_ns);
+void draw_mqtt_tab(MqttTab& tab, ViewerState& state, CommandSink& sink, int64_t now_ns);
+void draw_clicks_tab(ViewerState& state);
+void draw_robots_tab(RobotsTab& tab, ViewerState& state, CommandSink& sink);
+void draw_drive_tab(DriveTab& tab, ViewerState& state, CommandSink& sink);
+void draw_grid_tab(GridTab& tab, ViewerState& state, CommandSink& sink);
+void draw_sim_tab(SimTab& tab, ViewerState& state, CommandSink& sink, int64_t now_ns);
+void draw_map_tab(MapTab& tab, ViewerState& state, CommandSink& sink);
+
 // Shared widgets: a separator with a title (ImGui 1.86 has no SeparatorText), a dimmed hint that
-// wraps at the panel's edge instead of running out of it, and a robot selector ("*" = every
-// robot) bound to state.selected_robot.
+// wraps at the panel's edge instead of running out of it, a tab's refused input in red, the last
+// tracked request's result, and a robot selector ("*" = every robot) bound to
+// state.selected_robot.
 void section_title(const char* label);
 void hint(const char* fmt, ...) IM_FMTARGS(1);
-
+void error_line(const std::string& error);
+void request_line(const RequestTracker& requests);
 void robot_selector(ViewerState& state, const char* label);
 
 }  // namespace slam::viewer

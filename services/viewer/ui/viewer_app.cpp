@@ -12,6 +12,7 @@
 
 #include "common/core/clock.hpp"
 #include "common/core/shutdown.hpp"
+#include "viewer/core/clicks_tab.hpp"
 #include "viewer/ui/map_overlay.hpp"
 
 namespace slam::viewer {
@@ -150,7 +151,7 @@ void ViewerApp::frame(int64_t now_ns, long ready_frame) {
   input_.handle(state_, sink_);
   for (const ClickSpec& c : options_.clicks)
     if (ready_frame == static_cast<long>(c.frame)) {
-      apply_click(state_, sink_, {c.x, c.y}, c.button);
+      apply_click(state_, sink_, {c.x, c.y}, c.button == 0 ? MouseButton::Left : MouseButton::Right);
       spdlog::info("synthetic {} click at ({}, {}): {}", c.button == 0 ? "left" : "right", c.x, c.y,
                    state_.status_line);
     }

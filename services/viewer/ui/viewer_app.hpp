@@ -15,12 +15,12 @@
 #include "viewer/core/snapshot_schedule.hpp"
 #include "viewer/core/snapshot_writer.hpp"
 #include "viewer/core/viewer_options.hpp"
+#include "viewer/core/viewer_state.hpp"
 #include "viewer/gl/gl_window.hpp"
 #include "viewer/gl/grid_layer.hpp"
 #include "viewer/gl/point_layer.hpp"
 #include "viewer/ui/map_input.hpp"
 #include "viewer/ui/panels.hpp"
-#include "viewer/ui/viewer_state.hpp"
 
 namespace slam::viewer {
 

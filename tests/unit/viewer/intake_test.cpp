@@ -70,5 +70,20 @@ TEST(IntakeTest, ConcurrentPushesAreAllDelivered) {
   EXPECT_EQ(got, 4000u);
 }
 
+TEST(IntakeTest, RepliesOfGatewayAndSimulatorArriveApart) {
+  Intake in;
+  in.push(MqttReplyData{{4, true, "subscribed"}});
+  in.push(SimReplyData{{5, false, "unknown robot"}});
+  IntakeBatch b;
+  in.drain(b);
+  ASSERT_EQ(b.mqtt_replies.size(), 1u);
+  EXPECT_EQ(b.mqtt_replies[0].request_id, 4u);
+  ASSERT_EQ(b.sim_replies.size(), 1u);
+  EXPECT_EQ(b.sim_replies[0].message, "unknown robot");
+  in.drain(b);
+  EXPECT_TRUE(b.mqtt_replies.empty());
+  EXPECT_TRUE(b.sim_replies.empty());
+}
+
 }  // namespace
 }  // namespace slam::viewer

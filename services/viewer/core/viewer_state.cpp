@@ -1,5 +1,5 @@
 // Feeding the render thread's state from a drained intake batch (see viewer_state.hpp).
-#include "viewer/ui/viewer_state.hpp"
+#include "viewer/core/viewer_state.hpp"
 
 #include <spdlog/spdlog.h>
 
@@ -58,7 +58,21 @@ void ViewerState::ingest(IntakeBatch& batch, int64_t now_ns) {
     replies.push_front(std::move(r));
     if (replies.size() > 16) replies.pop_back();
   }
+  for (auto& r : batch.mqtt_replies) mqtt_requests.reply(r.request_id, r.ok, std::move(r.message));
+  for (auto& r : batch.sim_replies) sim_requests.reply(r.request_id, r.ok, std::move(r.message));
+  mqtt_requests.tick(now_ns);
+  sim_requests.tick(now_ns);
   rates.tick(now_ns);
+}
+
+uint64_t ViewerState::note_sent(uint64_t id, const std::string& what, std::string& error) {
+  if (id == 0) {
+    error = "NOT sent (the DDS writer refused it): " + what;
+  } else {
+    error.clear();
+    status_line = what + " (request " + std::to_string(id) + ")";
+  }
+  return id;
 }
 
 GoalMode ViewerState::mode_for(const std::string& robot_id) {

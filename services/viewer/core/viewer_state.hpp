@@ -13,6 +13,7 @@
 #include "viewer/core/intake.hpp"
 #include "viewer/core/mqtt_log.hpp"
 #include "viewer/core/rate_meter.hpp"
+#include "viewer/core/request_tracker.hpp"
 #include "viewer/core/robot_registry.hpp"
 #include "viewer/core/service_health.hpp"
 
@@ -41,6 +42,8 @@ struct ViewerState {
   std::optional<SimWorldData> world;
   std::optional<SimTruthData> truth;
   std::deque<MapReplyData> replies;  // newest first, a few kept
+  RequestTracker mqtt_requests;      // the MQTT tab's last request and the gateway's reply
+  RequestTracker sim_requests;       // the Sim tab's last command and the simulator's reply
   uint64_t snapshots = 0;
   uint64_t patches_dropped = 0;
   uint64_t mqtt_dropped = 0;
@@ -72,8 +75,12 @@ struct ViewerState {
   std::string renderer;
   std::string status_line;  // last command result shown under the tabs
 
-  // Moves one drained batch into the state (the only writer of received data).
+  // Moves one drained batch into the state (the only writer of received data); also declares
+  // requests that waited too long unanswered.
   void ingest(IntakeBatch& batch, int64_t now_ns);
+  // After a send: the status line names what was sent, or the tab's `error` says it was not
+  // (the middleware refused the sample). Returns `id` (0: not sent).
+  uint64_t note_sent(uint64_t id, const std::string& what, std::string& error);
   // The goal mode for `robot_id` ("*": the default mode).
   GoalMode mode_for(const std::string& robot_id);
 };

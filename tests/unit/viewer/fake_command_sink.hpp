@@ -1,0 +1,42 @@
+#pragma once
+// A CommandSink that records every command instead of publishing it: ids count up from 1, or
+// every send is refused (returns 0) while `refuse` is set.
+#include <cstdint>
+#include <vector>
+
+#include "viewer/core/commands.hpp"
+
+namespace slam::viewer {
+
+class FakeCommandSink final : public CommandSink {
+ public:
+  uint64_t send(const GoalCommand& c) override { return record(goals, c); }
+  uint64_t send(const MapEditCommand& c) override { return record(edits, c); }
+  uint64_t send(const GridConfigCommand& c) override { return record(grid_configs, c); }
+  uint64_t send(const MqttRequestCommand& c) override { return record(mqtt, c); }
+  uint64_t send(const SimCommand& c) override { return record(sim, c); }
+  uint64_t send(const MapFileCommand& c) override { return record(map_files, c); }
+
+  size_t total() const {
+    return goals.size() + edits.size() + grid_configs.size() + mqtt.size() + sim.size() + map_files.size();
+  }
+
+  std::vector<GoalCommand> goals;
+  std::vector<MapEditCommand> edits;
+  std::vector<GridConfigCommand> grid_configs;
+  std::vector<MqttRequestCommand> mqtt;
+  std::vector<SimCommand> sim;
+  std::vector<MapFileCommand> map_files;
+  bool refuse = false;
+  uint64_t last_id = 0;
+
+ private:
+  template <class C>
+  uint64_t record(std::vector<C>& into, const C& c) {
+    if (refuse) return 0;
+    into.push_back(c);
+    return ++last_id;
+  }
+};
+
+}  // namespace slam::viewer
