@@ -8,7 +8,7 @@ namespace {
 
 using std::chrono::milliseconds;
 
-TEST(BackoffTest, DoublesUpToTheCeilingAndResets) {
+TEST(Backoff, DoublesUpToTheCeilingAndResets) {
   Backoff b(milliseconds(250), milliseconds(1500));
   EXPECT_EQ(b.next(), milliseconds(250));
   EXPECT_EQ(b.next(), milliseconds(500));
@@ -21,7 +21,7 @@ TEST(BackoffTest, DoublesUpToTheCeilingAndResets) {
   EXPECT_EQ(b.next(), milliseconds(250));
 }
 
-TEST(BackoffTest, ACeilingBelowTheStartIsTheStart) {
+TEST(Backoff, ACeilingBelowTheStartIsTheStart) {
   Backoff b(milliseconds(100), milliseconds(10));
   EXPECT_EQ(b.next(), milliseconds(100));
   EXPECT_EQ(b.next(), milliseconds(100));
