@@ -2,7 +2,6 @@
 // points/s, rebuild of 1 M stored observations at a new resolution <= 1 s.
 // Rays are 1-5 m long at 5 cm from many origins in a 40 m x 40 m area, like robots' range beams.
 #include <benchmark/benchmark.h>
-#include <unistd.h>
 
 #include <cmath>
 #include <cstdio>
@@ -17,6 +16,7 @@
 #include "mapper/occupancy_grid.hpp"
 #include "mapper/ray_trace.hpp"
 #include "mapper/rebuild.hpp"
+#include "temp_dir.hpp"
 
 namespace {
 
@@ -129,8 +129,6 @@ class StoreFixture {
   static constexpr int64_t kObservations = 1'000'000;
 
   StoreFixture() {
-    path_ = std::filesystem::temp_directory_path() / ("bench_mapper_" + std::to_string(::getpid()) + ".db");
-    std::filesystem::remove(path_);
     ObservationStore store = must(ObservationStore::open(path_, {4096}), "store");
     const std::vector<Scan> scans = make_scans(4096, 4, 23);
     for (int64_t i = 0; i < kObservations; ++i) {
@@ -140,13 +138,11 @@ class StoreFixture {
     }
     if (!store.flush()) std::abort();
   }
-  ~StoreFixture() {
-    for (const char* suffix : {"", "-wal", "-shm"}) std::filesystem::remove(path_.string() + suffix);
-  }
   const std::filesystem::path& path() const { return path_; }
 
  private:
-  std::filesystem::path path_;
+  slam::testkit::TempDir dir_{"bench-mapper"};  // the store and its -wal/-shm files go with it
+  std::filesystem::path path_ = dir_ / "store.db";
 };
 
 const StoreFixture& stored_observations() {

@@ -13,7 +13,6 @@
 // It starts mosquitto (free port) and every service (leased DDS domain) itself and stops them.
 // Run: build/bin/bench_pipeline --benchmark_format=json
 //   SLAM_BENCH_PIPELINE_SECONDS=N (window, default 30), SLAM_BENCH_PIPELINE_ROBOTS=N (default 1000)
-#include <MQTTClient.h>
 #include <benchmark/benchmark.h>
 #include <fmt/format.h>
 #include <unistd.h>
@@ -28,6 +27,7 @@
 #include <vector>
 
 #include "common/core/clock.hpp"
+#include "mqtt_test_client.hpp"
 #include "pipeline_probe.hpp"
 #include "pipeline_rig.hpp"
 
@@ -39,78 +39,30 @@ using namespace std::chrono_literals;
 constexpr double kProbePeriodS = 0.15;  // ~200 probes in 30 s, a few in flight at a time
 constexpr char kProbeTopic[] = "v1/robot/probe/adv";
 
-// One synchronous paho connection to the bench's broker, disconnected when it goes.
-class LoopbackClient {
- public:
-  ~LoopbackClient() {
-    if (client_ == nullptr) return;
-    MQTTClient_disconnect(client_, 1000);
-    MQTTClient_destroy(&client_);
-  }
-  // `arrived` (with `context`), when given, receives subscribed messages on paho's thread.
-  Status connect(int port, const char* client_id, void* context = nullptr,
-                 MQTTClient_messageArrived* arrived = nullptr) {
-    const std::string url = "tcp://127.0.0.1:" + std::to_string(port);
-    if (MQTTClient_create(&client_, url.c_str(), client_id, MQTTCLIENT_PERSISTENCE_NONE, nullptr) !=
-        MQTTCLIENT_SUCCESS)
-      return Error{fmt::format("{}: MQTTClient_create failed", client_id)};
-    if (arrived != nullptr) MQTTClient_setCallbacks(client_, context, nullptr, arrived, nullptr);
-    MQTTClient_connectOptions options = MQTTClient_connectOptions_initializer;
-    options.cleansession = 1;
-    if (const int rc = MQTTClient_connect(client_, &options); rc != MQTTCLIENT_SUCCESS)
-      return Error{fmt::format("{}: connect to {} failed ({})", client_id, url, rc)};
-    return Status::ok();
-  }
-  MQTTClient handle() const { return client_; }
-
- private:
-  MQTTClient client_ = nullptr;
-};
-
-// The probe robot's MQTT connection (a few messages per second).
-class ProbeClient {
- public:
-  Status connect(int port) { return client_.connect(port, "bench-pipeline-probe"); }
-  bool publish(const std::vector<uint8_t>& payload) {
-    // QoS 0, as the simulator's robots publish; paho copies the payload.
-    return MQTTClient_publish(client_.handle(), kProbeTopic, static_cast<int>(payload.size()), payload.data(),
-                              0, 0, nullptr) == MQTTCLIENT_SUCCESS;
-  }
-
- private:
-  LoopbackClient client_;
-};
-
 // mosquitto's own count of messages it dropped (queue and in-flight limits), which no service can
-// see: $SYS/broker/publish/messages/dropped, published every sys_interval (1 s in the test broker).
-class BrokerDrops {
- public:
-  Status connect(int port) {
-    if (Status s = client_.connect(port, "bench-pipeline-sys", this, &BrokerDrops::arrived); !s) return s;
-    if (MQTTClient_subscribe(client_.handle(), kTopic, 0) != MQTTCLIENT_SUCCESS)
-      return Error{"bench-pipeline-sys: subscribe failed"};
-    return Status::ok();
-  }
-  // The latest count, -1 before the first one arrived.
-  int64_t dropped() const { return dropped_.load(std::memory_order_acquire); }
+// see: published every sys_interval (1 s in the test broker).
+constexpr char kBrokerDroppedTopic[] = "$SYS/broker/publish/messages/dropped";
 
- private:
-  static constexpr char kTopic[] = "$SYS/broker/publish/messages/dropped";
-  static int arrived(void* context, char* topic, int, MQTTClient_message* message) {
-    const std::string text(static_cast<const char*>(message->payload),
-                           static_cast<size_t>(message->payloadlen));
-    char* end = nullptr;
-    const long long value = std::strtoll(text.c_str(), &end, 10);
-    if (end != text.c_str())
-      static_cast<BrokerDrops*>(context)->dropped_.store(value, std::memory_order_release);
-    MQTTClient_freeMessage(&message);
-    MQTTClient_free(topic);
-    return 1;
+// A connection to the bench's broker.
+Result<std::unique_ptr<testkit::MqttTestClient>> connect_client(int port, const std::string& client_id) {
+  try {
+    auto client = std::make_unique<testkit::MqttTestClient>(port, client_id);
+    if (const int rc = client->connect(); rc != 0)
+      return Error{fmt::format("{}: connect to port {} failed ({})", client_id, port, rc)};
+    return client;
+  } catch (const std::exception& e) {
+    return Error{e.what()};
   }
+}
 
-  std::atomic<int64_t> dropped_{-1};  // before client_: paho's thread writes it until client_ is gone
-  LoopbackClient client_;
-};
+// The broker's latest dropped count as `sys` (subscribed to it) received it; -1 before the first one.
+int64_t broker_dropped(const testkit::MqttTestClient& sys) {
+  const auto message = sys.last(kBrokerDroppedTopic);
+  if (!message) return -1;
+  char* end = nullptr;
+  const long long value = std::strtoll(message->payload.c_str(), &end, 10);
+  return end == message->payload.c_str() ? -1 : value;
+}
 
 // Everything sampled at one end of the window.
 struct WindowEdge {
@@ -122,9 +74,10 @@ struct WindowEdge {
   int64_t broker_dropped = -1;  // mosquitto's dropped count so far (-1: not reported yet)
 };
 
-WindowEdge sample_edge(const PipelineRig& rig, const ProbeSet& probes, const BrokerDrops& broker) {
+WindowEdge sample_edge(const PipelineRig& rig, const ProbeSet& probes,
+                       const testkit::MqttTestClient& broker_sys) {
   WindowEdge e;
-  e.broker_dropped = broker.dropped();
+  e.broker_dropped = broker_dropped(broker_sys);
   e.patch_bytes = probes.patch_bytes();
   e.monotonic_ns = monotonic_ns();
   for (const char* service : {"gateway", "mapper", "planner", "simulator"})
@@ -296,10 +249,12 @@ void BM_Pipeline(benchmark::State& state) {
                                   [&](const GridPatch& p, const auto&) { probes.on_patch(p); });
   if (!snapshots) return fail(state, snapshots.message());
   if (!patches) return fail(state, patches.message());
-  ProbeClient probe_client;
-  if (Status s = probe_client.connect((*rig)->broker_port()); !s) return fail(state, s.message());
-  BrokerDrops broker;
-  if (Status s = broker.connect((*rig)->broker_port()); !s) return fail(state, s.message());
+  auto probe_client = connect_client((*rig)->broker_port(), "bench-pipeline-probe");
+  if (!probe_client) return fail(state, probe_client.message());
+  auto broker_sys = connect_client((*rig)->broker_port(), "bench-pipeline-sys");
+  if (!broker_sys) return fail(state, broker_sys.message());
+  if (!(*broker_sys)->subscribe(kBrokerDroppedTopic, 0))
+    return fail(state, "bench-pipeline-sys: subscribe failed");
   if (Status s = (*rig)->wait_until_running(120s); !s) return fail(state, s.message());
   std::this_thread::sleep_for(std::chrono::duration<double>(settings->warmup_s));
   // What went missing while the services were still matching each other, so it is not counted.
@@ -312,7 +267,7 @@ void BM_Pipeline(benchmark::State& state) {
   ProbeSet::Summary probe;
   Drain drained;
   for (auto _ : state) {
-    start = sample_edge(**rig, probes, broker);
+    start = sample_edge(**rig, probes, **broker_sys);
     const int64_t window_ns = static_cast<int64_t>(settings->seconds * 1e9);
     for (size_t k = 0; k < probes.size(); ++k) {
       const int64_t due =
@@ -321,11 +276,12 @@ void BM_Pipeline(benchmark::State& state) {
       if (const int64_t wait = due - monotonic_ns(); wait > 0)
         std::this_thread::sleep_for(std::chrono::nanoseconds(wait));
       probes.mark_sent(k, monotonic_ns());
-      if (!probe_client.publish(probes.payload(k))) return fail(state, "probe publish failed");
+      if (!(*probe_client)->publish(kProbeTopic, probes.payload(k), 0))  // QoS 0, as the robots publish
+        return fail(state, "probe publish failed");
     }
     if (const int64_t rest = start.monotonic_ns + window_ns - monotonic_ns(); rest > 0)
       std::this_thread::sleep_for(std::chrono::nanoseconds(rest));
-    end = sample_edge(**rig, probes, broker);
+    end = sample_edge(**rig, probes, **broker_sys);
     if (Status s = (*rig)->control_simulator(SIM_PAUSE); !s) return fail(state, s.message());
     const int64_t paused_at = monotonic_ns();
     // Probes still in flight get 5 s more; unseen ones then count with their age.

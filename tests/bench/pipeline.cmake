@@ -5,7 +5,7 @@
 add_executable(bench_pipeline ${CMAKE_CURRENT_LIST_DIR}/bench_pipeline.cpp ${CMAKE_CURRENT_LIST_DIR}/pipeline_rig.cpp
                               ${CMAKE_CURRENT_LIST_DIR}/pipeline_probe.cpp)
 target_link_libraries(bench_pipeline PRIVATE slam_fastdds slam_testkit robot_protocol
-                                             eclipse-paho-mqtt-c::paho-mqtt3c benchmark::benchmark)
+                                             slam_testkit_mqtt benchmark::benchmark)
 add_dependencies(bench_pipeline slam-gateway slam-mapper slam-planner slam-simulator)
 slam_warnings(bench_pipeline)
 # Smoke run for `ctest -L bench`: 200 robots for 5 s; the program exits non-zero if the run failed.

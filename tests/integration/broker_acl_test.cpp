@@ -4,7 +4,6 @@
 // and commands every robot. A mosquitto per test runs the project's own files on a free loopback port
 // with a password file made by mosquitto_passwd. "Not delivered" is proven by order, not by waiting:
 // a permitted marker sent after the forbidden message arrives alone.
-#include <MQTTClient.h>
 #include <gtest/gtest.h>
 #include <pwd.h>
 #include <unistd.h>
@@ -17,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "mqtt_test_client.hpp"
 #include "process_group.hpp"
 
 namespace slam::testkit {
@@ -26,74 +26,18 @@ namespace fs = std::filesystem;
 
 const fs::path kMosquittoDir = fs::path(SLAM_SOURCE_DIR) / "compose" / "mosquitto";
 
-struct Message {
-  std::string topic;
-  std::string payload;
-};
+using Message = MqttMessage;
 
-// One account on the broker: synchronous paho, MQTT 3.1.1 (what robots and the gateway speak).
-class Account {
- public:
-  Account(int port, const std::string& user, const std::string& password) : user_(user), password_(password) {
-    static int next_id = 0;
-    const std::string url = "tcp://127.0.0.1:" + std::to_string(port);
-    const std::string id = "acl-test-" + user + "-" + std::to_string(next_id++);
-    EXPECT_EQ(MQTTClient_create(&client_, url.c_str(), id.c_str(), MQTTCLIENT_PERSISTENCE_NONE, nullptr),
-              MQTTCLIENT_SUCCESS);
+// Every message not read yet up to and including the first one on `marker_topic`; nullopt if it
+// never came.
+std::optional<std::vector<Message>> receive_until(MqttTestClient& account, const std::string& marker_topic) {
+  std::vector<Message> got;
+  while (auto message = account.next(3s)) {
+    got.push_back(std::move(*message));
+    if (got.back().topic == marker_topic) return got;
   }
-  ~Account() {
-    if (MQTTClient_isConnected(client_)) MQTTClient_disconnect(client_, 100);
-    MQTTClient_destroy(&client_);
-  }
-  Account(const Account&) = delete;
-  Account& operator=(const Account&) = delete;
-
-  // The CONNACK code: 0 accepted, 4 bad user name or password, 5 not authorised.
-  int connect() {
-    MQTTClient_connectOptions options = MQTTClient_connectOptions_initializer;
-    options.MQTTVersion = MQTTVERSION_3_1_1;  // no silent retry as 3.1 after a refusal
-    options.cleansession = 1;
-    options.keepAliveInterval = 10;
-    options.connectTimeout = 2;
-    if (!user_.empty()) options.username = user_.c_str();
-    if (!password_.empty()) options.password = password_.c_str();
-    return MQTTClient_connect(client_, &options);
-  }
-  // Filters may be refused in the SUBACK or only filtered at delivery; callers check what arrives.
-  void subscribe(const std::string& filter) { MQTTClient_subscribe(client_, filter.c_str(), 1); }
-  // QoS 1 and waits for the PUBACK: the broker has routed the message (or dropped it) by then.
-  bool publish(const std::string& topic, const std::string& payload) {
-    MQTTClient_deliveryToken token = 0;
-    if (MQTTClient_publish(client_, topic.c_str(), static_cast<int>(payload.size()),
-                           const_cast<char*>(payload.data()), 1, 0, &token) != MQTTCLIENT_SUCCESS)
-      return false;
-    return MQTTClient_waitForCompletion(client_, token, 2000) == MQTTCLIENT_SUCCESS;
-  }
-  // Every message up to and including the first one on `marker_topic`; nullopt if it never came.
-  std::optional<std::vector<Message>> receive_until(const std::string& marker_topic) {
-    std::vector<Message> got;
-    const auto until = std::chrono::steady_clock::now() + 3s;
-    while (std::chrono::steady_clock::now() < until) {
-      char* topic = nullptr;
-      int topic_len = 0;
-      MQTTClient_message* message = nullptr;
-      if (MQTTClient_receive(client_, &topic, &topic_len, &message, 200) != MQTTCLIENT_SUCCESS || !message)
-        continue;
-      got.push_back({topic_len > 0 ? std::string(topic, static_cast<size_t>(topic_len)) : std::string(topic),
-                     std::string(static_cast<const char*>(message->payload),
-                                 static_cast<size_t>(message->payloadlen))});
-      MQTTClient_freeMessage(&message);
-      MQTTClient_free(topic);
-      if (got.back().topic == marker_topic) return got;
-    }
-    return std::nullopt;
-  }
-
- private:
-  std::string user_;
-  std::string password_;
-  MQTTClient client_ = nullptr;
-};
+  return std::nullopt;
+}
 
 std::string topics_of(const std::vector<Message>& messages) {
   std::string out;
@@ -165,15 +109,20 @@ class BrokerAclTest : public ::testing::Test {
   }
 
   // A connected account (the test fails if the broker refuses it).
-  std::unique_ptr<Account> login(const std::string& user, const std::string& password) {
-    auto account = std::make_unique<Account>(port_, user, password);
-    EXPECT_EQ(account->connect(), MQTTCLIENT_SUCCESS) << user << " was refused; broker log:\n"
-                                                      << group_.log("mosquitto");
+  std::unique_ptr<MqttTestClient> login(const std::string& user, const std::string& password) {
+    auto account = std::make_unique<MqttTestClient>(port_, next_client_id(user));
+    EXPECT_EQ(account->connect(user, password), 0) << user << " was refused; broker log:\n"
+                                                   << group_.log("mosquitto");
     return account;
+  }
+
+  std::string next_client_id(const std::string& user) {
+    return "acl-test-" + user + "-" + std::to_string(clients_++);
   }
 
   ProcessGroup group_;
   int port_ = 0;
+  int clients_ = 0;
 };
 
 TEST_F(BrokerAclTest, RobotPublishesUnderItsOwnIdAndTheGatewayReceivesIt) {
@@ -183,7 +132,7 @@ TEST_F(BrokerAclTest, RobotPublishesUnderItsOwnIdAndTheGatewayReceivesIt) {
   auto robot = login("robot-a", "a-pw");
   ASSERT_TRUE(robot->publish("v2/robot/robot-a/pose", R"({"x":1,"y":2,"theta":0})"));
   ASSERT_TRUE(robot->publish("v1/robot/robot-a/adv", std::string("\x01\x00\x02\x00", 4)));
-  const auto got = gateway->receive_until("v1/robot/robot-a/adv");
+  const auto got = receive_until(*gateway, "v1/robot/robot-a/adv");
   ASSERT_TRUE(got) << "the gateway did not receive robot-a's v1 message";
   EXPECT_TRUE(contains_topic(*got, "v2/robot/robot-a/pose")) << topics_of(*got);
   EXPECT_EQ(got->back().payload, std::string("\x01\x00\x02\x00", 4));
@@ -203,10 +152,10 @@ TEST_F(BrokerAclTest, RobotCannotPublishUnderAnotherRobotsId) {
   ASSERT_TRUE(robot_a->publish("v1/robot/robot-a/adv", std::string("\x01\x00\x01\x00", 4)));
   ASSERT_TRUE(gateway->publish("v1/server/robot-b/cmd", std::string("\x02\x00\x02\x00", 4)));
 
-  const auto at_gateway = gateway->receive_until("v1/robot/robot-a/adv");
+  const auto at_gateway = receive_until(*gateway, "v1/robot/robot-a/adv");
   ASSERT_TRUE(at_gateway) << "robot-a's own message did not arrive";
   EXPECT_EQ(at_gateway->size(), 1u) << "forged robot-b messages were delivered: " << topics_of(*at_gateway);
-  const auto at_b = robot_b->receive_until("v1/server/robot-b/cmd");
+  const auto at_b = receive_until(*robot_b, "v1/server/robot-b/cmd");
   ASSERT_TRUE(at_b) << "the gateway's command to robot-b did not arrive";
   EXPECT_EQ(at_b->front().payload, std::string("\x02\x00\x02\x00", 4))
       << "robot-a's forged command reached robot-b";
@@ -225,19 +174,19 @@ TEST_F(BrokerAclTest, RobotReadsOnlyItsOwnCommands) {
   ASSERT_TRUE(gateway->publish("v2/server/robot-b/waypoint", R"({"x":4,"y":4})"));
   ASSERT_TRUE(gateway->publish("v1/server/robot-a/cmd", std::string("\x06\x00\x06\x00", 4)));
 
-  const auto got = robot_a->receive_until("v1/server/robot-a/cmd");
+  const auto got = receive_until(*robot_a, "v1/server/robot-a/cmd");
   ASSERT_TRUE(got) << "robot-a's own command did not arrive";
   EXPECT_EQ(got->size(), 1u) << "robot-a read other robots' traffic: " << topics_of(*got);
 }
 
 TEST_F(BrokerAclTest, UnknownUserWrongPasswordAndAnonymousAreRefused) {
   const auto refused = [](int connack) { return connack == 4 || connack == 5; };
-  Account unknown(port_, "robot-z", "z-pw");
-  EXPECT_TRUE(refused(unknown.connect())) << "an unknown user was let in";
-  Account wrong_password(port_, "robot-a", "b-pw");
-  EXPECT_TRUE(refused(wrong_password.connect())) << "a wrong password was accepted";
-  Account anonymous(port_, "", "");
-  EXPECT_TRUE(refused(anonymous.connect())) << "an anonymous client was let in";
+  MqttTestClient unknown(port_, next_client_id("unknown"));
+  EXPECT_TRUE(refused(unknown.connect("robot-z", "z-pw"))) << "an unknown user was let in";
+  MqttTestClient wrong_password(port_, next_client_id("wrong_password"));
+  EXPECT_TRUE(refused(wrong_password.connect("robot-a", "b-pw"))) << "a wrong password was accepted";
+  MqttTestClient anonymous(port_, next_client_id("anonymous"));
+  EXPECT_TRUE(refused(anonymous.connect("", ""))) << "an anonymous client was let in";
   // And the right password still works, so the refusals above are about the credentials.
   login("robot-a", "a-pw");
 }
@@ -252,7 +201,7 @@ TEST_F(BrokerAclTest, SimulatedRobotsLogInUnderTheirOwnIds) {
                 "tcp://127.0.0.1:" + std::to_string(port_), "--robots", "2", "--mqtt-password", "sim-pw"});
   bool sim1 = false, sim2 = false;
   for (int i = 0; i < 20 && !(sim1 && sim2); ++i) {
-    const auto got = gateway->receive_until(sim1 ? "v1/robot/sim-2/adv" : "v1/robot/sim-1/adv");
+    const auto got = receive_until(*gateway, sim1 ? "v1/robot/sim-2/adv" : "v1/robot/sim-1/adv");
     if (!got) continue;
     sim1 = sim1 || contains_topic(*got, "v1/robot/sim-1/adv");
     sim2 = sim2 || contains_topic(*got, "v1/robot/sim-2/adv");

@@ -113,7 +113,7 @@ testkit::MapScore score(const sim::World& world, const GridSnapshot& s,
   return truth.score(layout, s.cells(), kWallToleranceM);
 }
 
-TEST(Explore, ThreeRobotsMapTheMaze) {
+TEST(ExploreTest, ThreeRobotsMapTheMaze) {
   testkit::DomainLease lease;
   testkit::ProcessGroup group;
   const std::string domain = std::to_string(lease.id());

@@ -1,7 +1,6 @@
 // slam-gateway against a real mosquitto and real DDS readers/writers: robots speaking v1 (through
 // mosquitto_pub/mosquitto_sub, as a 2019 robot's tooling would) and v2 (a paho client), a broker
 // restart under a running gateway, and a flood of malformed messages beside a valid robot.
-#include <MQTTClient.h>
 #include <gtest/gtest.h>
 #include <signal.h>
 
@@ -15,59 +14,11 @@
 #include <vector>
 
 #include "common/fastdds/fast_topics.hpp"
+#include "mqtt_test_client.hpp"
 #include "process_group.hpp"
 
 namespace slam::testkit {
 namespace {
-
-// A robot (or a robot's operator) on the broker: synchronous paho, messages taken with receive().
-class TestMqtt {
- public:
-  TestMqtt(int port, const std::string& id) {
-    const std::string url = "tcp://127.0.0.1:" + std::to_string(port);
-    EXPECT_EQ(MQTTClient_create(&client_, url.c_str(), id.c_str(), MQTTCLIENT_PERSISTENCE_NONE, nullptr),
-              MQTTCLIENT_SUCCESS);
-  }
-  ~TestMqtt() {
-    if (MQTTClient_isConnected(client_)) MQTTClient_disconnect(client_, 100);
-    MQTTClient_destroy(&client_);
-  }
-  bool connect() {
-    MQTTClient_connectOptions options = MQTTClient_connectOptions_initializer;
-    options.cleansession = 1;
-    options.keepAliveInterval = 10;
-    return MQTTClient_connect(client_, &options) == MQTTCLIENT_SUCCESS;
-  }
-  bool subscribe(const std::string& filter) {
-    return MQTTClient_subscribe(client_, filter.c_str(), 1) == MQTTCLIENT_SUCCESS;
-  }
-  bool publish(const std::string& topic, const std::string& payload, int qos = 1) {
-    MQTTClient_deliveryToken token = 0;
-    const int rc = MQTTClient_publish(client_, topic.c_str(), static_cast<int>(payload.size()),
-                                      const_cast<char*>(payload.data()), qos, 0, &token);
-    if (rc != MQTTCLIENT_SUCCESS) return false;
-    return qos == 0 || MQTTClient_waitForCompletion(client_, token, 2000) == MQTTCLIENT_SUCCESS;
-  }
-  // The next message within `timeout_ms`, as (topic, payload).
-  std::optional<std::pair<std::string, std::string>> receive(unsigned long timeout_ms) {
-    char* topic = nullptr;
-    int topic_len = 0;
-    MQTTClient_message* message = nullptr;
-    if (MQTTClient_receive(client_, &topic, &topic_len, &message, timeout_ms) != MQTTCLIENT_SUCCESS ||
-        !message) {
-      return std::nullopt;
-    }
-    std::pair<std::string, std::string> out{
-        topic_len > 0 ? std::string(topic, static_cast<size_t>(topic_len)) : std::string(topic),
-        std::string(static_cast<const char*>(message->payload), static_cast<size_t>(message->payloadlen))};
-    MQTTClient_freeMessage(&message);
-    MQTTClient_free(topic);
-    return out;
-  }
-
- private:
-  MQTTClient client_ = nullptr;
-};
 
 // The value of a set-up Result, or a test failure and an empty value.
 template <class T>
@@ -253,18 +204,18 @@ TEST_F(GatewayTest, V1RobotObservationInMetresAndWaypointAsExactlyFourBytes) {
   EXPECT_EQ(group.log("sub"), "640006ff\n");
 
   // Beyond int16 at 100 units/m: counted, never sent wrapped.
-  TestMqtt robot(port, "r1-listener");
-  ASSERT_TRUE(robot.connect());
+  MqttTestClient robot(port, "r1-listener");
+  ASSERT_EQ(robot.connect(), 0);
   ASSERT_TRUE(robot.subscribe("v1/server/r1/cmd"));
   probe.send_waypoint("r1", ++seq, 400.0, 0.0);
   ASSERT_TRUE(wait_until([&] { return probe.counter("commands_failed") >= 1; }, 5s));
-  EXPECT_FALSE(robot.receive(500).has_value());
+  EXPECT_FALSE(robot.next(500ms).has_value());
 }
 
 TEST_F(GatewayTest, V2PoseScanStatusInWaypointAndPathOut) {
   ASSERT_NO_FATAL_FAILURE(start_gateway());
-  TestMqtt robot(port, "r2");
-  ASSERT_TRUE(robot.connect());
+  MqttTestClient robot(port, "r2");
+  ASSERT_EQ(robot.connect(), 0);
   ASSERT_TRUE(robot.subscribe("v2/server/r2/+"));
   ASSERT_TRUE(robot.publish("v2/robot/r2/pose", R"({"x": 1.5, "y": -2.0, "heading": 0.3})"));
   ASSERT_TRUE(robot.publish("v2/robot/r2/scan", R"({"pose": {"x": 1.0, "y": 2.0, "heading": 0.0},
@@ -298,9 +249,9 @@ TEST_F(GatewayTest, V2PoseScanStatusInWaypointAndPathOut) {
   probe.send_waypoint("r2", 7, 1.5, -2.0, {next});
   std::map<std::string, std::string> got;
   while (got.size() < 2) {
-    auto m = robot.receive(5000);
+    auto m = robot.next(5s);
     ASSERT_TRUE(m.has_value()) << group.log("gateway");
-    got[m->first] = m->second;
+    got[m->topic] = m->payload;
   }
   EXPECT_EQ(got["v2/server/r2/waypoint"], R"({"seq":7,"x":1.5,"y":-2})");
   EXPECT_EQ(got["v2/server/r2/path"], R"({"seq":7,"points":[[1.5,-2],[3,0.25]]})");
@@ -318,8 +269,8 @@ TEST_F(GatewayTest, V2PoseScanStatusInWaypointAndPathOut) {
 TEST_F(GatewayTest, BrokerRestartResumesTrafficWithoutRestartingTheGateway) {
   ASSERT_NO_FATAL_FAILURE(start_gateway());
   {
-    TestMqtt robot(port, "before");
-    ASSERT_TRUE(robot.connect());
+    MqttTestClient robot(port, "before");
+    ASSERT_EQ(robot.connect(), 0);
     ASSERT_TRUE(robot.publish("v1/robot/rb/adv", hex_bytes("0a001400")));
   }
   ASSERT_TRUE(wait_until([&] { return probe.observations("rb").size() == 1; }, 10s));
@@ -331,8 +282,8 @@ TEST_F(GatewayTest, BrokerRestartResumesTrafficWithoutRestartingTheGateway) {
   EXPECT_TRUE(group.running("gateway"));
 
   // Re-subscribed (clean session): messages flow again, and commands go out again.
-  TestMqtt robot(port, "after");
-  ASSERT_TRUE(robot.connect());
+  MqttTestClient robot(port, "after");
+  ASSERT_EQ(robot.connect(), 0);
   ASSERT_TRUE(robot.subscribe("v1/server/rb/cmd"));
   ASSERT_TRUE(wait_until(
       [&] {
@@ -343,18 +294,18 @@ TEST_F(GatewayTest, BrokerRestartResumesTrafficWithoutRestartingTheGateway) {
       << group.log("gateway");
   EXPECT_EQ(probe.observations("rb")[1].seq(), 2u) << "per-robot sequence survives the broker restart";
   probe.send_waypoint("rb", 1, 0.1, 0.2);
-  auto cmd = robot.receive(5000);
+  auto cmd = robot.next(5s);
   ASSERT_TRUE(cmd.has_value());
-  EXPECT_EQ(cmd->second, hex_bytes("0a001400"));
+  EXPECT_EQ(cmd->payload, hex_bytes("0a001400"));
   ASSERT_TRUE(wait_until([&] { return probe.counter("reconnects") >= 1; }, 5s));
 }
 
 TEST_F(GatewayTest, MalformedFloodLeavesAValidRobotUnaffected) {
   ASSERT_NO_FATAL_FAILURE(start_gateway());
-  TestMqtt attacker(port, "attacker");
-  ASSERT_TRUE(attacker.connect());
-  TestMqtt robot(port, "good");
-  ASSERT_TRUE(robot.connect());
+  MqttTestClient attacker(port, "attacker");
+  ASSERT_EQ(attacker.connect(), 0);
+  MqttTestClient robot(port, "good");
+  ASSERT_EQ(robot.connect(), 0);
 
   const std::vector<std::pair<std::string, std::string>> bad{
       {"v1/robot/bad/adv", "abc"},                       // bad_length

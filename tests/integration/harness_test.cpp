@@ -3,39 +3,10 @@
 #include <gtest/gtest.h>
 #include <signal.h>
 
-#include <filesystem>
-#include <fstream>
-#include <sstream>
-
 #include "process_group.hpp"
 
 namespace slam::testkit {
 namespace {
-
-bool alive(pid_t pid) {
-  return ::kill(pid, 0) == 0;
-}
-
-// Pids of every process whose process group is `pgid`, from /proc.
-std::vector<pid_t> group_members(pid_t pgid) {
-  std::vector<pid_t> out;
-  for (const auto& e : std::filesystem::directory_iterator("/proc")) {
-    const std::string name = e.path().filename();
-    if (name.find_first_not_of("0123456789") != std::string::npos) continue;
-    std::ifstream stat(e.path() / "stat");
-    std::string line;
-    std::getline(stat, line);
-    // Fields after the ")" closing the command name: state ppid pgrp ...
-    const auto close = line.rfind(')');
-    if (close == std::string::npos) continue;
-    std::istringstream rest(line.substr(close + 2));
-    std::string state;
-    pid_t ppid = 0, pgrp = 0;
-    rest >> state >> ppid >> pgrp;
-    if (pgrp == pgid && state != "Z") out.push_back(std::stoi(name));
-  }
-  return out;
-}
 
 TEST(ProcessGroupTest, StartsMosquittoAndProcessesAndLeavesNothingBehind) {
   DomainLease domain;
@@ -47,15 +18,15 @@ TEST(ProcessGroupTest, StartsMosquittoAndProcessesAndLeavesNothingBehind) {
     EXPECT_TRUE(wait_port_open(port, 1s));
     group.start("sleeper", {"sleep", "300"});
     group.start("parent", {"sh", "-c", "sleep 300 & sleep 300 & wait"});
-    ASSERT_TRUE(wait_until([&] { return group_members(group.pid("parent")).size() == 3; }, 5s));
+    ASSERT_TRUE(wait_until([&] { return process_group_members(group.pid("parent")).size() == 3; }, 5s));
     EXPECT_TRUE(group.running("mosquitto"));
     EXPECT_TRUE(group.running("sleeper"));
     EXPECT_TRUE(group.running("parent"));
     pids = group.pids();
   }
   for (pid_t pid : pids) {
-    EXPECT_FALSE(alive(pid)) << "pid " << pid << " survived teardown";
-    EXPECT_TRUE(group_members(pid).empty()) << "children of " << pid << " survived teardown";
+    EXPECT_FALSE(process_alive(pid)) << "pid " << pid << " survived teardown";
+    EXPECT_TRUE(process_group_members(pid).empty()) << "children of " << pid << " survived teardown";
   }
 }
 

@@ -20,12 +20,14 @@
 
 #include "common/core/map_io.hpp"
 #include "common/fastdds/fast_topics.hpp"
+#include "fastdds_inbox.hpp"
 #include "process_group.hpp"
 
 namespace slam {
 namespace {
 
 using namespace std::chrono_literals;
+using testkit::Inbox;
 using testkit::wait_until;
 
 // The mapper's layout for these tests: 0.1 m cells, lower-left corner (-5, -5), 10 m x 10 m.
@@ -38,28 +40,6 @@ Point2 pt(double x, double y) {
   p.y(y);
   return p;
 }
-
-// Samples collected on a DDS thread, read by the test thread.
-template <class T>
-class Inbox {
- public:
-  void push(const T& sample) {
-    std::lock_guard lock(mutex_);
-    items_.push_back(sample);
-  }
-  std::vector<T> items() const {
-    std::lock_guard lock(mutex_);
-    return items_;
-  }
-  size_t size() const {
-    std::lock_guard lock(mutex_);
-    return items_.size();
-  }
-
- private:
-  mutable std::mutex mutex_;
-  std::vector<T> items_;
-};
 
 // The grid as a receiver sees it: the latest snapshot plus the consecutive patches after it.
 struct Map {
@@ -116,34 +96,20 @@ std::vector<Point2> wall_hits() {
   return hits;
 }
 
-template <class T, class P>
-std::unique_ptr<dds::Writer<T>> writer(dds::Participant& p, const dds::Topic<T, P>& topic) {
-  auto w = dds::make_writer(p, topic);
-  if (!w) throw std::runtime_error(w.message());
-  return std::move(*w);
-}
-
-template <class T, class P>
-std::unique_ptr<dds::Reader<T>> reader(dds::Participant& p, const dds::Topic<T, P>& topic, Inbox<T>& inbox) {
-  auto r = dds::make_reader(p, topic, [&inbox](const T& s, const auto&) { inbox.push(s); });
-  if (!r) throw std::runtime_error(r.message());
-  return std::move(*r);
-}
-
 class MapperTest : public ::testing::Test {
  protected:
   void SetUp() override {
     auto p = dds::Participant::create(domain_.id(), "mapper_test");
     ASSERT_TRUE(p) << p.message();
     participant_ = std::move(*p);
-    observations_ = writer(*participant_, dds::kRobotObservation);
-    configs_ = writer(*participant_, dds::kGridConfig);
-    edits_ = writer(*participant_, dds::kMapEdit);
-    files_ = writer(*participant_, dds::kMapFileRequest);
-    snapshot_reader_ = reader(*participant_, dds::kGridSnapshot, snapshots_);
-    patch_reader_ = reader(*participant_, dds::kGridPatch, patches_);
-    reply_reader_ = reader(*participant_, dds::kMapReply, replies_);
-    heartbeat_reader_ = reader(*participant_, dds::kHeartbeat, heartbeats_);
+    observations_ = testkit::make_test_writer(*participant_, dds::kRobotObservation);
+    configs_ = testkit::make_test_writer(*participant_, dds::kGridConfig);
+    edits_ = testkit::make_test_writer(*participant_, dds::kMapEdit);
+    files_ = testkit::make_test_writer(*participant_, dds::kMapFileRequest);
+    snapshot_reader_ = testkit::make_inbox_reader(*participant_, dds::kGridSnapshot, snapshots_);
+    patch_reader_ = testkit::make_inbox_reader(*participant_, dds::kGridPatch, patches_);
+    reply_reader_ = testkit::make_inbox_reader(*participant_, dds::kMapReply, replies_);
+    heartbeat_reader_ = testkit::make_inbox_reader(*participant_, dds::kHeartbeat, heartbeats_);
   }
 
   void TearDown() override {
@@ -309,7 +275,7 @@ TEST_F(MapperTest, ALateJoiningReaderGetsTheCurrentSnapshotAtOnce) {
   auto p = dds::Participant::create(domain_.id(), "mapper_test_late");
   ASSERT_TRUE(p) << p.message();
   Inbox<GridSnapshot> late;
-  auto late_reader = reader(**p, dds::kGridSnapshot, late);
+  auto late_reader = testkit::make_inbox_reader(**p, dds::kGridSnapshot, late);
   ASSERT_TRUE(wait_until(
       [&] {
         for (const GridSnapshot& s : late.items())

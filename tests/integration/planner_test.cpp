@@ -14,12 +14,14 @@
 #include <vector>
 
 #include "common/fastdds/fast_topics.hpp"
+#include "fastdds_inbox.hpp"
 #include "process_group.hpp"
 
 namespace slam {
 namespace {
 
 using namespace std::chrono_literals;
+using testkit::Inbox;
 using testkit::wait_until;
 
 constexpr double kRes = 0.1;
@@ -86,45 +88,6 @@ TestMap walled_map() {
   return map;
 }
 
-// Samples a reader callback collects on a DDS thread, read by the test thread.
-template <class T>
-class Inbox {
- public:
-  void push(const T& sample) {
-    std::lock_guard lock(mutex_);
-    items_.push_back(sample);
-  }
-  std::vector<T> items() const {
-    std::lock_guard lock(mutex_);
-    return items_;
-  }
-  template <class Pred>
-  std::optional<T> last(Pred pred) const {
-    std::lock_guard lock(mutex_);
-    for (auto it = items_.rbegin(); it != items_.rend(); ++it)
-      if (pred(*it)) return *it;
-    return std::nullopt;
-  }
-
- private:
-  mutable std::mutex mutex_;
-  std::vector<T> items_;
-};
-
-template <class T, class P>
-std::unique_ptr<dds::Writer<T>> writer(dds::Participant& p, const dds::Topic<T, P>& topic) {
-  auto w = dds::make_writer(p, topic);
-  if (!w) throw std::runtime_error(w.message());
-  return std::move(*w);
-}
-
-template <class T, class P>
-std::unique_ptr<dds::Reader<T>> reader(dds::Participant& p, const dds::Topic<T, P>& topic, Inbox<T>& inbox) {
-  auto r = dds::make_reader(p, topic, [&inbox](const T& s, const auto&) { inbox.push(s); });
-  if (!r) throw std::runtime_error(r.message());
-  return std::move(*r);
-}
-
 class PlannerTest : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -134,15 +97,15 @@ class PlannerTest : public ::testing::Test {
     auto p = dds::Participant::create(domain_.id(), "planner_test");
     ASSERT_TRUE(p) << p.message();
     participant_ = std::move(*p);
-    snapshots_ = writer(*participant_, dds::kGridSnapshot);
-    patches_ = writer(*participant_, dds::kGridPatch);
-    states_ = writer(*participant_, dds::kRobotState);
-    goals_ = writer(*participant_, dds::kNavGoal);
-    requests_ = writer(*participant_, dds::kPathRequest);
-    reply_reader_ = reader(*participant_, dds::kPathReply, replies_);
-    waypoint_reader_ = reader(*participant_, dds::kWaypointCommand, waypoints_);
-    path_reader_ = reader(*participant_, dds::kRobotPath, paths_);
-    heartbeat_reader_ = reader(*participant_, dds::kHeartbeat, heartbeats_);
+    snapshots_ = testkit::make_test_writer(*participant_, dds::kGridSnapshot);
+    patches_ = testkit::make_test_writer(*participant_, dds::kGridPatch);
+    states_ = testkit::make_test_writer(*participant_, dds::kRobotState);
+    goals_ = testkit::make_test_writer(*participant_, dds::kNavGoal);
+    requests_ = testkit::make_test_writer(*participant_, dds::kPathRequest);
+    reply_reader_ = testkit::make_inbox_reader(*participant_, dds::kPathReply, replies_);
+    waypoint_reader_ = testkit::make_inbox_reader(*participant_, dds::kWaypointCommand, waypoints_);
+    path_reader_ = testkit::make_inbox_reader(*participant_, dds::kRobotPath, paths_);
+    heartbeat_reader_ = testkit::make_inbox_reader(*participant_, dds::kHeartbeat, heartbeats_);
     ASSERT_TRUE(wait_until(
         [&] {
           return snapshots_->matched_readers() > 0 && patches_->matched_readers() > 0 &&

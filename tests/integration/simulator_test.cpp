@@ -2,7 +2,6 @@
 // the server with a paho client) and Cyclone DDS to Fast DDS readers and writers (cross-vendor):
 // a v1 robot drives to a waypoint and reports points on the true walls; ground truth, the world and
 // the heartbeat reach Fast DDS; SimControl spawns robots; malformed commands leave the goal alone.
-#include <MQTTClient.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -12,10 +11,12 @@
 #include <memory>
 #include <mutex>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
 #include "common/fastdds/fast_topics.hpp"
+#include "mqtt_test_client.hpp"
 #include "process_group.hpp"
 #include "protocol/v1_codec.hpp"
 #include "protocol/v2_robot_decode.hpp"
@@ -29,77 +30,21 @@ using namespace std::chrono_literals;
 using testkit::wait_until;
 using Bytes = std::vector<uint8_t>;
 
-struct Message {
-  std::string topic;
-  Bytes payload;
-};
+// The payload's bytes, as the protocol decoders take them.
+std::span<const uint8_t> bytes_of(const std::string& payload) {
+  return {reinterpret_cast<const uint8_t*>(payload.data()), payload.size()};
+}
 
-// The server side of MQTT for the test: subscribes, records every message, publishes raw bytes.
-class TestMqtt {
- public:
-  explicit TestMqtt(int port) {
-    const std::string url = "tcp://127.0.0.1:" + std::to_string(port);
-    EXPECT_EQ(
-        MQTTClient_create(&client_, url.c_str(), "simulator_test", MQTTCLIENT_PERSISTENCE_NONE, nullptr),
-        MQTTCLIENT_SUCCESS);
-    EXPECT_EQ(MQTTClient_setCallbacks(client_, this, nullptr, &TestMqtt::arrived, nullptr),
-              MQTTCLIENT_SUCCESS);
-    MQTTClient_connectOptions options = MQTTClient_connectOptions_initializer;
-    options.cleansession = 1;
-    EXPECT_EQ(MQTTClient_connect(client_, &options), MQTTCLIENT_SUCCESS);
-  }
-  ~TestMqtt() {
-    MQTTClient_disconnect(client_, 100);
-    MQTTClient_destroy(&client_);
-  }
-  void subscribe(const std::string& filter) {
-    EXPECT_EQ(MQTTClient_subscribe(client_, filter.c_str(), 1), MQTTCLIENT_SUCCESS);
-  }
-  void publish(const std::string& topic, const Bytes& payload) {
-    EXPECT_EQ(MQTTClient_publish(client_, topic.c_str(), static_cast<int>(payload.size()), payload.data(), 1,
-                                 0, nullptr),
-              MQTTCLIENT_SUCCESS);
-  }
-  void publish(const std::string& topic, const std::string& text) {
-    publish(topic, Bytes(text.begin(), text.end()));
-  }
-  std::vector<Message> messages() {
-    std::lock_guard lock(mutex_);
-    return messages_;
-  }
-  std::optional<Message> last(const std::string& topic) {
-    std::lock_guard lock(mutex_);
-    for (auto it = messages_.rbegin(); it != messages_.rend(); ++it)
-      if (it->topic == topic) return *it;
-    return std::nullopt;
-  }
-  void clear() {
-    std::lock_guard lock(mutex_);
-    messages_.clear();
-  }
+// The server side of MQTT for the test: a client connected to the simulator's broker.
+std::unique_ptr<testkit::MqttTestClient> connect_test_client(int port) {
+  auto client = std::make_unique<testkit::MqttTestClient>(port, "simulator_test");
+  EXPECT_EQ(client->connect(), 0);
+  return client;
+}
 
- private:
-  static int arrived(void* context, char* topic, int topic_len, MQTTClient_message* m) {
-    auto* self = static_cast<TestMqtt*>(context);
-    const auto* data = static_cast<const uint8_t*>(m->payload);
-    Message msg{topic_len > 0 ? std::string(topic, static_cast<size_t>(topic_len)) : std::string(topic),
-                Bytes(data, data + m->payloadlen)};
-    {
-      std::lock_guard lock(self->mutex_);
-      self->messages_.push_back(std::move(msg));
-    }
-    MQTTClient_freeMessage(&m);
-    MQTTClient_free(topic);
-    return 1;
-  }
-  MQTTClient client_ = nullptr;
-  std::mutex mutex_;
-  std::vector<Message> messages_;
-};
-
-protocol::DecodedObservation decode_adv(const Bytes& payload) {
+protocol::DecodedObservation decode_adv(const std::string& payload) {
   protocol::DecodedObservation out;
-  EXPECT_TRUE(protocol::decode_v1(payload, {}, out).is_ok());
+  EXPECT_TRUE(protocol::decode_v1(bytes_of(payload), {}, out).is_ok());
   return out;
 }
 
@@ -132,7 +77,7 @@ class SimulatorTest : public ::testing::Test {
                                      "7"};
     argv.insert(argv.end(), extra.begin(), extra.end());
     group_.start("simulator", argv);
-    mqtt_ = std::make_unique<TestMqtt>(port_);
+    mqtt_ = connect_test_client(port_);
     auto p = dds::Participant::create(domain_.id(), "simulator_test");
     ASSERT_TRUE(p) << p.message();
     participant_ = std::move(*p);
@@ -157,7 +102,7 @@ class SimulatorTest : public ::testing::Test {
 
   // Waits for the first adv of the single robot and returns its id.
   std::string first_robot_v1() {
-    mqtt_->subscribe("v1/robot/+/adv");
+    EXPECT_TRUE(mqtt_->subscribe("v1/robot/+/adv"));
     EXPECT_TRUE(wait_until([&] { return !mqtt_->messages().empty(); }, 20s)) << group_.log("simulator");
     const auto all = mqtt_->messages();
     if (all.empty()) return {};
@@ -183,7 +128,7 @@ class SimulatorTest : public ::testing::Test {
   testkit::DomainLease domain_;
   testkit::ProcessGroup group_;
   int port_ = 0;
-  std::unique_ptr<TestMqtt> mqtt_;
+  std::unique_ptr<testkit::MqttTestClient> mqtt_;
   std::unique_ptr<dds::Participant> participant_;
   std::unique_ptr<dds::Reader<Heartbeat>> heartbeat_reader_;
   std::mutex mutex_;
@@ -213,7 +158,7 @@ TEST_F(SimulatorTest, V1RobotDrivesToWaypointAndSeesTheTrueWalls) {
   const auto start_pose = decode_adv(mqtt_->messages().back().payload);
   const double tx = start_pose.x < 5.0 ? 7.5 : 2.5;
   const double ty = start_pose.y < 5.0 ? 7.0 : 3.0;
-  mqtt_->publish("v1/server/" + id + "/cmd", v1_waypoint(tx, ty));
+  EXPECT_TRUE(mqtt_->publish("v1/server/" + id + "/cmd", v1_waypoint(tx, ty)));
   EXPECT_TRUE(arrives_v1(id, tx, ty, 30s))
       << "robot never reported a position near (" << tx << ", " << ty << ")";
 }
@@ -321,7 +266,7 @@ TEST_F(SimulatorTest, SimControlFromFastDdsSpawnsRobots) {
       wait_until([&] { return counter("controls_rejected") == 1 && counter("controls_applied") == 2; }, 10s))
       << "applied " << counter("controls_applied") << ", rejected " << counter("controls_rejected");
   // The new robots speak MQTT as well.
-  mqtt_->subscribe("v1/robot/visitor/adv");
+  EXPECT_TRUE(mqtt_->subscribe("v1/robot/visitor/adv"));
   EXPECT_TRUE(wait_until([&] { return mqtt_->last("v1/robot/visitor/adv").has_value(); }, 20s));
 }
 
@@ -334,12 +279,12 @@ TEST_F(SimulatorTest, MalformedWaypointsAreIgnoredAndTheGoalKept) {
   const double tx = start_pose.x < 5.0 ? 8.0 : 2.0;
   const double ty = start_pose.y < 5.0 ? 8.0 : 2.0;
   const std::string cmd = "v1/server/" + id + "/cmd";
-  mqtt_->publish(cmd, v1_waypoint(tx, ty));
-  mqtt_->publish(cmd, Bytes{0x01, 0x02, 0x03});              // 3 bytes
-  mqtt_->publish(cmd, Bytes{0x64, 0x00, 0x64, 0x00, 0x64});  // 5 bytes
-  mqtt_->publish(cmd, Bytes(8, 0x10));                       // two pairs
-  mqtt_->publish(cmd, Bytes{});                              // empty
-  mqtt_->publish(cmd, v1_waypoint(50.0, 50.0));              // outside the 10 m world
+  EXPECT_TRUE(mqtt_->publish(cmd, v1_waypoint(tx, ty)));
+  EXPECT_TRUE(mqtt_->publish(cmd, Bytes{0x01, 0x02, 0x03}));              // 3 bytes
+  EXPECT_TRUE(mqtt_->publish(cmd, Bytes{0x64, 0x00, 0x64, 0x00, 0x64}));  // 5 bytes
+  EXPECT_TRUE(mqtt_->publish(cmd, Bytes(8, 0x10)));                       // two pairs
+  EXPECT_TRUE(mqtt_->publish(cmd, Bytes{}));                              // empty
+  EXPECT_TRUE(mqtt_->publish(cmd, v1_waypoint(50.0, 50.0)));              // outside the 10 m world
   EXPECT_TRUE(wait_until([&] { return counter("waypoints_rejected") == 5; }, 15s))
       << "waypoints_rejected " << counter("waypoints_rejected");
   EXPECT_EQ(counter("waypoints_outside_world"), 1);
@@ -350,7 +295,7 @@ TEST_F(SimulatorTest, MalformedWaypointsAreIgnoredAndTheGoalKept) {
 TEST_F(SimulatorTest, MultiplexedV2RobotSendsScansAndFollowsJsonWaypoints) {
   start({"--robots", "1", "--protocol", "v2", "--mqtt-multiplex", "--drift", "0", "--speed", "4"});
   watch_heartbeat();
-  mqtt_->subscribe("v2/robot/+/+");
+  EXPECT_TRUE(mqtt_->subscribe("v2/robot/+/+"));
   ASSERT_TRUE(wait_until([&] { return !mqtt_->messages().empty(); }, 20s));
   std::string id;
   ASSERT_TRUE(wait_until(
@@ -362,7 +307,7 @@ TEST_F(SimulatorTest, MultiplexedV2RobotSendsScansAndFollowsJsonWaypoints) {
       10s));
   const std::string scan_topic = "v2/robot/" + id + "/scan";
   protocol::DecodedObservation obs;
-  ASSERT_TRUE(protocol::decode_v2_scan(mqtt_->last(scan_topic)->payload, {}, obs).is_ok());
+  ASSERT_TRUE(protocol::decode_v2_scan(bytes_of(mqtt_->last(scan_topic)->payload), {}, obs).is_ok());
   EXPECT_TRUE(obs.has_heading);
   EXPECT_EQ(obs.hits.size() + obs.misses.size(), 16u);
   EXPECT_TRUE(wait_until([&] { return mqtt_->last("v2/robot/" + id + "/status").has_value(); }, 10s));
@@ -371,14 +316,14 @@ TEST_F(SimulatorTest, MultiplexedV2RobotSendsScansAndFollowsJsonWaypoints) {
   const double tx = obs.x < 5.0 ? 7.0 : 3.0;
   std::string good;
   ASSERT_TRUE(protocol::encode_v2_waypoint({1, {tx, 5.0}}, {}, good).is_ok());
-  mqtt_->publish(topic, good);
-  mqtt_->publish(topic, std::string("{\"seq\":2,\"x\":"));                // bad JSON
-  mqtt_->publish(topic, std::string("{\"seq\":3,\"x\":\"1\",\"y\":2}"));  // wrong type
+  EXPECT_TRUE(mqtt_->publish(topic, good));
+  EXPECT_TRUE(mqtt_->publish(topic, std::string("{\"seq\":2,\"x\":")));                // bad JSON
+  EXPECT_TRUE(mqtt_->publish(topic, std::string("{\"seq\":3,\"x\":\"1\",\"y\":2}")));  // wrong type
   EXPECT_TRUE(wait_until(
       [&] {
         const auto m = mqtt_->last(scan_topic);
         protocol::DecodedObservation o;
-        return m && protocol::decode_v2_scan(m->payload, {}, o).is_ok() &&
+        return m && protocol::decode_v2_scan(bytes_of(m->payload), {}, o).is_ok() &&
                std::hypot(o.x - tx, o.y - 5.0) < 0.07;
       },
       30s, 50ms));
@@ -393,14 +338,14 @@ TEST_F(SimulatorTest, ReconnectsAndResubscribesAfterBrokerRestart) {
   mqtt_.reset();
   group_.stop("mosquitto");
   group_.restart_mosquitto("mosquitto", port_);
-  mqtt_ = std::make_unique<TestMqtt>(port_);
-  mqtt_->subscribe("v1/robot/+/adv");
+  mqtt_ = connect_test_client(port_);
+  EXPECT_TRUE(mqtt_->subscribe("v1/robot/+/adv"));
   ASSERT_TRUE(wait_until([&] { return mqtt_->last("v1/robot/" + id + "/adv").has_value(); }, 30s));
   EXPECT_TRUE(wait_until([&] { return counter("mqtt_reconnects") >= 1; }, 10s));
   // A command after the restart still arrives: the robot subscribed again.
   const auto pose = decode_adv(mqtt_->last("v1/robot/" + id + "/adv")->payload);
   const double tx = pose.x < 5.0 ? 7.0 : 3.0;
-  mqtt_->publish("v1/server/" + id + "/cmd", v1_waypoint(tx, 5.0));
+  EXPECT_TRUE(mqtt_->publish("v1/server/" + id + "/cmd", v1_waypoint(tx, 5.0)));
   EXPECT_TRUE(arrives_v1(id, tx, 5.0, 30s));
 }
 

@@ -2,7 +2,6 @@
 // What system_test.cpp drives the whole fleet with: a room scene a legacy robot reports in v1 bytes,
 // a paho robot that keeps reporting through broker restarts, and a DDS probe that rebuilds the map
 // and watches heartbeats. Header-only: one test program uses it.
-#include <MQTTClient.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -19,6 +18,8 @@
 #include <vector>
 
 #include "common/fastdds/fast_topics.hpp"
+#include "inbox.hpp"
+#include "mqtt_test_client.hpp"
 
 namespace slam::system_test {
 
@@ -129,27 +130,7 @@ struct Scene {
   }
 };
 
-// Samples a DDS callback collects, read by the test thread.
-template <class T>
-class Inbox {
- public:
-  void push(const T& sample) {
-    std::lock_guard lock(mutex_);
-    items_.push_back(sample);
-  }
-  std::vector<T> items() const {
-    std::lock_guard lock(mutex_);
-    return items_;
-  }
-  size_t size() const {
-    std::lock_guard lock(mutex_);
-    return items_.size();
-  }
-
- private:
-  mutable std::mutex mutex_;
-  std::vector<T> items_;
-};
+using testkit::Inbox;
 
 // The grid as a receiver assembles it.
 struct Map {
@@ -297,19 +278,12 @@ class Probe {
 class PahoRobot {
  public:
   PahoRobot(int port, std::string id, std::string adv, std::chrono::milliseconds period = 100ms)
-      : id_(std::move(id)), adv_(std::move(adv)), period_(period) {
-    const std::string url = "tcp://127.0.0.1:" + std::to_string(port);
-    if (MQTTClient_create(&client_, url.c_str(), ("robot-" + id_).c_str(), MQTTCLIENT_PERSISTENCE_NONE,
-                          nullptr) != MQTTCLIENT_SUCCESS)
-      throw std::runtime_error("MQTTClient_create failed");
-    MQTTClient_setCallbacks(client_, this, nullptr, &PahoRobot::on_message, nullptr);
+      : id_(std::move(id)), adv_(std::move(adv)), period_(period), client_(port, "robot-" + id_) {
     thread_ = std::thread([this] { loop(); });
   }
   ~PahoRobot() {
     stop_ = true;
     thread_.join();
-    if (MQTTClient_isConnected(client_)) MQTTClient_disconnect(client_, 100);
-    MQTTClient_destroy(&client_);
   }
   PahoRobot(const PahoRobot&) = delete;
   PahoRobot& operator=(const PahoRobot&) = delete;
@@ -326,39 +300,20 @@ class PahoRobot {
   }
   // Commands received after `since`, as (arrival, payload).
   std::vector<std::pair<Clock::time_point, std::string>> commands(Clock::time_point since = {}) const {
-    std::lock_guard lock(mutex_);
     std::vector<std::pair<Clock::time_point, std::string>> out;
-    for (const auto& c : commands_)
-      if (c.first > since) out.push_back(c);
+    for (const auto& m : client_.messages())
+      if (m.received_at > since) out.emplace_back(m.received_at, m.payload);
     return out;
   }
 
  private:
-  static int on_message(void* self, char* topic, int, MQTTClient_message* m) {
-    auto* robot = static_cast<PahoRobot*>(self);
-    {
-      std::lock_guard lock(robot->mutex_);
-      robot->commands_.emplace_back(Clock::now(), std::string(static_cast<const char*>(m->payload),
-                                                              static_cast<size_t>(m->payloadlen)));
-    }
-    MQTTClient_freeMessage(&m);
-    MQTTClient_free(topic);
-    return 1;
-  }
   void loop() {
     const std::string adv_topic = "v1/robot/" + id_ + "/adv";
     const std::string cmd_topic = "v1/server/" + id_ + "/cmd";
     while (!stop_) {
-      if (!MQTTClient_isConnected(client_)) {
-        MQTTClient_connectOptions options = MQTTClient_connectOptions_initializer;
-        options.cleansession = 1;
-        options.keepAliveInterval = 5;
-        options.connectTimeout = 2;
-        if (MQTTClient_connect(client_, &options) != MQTTCLIENT_SUCCESS ||
-            MQTTClient_subscribe(client_, cmd_topic.c_str(), 1) != MQTTCLIENT_SUCCESS) {
-          std::this_thread::sleep_for(period_);
-          continue;
-        }
+      if (!client_.connected() && (client_.connect() != 0 || !client_.subscribe(cmd_topic))) {
+        std::this_thread::sleep_for(period_);
+        continue;
       }
       std::string payload;
       {
@@ -369,9 +324,7 @@ class PahoRobot {
           payload = adv_;
       }
       // QoS 0: a lost report is replaced by the next one, as on a robot's radio link.
-      if (!payload.empty())
-        MQTTClient_publish(client_, adv_topic.c_str(), static_cast<int>(payload.size()), payload.data(), 0, 0,
-                           nullptr);
+      if (!payload.empty()) client_.publish(adv_topic, payload, 0);
       std::this_thread::sleep_for(period_);
     }
   }
@@ -380,11 +333,10 @@ class PahoRobot {
   mutable std::mutex mutex_;
   std::string adv_;
   std::string once_;
-  std::vector<std::pair<Clock::time_point, std::string>> commands_;
   std::chrono::milliseconds period_;
   std::atomic<bool> paused_{false};
   std::atomic<bool> stop_{false};
-  MQTTClient client_ = nullptr;
+  testkit::MqttTestClient client_;
   std::thread thread_;
 };
 

@@ -16,6 +16,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
@@ -88,6 +89,43 @@ std::string bin_path(const std::string& name) {
   return std::string(SLAM_BIN_DIR) + "/" + name;
 }
 
+namespace {
+
+// State and process group of `pid` from /proc/<pid>/stat; nullopt when it is gone.
+std::optional<std::pair<char, pid_t>> process_state(pid_t pid) {
+  std::ifstream stat("/proc/" + std::to_string(pid) + "/stat");
+  std::string line;
+  if (!std::getline(stat, line)) return std::nullopt;
+  // Fields after the ")" closing the command name: state ppid pgrp ...
+  const auto close = line.rfind(')');
+  if (close == std::string::npos || close + 2 >= line.size()) return std::nullopt;
+  std::istringstream rest(line.substr(close + 2));
+  char state = 0;
+  pid_t ppid = 0, pgrp = 0;
+  if (!(rest >> state >> ppid >> pgrp)) return std::nullopt;
+  return std::pair(state, pgrp);
+}
+
+}  // namespace
+
+bool process_alive(pid_t pid) {
+  const auto s = process_state(pid);
+  return s && s->first != 'Z' && s->first != 'X';
+}
+
+std::vector<pid_t> process_group_members(pid_t pgid) {
+  std::vector<pid_t> out;
+  std::error_code ec;
+  for (const auto& e : std::filesystem::directory_iterator("/proc", ec)) {
+    const std::string name = e.path().filename();
+    if (name.find_first_not_of("0123456789") != std::string::npos) continue;
+    const pid_t pid = std::stoi(name);
+    const auto s = process_state(pid);
+    if (s && s->second == pgid && s->first != 'Z' && s->first != 'X') out.push_back(pid);
+  }
+  return out;
+}
+
 ProcessGroup::ProcessGroup() {
   char tmpl[] = "/tmp/slamfleet-test-XXXXXX";
   if (!mkdtemp(tmpl)) throw std::runtime_error("mkdtemp failed");
@@ -119,11 +157,13 @@ pid_t ProcessGroup::start(const std::string& name, const std::vector<std::string
   if (children_.count(name) && !children_[name].reaped)
     throw std::runtime_error("process " + name + " is already running");
   const std::string log_path = dir_ + "/" + name + ".log";
+  const pid_t parent = ::getpid();
   const pid_t pid = ::fork();
   if (pid < 0) throw std::runtime_error("fork failed");
   if (pid == 0) {
-    ::setpgid(0, 0);                     // own group: teardown kills its children too
-    ::prctl(PR_SET_PDEATHSIG, SIGKILL);  // and a crashed test takes it down
+    ::setpgid(0, 0);                          // own group: teardown kills its children too
+    ::prctl(PR_SET_PDEATHSIG, SIGKILL);       // and a crashed test takes it down
+    if (::getppid() != parent) ::_exit(127);  // the test died before the line above
     const int fd = ::open(log_path.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
     ::dup2(fd, 1);
     ::dup2(fd, 2);
@@ -141,6 +181,9 @@ pid_t ProcessGroup::start(const std::string& name, const std::vector<std::string
 
 void ProcessGroup::write_mosquitto_config(const std::string& name, int port) {
   std::ofstream conf(dir_ + "/" + name + ".conf");
+  // Started as root, mosquitto would switch to user "mosquitto"; a credential change clears the
+  // parent-death signal, and the broker would outlive a crashed test. "root" means no switch.
+  if (::geteuid() == 0) conf << "user root\n";
   conf << "listener " << port << " 127.0.0.1\n"
        << "allow_anonymous true\n"
        << "persistence false\n"

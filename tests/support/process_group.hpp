@@ -41,6 +41,11 @@ bool wait_until(const std::function<bool()>& pred, std::chrono::milliseconds tim
 // Path of a project binary (service, tool) in the build tree.
 std::string bin_path(const std::string& name);
 
+// Whether `pid` is a live process (not gone, not a zombie), from /proc.
+bool process_alive(pid_t pid);
+// Pids of the live processes whose process group is `pgid`, from /proc.
+std::vector<pid_t> process_group_members(pid_t pgid);
+
 class ProcessGroup {
  public:
   ProcessGroup();
@@ -49,8 +54,11 @@ class ProcessGroup {
   ProcessGroup& operator=(const ProcessGroup&) = delete;
 
   // Starts argv[0] (a path, or a name searched in PATH) as `name`; stdout+stderr go to dir()/name.log.
+  // The process gets its own process group and dies with the thread that started it (a crashed
+  // test leaves nothing behind), as long as it does not change its credentials.
   pid_t start(const std::string& name, const std::vector<std::string>& argv);
   // Starts mosquitto on a free loopback port with a generated config; returns the port once it accepts.
+  // It keeps the test's user, so it dies with the test too.
   int start_mosquitto(const std::string& name = "mosquitto");
   // Same config and port as an earlier start_mosquitto (for broker-restart tests).
   void restart_mosquitto(const std::string& name, int port);

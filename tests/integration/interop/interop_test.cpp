@@ -114,7 +114,7 @@ INSTANTIATE_TEST_SUITE_P(AllTypes, InteropTest, ::testing::Range<size_t>(0, 20),
                            return cases()[param.param].type;
                          });
 
-TEST(InteropCoverage, EveryTopicTypeHasACase) {
+TEST(InteropCoverageTest, EveryTopicTypeHasACase) {
   EXPECT_EQ(cases().size(), 20u);
 }
 

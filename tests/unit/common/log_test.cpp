@@ -10,7 +10,7 @@
 namespace slam {
 namespace {
 
-TEST(RateLimiterTest, OneLinePerKeyPerIntervalAndCountsTheRest) {
+TEST(RateLimiter, OneLinePerKeyPerIntervalAndCountsTheRest) {
   RateLimiter limiter(std::chrono::milliseconds(50));
   uint64_t suppressed = 99;
   EXPECT_TRUE(limiter.allow("r1:bad_length", &suppressed));
@@ -23,13 +23,13 @@ TEST(RateLimiterTest, OneLinePerKeyPerIntervalAndCountsTheRest) {
   EXPECT_EQ(suppressed, 2u);
 }
 
-TEST(RateLimiterTest, ManyDistinctKeysStayBounded) {
+TEST(RateLimiter, ManyDistinctKeysStayBounded) {
   RateLimiter limiter(std::chrono::hours(1));
   uint64_t suppressed = 0;
   for (int i = 0; i < 20000; ++i) EXPECT_TRUE(limiter.allow("robot-" + std::to_string(i), &suppressed));
 }
 
-TEST(CountersTest, SameNameSameCounterAndSnapshotInOrder) {
+TEST(Counters, SameNameSameCounterAndSnapshotInOrder) {
   Counters counters;
   auto& a = counters.get("messages_in");
   auto& b = counters.get("rejected_bad_length");
@@ -43,7 +43,7 @@ TEST(CountersTest, SameNameSameCounterAndSnapshotInOrder) {
   EXPECT_EQ(snap[1].second, 1);
 }
 
-TEST(LoggingTest, RejectsUnknownLevel) {
+TEST(Logging, RejectsUnknownLevel) {
   EXPECT_TRUE(setup_logging("test_ok", "debug"));
   EXPECT_FALSE(setup_logging("test_bad", "loud"));
 }

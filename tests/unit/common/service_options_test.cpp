@@ -7,6 +7,8 @@
 #include <filesystem>
 #include <fstream>
 
+#include "temp_dir.hpp"
+
 namespace slam {
 namespace {
 
@@ -30,57 +32,57 @@ Parsed parse(std::vector<std::string> args) {
   return p;
 }
 
-std::string write_config(const std::string& text) {
-  const auto path =
-      std::filesystem::temp_directory_path() / ("slam_options_test_" + std::to_string(::getpid()) + ".yaml");
+// `text` as config.yaml in `dir`, replacing the previous one.
+std::string write_config(const testkit::TempDir& dir, const std::string& text) {
+  const auto path = dir / "config.yaml";
   std::ofstream(path) << text;
   return path.string();
 }
 
-TEST(ServiceOptionsTest, DefaultsWithoutArguments) {
+TEST(ServiceOptions, DefaultsWithoutArguments) {
   const Parsed p = parse({});
   EXPECT_FALSE(p.exit);
   EXPECT_EQ(p.options.domain, 0);
   EXPECT_EQ(p.options.log_level, "info");
 }
 
-TEST(ServiceOptionsTest, HelpExitsZero) {
+TEST(ServiceOptions, HelpExitsZero) {
   EXPECT_EQ(parse({"--help"}).exit, 0);
 }
 
-TEST(ServiceOptionsTest, BadValuesExitTwo) {
+TEST(ServiceOptions, BadValuesExitTwo) {
   EXPECT_EQ(parse({"--domain", "500"}).exit, 2);
   EXPECT_EQ(parse({"--domain", "x"}).exit, 2);
   EXPECT_EQ(parse({"--no-such-flag"}).exit, 2);
 }
 
-TEST(ServiceOptionsTest, YamlConfigSetsOptionsWithUnderscoresAndNesting) {
-  const std::string path = write_config("domain: 7\nrate: 2.5\nmqtt:\n  broker: tcp://10.0.0.1:1883\n");
+TEST(ServiceOptions, YamlConfigSetsOptionsWithUnderscoresAndNesting) {
+  const testkit::TempDir dir("service-options");
+  const std::string path = write_config(dir, "domain: 7\nrate: 2.5\nmqtt:\n  broker: tcp://10.0.0.1:1883\n");
   const Parsed p = parse({"--config", path});
   EXPECT_FALSE(p.exit);
   EXPECT_EQ(p.options.domain, 7);
   EXPECT_DOUBLE_EQ(p.rate, 2.5);
   EXPECT_EQ(p.broker, "tcp://10.0.0.1:1883");
-  std::filesystem::remove(path);
 }
 
-TEST(ServiceOptionsTest, CommandLineWinsOverConfigFile) {
-  const std::string path = write_config("log_level: debug\ndomain: 7\n");
+TEST(ServiceOptions, CommandLineWinsOverConfigFile) {
+  const testkit::TempDir dir("service-options");
+  const std::string path = write_config(dir, "log_level: debug\ndomain: 7\n");
   const Parsed p = parse({"--config", path, "--domain", "9"});
   EXPECT_EQ(p.options.domain, 9);
   EXPECT_EQ(p.options.log_level, "debug");
-  std::filesystem::remove(path);
 }
 
-TEST(ServiceOptionsTest, BadConfigFilesAreRejected) {
-  const std::string unknown = write_config("no_such_option: 1\n");
+TEST(ServiceOptions, BadConfigFilesAreRejected) {
+  const testkit::TempDir dir("service-options");
+  const std::string unknown = write_config(dir, "no_such_option: 1\n");
   EXPECT_EQ(parse({"--config", unknown}).exit, 2);
-  const std::string broken = write_config("domain: [1, \n");
+  const std::string broken = write_config(dir, "domain: [1, \n");
   EXPECT_EQ(parse({"--config", broken}).exit, 2);
-  const std::string scalar = write_config("just text\n");
+  const std::string scalar = write_config(dir, "just text\n");
   EXPECT_EQ(parse({"--config", scalar}).exit, 2);
   EXPECT_EQ(parse({"--config", "/nonexistent/config.yaml"}).exit, 2);
-  std::filesystem::remove(unknown);
 }
 
 }  // namespace

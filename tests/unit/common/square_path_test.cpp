@@ -16,7 +16,7 @@ void expect_at(const Vec2& got, double x, double y) {
   EXPECT_DOUBLE_EQ(got.y, y);
 }
 
-TEST(SquareCornersTest, CornerAnchorStartsAtTheTargetAndRunsAnticlockwise) {
+TEST(SquareCorners, CornerAnchorStartsAtTheTargetAndRunsAnticlockwise) {
   const auto c = square_corners(Vec2{1.0, 2.0}, 2.0, false);
   expect_at(c[0], 1.0, 2.0);
   expect_at(c[1], 3.0, 2.0);
@@ -24,7 +24,7 @@ TEST(SquareCornersTest, CornerAnchorStartsAtTheTargetAndRunsAnticlockwise) {
   expect_at(c[3], 1.0, 4.0);
 }
 
-TEST(SquareCornersTest, CentredAnchorSurroundsTheTarget) {
+TEST(SquareCorners, CentredAnchorSurroundsTheTarget) {
   const auto c = square_corners(Vec2{1.0, 2.0}, 2.0, true);
   expect_at(c[0], 0.0, 1.0);
   expect_at(c[1], 2.0, 1.0);
@@ -32,7 +32,7 @@ TEST(SquareCornersTest, CentredAnchorSurroundsTheTarget) {
   expect_at(c[3], 0.0, 3.0);
 }
 
-TEST(SquareCornersTest, WorksForAnyPlainPointType) {
+TEST(SquareCorners, WorksForAnyPlainPointType) {
   struct P {
     double x, y;
   };

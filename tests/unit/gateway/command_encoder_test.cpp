@@ -9,7 +9,7 @@
 namespace slam::gateway {
 namespace {
 
-TEST(CommandEncoderTest, V1IsExactlyFourLittleEndianBytesOnTheCmdTopic) {
+TEST(CommandEncoder, V1IsExactlyFourLittleEndianBytesOnTheCmdTopic) {
   CommandEncoder encoder{protocol::CodecLimits{}};
   CommandMessages out;
   ASSERT_TRUE(encoder.encode("r1", Protocol::V1, 7, {1.0, -2.5}, {}, out));
@@ -18,7 +18,7 @@ TEST(CommandEncoderTest, V1IsExactlyFourLittleEndianBytesOnTheCmdTopic) {
   EXPECT_EQ(out.messages[0].payload, std::string("\x64\x00\x06\xff", 4));
 }
 
-TEST(CommandEncoderTest, V1OutOfInt16IsAnErrorNeverWrapped) {
+TEST(CommandEncoder, V1OutOfInt16IsAnErrorNeverWrapped) {
   CommandEncoder encoder{protocol::CodecLimits{}};
   CommandMessages out;
   const auto s = encoder.encode("r1", Protocol::V1, 1, {327.68, 0.0}, {}, out);
@@ -28,7 +28,7 @@ TEST(CommandEncoderTest, V1OutOfInt16IsAnErrorNeverWrapped) {
   EXPECT_TRUE(encoder.encode("r1", Protocol::V1, 1, {327.67, -327.68}, {}, out));
 }
 
-TEST(CommandEncoderTest, V2SendsWaypointAndWholePathStartingWithTheWaypointOnce) {
+TEST(CommandEncoder, V2SendsWaypointAndWholePathStartingWithTheWaypointOnce) {
   CommandEncoder encoder{protocol::CodecLimits{}};
   CommandMessages out;
   const std::vector<protocol::Point> rest{{3.0, 0.25}};
@@ -45,7 +45,7 @@ TEST(CommandEncoderTest, V2SendsWaypointAndWholePathStartingWithTheWaypointOnce)
   EXPECT_EQ(out.messages[1].payload, R"({"seq":7,"points":[[1.5,-2],[3,0.25]]})");
 }
 
-TEST(CommandEncoderTest, BadIdsAndNonFiniteWaypointsAreErrors) {
+TEST(CommandEncoder, BadIdsAndNonFiniteWaypointsAreErrors) {
   CommandEncoder encoder{protocol::CodecLimits{}};
   CommandMessages out;
   EXPECT_EQ(encoder.encode("a/b", Protocol::V1, 1, {0, 0}, {}, out).reason(),

@@ -16,14 +16,14 @@ std::string error_of(const GatewayOptions& o) {
   return s ? std::string() : s.message();
 }
 
-TEST(GatewayOptionsTest, DefaultsAreValidAndSubscribeBothTrees) {
+TEST(GatewayOptions, DefaultsAreValidAndSubscribeBothTrees) {
   GatewayOptions o;
   EXPECT_EQ(error_of(o), "");
   EXPECT_EQ(o.mqtt.broker, "tcp://127.0.0.1:1883");
   EXPECT_EQ(o.mqtt.subscriptions, (std::vector<std::string>{"v1/robot/+/adv", "v2/robot/+/+"}));
 }
 
-TEST(GatewayOptionsTest, FlagsBind) {
+TEST(GatewayOptions, FlagsBind) {
   CLI::App app;
   GatewayOptions o;
   add_gateway_options(app, o);
@@ -55,7 +55,7 @@ TEST(GatewayOptionsTest, FlagsBind) {
   EXPECT_EQ(error_of(o), "");
 }
 
-TEST(GatewayOptionsTest, BadValuesNameTheKey) {
+TEST(GatewayOptions, BadValuesNameTheKey) {
   auto with = [](auto change) {
     GatewayOptions o;
     change(o);
@@ -85,7 +85,7 @@ TEST(GatewayOptionsTest, BadValuesNameTheKey) {
   EXPECT_NE(with([](auto& o) { o.traffic_queue = 0; }).find("traffic-queue"), std::string::npos);
 }
 
-TEST(TopicFilterTest, WildcardsOnlyAsWholeLevelsAndHashLast) {
+TEST(TopicFilter, WildcardsOnlyAsWholeLevelsAndHashLast) {
   EXPECT_TRUE(validate_filter("v1/robot/+/adv"));
   EXPECT_TRUE(validate_filter("v2/robot/+/+"));
   EXPECT_TRUE(validate_filter("#"));
@@ -100,7 +100,7 @@ TEST(TopicFilterTest, WildcardsOnlyAsWholeLevelsAndHashLast) {
   EXPECT_FALSE(validate_filter(std::string("a\xff", 2)));
 }
 
-TEST(TopicFilterTest, PublishTopicsHaveNoWildcards) {
+TEST(TopicFilter, PublishTopicsHaveNoWildcards) {
   EXPECT_TRUE(validate_topic_name("v1/server/r1/cmd"));
   EXPECT_FALSE(validate_topic_name("v1/server/+/cmd"));
   EXPECT_FALSE(validate_topic_name("a/#"));

@@ -31,7 +31,7 @@ std::vector<std::string> changed_ids(RobotRegistry& registry) {
   return out;
 }
 
-TEST(RobotRegistryTest, FirstValidMessageCreatesTheRobotOnlineWithSequenceOne) {
+TEST(RobotRegistry, FirstValidMessageCreatesTheRobotOnlineWithSequenceOne) {
   RobotRegistry registry;
   auto obs = pose_at(1.0, -2.5, 3);
   const AcceptResult r = registry.accept_observation("r1", Protocol::V1, obs, at(10));
@@ -52,7 +52,7 @@ TEST(RobotRegistryTest, FirstValidMessageCreatesTheRobotOnlineWithSequenceOne) {
   EXPECT_EQ(registry.online(), 1u);
 }
 
-TEST(RobotRegistryTest, SequenceCountsPerRobot) {
+TEST(RobotRegistry, SequenceCountsPerRobot) {
   RobotRegistry registry;
   auto a = pose_at(0, 0);
   EXPECT_EQ(registry.accept_observation("a", Protocol::V1, a, at(1)).seq, 1u);
@@ -64,7 +64,7 @@ TEST(RobotRegistryTest, SequenceCountsPerRobot) {
   EXPECT_EQ(registry.find("a")->last_seen_ns, at(3).wall_ns);
 }
 
-TEST(RobotRegistryTest, ProtocolFollowsTheLatestValidMessage) {
+TEST(RobotRegistry, ProtocolFollowsTheLatestValidMessage) {
   RobotRegistry registry;
   EXPECT_FALSE(registry.protocol_of("r").has_value());
   auto o = pose_at(0, 0);
@@ -74,7 +74,7 @@ TEST(RobotRegistryTest, ProtocolFollowsTheLatestValidMessage) {
   EXPECT_EQ(registry.protocol_of("r"), Protocol::V2);
 }
 
-TEST(RobotRegistryTest, PointsWithoutPoseUseTheLastPoseOrAreRefused) {
+TEST(RobotRegistry, PointsWithoutPoseUseTheLastPoseOrAreRefused) {
   RobotRegistry registry;
   protocol::DecodedObservation points;
   points.hits.push_back({3.0, 4.0});
@@ -97,7 +97,7 @@ TEST(RobotRegistryTest, PointsWithoutPoseUseTheLastPoseOrAreRefused) {
   EXPECT_EQ(registry.find("r")->points, 1u);
 }
 
-TEST(RobotRegistryTest, SilenceTurnsRobotsOfflineAndAMessageBringsThemBack) {
+TEST(RobotRegistry, SilenceTurnsRobotsOfflineAndAMessageBringsThemBack) {
   RobotRegistry registry(RegistryConfig{5 * kSecond, 100});
   auto o = pose_at(0, 0);
   registry.accept_observation("quiet", Protocol::V1, o, at(0));
@@ -123,7 +123,7 @@ TEST(RobotRegistryTest, SilenceTurnsRobotsOfflineAndAMessageBringsThemBack) {
   EXPECT_EQ(registry.online(), 2u);
 }
 
-TEST(RobotRegistryTest, LastWillTurnsTheRobotOfflineAtOnceAndSetsBatteryAndState) {
+TEST(RobotRegistry, LastWillTurnsTheRobotOfflineAtOnceAndSetsBatteryAndState) {
   RobotRegistry registry;
   protocol::DecodedStatus status;
   status.battery = 0.82f;
@@ -150,7 +150,7 @@ TEST(RobotRegistryTest, LastWillTurnsTheRobotOfflineAtOnceAndSetsBatteryAndState
   EXPECT_EQ(registry.online(), 0u);
 }
 
-TEST(RobotRegistryTest, RejectionsCountOnlyForKnownRobots) {
+TEST(RobotRegistry, RejectionsCountOnlyForKnownRobots) {
   RobotRegistry registry;
   registry.count_rejected("stranger");
   EXPECT_EQ(registry.size(), 0u);
@@ -164,7 +164,7 @@ TEST(RobotRegistryTest, RejectionsCountOnlyForKnownRobots) {
   EXPECT_EQ(changed_ids(registry), std::vector<std::string>{"r"});
 }
 
-TEST(RobotRegistryTest, ChangedRobotsAreReportedOnce) {
+TEST(RobotRegistry, ChangedRobotsAreReportedOnce) {
   RobotRegistry registry;
   auto o = pose_at(0, 0);
   registry.accept_observation("a", Protocol::V1, o, at(1));
@@ -177,7 +177,7 @@ TEST(RobotRegistryTest, ChangedRobotsAreReportedOnce) {
   EXPECT_EQ(changed_ids(registry), std::vector<std::string>{"b"});
 }
 
-TEST(RobotRegistryTest, NewRobotsBeyondTheLimitAreRefusedKnownOnesContinue) {
+TEST(RobotRegistry, NewRobotsBeyondTheLimitAreRefusedKnownOnesContinue) {
   RobotRegistry registry(RegistryConfig{5 * kSecond, 2});
   auto o = pose_at(0, 0);
   registry.accept_observation("a", Protocol::V1, o, at(1));

@@ -16,7 +16,7 @@ std::span<const std::uint8_t> bytes(const std::string& s) {
   return {reinterpret_cast<const std::uint8_t*>(s.data()), s.size()};
 }
 
-TEST(TokenBucketTest, AllowsTheBurstThenTheRate) {
+TEST(TokenBucket, AllowsTheBurstThenTheRate) {
   TokenBucket bucket(10.0, 3.0);  // 10 per second, 3 saved up
   int allowed = 0;
   for (int i = 0; i < 10; ++i) allowed += bucket.take(0) ? 1 : 0;
@@ -26,7 +26,7 @@ TEST(TokenBucketTest, AllowsTheBurstThenTheRate) {
   EXPECT_FALSE(bucket.take(100'000'000));
 }
 
-TEST(TrafficQueueTest, CopiesAndTruncatesToTheIdlBounds) {
+TEST(TrafficQueue, CopiesAndTruncatesToTheIdlBounds) {
   TrafficQueue queue(8, 1000.0);
   const std::string topic(300, 't');
   const std::string payload(2000, 'p');
@@ -41,7 +41,7 @@ TEST(TrafficQueueTest, CopiesAndTruncatesToTheIdlBounds) {
   EXPECT_EQ(batch[0].payload_size, 2000u);
 }
 
-TEST(TrafficQueueTest, AFullRingDropsAndSequenceNumbersShowTheGap) {
+TEST(TrafficQueue, AFullRingDropsAndSequenceNumbersShowTheGap) {
   TrafficQueue queue(2, 1e9);
   EXPECT_TRUE(queue.push(TrafficDirection::Inbound, "a", {}, 0, 0));
   EXPECT_TRUE(queue.push(TrafficDirection::Inbound, "b", {}, 0, 0));
@@ -56,7 +56,7 @@ TEST(TrafficQueueTest, AFullRingDropsAndSequenceNumbersShowTheGap) {
   EXPECT_EQ(batch[0].seq, 4u) << "the dropped 'c' was seq 3";
 }
 
-TEST(TrafficQueueTest, RateLimitDrops) {
+TEST(TrafficQueue, RateLimitDrops) {
   TrafficQueue queue(1000, 100.0);  // burst of 10
   int accepted = 0;
   for (int i = 0; i < 100; ++i) accepted += queue.push(TrafficDirection::Inbound, "t", {}, 0, 0) ? 1 : 0;
@@ -64,12 +64,12 @@ TEST(TrafficQueueTest, RateLimitDrops) {
   EXPECT_TRUE(queue.push(TrafficDirection::Inbound, "t", {}, 0, 10'000'000));  // 10 ms later: one more
 }
 
-TEST(TrafficQueueTest, ZeroRateTurnsTheLogOff) {
+TEST(TrafficQueue, ZeroRateTurnsTheLogOff) {
   TrafficQueue queue(10, 0.0);
   EXPECT_FALSE(queue.push(TrafficDirection::Inbound, "t", {}, 0, 0));
 }
 
-TEST(TrafficQueueTest, PopWaitsForAPushAndCloseWakesIt) {
+TEST(TrafficQueue, PopWaitsForAPushAndCloseWakesIt) {
   TrafficQueue queue(4, 1000.0);
   auto batch = queue.make_batch(4);
   std::thread producer([&] {

@@ -46,7 +46,7 @@ Status put(ObservationStore& s, const Row& r) {
 }
 
 TEST(ObservationStore, RoundTripInInsertionOrderAcrossReopen) {
-  TempDir dir;
+  testkit::TempDir dir("mapper");
   const auto path = dir.path() / "map.db";
   std::vector<Row> rows;
   for (int i = 0; i < 25; ++i)
@@ -74,7 +74,7 @@ TEST(ObservationStore, RoundTripInInsertionOrderAcrossReopen) {
 }
 
 TEST(ObservationStore, DeleteByRobot) {
-  TempDir dir;
+  testkit::TempDir dir("mapper");
   auto s = ObservationStore::open(dir.path() / "map.db");
   ASSERT_TRUE(s.is_ok());
   for (int i = 0; i < 10; ++i)
@@ -87,7 +87,7 @@ TEST(ObservationStore, DeleteByRobot) {
 }
 
 TEST(ObservationStore, ObstructionsConfigAndPriorPersist) {
-  TempDir dir;
+  testkit::TempDir dir("mapper");
   const auto path = dir.path() / "map.db";
   GridConfig cfg;
   cfg.resolution = 0.1;
@@ -139,14 +139,14 @@ TEST(ObservationStore, ObstructionsConfigAndPriorPersist) {
 }
 
 TEST(ObservationStore, UnwritablePathIsAnError) {
-  TempDir dir;
+  testkit::TempDir dir("mapper");
   auto s = ObservationStore::open(dir.path() / "no" / "such" / "dir" / "map.db");
   ASSERT_FALSE(s.is_ok());
   EXPECT_NE(s.message().find("map.db"), std::string::npos) << s.message();
 }
 
 TEST(ObservationStore, CorruptFileIsAnError) {
-  TempDir dir;
+  testkit::TempDir dir("mapper");
   const auto path = dir.path() / "garbage.db";
   {
     std::ofstream out(path, std::ios::binary);

@@ -49,7 +49,7 @@ void feed(OccupancyGrid& grid, ObservationStore& store) {
 }
 
 TEST(Rebuild, SameConfigReproducesTheLiveGrid) {
-  TempDir dir;
+  testkit::TempDir dir("mapper");
   auto store = ObservationStore::open(dir.path() / "m.db");
   ASSERT_TRUE(store.is_ok());
   auto live = OccupancyGrid::create(config());
@@ -73,7 +73,7 @@ TEST(Rebuild, SameConfigReproducesTheLiveGrid) {
 TEST(Rebuild, ManyBatchesReproduceTheLiveGridInOrder) {
   // Several thousand observations cross the reader/integrator hand-off in many batches; clamped
   // log-odds depend on order, so any reordering would show up as a different grid.
-  TempDir dir;
+  testkit::TempDir dir("mapper");
   auto store = ObservationStore::open(dir.path() / "m.db");
   ASSERT_TRUE(store.is_ok());
   auto live = OccupancyGrid::create(config());
@@ -89,7 +89,7 @@ TEST(Rebuild, ManyBatchesReproduceTheLiveGridInOrder) {
 }
 
 TEST(Rebuild, NewResolutionKeepsObstructionsAndPrior) {
-  TempDir dir;
+  testkit::TempDir dir("mapper");
   auto store = ObservationStore::open(dir.path() / "m.db");
   ASSERT_TRUE(store.is_ok());
   auto live = OccupancyGrid::create(config());
@@ -121,7 +121,7 @@ TEST(Rebuild, NewResolutionKeepsObstructionsAndPrior) {
 }
 
 TEST(Rebuild, ResetRobotRemovesItsData) {
-  TempDir dir;
+  testkit::TempDir dir("mapper");
   auto store = ObservationStore::open(dir.path() / "m.db");
   ASSERT_TRUE(store.is_ok());
   auto live = OccupancyGrid::create(config());
@@ -135,7 +135,7 @@ TEST(Rebuild, ResetRobotRemovesItsData) {
 }
 
 TEST(Rebuild, BadConfigIsAnError) {
-  TempDir dir;
+  testkit::TempDir dir("mapper");
   auto store = ObservationStore::open(dir.path() / "m.db");
   ASSERT_TRUE(store.is_ok());
   GridConfig bad = config();

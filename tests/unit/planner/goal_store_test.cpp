@@ -3,29 +3,18 @@
 #include "planner/goal_store.hpp"
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
 #include <string>
 
 #include "planner/fleet.hpp"
+#include "temp_dir.hpp"
 
 namespace slam::planner {
 namespace {
 
 namespace fs = std::filesystem;
-
-// A fresh directory per test, removed afterwards.
-struct ScratchDir {
-  fs::path path;
-  explicit ScratchDir(const std::string& name)
-      : path(fs::temp_directory_path() / ("goal_store_test." + name + "." + std::to_string(::getpid()))) {
-    fs::remove_all(path);
-    fs::create_directories(path);
-  }
-  ~ScratchDir() { fs::remove_all(path); }
-};
 
 GoalRecord sample_record() {
   GoalRecord r;
@@ -104,8 +93,8 @@ TEST(GoalRecord, ResumesUnfinishedGoalsOldestFirstWithFleetGoalsBeforeTheirRobot
 }
 
 TEST(GoalStore, KeepsGoalsAndHomesAcrossReopening) {
-  ScratchDir dir("reopen");
-  const std::string path = (dir.path / "sub" / "goals.json").string();
+  testkit::TempDir dir("goal-store");
+  const std::string path = (dir.path() / "sub" / "goals.json").string();
   auto store = GoalStore::open(path);
   ASSERT_TRUE(store) << store.message();
   EXPECT_TRUE(store->record().goals.empty());
@@ -160,8 +149,8 @@ TEST(GoalStore, AFleetGoalFinishesWhenEveryRobotThatTookItHas) {
 }
 
 TEST(GoalStore, ABrokenFileIsRefusedWithItsPath) {
-  ScratchDir dir("broken");
-  const std::string path = (dir.path / "goals.json").string();
+  testkit::TempDir dir("goal-store");
+  const std::string path = (dir.path() / "goals.json").string();
   std::ofstream(path) << "{\"format\": \"slam-planner-goals\", \"version\": 1, \"goals\": [3]}";
   auto store = GoalStore::open(path);
   ASSERT_FALSE(store);
@@ -171,8 +160,8 @@ TEST(GoalStore, ABrokenFileIsRefusedWithItsPath) {
 }
 
 TEST(GoalStore, AnUnwritableFileIsAnErrorAndTheChangeIsKeptForLater) {
-  ScratchDir dir("unwritable");
-  const fs::path blocker = dir.path / "not_a_dir";
+  testkit::TempDir dir("goal-store");
+  const fs::path blocker = dir.path() / "not_a_dir";
   std::ofstream(blocker) << "x";
   auto store = GoalStore::open((blocker / "goals.json").string());
   ASSERT_TRUE(store) << store.message();

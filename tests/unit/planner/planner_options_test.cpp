@@ -22,13 +22,13 @@ std::string parse(PlannerOptions& options, std::vector<std::string> args) {
   return {};
 }
 
-TEST(PlannerOptionsTest, DefaultsAreValid) {
+TEST(PlannerOptions, DefaultsAreValid) {
   PlannerOptions options;
   EXPECT_TRUE(validate(options));
   EXPECT_EQ(options.fleet.planner.unknown, UnknownPolicy::Blocked);
 }
 
-TEST(PlannerOptionsTest, FlagsSetTheCoreConfiguration) {
+TEST(PlannerOptions, FlagsSetTheCoreConfiguration) {
   PlannerOptions o;
   ASSERT_EQ(parse(o, {"--domain", "7", "--goals-reach-tolerance-m", "0.3", "--goals-resend-period-s", "0.5",
                       "--planner-unknown", "allowed", "--planner-ompl-seed", "42", "--planner-ompl-range-m",
@@ -45,12 +45,12 @@ TEST(PlannerOptionsTest, FlagsSetTheCoreConfiguration) {
   EXPECT_TRUE(validate(o));
 }
 
-TEST(PlannerOptionsTest, UnknownPolicyMustBeANamedOne) {
+TEST(PlannerOptions, UnknownPolicyMustBeANamedOne) {
   PlannerOptions o;
   EXPECT_NE(parse(o, {"--planner-unknown", "sometimes"}).find("--planner-unknown"), std::string::npos);
 }
 
-TEST(PlannerOptionsTest, BadValuesNameTheirKey) {
+TEST(PlannerOptions, BadValuesNameTheirKey) {
   const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
       {{"--goals-reach-tolerance-m", "0"}, "reach_tolerance_m"},
       {{"--goals-resend-period-s", "-1"}, "resend_period_s"},

@@ -7,6 +7,8 @@
 
 #include <filesystem>
 
+#include "temp_dir.hpp"
+
 namespace slam::sim {
 namespace {
 
@@ -34,8 +36,7 @@ TEST(WorldLoader, RosMapBecomesWalls) {
   for (uint32_t y = 0; y <= 5; ++y)
     for (uint32_t x = 8; x <= 9; ++x) map.cells[y * 20 + x] = kMapOccupied;
   map.cells[199] = kMapUnknown;
-  const auto dir = std::filesystem::path(::testing::TempDir()) / "sim_world_loader";
-  std::filesystem::create_directories(dir);
+  const testkit::TempDir dir("world-loader");
   ASSERT_TRUE(write_ros_map(dir / "wallmap.yaml", map));
 
   const auto world = load_world((dir / "wallmap.yaml").string());
@@ -47,7 +48,6 @@ TEST(WorldLoader, RosMapBecomesWalls) {
   // The wall's left face is at x = -1.0 + 0.8 = -0.2.
   EXPECT_NEAR(world->cast({-0.9, 0.7}, {1, 0}, 5.0), 0.7, 1e-9);
   EXPECT_NEAR(world->cast({-0.9, 1.3}, {1, 0}, 5.0), 1.9, 1e-9);  // above it: the far border
-  std::filesystem::remove_all(dir);
 }
 
 TEST(WorldLoader, RotatedMapIsRefused) {

@@ -8,6 +8,8 @@
 #include <filesystem>
 #include <fstream>
 
+#include "temp_dir.hpp"
+
 namespace slam::sim {
 namespace {
 
@@ -101,12 +103,12 @@ TEST(WorldText, MissingFileNamesThePath) {
 }
 
 TEST(WorldText, FileErrorsNameTheFile) {
-  const auto path = std::filesystem::path(::testing::TempDir()) / "broken_world.txt";
+  const testkit::TempDir dir("world-text");
+  const auto path = dir / "broken_world.txt";
   std::ofstream(path) << "300:300\n0,0:100,100\n0,0:100\n";
   const auto world = load_java_world(path);
   ASSERT_FALSE(world);
   EXPECT_THAT(world.message(), HasSubstr(path.string() + ": token 3"));
-  std::filesystem::remove(path);
 }
 
 }  // namespace

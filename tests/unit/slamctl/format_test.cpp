@@ -6,7 +6,7 @@
 namespace slam::ctl {
 namespace {
 
-TEST(SlamctlFormatTest, GoalModesRoundTripByName) {
+TEST(SlamctlFormat, GoalModesRoundTripByName) {
   for (const char* name : {"idle", "direct", "planned", "square", "explore", "home", "stop"}) {
     const auto mode = parse_goal_mode(name);
     ASSERT_TRUE(mode) << name;
@@ -16,7 +16,7 @@ TEST(SlamctlFormatTest, GoalModesRoundTripByName) {
   EXPECT_FALSE(parse_goal_mode("PLANNED"));
 }
 
-TEST(SlamctlFormatTest, RobotLineShowsPoseAgeAndMode) {
+TEST(SlamctlFormat, RobotLineShowsPoseAgeAndMode) {
   RobotState s;
   s.robot_id("r7");
   s.presence(PRESENCE_ONLINE);
@@ -37,7 +37,7 @@ TEST(SlamctlFormatTest, RobotLineShowsPoseAgeAndMode) {
   EXPECT_NE(line.find("explore/active"), std::string::npos);
 }
 
-TEST(SlamctlFormatTest, PathReplyListsStatusAndPoints) {
+TEST(SlamctlFormat, PathReplyListsStatusAndPoints) {
   PathReply r;
   r.status(PLAN_GOAL_BLOCKED);
   r.reason("goal inside an obstacle");
@@ -51,7 +51,7 @@ TEST(SlamctlFormatTest, PathReplyListsStatusAndPoints) {
   EXPECT_NE(text.find("(1.00, 2.00)"), std::string::npos);
 }
 
-TEST(SlamctlFormatTest, HeartbeatListsCounters) {
+TEST(SlamctlFormat, HeartbeatListsCounters) {
   Heartbeat hb;
   hb.service("mapper");
   hb.stamp_ns(0);

@@ -11,12 +11,12 @@ namespace {
 const Viewport kWindow{420.0, 0.0, 860.0, 800.0};
 const WorldBox kGrid{-10.0, -10.0, 10.0, 10.0};
 
-TEST(AutoFitTest, NothingToFitBeforeAnyData) {
+TEST(AutoFit, NothingToFitBeforeAnyData) {
   AutoFit fit;
   EXPECT_FALSE(fit.update(std::nullopt, std::nullopt, 0, kWindow, false));
 }
 
-TEST(AutoFitTest, TheGridExtentUntilSomethingIsMappedThenTheContentPadded) {
+TEST(AutoFit, TheGridExtentUntilSomethingIsMappedThenTheContentPadded) {
   AutoFit fit;
   auto box = fit.update(std::nullopt, kGrid, 1, kWindow, false);
   ASSERT_TRUE(box);
@@ -33,7 +33,7 @@ TEST(AutoFitTest, TheGridExtentUntilSomethingIsMappedThenTheContentPadded) {
   EXPECT_NEAR(box->max_y, 2.0 + 3.6, 1e-9);
 }
 
-TEST(AutoFitTest, ALoneRobotIsNotZoomedIntoADot) {
+TEST(AutoFit, ALoneRobotIsNotZoomedIntoADot) {
   AutoFit fit;
   auto box = fit.update(WorldBox{1.0, 1.0, 1.0, 1.0}, std::nullopt, 0, kWindow, false);
   ASSERT_TRUE(box);
@@ -41,7 +41,7 @@ TEST(AutoFitTest, ALoneRobotIsNotZoomedIntoADot) {
   EXPECT_DOUBLE_EQ((box->min_y + box->max_y) / 2.0, 1.0);
 }
 
-TEST(AutoFitTest, GrowingContentRefitsOnlyWhenItLeavesTheBox) {
+TEST(AutoFit, GrowingContentRefitsOnlyWhenItLeavesTheBox) {
   AutoFit fit;
   ASSERT_TRUE(fit.update(WorldBox{0.0, 0.0, 10.0, 10.0}, kGrid, 1, kWindow, false));
   EXPECT_FALSE(fit.update(WorldBox{0.0, 0.0, 10.5, 10.5}, kGrid, 1, kWindow, false));
@@ -50,7 +50,7 @@ TEST(AutoFitTest, GrowingContentRefitsOnlyWhenItLeavesTheBox) {
   EXPECT_GE(box->max_x, 14.0);
 }
 
-TEST(AutoFitTest, ARelaidGridOrAResizedWindowRefits) {
+TEST(AutoFit, ARelaidGridOrAResizedWindowRefits) {
   AutoFit fit;
   const WorldBox content{0.0, 0.0, 5.0, 5.0};
   ASSERT_TRUE(fit.update(content, kGrid, 1, kWindow, false));
@@ -61,14 +61,14 @@ TEST(AutoFitTest, ARelaidGridOrAResizedWindowRefits) {
                          false));
 }
 
-TEST(AutoFitTest, NeverAfterTheOperatorMovedTheView) {
+TEST(AutoFit, NeverAfterTheOperatorMovedTheView) {
   AutoFit fit;
   ASSERT_TRUE(fit.update(WorldBox{0.0, 0.0, 1.0, 1.0}, std::nullopt, 0, kWindow, false));
   EXPECT_FALSE(fit.update(WorldBox{0.0, 0.0, 50.0, 1.0}, kGrid, 1, kWindow, true));
   EXPECT_FALSE(fit.update(WorldBox{0.0, 0.0, 90.0, 1.0}, kGrid, 2, kWindow, true));
 }
 
-TEST(AutoFitTest, UniteHoldsBothBoxes) {
+TEST(AutoFit, UniteHoldsBothBoxes) {
   const WorldBox u = unite({0.0, 1.0, 2.0, 3.0}, {-1.0, 2.0, 1.0, 5.0});
   EXPECT_DOUBLE_EQ(u.min_x, -1.0);
   EXPECT_DOUBLE_EQ(u.min_y, 1.0);

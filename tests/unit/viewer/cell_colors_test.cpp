@@ -10,7 +10,7 @@ float brightness(const Rgba& c) {
   return (c.r + c.g + c.b) / 3.0f;
 }
 
-TEST(CellColorsTest, StatesMapToTheirColours) {
+TEST(CellColors, StatesMapToTheirColours) {
   const GridColors c;
   EXPECT_EQ(cell_color(kCellUnknown, c), c.unknown);
   EXPECT_EQ(cell_color(kCellFree, c), c.free);
@@ -20,13 +20,13 @@ TEST(CellColorsTest, StatesMapToTheirColours) {
   EXPECT_LT(brightness(cell_color(kCellOccupied, c)), 0.2f);
 }
 
-TEST(CellColorsTest, ObstructedWinsOverState) {
+TEST(CellColors, ObstructedWinsOverState) {
   const GridColors c;
   EXPECT_EQ(cell_color(kCellObstructed | kCellFree, c), c.obstructed);
   EXPECT_EQ(cell_color(kCellObstructed | kCellOccupied | kCellInflated, c), c.obstructed);
 }
 
-TEST(CellColorsTest, InflationTintsFreeButNotOccupied) {
+TEST(CellColors, InflationTintsFreeButNotOccupied) {
   GridColors c;
   const Rgba tinted = cell_color(kCellFree | kCellInflated, c);
   EXPECT_NE(tinted, c.free);
@@ -35,14 +35,14 @@ TEST(CellColorsTest, InflationTintsFreeButNotOccupied) {
   EXPECT_EQ(cell_color(kCellFree | kCellInflated, c), c.free);
 }
 
-TEST(CellColorsTest, AlphaScalesEveryCell) {
+TEST(CellColors, AlphaScalesEveryCell) {
   GridColors c;
   c.alpha = 0.5f;
   EXPECT_FLOAT_EQ(cell_color(kCellFree, c).a, 0.5f);
   EXPECT_FLOAT_EQ(cell_color(kCellObstructed, c).a, 0.5f);
 }
 
-TEST(CellColorsTest, PaletteMatchesCellColorForEveryLowNibble) {
+TEST(CellColors, PaletteMatchesCellColorForEveryLowNibble) {
   const GridColors c;
   const auto p = cell_palette(c);
   for (unsigned v = 0; v < 16; ++v) EXPECT_EQ(p[v], cell_color(static_cast<uint8_t>(v), c)) << v;
@@ -50,7 +50,7 @@ TEST(CellColorsTest, PaletteMatchesCellColorForEveryLowNibble) {
   EXPECT_EQ(cell_color(0x10 | kCellFree, c), cell_color(kCellFree, c));
 }
 
-TEST(CellColorsTest, RobotColourIsStablePerId) {
+TEST(CellColors, RobotColourIsStablePerId) {
   EXPECT_EQ(default_robot_color("robot1"), default_robot_color("robot1"));
   EXPECT_FLOAT_EQ(default_robot_color("x").a, 1.0f);
 }

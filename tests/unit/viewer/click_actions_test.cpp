@@ -6,7 +6,7 @@
 namespace slam::viewer {
 namespace {
 
-TEST(ClickActionsTest, TargetSendsGoalForTheSelectedRobot) {
+TEST(ClickActions, TargetSendsGoalForTheSelectedRobot) {
   const auto out = click_outcome(ClickAction::SetTarget, {1.0, 2.0}, "r1", GoalMode::Planned, 2.0, true);
   ASSERT_TRUE(out.goal);
   EXPECT_FALSE(out.edit);
@@ -16,13 +16,13 @@ TEST(ClickActionsTest, TargetSendsGoalForTheSelectedRobot) {
   EXPECT_TRUE(out.goal->square_centred);
 }
 
-TEST(ClickActionsTest, ModesWithoutTargetBecomeDirect) {
+TEST(ClickActions, ModesWithoutTargetBecomeDirect) {
   const auto out = click_outcome(ClickAction::SetTarget, {}, "*", GoalMode::Explore, 1.0, false);
   ASSERT_TRUE(out.goal);
   EXPECT_EQ(out.goal->mode, GoalMode::Direct);
 }
 
-TEST(ClickActionsTest, ObstructAndUnobstructSendMapEdits) {
+TEST(ClickActions, ObstructAndUnobstructSendMapEdits) {
   auto o = click_outcome(ClickAction::Obstruct, {3.0, 4.0}, "r1", GoalMode::Direct, 1.0, false);
   ASSERT_TRUE(o.edit);
   EXPECT_EQ(o.edit->kind, MapEditKind::Obstruct);
@@ -35,7 +35,7 @@ TEST(ClickActionsTest, ObstructAndUnobstructSendMapEdits) {
   EXPECT_FALSE(n.edit);
 }
 
-TEST(ClickActionsTest, NamesRoundTrip) {
+TEST(ClickActions, NamesRoundTrip) {
   for (auto a :
        {ClickAction::Nothing, ClickAction::SetTarget, ClickAction::Obstruct, ClickAction::Unobstruct}) {
     auto parsed = parse_click_action(click_action_name(a));

@@ -14,7 +14,7 @@ void expect_at(const Vec2& got, double x, double y) {
   EXPECT_DOUBLE_EQ(got.y, y);
 }
 
-TEST(DriveGoalsTest, CornerButtonsSendEachCornerToTheSelectedRobot) {
+TEST(DriveGoals, CornerButtonsSendEachCornerToTheSelectedRobot) {
   const DriveSettings s{"r7", {-1.5, 0.25}, 3.0, true};
   const auto corners = square_corners(s.target, s.square_size, s.square_centred);
   for (bool planned : {false, true}) {
@@ -31,13 +31,13 @@ TEST(DriveGoalsTest, CornerButtonsSendEachCornerToTheSelectedRobot) {
   expect_at(corner_goals(s, false)[2].target, 0.0, 1.75);
 }
 
-TEST(DriveGoalsTest, EveryRobotWhenAllIsSelected) {
+TEST(DriveGoals, EveryRobotWhenAllIsSelected) {
   const DriveSettings s{"*", {0.0, 0.0}, 1.0, false};
   for (const GoalCommand& g : corner_goals(s, true)) EXPECT_EQ(g.robot_id, "*");
   EXPECT_EQ(drive_goal(s, GoalMode::Direct).robot_id, "*");
 }
 
-TEST(DriveGoalsTest, TargetAndSquareButtonsCarryTheSettings) {
+TEST(DriveGoals, TargetAndSquareButtonsCarryTheSettings) {
   const DriveSettings s{"r1", {4.0, -2.0}, 2.5, true};
   const GoalCommand square = drive_goal(s, GoalMode::Square);
   EXPECT_EQ(square.mode, GoalMode::Square);
@@ -50,7 +50,7 @@ TEST(DriveGoalsTest, TargetAndSquareButtonsCarryTheSettings) {
   EXPECT_EQ(drive_goal(s, GoalMode::Stop).mode, GoalMode::Stop);
 }
 
-TEST(DriveGoalsTest, DescriptionsNameWhatAndWhom) {
+TEST(DriveGoals, DescriptionsNameWhatAndWhom) {
   EXPECT_EQ(describe(corner_goals({"*", {1.0, 2.0}, 1.0, false}, true)[1]),
             "planned goal to (2.00, 2.00) for every robot");
   EXPECT_EQ(describe(drive_goal({"r1", {1.0, 2.0}, 2.0, true}, GoalMode::Square)),

@@ -21,7 +21,7 @@ GridPatchData patch(uint32_t layout, uint64_t version, uint32_t x0, uint32_t y0,
   return {layout, version, x0, y0, w, h, std::vector<uint8_t>(size_t{w} * h, v)};
 }
 
-TEST(GridMirrorTest, SnapshotReplacesAndMarksEverythingDirty) {
+TEST(GridMirror, SnapshotReplacesAndMarksEverythingDirty) {
   GridMirror m;
   ASSERT_TRUE(m.apply_snapshot(snapshot(7, 10)));
   EXPECT_TRUE(m.take_layout_changed());
@@ -36,7 +36,7 @@ TEST(GridMirrorTest, SnapshotReplacesAndMarksEverythingDirty) {
   EXPECT_DOUBLE_EQ(b.max_y, -0.5);
 }
 
-TEST(GridMirrorTest, KnownBoundsCoverFreeAndOccupiedCellsAndGrowWithPatches) {
+TEST(GridMirror, KnownBoundsCoverFreeAndOccupiedCellsAndGrowWithPatches) {
   GridMirror m;
   WorldBox b;
   EXPECT_FALSE(m.known_bounds(&b));
@@ -60,7 +60,7 @@ TEST(GridMirrorTest, KnownBoundsCoverFreeAndOccupiedCellsAndGrowWithPatches) {
   EXPECT_FALSE(m.known_bounds(&b));
 }
 
-TEST(GridMirrorTest, RejectsMalformedSnapshots) {
+TEST(GridMirror, RejectsMalformedSnapshots) {
   GridMirror m;
   auto bad = snapshot(1, 1);
   bad.cells.pop_back();
@@ -71,7 +71,7 @@ TEST(GridMirrorTest, RejectsMalformedSnapshots) {
   EXPECT_FALSE(m.has_grid());
 }
 
-TEST(GridMirrorTest, InOrderPatchesApplyAndUniteDirtyBoxes) {
+TEST(GridMirror, InOrderPatchesApplyAndUniteDirtyBoxes) {
   GridMirror m;
   ASSERT_TRUE(m.apply_snapshot(snapshot(7, 10)));
   m.take_dirty();
@@ -91,7 +91,7 @@ TEST(GridMirrorTest, InOrderPatchesApplyAndUniteDirtyBoxes) {
   EXPECT_FALSE(m.cell_at({5.0, 5.0}, &cell));
 }
 
-TEST(GridMirrorTest, StaleGapAndLayoutChangesAreNotApplied) {
+TEST(GridMirror, StaleGapAndLayoutChangesAreNotApplied) {
   GridMirror m;
   EXPECT_EQ(m.apply_patch(patch(7, 1, 0, 0, 1, 1, 2)), PatchResult::NoGrid);
   ASSERT_TRUE(m.apply_snapshot(snapshot(7, 10)));
@@ -104,7 +104,7 @@ TEST(GridMirrorTest, StaleGapAndLayoutChangesAreNotApplied) {
   EXPECT_EQ(m.apply_patch(patch(7, 22, 0, 0, 1, 1, 2)), PatchResult::Gap);
 }
 
-TEST(GridMirrorTest, PatchOutsideGridIsInvalid) {
+TEST(GridMirror, PatchOutsideGridIsInvalid) {
   GridMirror m;
   ASSERT_TRUE(m.apply_snapshot(snapshot(7, 10)));
   EXPECT_EQ(m.apply_patch(patch(7, 11, 3, 0, 2, 1, 2)), PatchResult::Invalid);

@@ -9,7 +9,7 @@
 namespace slam::viewer {
 namespace {
 
-TEST(IntakeTest, DrainHandsOverOnce) {
+TEST(Intake, DrainHandsOverOnce) {
   Intake in;
   in.push(ObservationData{"r", 1, {}, {1.0f, 2.0f}});
   IntakeBatch b;
@@ -19,7 +19,7 @@ TEST(IntakeTest, DrainHandsOverOnce) {
   EXPECT_TRUE(b.observations.empty());
 }
 
-TEST(IntakeTest, SnapshotDropsEarlierPatches) {
+TEST(Intake, SnapshotDropsEarlierPatches) {
   Intake in;
   in.push(GridPatchData{1, 5, 0, 0, 1, 1, {1}});
   in.push(GridSnapshotData{1, 6, {}, {}});
@@ -31,7 +31,7 @@ TEST(IntakeTest, SnapshotDropsEarlierPatches) {
   EXPECT_EQ(b.patches[0].version, 7u);
 }
 
-TEST(IntakeTest, StatesKeepNewestPerRobot) {
+TEST(Intake, StatesKeepNewestPerRobot) {
   Intake in;
   RobotStateData a;
   a.robot_id = "a";
@@ -45,7 +45,7 @@ TEST(IntakeTest, StatesKeepNewestPerRobot) {
   EXPECT_EQ(b.states[0].messages, 2u);
 }
 
-TEST(IntakeTest, MqttBacklogIsBounded) {
+TEST(Intake, MqttBacklogIsBounded) {
   Intake in(4);
   for (uint64_t i = 0; i < 10; ++i) in.push(MqttEntry{i, 0, true, "t", {}, 0});
   IntakeBatch b;
@@ -55,7 +55,7 @@ TEST(IntakeTest, MqttBacklogIsBounded) {
   EXPECT_EQ(b.mqtt_dropped, 6u);
 }
 
-TEST(IntakeTest, ConcurrentPushesAreAllDelivered) {
+TEST(Intake, ConcurrentPushesAreAllDelivered) {
   Intake in;
   std::vector<std::thread> threads;
   for (int t = 0; t < 4; ++t)

@@ -11,7 +11,7 @@ MqttEntry entry(uint64_t seq, size_t payload, bool inbound = true) {
       seq, 0, inbound, "v1/robot/r/adv", std::vector<uint8_t>(payload, 0xab), static_cast<uint32_t>(payload)};
 }
 
-TEST(MqttLogTest, BoundedByEntries) {
+TEST(MqttLog, BoundedByEntries) {
   MqttLog log(3, size_t{1} << 30);
   for (uint64_t i = 0; i < 10; ++i) log.push(entry(i, 4));
   EXPECT_EQ(log.size(), 3u);
@@ -21,7 +21,7 @@ TEST(MqttLogTest, BoundedByEntries) {
   EXPECT_EQ(log.inbound(), 10u);
 }
 
-TEST(MqttLogTest, BoundedByBytes) {
+TEST(MqttLog, BoundedByBytes) {
   const size_t one = MqttLog::cost(entry(0, 1000));
   MqttLog log(1000, one * 5 + 10);
   for (uint64_t i = 0; i < 50; ++i) log.push(entry(i, 1000, i % 2 == 0));
@@ -32,7 +32,7 @@ TEST(MqttLogTest, BoundedByBytes) {
   EXPECT_EQ(log.outbound(), 25u);
 }
 
-TEST(MqttLogTest, OversizedEntryDoesNotStay) {
+TEST(MqttLog, OversizedEntryDoesNotStay) {
   MqttLog log(10, 100);
   log.push(entry(1, 1000));
   EXPECT_EQ(log.size(), 0u);
@@ -40,7 +40,7 @@ TEST(MqttLogTest, OversizedEntryDoesNotStay) {
   EXPECT_EQ(log.evicted(), 1u);
 }
 
-TEST(MqttLogTest, ClearEmptiesButKeepsTotals) {
+TEST(MqttLog, ClearEmptiesButKeepsTotals) {
   MqttLog log;
   log.push(entry(1, 10));
   log.clear();

@@ -6,7 +6,7 @@
 namespace slam::viewer {
 namespace {
 
-TEST(PayloadTextTest, HexRoundTrip) {
+TEST(PayloadText, HexRoundTrip) {
   const std::vector<uint8_t> b{0x00, 0x0a, 0xff};
   EXPECT_EQ(to_hex(b), "00 0a ff");
   auto parsed = parse_hex("00 0A, 0xff");
@@ -15,7 +15,7 @@ TEST(PayloadTextTest, HexRoundTrip) {
   EXPECT_EQ(to_hex(b, 2), "00 0a ...(+1)");
 }
 
-TEST(PayloadTextTest, HexErrorsNameTheProblem) {
+TEST(PayloadText, HexErrorsNameTheProblem) {
   auto odd = parse_hex("abc");
   ASSERT_FALSE(odd);
   EXPECT_NE(odd.message().find("odd"), std::string::npos);
@@ -24,7 +24,7 @@ TEST(PayloadTextTest, HexErrorsNameTheProblem) {
   EXPECT_NE(bad.message().find("offset 0"), std::string::npos);
 }
 
-TEST(PayloadTextTest, V1PairsEncodeLittleEndianAndRejectOutOfRange) {
+TEST(PayloadText, V1PairsEncodeLittleEndianAndRejectOutOfRange) {
   auto e = encode_v1_pairs({{1, -1}, {300, 0}});
   ASSERT_TRUE(e);
   EXPECT_EQ(*e, (std::vector<uint8_t>{0x01, 0x00, 0xff, 0xff, 0x2c, 0x01, 0x00, 0x00}));
@@ -34,7 +34,7 @@ TEST(PayloadTextTest, V1PairsEncodeLittleEndianAndRejectOutOfRange) {
   EXPECT_FALSE(encode_v1_pairs({}));
 }
 
-TEST(PayloadTextTest, ParsesPairs) {
+TEST(PayloadText, ParsesPairs) {
   auto p = parse_pairs("(10, 20) 30,-40");
   ASSERT_TRUE(p) << p.message();
   ASSERT_EQ(p->size(), 2u);
@@ -43,7 +43,7 @@ TEST(PayloadTextTest, ParsesPairs) {
   EXPECT_FALSE(parse_pairs("1 x"));
 }
 
-TEST(PayloadTextTest, DecodesV1AndText) {
+TEST(PayloadText, DecodesV1AndText) {
   auto adv = encode_v1_pairs({{100, 200}, {-5, 7}});
   ASSERT_TRUE(adv);
   EXPECT_EQ(decode_payload("v1/robot/r1/adv", *adv), "pos (100, 200); 1 obstacles: (-5, 7)");

@@ -3,12 +3,13 @@
 #include "viewer/core/png_file.hpp"
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #define STB_IMAGE_IMPLEMENTATION
 #include <stb/stb_image.h>
 
 #include <filesystem>
+
+#include "temp_dir.hpp"
 
 namespace slam::viewer {
 namespace {
@@ -42,13 +43,7 @@ void expect_decodes_top_down(const uint8_t* png, size_t size) {
   stbi_image_free(px);
 }
 
-struct TempDir {
-  fs::path path = fs::temp_directory_path() / ("png_file_test." + std::to_string(::getpid()));
-  TempDir() { fs::create_directories(path); }
-  ~TempDir() { fs::remove_all(path); }
-};
-
-TEST(PngFileTest, EncodesTopDownAndBottomUpRows) {
+TEST(PngFile, EncodesTopDownAndBottomUpRows) {
   for (bool bottom_up : {false, true}) {
     auto png = encode_png(test_image(bottom_up));
     ASSERT_TRUE(png) << png.message();
@@ -56,7 +51,7 @@ TEST(PngFileTest, EncodesTopDownAndBottomUpRows) {
   }
 }
 
-TEST(PngFileTest, RejectsAPixelBufferOfTheWrongSize) {
+TEST(PngFile, RejectsAPixelBufferOfTheWrongSize) {
   RgbImage img = test_image(false);
   img.pixels.pop_back();
   auto png = encode_png(img);
@@ -64,9 +59,9 @@ TEST(PngFileTest, RejectsAPixelBufferOfTheWrongSize) {
   EXPECT_NE(png.message().find("4x3"), std::string::npos) << png.message();
 }
 
-TEST(PngFileTest, WritesThroughATempNameAndReplacesTheOldFile) {
-  TempDir dir;
-  const std::string path = (dir.path / "a.png").string(), temp = (dir.path / ".a.png.tmp").string();
+TEST(PngFile, WritesThroughATempNameAndReplacesTheOldFile) {
+  testkit::TempDir dir("png-file");
+  const std::string path = (dir.path() / "a.png").string(), temp = (dir.path() / ".a.png.tmp").string();
   ASSERT_TRUE(write_file_atomically(path, temp, {1, 2, 3}));
   ASSERT_TRUE(write_png(path, test_image(true)));
   EXPECT_FALSE(fs::exists(temp));
@@ -79,13 +74,13 @@ TEST(PngFileTest, WritesThroughATempNameAndReplacesTheOldFile) {
   expect_decodes_top_down(bytes.data(), bytes.size());
 }
 
-TEST(PngFileTest, AFailedWriteNamesTheFileAndLeavesNothing) {
-  TempDir dir;
-  const std::string missing = (dir.path / "no" / "such" / "dir" / "a.png").string();
+TEST(PngFile, AFailedWriteNamesTheFileAndLeavesNothing) {
+  testkit::TempDir dir("png-file");
+  const std::string missing = (dir.path() / "no" / "such" / "dir" / "a.png").string();
   const Status s = write_png(missing, test_image(false));
   ASSERT_FALSE(s);
   EXPECT_NE(s.message().find(missing), std::string::npos) << s.message();
-  EXPECT_TRUE(fs::is_empty(dir.path));
+  EXPECT_TRUE(fs::is_empty(dir.path()));
 }
 
 }  // namespace

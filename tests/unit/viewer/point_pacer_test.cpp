@@ -27,7 +27,7 @@ uint64_t settle(PointPacer& p, double base_ms, double ms_per_point, int frames =
   return p.budget();
 }
 
-TEST(PointPacerTest, StartsWithTheFirstStepUntilSomethingIsMeasured) {
+TEST(PointPacer, StartsWithTheFirstStepUntilSomethingIsMeasured) {
   PointPacer p(config());
   EXPECT_EQ(p.budget(), 50'000u);
   p.record(0, 12.0);  // a light frame teaches the base only
@@ -35,7 +35,7 @@ TEST(PointPacerTest, StartsWithTheFirstStepUntilSomethingIsMeasured) {
   EXPECT_DOUBLE_EQ(p.base_ms(), 12.0);
 }
 
-TEST(PointPacerTest, FillsTheRoomBetweenBaseAndTarget) {
+TEST(PointPacer, FillsTheRoomBetweenBaseAndTarget) {
   PointPacer p(config());
   // 10 ms base, 0.5 us per point: 50 ms of room holds 100,000 points.
   const uint64_t n = settle(p, 10.0, 0.0005);
@@ -43,13 +43,13 @@ TEST(PointPacerTest, FillsTheRoomBetweenBaseAndTarget) {
   EXPECT_NEAR(10.0 + 0.0005 * static_cast<double>(n), 60.0, 1.0);
 }
 
-TEST(PointPacerTest, SlowerRendererGetsSmallerSteps) {
+TEST(PointPacer, SlowerRendererGetsSmallerSteps) {
   PointPacer fast(config());
   PointPacer slow(config());
   EXPECT_GT(settle(fast, 10.0, 0.0002), 4 * settle(slow, 10.0, 0.001));
 }
 
-TEST(PointPacerTest, GrowsAtMostTwofoldPerMeasuredStep) {
+TEST(PointPacer, GrowsAtMostTwofoldPerMeasuredStep) {
   PointPacer p(config());
   p.record(0, 10.0);
   p.record(50'000, 10.0);  // no measurable cost: the estimate alone would allow max_points
@@ -58,7 +58,7 @@ TEST(PointPacerTest, GrowsAtMostTwofoldPerMeasuredStep) {
   EXPECT_EQ(p.budget(), 200'000u);
 }
 
-TEST(PointPacerTest, OneStallShrinksTheNextStepButDoesNotCollapseIt) {
+TEST(PointPacer, OneStallShrinksTheNextStepButDoesNotCollapseIt) {
   PointPacer p(config());
   const uint64_t steady = settle(p, 10.0, 0.0005);
   p.record(steady, 10.0 + 3.0 * 0.0005 * static_cast<double>(steady));  // another process stalled us 3x
@@ -70,7 +70,7 @@ TEST(PointPacerTest, OneStallShrinksTheNextStepButDoesNotCollapseIt) {
               static_cast<double>(steady) * 0.05);
 }
 
-TEST(PointPacerTest, StaysWithinMinAndMax) {
+TEST(PointPacer, StaysWithinMinAndMax) {
   PointPacer slow(config());
   EXPECT_EQ(settle(slow, 10.0, 0.1), 5'000u);  // 0.1 ms a point: even 5,000 overrun, still progress
   PointPacer over(config());
@@ -79,7 +79,7 @@ TEST(PointPacerTest, StaysWithinMinAndMax) {
   EXPECT_EQ(settle(fast, 1.0, 1e-9), 2'000'000u);
 }
 
-TEST(PointPacerTest, IgnoresNonsenseTimes) {
+TEST(PointPacer, IgnoresNonsenseTimes) {
   PointPacer p(config());
   p.record(100'000, -1.0);
   p.record(100'000, std::numeric_limits<double>::infinity());
@@ -88,7 +88,7 @@ TEST(PointPacerTest, IgnoresNonsenseTimes) {
   EXPECT_EQ(p.ms_per_point(), 0.0);
 }
 
-TEST(PointPacerTest, ValidateNamesTheBadSetting) {
+TEST(PointPacer, ValidateNamesTheBadSetting) {
   EXPECT_TRUE(validate(config()));
   PacerConfig c = config();
   c.frame_ms = 0.0;

@@ -8,7 +8,7 @@
 namespace slam::viewer {
 namespace {
 
-TEST(PointStoreTest, AppendsAndTracksBounds) {
+TEST(PointStore, AppendsAndTracksBounds) {
   PointStore s;
   const float a[] = {1.0f, 2.0f, -3.0f, 4.0f};
   EXPECT_EQ(s.append(a, 2), 2u);
@@ -18,7 +18,7 @@ TEST(PointStoreTest, AppendsAndTracksBounds) {
   EXPECT_DOUBLE_EQ(s.bounds().max_y, 4.0);
 }
 
-TEST(PointStoreTest, LastNSelectsNewest) {
+TEST(PointStore, LastNSelectsNewest) {
   PointStore s;
   std::vector<float> xy(200);
   s.append(xy.data(), 100);
@@ -32,7 +32,7 @@ TEST(PointStoreTest, LastNSelectsNewest) {
   EXPECT_EQ(r.count, 100u);
 }
 
-TEST(PointStoreTest, ResetClearsAndBumpsGeneration) {
+TEST(PointStore, ResetClearsAndBumpsGeneration) {
   PointStore s;
   const float a[] = {1.0f, 2.0f};
   s.append(a, 1);
@@ -44,7 +44,7 @@ TEST(PointStoreTest, ResetClearsAndBumpsGeneration) {
   EXPECT_EQ(s.size(), 1u);
 }
 
-TEST(PointStoreTest, CapDropsAndCounts) {
+TEST(PointStore, CapDropsAndCounts) {
   PointStore s(3);
   std::vector<float> xy(10, 0.5f);
   EXPECT_EQ(s.append(xy.data(), 5), 3u);
@@ -53,7 +53,7 @@ TEST(PointStoreTest, CapDropsAndCounts) {
   EXPECT_EQ(s.dropped(), 3u);
 }
 
-TEST(RobotRegistryTest, ObservationsFeedPointsAndStateMarksOnline) {
+TEST(RobotRegistry, ObservationsFeedPointsAndStateMarksOnline) {
   RobotRegistry reg;
   reg.defaults().point_radius_px = 4.0f;
   ObservationData o{"r1", 1, {1.0, 1.0, 0.0}, {2.0f, 3.0f, 4.0f, 5.0f}};

@@ -9,7 +9,7 @@ namespace {
 
 constexpr int64_t kSecond = 1'000'000'000;
 
-TEST(SnapshotScheduleTest, FileNamesRoundTrip) {
+TEST(SnapshotSchedule, FileNamesRoundTrip) {
   EXPECT_EQ(snapshot_file_name(7), "snapshot-0007.png");
   EXPECT_EQ(snapshot_file_name(12345), "snapshot-12345.png");
   EXPECT_EQ(parse_snapshot_file_name("snapshot-0007.png"), 7u);
@@ -19,7 +19,7 @@ TEST(SnapshotScheduleTest, FileNamesRoundTrip) {
     EXPECT_FALSE(parse_snapshot_file_name(other)) << other;
 }
 
-TEST(SnapshotScheduleTest, NothingIsDueBeforeStartAndTheFirstComesOnePeriodLater) {
+TEST(SnapshotSchedule, NothingIsDueBeforeStartAndTheFirstComesOnePeriodLater) {
   SnapshotSchedule s("out", 10.0, 1, 0);
   EXPECT_FALSE(s.due(100 * kSecond));
   s.start(5 * kSecond);
@@ -28,7 +28,7 @@ TEST(SnapshotScheduleTest, NothingIsDueBeforeStartAndTheFirstComesOnePeriodLater
   EXPECT_TRUE(s.due(15 * kSecond));
 }
 
-TEST(SnapshotScheduleTest, NamesAreNumberedWithTempNamesInTheSameDirectory) {
+TEST(SnapshotSchedule, NamesAreNumberedWithTempNamesInTheSameDirectory) {
   SnapshotSchedule s("run/snapshots/", 1.0, 42, 0);
   s.start(0);
   const SnapshotNames n = s.take(kSecond);
@@ -42,7 +42,7 @@ TEST(SnapshotScheduleTest, NamesAreNumberedWithTempNamesInTheSameDirectory) {
   EXPECT_EQ(s.next_index(), 44u);
 }
 
-TEST(SnapshotScheduleTest, KeepsThePeriodAndSkipsMissedSlotsInsteadOfBursting) {
+TEST(SnapshotSchedule, KeepsThePeriodAndSkipsMissedSlotsInsteadOfBursting) {
   SnapshotSchedule s("d", 10.0, 1, 0);
   s.start(0);
   // Taken 0.2 s late: the next is still due at 20 s, so the rate does not drift.
@@ -56,7 +56,7 @@ TEST(SnapshotScheduleTest, KeepsThePeriodAndSkipsMissedSlotsInsteadOfBursting) {
   EXPECT_TRUE(s.due(65 * kSecond));
 }
 
-TEST(SnapshotScheduleTest, ASkippedPeriodUsesNoNumber) {
+TEST(SnapshotSchedule, ASkippedPeriodUsesNoNumber) {
   SnapshotSchedule s("d", 1.0, 3, 0);
   s.start(0);
   s.skip(kSecond);
@@ -65,7 +65,7 @@ TEST(SnapshotScheduleTest, ASkippedPeriodUsesNoNumber) {
   EXPECT_EQ(s.take(2 * kSecond).index, 3u);
 }
 
-TEST(SnapshotScheduleTest, KeepDeletesTheSnapshotThatFellOutOfTheWindow) {
+TEST(SnapshotSchedule, KeepDeletesTheSnapshotThatFellOutOfTheWindow) {
   SnapshotSchedule s("d", 1.0, 1, 3);
   s.start(0);
   for (int64_t i = 1; i <= 3; ++i) EXPECT_TRUE(s.take(i * kSecond).expired.empty());

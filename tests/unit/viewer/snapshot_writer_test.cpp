@@ -4,22 +4,17 @@
 #include "viewer/core/snapshot_writer.hpp"
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
 
+#include "temp_dir.hpp"
+
 namespace slam::viewer {
 namespace {
 
 namespace fs = std::filesystem;
-
-struct TempDir {
-  fs::path path = fs::temp_directory_path() / ("snapshot_writer_test." + std::to_string(::getpid()));
-  TempDir() { fs::remove_all(path); }
-  ~TempDir() { fs::remove_all(path); }
-};
 
 SnapshotJob job(SnapshotSchedule& schedule, int64_t now_ns) {
   SnapshotJob j;
@@ -36,31 +31,31 @@ std::vector<std::string> listing(const fs::path& dir) {
   return names;
 }
 
-TEST(SnapshotWriterTest, PrepareCreatesTheDirectoryAndNumbersAfterEarlierRuns) {
-  TempDir dir;
-  auto first = prepare_snapshot_dir((dir.path / "snaps").string());
+TEST(SnapshotWriter, PrepareCreatesTheDirectoryAndNumbersAfterEarlierRuns) {
+  testkit::TempDir dir("snapshot-writer");
+  auto first = prepare_snapshot_dir((dir.path() / "snaps").string());
   ASSERT_TRUE(first) << first.message();
   EXPECT_EQ(*first, 1u);
   for (const char* name : {"snapshot-0003.png", "snapshot-0017.png", "latest.png", "notes.txt"})
-    std::ofstream(dir.path / "snaps" / name) << "x";
-  first = prepare_snapshot_dir((dir.path / "snaps").string());
+    std::ofstream(dir.path() / "snaps" / name) << "x";
+  first = prepare_snapshot_dir((dir.path() / "snaps").string());
   ASSERT_TRUE(first) << first.message();
   EXPECT_EQ(*first, 18u);
 }
 
-TEST(SnapshotWriterTest, PrepareNamesAPathThatIsNotADirectory) {
-  TempDir dir;
-  fs::create_directories(dir.path);
-  std::ofstream(dir.path / "file") << "x";
-  auto r = prepare_snapshot_dir((dir.path / "file").string());
+TEST(SnapshotWriter, PrepareNamesAPathThatIsNotADirectory) {
+  testkit::TempDir dir("snapshot-writer");
+  fs::create_directories(dir.path());
+  std::ofstream(dir.path() / "file") << "x";
+  auto r = prepare_snapshot_dir((dir.path() / "file").string());
   ASSERT_FALSE(r);
   EXPECT_NE(r.message().find("--snapshot-dir"), std::string::npos) << r.message();
 }
 
-TEST(SnapshotWriterTest, WritesNumberedAndLatestAndHonoursKeep) {
-  TempDir dir;
-  ASSERT_TRUE(prepare_snapshot_dir(dir.path.string()));
-  SnapshotSchedule schedule(dir.path.string(), 1.0, 1, 2);
+TEST(SnapshotWriter, WritesNumberedAndLatestAndHonoursKeep) {
+  testkit::TempDir dir("snapshot-writer");
+  ASSERT_TRUE(prepare_snapshot_dir(dir.path().string()));
+  SnapshotSchedule schedule(dir.path().string(), 1.0, 1, 2);
   schedule.start(0);
   SnapshotWriter writer;
   for (int64_t i = 1; i <= 3; ++i) {
@@ -69,16 +64,16 @@ TEST(SnapshotWriterTest, WritesNumberedAndLatestAndHonoursKeep) {
   }
   EXPECT_EQ(writer.written(), 3u);
   EXPECT_EQ(writer.failed(), 0u);
-  EXPECT_EQ(listing(dir.path),
+  EXPECT_EQ(listing(dir.path()),
             (std::vector<std::string>{"latest.png", "snapshot-0002.png", "snapshot-0003.png"}));
-  EXPECT_EQ(fs::file_size(dir.path / "latest.png"), fs::file_size(dir.path / "snapshot-0003.png"));
+  EXPECT_EQ(fs::file_size(dir.path() / "latest.png"), fs::file_size(dir.path() / "snapshot-0003.png"));
 }
 
-TEST(SnapshotWriterTest, AFailedWriteIsCountedAndTheWriterCarriesOn) {
-  TempDir dir;
-  SnapshotSchedule missing((dir.path / "gone").string(), 1.0, 1, 0);
-  SnapshotSchedule good(dir.path.string(), 1.0, 1, 0);
-  ASSERT_TRUE(prepare_snapshot_dir(dir.path.string()));
+TEST(SnapshotWriter, AFailedWriteIsCountedAndTheWriterCarriesOn) {
+  testkit::TempDir dir("snapshot-writer");
+  SnapshotSchedule missing((dir.path() / "gone").string(), 1.0, 1, 0);
+  SnapshotSchedule good(dir.path().string(), 1.0, 1, 0);
+  ASSERT_TRUE(prepare_snapshot_dir(dir.path().string()));
   SnapshotWriter writer;
   ASSERT_TRUE(writer.submit(job(missing, 1)));
   writer.wait_idle();
@@ -88,16 +83,16 @@ TEST(SnapshotWriterTest, AFailedWriteIsCountedAndTheWriterCarriesOn) {
   EXPECT_EQ(writer.written(), 1u);
 }
 
-TEST(SnapshotWriterTest, DestructorWritesThePendingJob) {
-  TempDir dir;
-  ASSERT_TRUE(prepare_snapshot_dir(dir.path.string()));
-  SnapshotSchedule schedule(dir.path.string(), 1.0, 5, 0);
+TEST(SnapshotWriter, DestructorWritesThePendingJob) {
+  testkit::TempDir dir("snapshot-writer");
+  ASSERT_TRUE(prepare_snapshot_dir(dir.path().string()));
+  SnapshotSchedule schedule(dir.path().string(), 1.0, 5, 0);
   {
     SnapshotWriter writer;
     writer.submit(job(schedule, 1));
   }
-  EXPECT_TRUE(fs::exists(dir.path / "snapshot-0005.png"));
-  EXPECT_TRUE(fs::exists(dir.path / "latest.png"));
+  EXPECT_TRUE(fs::exists(dir.path() / "snapshot-0005.png"));
+  EXPECT_TRUE(fs::exists(dir.path() / "latest.png"));
 }
 
 }  // namespace

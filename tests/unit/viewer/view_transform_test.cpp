@@ -23,28 +23,28 @@ void expect_near(Vec2 a, Vec2 b, double eps = kEps) {
   EXPECT_NEAR(a.y, b.y, eps);
 }
 
-TEST(ViewTransformTest, CentreOfViewportShowsCentreAndYPointsUp) {
+TEST(ViewTransform, CentreOfViewportShowsCentreAndYPointsUp) {
   const ViewTransform v = make_view();
   expect_near(v.world_to_screen({2.0, 3.0}), {500.0, 300.0});
   expect_near(v.world_to_screen({3.0, 3.0}), {540.0, 300.0});
   expect_near(v.world_to_screen({2.0, 4.0}), {500.0, 260.0});  // +y up: smaller screen y
 }
 
-TEST(ViewTransformTest, FlipMakesYPointDown) {
+TEST(ViewTransform, FlipMakesYPointDown) {
   ViewTransform v = make_view();
   v.set_flip_y(true);
   expect_near(v.world_to_screen({2.0, 4.0}), {500.0, 340.0});
   expect_near(v.world_to_screen({2.0, 3.0}), {500.0, 300.0});
 }
 
-TEST(ViewTransformTest, RotationTurnsMapCounterClockwise) {
+TEST(ViewTransform, RotationTurnsMapCounterClockwise) {
   ViewTransform v = make_view();
   v.rotate_about({500.0, 300.0}, M_PI / 2.0);
   // +x of the map now points up on screen.
   expect_near(v.world_to_screen({3.0, 3.0}), {500.0, 260.0});
 }
 
-TEST(ViewTransformTest, RoundTripWithPanZoomRotateFlip) {
+TEST(ViewTransform, RoundTripWithPanZoomRotateFlip) {
   ViewTransform v = make_view();
   v.pan_pixels({10.0, 10.0}, {73.0, -41.0});
   v.zoom_about({321.0, 123.0}, 2.7);
@@ -56,7 +56,7 @@ TEST(ViewTransformTest, RoundTripWithPanZoomRotateFlip) {
     expect_near(v.screen_to_world(v.world_to_screen(w)), w, 1e-7);
 }
 
-TEST(ViewTransformTest, ZoomKeepsPointUnderCursor) {
+TEST(ViewTransform, ZoomKeepsPointUnderCursor) {
   ViewTransform v = make_view();
   const Vec2 cursor{217.0, 433.0};
   const Vec2 before = v.screen_to_world(cursor);
@@ -65,14 +65,14 @@ TEST(ViewTransformTest, ZoomKeepsPointUnderCursor) {
   EXPECT_DOUBLE_EQ(v.scale(), 120.0);
 }
 
-TEST(ViewTransformTest, PanMovesWorldWithCursor) {
+TEST(ViewTransform, PanMovesWorldWithCursor) {
   ViewTransform v = make_view();
   const Vec2 grabbed = v.screen_to_world({300.0, 200.0});
   v.pan_pixels({300.0, 200.0}, {350.0, 180.0});
   expect_near(v.world_to_screen(grabbed), {350.0, 180.0});
 }
 
-TEST(ViewTransformTest, FitShowsWholeBoxWithMargin) {
+TEST(ViewTransform, FitShowsWholeBoxWithMargin) {
   ViewTransform v = make_view();
   v.fit({-10.0, -5.0, 10.0, 5.0}, 0.05);
   // 20 m wide into 800 px with 5 % margin each side.
@@ -83,14 +83,14 @@ TEST(ViewTransformTest, FitShowsWholeBoxWithMargin) {
   EXPECT_GT(corner.y, 0.0);
 }
 
-TEST(ViewTransformTest, NdcCoversViewport) {
+TEST(ViewTransform, NdcCoversViewport) {
   const ViewTransform v = make_view();
   const Affine2 ndc = v.world_to_ndc();
   expect_near(ndc.apply(v.screen_to_world({100.0, 0.0})), {-1.0, 1.0});
   expect_near(ndc.apply(v.screen_to_world({900.0, 600.0})), {1.0, -1.0});
 }
 
-TEST(ViewTransformTest, DescribeParsesBackExactly) {
+TEST(ViewTransform, DescribeParsesBackExactly) {
   ViewTransform v = make_view();
   v.rotate_about({1.0, 2.0}, 0.3);
   v.zoom_about({5.0, 7.0}, 1.37);
@@ -101,7 +101,7 @@ TEST(ViewTransformTest, DescribeParsesBackExactly) {
   EXPECT_FALSE(ViewTransform::parse("nothing here"));
 }
 
-TEST(Affine2Test, InverseAndComposition) {
+TEST(Affine2, InverseAndComposition) {
   const Affine2 a{2.0, 0.5, -1.0, 3.0, 4.0, -2.0};
   const Affine2 id = a.then(a.inverse());
   expect_near(id.apply({3.0, -7.0}), {3.0, -7.0});

@@ -6,7 +6,7 @@
 namespace slam::viewer {
 namespace {
 
-TEST(ViewerOptionsTest, DefaultsAreValid) {
+TEST(ViewerOptions, DefaultsAreValid) {
   ViewerOptions o;
   EXPECT_TRUE(validate(o));
   EXPECT_EQ(o.left_action, ClickAction::SetTarget);
@@ -21,7 +21,7 @@ std::string error_for(F change) {
   return s ? std::string{} : s.message();
 }
 
-TEST(ViewerOptionsTest, BadValuesNameTheFlag) {
+TEST(ViewerOptions, BadValuesNameTheFlag) {
   EXPECT_NE(error_for([](ViewerOptions& o) { o.width = 10; }).find("--width"), std::string::npos);
   EXPECT_NE(error_for([](ViewerOptions& o) { o.right_click = "boom"; }).find("--right-click"),
             std::string::npos);
@@ -38,7 +38,7 @@ TEST(ViewerOptionsTest, BadValuesNameTheFlag) {
             std::string::npos);
 }
 
-TEST(ViewerOptionsTest, PointPacingComesFromItsFlags) {
+TEST(ViewerOptions, PointPacingComesFromItsFlags) {
   EXPECT_NE(error_for([](ViewerOptions& o) { o.point_frame_ms = 0.5; }).find("--point-frame-ms"),
             std::string::npos);
   EXPECT_NE(error_for([](ViewerOptions& o) { o.point_budget = 10; }).find("--point-budget"),
@@ -56,7 +56,7 @@ TEST(ViewerOptionsTest, PointPacingComesFromItsFlags) {
   EXPECT_TRUE(validate(pacer_config(defaults)));
 }
 
-TEST(ViewerOptionsTest, ClickSpecsParse) {
+TEST(ViewerOptions, ClickSpecsParse) {
   auto c = parse_click_spec("640.5,400,right@12");
   ASSERT_TRUE(c) << c.message();
   EXPECT_DOUBLE_EQ(c->x, 640.5);
@@ -66,7 +66,7 @@ TEST(ViewerOptionsTest, ClickSpecsParse) {
   EXPECT_FALSE(parse_click_spec("1,2,left@3junk"));
 }
 
-TEST(ViewerOptionsTest, TabNamesResolve) {
+TEST(ViewerOptions, TabNamesResolve) {
   ViewerOptions o;
   o.tab = "mqtt";
   ASSERT_TRUE(validate(o));

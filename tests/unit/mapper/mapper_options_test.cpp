@@ -1,0 +1,55 @@
+// MapperOptions: defaults, flags, and validation naming the bad key.
+#include "mapper/mapper_options.hpp"
+
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+namespace slam::mapper {
+namespace {
+
+Status parse(MapperOptions& o, std::vector<std::string> args) {
+  CLI::App app{"test"};
+  add_mapper_options(app, o);
+  std::vector<const char*> argv{"slam-mapper"};
+  for (const auto& a : args) argv.push_back(a.c_str());
+  try {
+    app.parse(static_cast<int>(argv.size()), const_cast<char**>(argv.data()));
+  } catch (const CLI::ParseError& e) {
+    return Error{e.what()};
+  }
+  return validate(o);
+}
+
+TEST(MapperOptions, DefaultsAreValidAndFlagsBind) {
+  MapperOptions o;
+  EXPECT_TRUE(validate(o));
+  ASSERT_TRUE(parse(o, {"--store", "/tmp/x.db", "--grid-resolution", "0.1", "--patch-rate", "5",
+                        "--snapshot-period", "2", "--grid-legacy-mode"}));
+  EXPECT_EQ(o.store, "/tmp/x.db");
+  EXPECT_DOUBLE_EQ(o.grid.resolution, 0.1);
+  EXPECT_DOUBLE_EQ(o.patch_rate_hz, 5.0);
+  EXPECT_TRUE(o.grid.legacy_mode);
+  EXPECT_FALSE(o.offline());
+}
+
+TEST(MapperOptions, ValidationNamesTheBadKey) {
+  const auto error = [](void (*change)(MapperOptions&)) {
+    MapperOptions o;
+    change(o);
+    return validate(o).message();
+  };
+  EXPECT_NE(error([](MapperOptions& o) { o.patch_rate_hz = 0; }).find("patch_rate"), std::string::npos);
+  EXPECT_NE(error([](MapperOptions& o) { o.grid.resolution = -1; }).find("grid.resolution"),
+            std::string::npos);
+  EXPECT_NE(error([](MapperOptions& o) { o.snapshot_period_s = 1e9; }).find("snapshot_period"),
+            std::string::npos);
+  EXPECT_NE(error([](MapperOptions& o) { o.store.clear(); }).find("store"), std::string::npos);
+  MapperOptions both;
+  EXPECT_FALSE(parse(both, {"--export", "a.yaml", "--import", "b.yaml"}))
+      << "--export and --import exclude each other";
+}
+
+}  // namespace
+}  // namespace slam::mapper

@@ -1,0 +1,35 @@
+#pragma once
+// What the mapper's unit tests share: a small grid layout and one robot's observation of a wall.
+#include <gtest/gtest.h>
+
+#include <vector>
+
+#include "mapper/observation_store.hpp"
+#include "mapper/occupancy_grid.hpp"
+
+namespace slam::mapper::test_data {
+
+// 0.1 m cells, 4 m x 4 m around the origin, growable to 20 m.
+inline GridConfig small() {
+  GridConfig c;
+  c.resolution = 0.1;
+  c.origin_x = -2.0;
+  c.origin_y = -2.0;
+  c.width_m = 4.0;
+  c.height_m = 4.0;
+  c.max_extent_m = 20.0;
+  return c;
+}
+
+// A robot at the origin seeing a wall at x = 1.03, integrated into `grid` and stored in `store`.
+inline void feed(OccupancyGrid& grid, ObservationStore& store) {
+  std::vector<Point2d> hits;
+  for (int i = -5; i <= 5; ++i) hits.push_back({1.03, 0.1 * i + 0.03});
+  ObservationView v;
+  v.hits = hits;
+  ASSERT_TRUE(grid.integrate(v));
+  ASSERT_TRUE(store.append("r1", 1, 0, v));
+  ASSERT_TRUE(store.flush());
+}
+
+}  // namespace slam::mapper::test_data
