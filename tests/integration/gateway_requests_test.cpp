@@ -41,7 +41,8 @@ class Operator {
         take(dds::make_reader(*participant_, dds::kMqttTraffic, [this](const MqttTraffic& t, const auto&) {
           if (t.direction() != MQTT_INBOUND) return;
           std::lock_guard lock(mutex_);
-          traffic_seen_.push_back({t.topic().to_string(), std::string(t.payload().begin(), t.payload().end())});
+          traffic_seen_.push_back(
+              {t.topic().to_string(), std::string(t.payload().begin(), t.payload().end())});
         }));
     subscriptions_ = take(dds::make_reader(*participant_, dds::kMqttSubscriptions,
                                            [this](const MqttSubscriptions& s, const auto&) {

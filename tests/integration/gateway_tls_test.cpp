@@ -30,6 +30,11 @@ class GatewayTlsTest : public ::testing::Test {
     const std::string config = dir + "/mosquitto.conf";
     std::ofstream(config) << "listener " << port << " 127.0.0.1\n"
                           << "allow_anonymous true\n"
+                          << "persistence false\n"
+                          << "log_dest stderr\n"
+                          // Started as root, mosquitto would read the keys as 'mosquitto', which may not
+                          // enter the private test directory (ignored when not root).
+                          << "user root\n"
                           << "cafile " << dir << "/ca.crt\n"
                           << "certfile " << dir << "/server.crt\n"
                           << "keyfile " << dir << "/server.key\n";
@@ -39,11 +44,11 @@ class GatewayTlsTest : public ::testing::Test {
     auto p = dds::Participant::create(domain.id(), "gateway-tls-test");
     ASSERT_TRUE(p) << p.message();
     participant = std::move(*p);
-    auto observations =
-        dds::make_reader(*participant, dds::kRobotObservation, [this](const RobotObservation& o, const auto&) {
-          std::lock_guard lock(mutex);
-          seen.push_back(o.robot_id().to_string());
-        });
+    auto observations = dds::make_reader(*participant, dds::kRobotObservation,
+                                         [this](const RobotObservation& o, const auto&) {
+                                           std::lock_guard lock(mutex);
+                                           seen.push_back(o.robot_id().to_string());
+                                         });
     ASSERT_TRUE(observations) << observations.message();
     observation_reader = std::move(*observations);
     auto subscriptions = dds::make_reader(*participant, dds::kMqttSubscriptions,
@@ -73,17 +78,19 @@ class GatewayTlsTest : public ::testing::Test {
     };
     ASSERT_NO_FATAL_FAILURE(self_signed_ca("ca", "slamfleet test CA"));
     ASSERT_NO_FATAL_FAILURE(self_signed_ca("other-ca", "unrelated test CA"));
-    ASSERT_NO_FATAL_FAILURE(openssl("csr", {"req", "-newkey", "ec", "-pkeyopt", "ec_paramgen_curve:prime256v1",
-                                            "-nodes", "-keyout", dir + "/server.key", "-out",
-                                            dir + "/server.csr", "-subj", "/CN=127.0.0.1"}));
+    ASSERT_NO_FATAL_FAILURE(openssl(
+        "csr", {"req", "-newkey", "ec", "-pkeyopt", "ec_paramgen_curve:prime256v1", "-nodes", "-keyout",
+                dir + "/server.key", "-out", dir + "/server.csr", "-subj", "/CN=127.0.0.1"}));
     std::ofstream(dir + "/server.ext") << "subjectAltName=IP:127.0.0.1\n";
-    ASSERT_NO_FATAL_FAILURE(openssl("sign", {"x509", "-req", "-in", dir + "/server.csr", "-CA", dir + "/ca.crt",
-                                             "-CAkey", dir + "/ca.key", "-CAcreateserial", "-out",
-                                             dir + "/server.crt", "-days", "1", "-extfile", dir + "/server.ext"}));
+    ASSERT_NO_FATAL_FAILURE(openssl(
+        "sign",
+        {"x509", "-req", "-in", dir + "/server.csr", "-CA", dir + "/ca.crt", "-CAkey", dir + "/ca.key",
+         "-CAcreateserial", "-out", dir + "/server.crt", "-days", "1", "-extfile", dir + "/server.ext"}));
   }
   void start_gateway(const std::string& ca_file, std::vector<std::string> extra = {}) {
-    std::vector<std::string> argv{bin_path("slam-gateway"), "--domain", std::to_string(domain.id()), "--broker",
-                                  broker(), "--tls-ca-file", ca_file, "--reconnect-max-s", "1"};
+    std::vector<std::string> argv{
+        bin_path("slam-gateway"), "--domain", std::to_string(domain.id()), "--broker", broker(),
+        "--tls-ca-file",          ca_file,    "--reconnect-max-s",         "1"};
     argv.insert(argv.end(), extra.begin(), extra.end());
     group.start("gateway", argv);
   }
@@ -101,7 +108,8 @@ class GatewayTlsTest : public ::testing::Test {
     std::istringstream log(group.log("gateway"));
     size_t n = 0;
     for (std::string line; std::getline(log, line);) {
-      const bool problem = line.find("[warning]") != std::string::npos || line.find("[error]") != std::string::npos;
+      const bool problem =
+          line.find("[warning]") != std::string::npos || line.find("[error]") != std::string::npos;
       if ((problem || !problems_only) && line.find(broker()) != std::string::npos) ++n;
     }
     return n;

@@ -21,7 +21,8 @@
 namespace slam::testkit {
 namespace {
 
-constexpr double kMaxRange = 30.0;  // beyond the 10 m world's diagonal: every beam hits a wall
+constexpr double kMaxRange = 30.0;
+constexpr uint64_t kHandshakeId = 1000;  // beyond the 10 m world's diagonal: every beam hits a wall
 
 // Reported minus true range of every obstacle point in the v1 adv messages: the beam's direction is
 // taken from the robot's reported position to the point, the true range cast in the true world.
@@ -62,10 +63,10 @@ double standard_deviation(const std::vector<double>& v) {
 class SimulatorRangeNoiseTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    group.start("simulator", {bin_path("slam-simulator"), "--domain", std::to_string(domain.id()), "--broker",
-                              "tcp://127.0.0.1:" + std::to_string(port), "--world", "empty", "--seed", "11",
-                              "--robots", "1", "--noise", "0", "--drift", "0", "--max-range",
-                              std::to_string(kMaxRange)});
+    group.start("simulator",
+                {bin_path("slam-simulator"), "--domain", std::to_string(domain.id()), "--broker",
+                 "tcp://127.0.0.1:" + std::to_string(port), "--world", "empty", "--seed", "11", "--robots",
+                 "1", "--noise", "0", "--drift", "0", "--max-range", std::to_string(kMaxRange)});
     auto p = dds::Participant::create(domain.id(), "sim-noise-test");
     ASSERT_TRUE(p) << p.message();
     participant = std::move(*p);
@@ -82,6 +83,23 @@ class SimulatorRangeNoiseTest : public ::testing::Test {
     ASSERT_TRUE(reply_reader->wait_for_writers(20s)) << group.log("simulator");
     ASSERT_TRUE(mqtt.connect());
     ASSERT_TRUE(mqtt.subscribe("v1/robot/+/adv"));
+    // Matching is not symmetric at once: resend a harmless command until the simulator answers it,
+    // so the test's own commands are not written before the simulator's reader knows this writer.
+    SimControl resume;
+    resume.command_id(kHandshakeId);
+    resume.kind(SIM_RESUME);
+    ASSERT_TRUE(wait_until(
+        [&] {
+          controls->write(resume);
+          return wait_until(
+              [&] {
+                std::lock_guard lock(mutex);
+                return replies.count(kHandshakeId) > 0;
+              },
+              300ms);
+        },
+        20s))
+        << group.log("simulator");
   }
   void TearDown() override {
     if (HasFailure()) std::cerr << "simulator log:\n" << group.log("simulator") << "\n";

@@ -20,8 +20,9 @@ struct MqttMessage {
 class TestMqttClient {
  public:
   TestMqttClient(const std::string& url, const std::string& client_id) {
-    EXPECT_EQ(MQTTClient_create(&client_, url.c_str(), client_id.c_str(), MQTTCLIENT_PERSISTENCE_NONE, nullptr),
-              MQTTCLIENT_SUCCESS);
+    EXPECT_EQ(
+        MQTTClient_create(&client_, url.c_str(), client_id.c_str(), MQTTCLIENT_PERSISTENCE_NONE, nullptr),
+        MQTTCLIENT_SUCCESS);
     EXPECT_EQ(MQTTClient_setCallbacks(client_, this, nullptr, &TestMqttClient::arrived, nullptr),
               MQTTCLIENT_SUCCESS);
   }

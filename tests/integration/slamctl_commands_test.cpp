@@ -20,7 +20,8 @@
 namespace slam::testkit {
 namespace {
 
-struct Run {
+// One slamctl invocation: exit code and output (stdout and stderr).
+struct CtlRun {
   int code = -1;
   std::string output;
   size_t lines() const { return static_cast<size_t>(std::count(output.begin(), output.end(), '\n')); }
@@ -31,18 +32,20 @@ class Effects {
  public:
   explicit Effects(int domain) {
     participant_ = value(dds::Participant::create(domain, "slamctl-test"));
-    truth_ = value(dds::make_reader(*participant_, dds::kSimGroundTruth, [this](const SimGroundTruth& t, const auto&) {
-      std::lock_guard lock(mutex_);
-      truth_seen_ = t;
-    }));
+    truth_ = value(
+        dds::make_reader(*participant_, dds::kSimGroundTruth, [this](const SimGroundTruth& t, const auto&) {
+          std::lock_guard lock(mutex_);
+          truth_seen_ = t;
+        }));
     replies_ = value(dds::make_reader(*participant_, dds::kMapReply, [this](const MapReply& r, const auto&) {
       std::lock_guard lock(mutex_);
       map_replies_.push_back(r);
     }));
-    snapshots_ = value(dds::make_reader(*participant_, dds::kGridSnapshot, [this](const GridSnapshot& s, const auto&) {
-      std::lock_guard lock(mutex_);
-      resolution_ = s.info().resolution();
-    }));
+    snapshots_ =
+        value(dds::make_reader(*participant_, dds::kGridSnapshot, [this](const GridSnapshot& s, const auto&) {
+          std::lock_guard lock(mutex_);
+          resolution_ = s.info().resolution();
+        }));
   }
   std::optional<SimGroundTruth> truth() {
     std::lock_guard lock(mutex_);
@@ -81,9 +84,10 @@ class SlamctlTest : public ::testing::Test {
     const std::string broker = "tcp://127.0.0.1:" + std::to_string(port);
     group.start("gateway", {bin_path("slam-gateway"), "--domain", d, "--broker", broker});
     group.start("mapper", {bin_path("slam-mapper"), "--domain", d, "--store", group.dir() + "/map.db"});
-    group.start("planner", {bin_path("slam-planner"), "--domain", d, "--goal-store", group.dir() + "/goals.json"});
-    group.start("simulator", {bin_path("slam-simulator"), "--domain", d, "--broker", broker, "--world", "empty",
-                              "--robots", "2", "--seed", "5"});
+    group.start("planner",
+                {bin_path("slam-planner"), "--domain", d, "--goal-store", group.dir() + "/goals.json"});
+    group.start("simulator", {bin_path("slam-simulator"), "--domain", d, "--broker", broker, "--world",
+                              "empty", "--robots", "2", "--seed", "5"});
     ASSERT_TRUE(wait_until([&] { return robot_count() == 2; }, 30s)) << group.log("simulator");
     ASSERT_TRUE(wait_until([&] { return effects.map_replies_matched(); }, 30s)) << group.log("mapper");
   }
@@ -93,24 +97,26 @@ class SlamctlTest : public ::testing::Test {
       std::cerr << s << " log:\n" << group.log(s) << "\n";
   }
 
-  Run ctl(std::vector<std::string> args, int domain_id = -1) {
+  CtlRun ctl(std::vector<std::string> args, int domain_id = -1) {
     const std::string name = "slamctl" + std::to_string(++runs);
     std::vector<std::string> argv{bin_path("slamctl"), "--domain",
                                   std::to_string(domain_id < 0 ? domain.id() : domain_id), "--timeout", "10"};
     argv.insert(argv.end(), args.begin(), args.end());
     group.start(name, argv);
-    Run r;
+    CtlRun r;
     r.code = group.wait_exit(name, 60s);
     r.output = group.log(name);
     return r;
   }
   // Exits non-zero with one line of explanation.
   void expect_fails(const std::vector<std::string>& args, int domain_id = -1) {
-    const Run r = ctl(args, domain_id);
+    const CtlRun r = ctl(args, domain_id);
     EXPECT_NE(r.code, 0) << args.front() << ": " << r.output;
     EXPECT_EQ(r.lines(), 1u) << args.front() << ": " << r.output;
   }
-  void expect_ok(const Run& r, const std::string& what) { EXPECT_EQ(r.code, 0) << what << ":\n" << r.output; }
+  void expect_ok(const CtlRun& r, const std::string& what) {
+    EXPECT_EQ(r.code, 0) << what << ":\n" << r.output;
+  }
   size_t robot_count() {
     const auto t = effects.truth();
     return t ? t->robots().size() : 0;
@@ -140,7 +146,7 @@ class SlamctlTest : public ::testing::Test {
 };
 
 TEST_F(SlamctlTest, StatusRobotsAndEcho) {
-  const Run status = ctl({"status"});
+  const CtlRun status = ctl({"status"});
   expect_ok(status, "status");
   for (const char* s : {"gateway", "mapper", "planner", "simulator"})
     EXPECT_NE(status.output.find(s), std::string::npos) << s << " missing:\n" << status.output;
@@ -149,7 +155,7 @@ TEST_F(SlamctlTest, StatusRobotsAndEcho) {
   // The gateway lists robots once their first messages went through.
   const std::vector<std::string> ids = robot_ids();
   ASSERT_EQ(ids.size(), 2u);
-  Run robots;
+  CtlRun robots;
   ASSERT_TRUE(wait_until(
       [&] {
         robots = ctl({"robots"});
@@ -160,7 +166,7 @@ TEST_F(SlamctlTest, StatusRobotsAndEcho) {
       << robots.output;
   expect_fails({"robots"}, empty_domain.id());
 
-  const Run echo = ctl({"echo", "slam/sim/ground_truth", "-n", "1"});
+  const CtlRun echo = ctl({"echo", "slam/sim/ground_truth", "-n", "1"});
   expect_ok(echo, "echo");
   EXPECT_EQ(echo.lines(), 1u) << echo.output;
   expect_fails({"echo", "slam/no/such/topic", "-n", "1"});
@@ -168,11 +174,11 @@ TEST_F(SlamctlTest, StatusRobotsAndEcho) {
 
 TEST_F(SlamctlTest, GoalAndPath) {
   const std::string id = robot_ids().at(0);
-  const Run goal = ctl({"goal", id, "direct", "5", "5"});
+  const CtlRun goal = ctl({"goal", id, "direct", "5", "5"});
   expect_ok(goal, "goal");
   EXPECT_NE(goal.output.find("goal direct sent to " + id), std::string::npos) << goal.output;
   // The planner takes the goal: the robot's row shows its mode.
-  Run robots;
+  CtlRun robots;
   EXPECT_TRUE(wait_until(
       [&] {
         robots = ctl({"robots"});
@@ -190,7 +196,7 @@ TEST_F(SlamctlTest, GoalAndPath) {
   ASSERT_TRUE(truth);
   const auto& a = truth->robots()[0].true_pose();
   const auto& b = truth->robots()[1].true_pose();
-  Run path;
+  CtlRun path;
   EXPECT_TRUE(wait_until(
       [&] {
         path = ctl({"path", std::to_string(a.x()), std::to_string(a.y()), std::to_string(b.x()),
@@ -200,7 +206,7 @@ TEST_F(SlamctlTest, GoalAndPath) {
       30s, 1s))
       << path.output;
   EXPECT_FALSE(path.output.empty());
-  const Run outside = ctl({"path", "0", "0", "900", "900"});
+  const CtlRun outside = ctl({"path", "0", "0", "900", "900"});
   EXPECT_NE(outside.code, 0) << outside.output;
   expect_fails({"path", "1", "2", "3"});
 }
