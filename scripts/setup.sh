@@ -13,7 +13,7 @@ PACKAGES=(
   libglfw3-dev libimgui-dev libgl-dev libx11-dev libgl1-mesa-dri xvfb xauth
   libgtest-dev libgmock-dev libbenchmark-dev
   libsqlite3-dev libcli11-dev libspdlog-dev nlohmann-json3-dev libyaml-cpp-dev libstb-dev
-  jq
+  jq openssl
   docker-compose  # validates compose/docker-compose.yml in tests (no Docker engine needed)
 )
 

@@ -76,6 +76,9 @@ Status GatewayNode::configure() {
   auto subscriptions = dds::make_writer(*participant_, dds::kMqttSubscriptions);
   if (!subscriptions) return Error{subscriptions.message()};
   subscriptions_writer_ = std::move(*subscriptions);
+  auto replies = dds::make_writer(*participant_, dds::kMqttReply);
+  if (!replies) return Error{replies.message()};
+  reply_writer_ = std::move(*replies);
   auto traffic = TrafficPublisher::start(*participant_, traffic_, metrics_.write_failures);
   if (!traffic) return Error{traffic.message()};
   traffic_publisher_ = std::move(*traffic);

@@ -79,6 +79,7 @@ class GatewayNode {
   void on_waypoint(const slam::WaypointCommand& command);
   void on_request(const slam::MqttRequest& request);
   Status execute(const slam::MqttRequest& request);
+  void reply(std::uint64_t request_id, const Status& result);
   // Any thread: publishes, counts, logs the traffic.
   Status publish_mqtt(const std::string& topic, std::span<const std::uint8_t> payload, int qos, bool retain);
   void warn(const std::string& key, const std::string& line);
@@ -122,6 +123,7 @@ class GatewayNode {
   std::unique_ptr<dds::Writer<slam::RobotObservation>> observation_writer_;
   std::unique_ptr<dds::Writer<slam::RobotState>> state_writer_;
   std::unique_ptr<dds::Writer<slam::MqttSubscriptions>> subscriptions_writer_;
+  std::unique_ptr<dds::Writer<slam::MqttReply>> reply_writer_;
   std::unique_ptr<TrafficPublisher> traffic_publisher_;
   std::unique_ptr<mqtt::Connection> mqtt_;
   std::unique_ptr<dds::Reader<slam::WaypointCommand>> waypoint_reader_;

@@ -1,6 +1,6 @@
 // GatewayNode, DDS -> MQTT: waypoint commands in each robot's protocol and the viewer's raw MQTT
-// requests. Runs on the DDS reader threads; publishing only queues in the MQTT client, so nothing
-// here blocks on the network.
+// requests, each answered with an MqttReply. Runs on the DDS reader threads; publishing only queues in the
+// MQTT client, so nothing here blocks on the network.
 #include <string>
 
 #include "common/core/clock.hpp"
@@ -84,13 +84,23 @@ void GatewayNode::on_waypoint(const slam::WaypointCommand& command) {
 void GatewayNode::on_request(const slam::MqttRequest& request) {
   bump(metrics_.mqtt_requests);
   const std::string topic = protocol::escape_for_log(text_of(request.topic()), 256);
-  if (auto s = execute(request); !s) {
+  const Status result = execute(request);
+  reply(request.request_id(), result);
+  if (!result) {
     bump(metrics_.mqtt_requests_failed);
     warn("request", "MQTT request " + std::to_string(request.request_id()) + " (" +
-                        kind_name(request.kind()) + " '" + topic + "') refused: " + s.message());
+                        kind_name(request.kind()) + " '" + topic + "') refused: " + result.message());
     return;
   }
   spdlog::info("MQTT request {}: {} '{}'", request.request_id(), kind_name(request.kind()), topic);
+}
+
+void GatewayNode::reply(std::uint64_t request_id, const Status& result) {
+  slam::MqttReply sample;
+  sample.request_id(request_id);
+  sample.ok(static_cast<bool>(result));
+  if (!result) set_text(sample.message(), result.message());
+  if (!reply_writer_->write(sample)) bump(metrics_.write_failures);
 }
 
 Status GatewayNode::execute(const slam::MqttRequest& request) {

@@ -81,6 +81,9 @@ Result<std::unique_ptr<SimDds>> SimDds::create(int domain) {
     return Error{
         fmt::format("Cyclone reader {}: {}", topics::kSimControl.name, dds_strretcode(dds->control_reader_))};
 
+  auto reply = cyclone::make_writer(p, &slam_SimReply_desc, topics::kSimReply);
+  if (!reply) return Error{reply.message()};
+  dds->reply_writer_ = *reply;
   auto world = cyclone::make_writer(p, &slam_SimWorld_desc, topics::kSimWorld);
   if (!world) return Error{world.message()};
   dds->world_writer_ = *world;
@@ -90,7 +93,7 @@ Result<std::unique_ptr<SimDds>> SimDds::create(int domain) {
   return dds;
 }
 
-Status SimDds::take_controls(std::vector<ControlCommand>& out, std::vector<std::string>& errors) {
+Status SimDds::take_controls(std::vector<ControlCommand>& out, std::vector<UnreadableControl>& unreadable) {
   for (;;) {
     void* samples[kTakeBatch] = {};
     dds_sample_info_t infos[kTakeBatch];
@@ -98,15 +101,27 @@ Status SimDds::take_controls(std::vector<ControlCommand>& out, std::vector<std::
     if (n < 0) return Error{fmt::format("taking {}: {}", topics::kSimControl.name, dds_strretcode(n))};
     for (dds_return_t i = 0; i < n; ++i) {
       if (!infos[i].valid_data) continue;
-      auto c = to_command(*static_cast<const slam_SimControl*>(samples[i]));
+      const auto& sample = *static_cast<const slam_SimControl*>(samples[i]);
+      auto c = to_command(sample);
       if (c)
         out.push_back(std::move(*c));
       else
-        errors.push_back(c.message());
+        unreadable.push_back({sample.command_id, c.message()});
     }
     if (n > 0) dds_return_loan(control_reader_, samples, n);
     if (n < kTakeBatch) return {};
   }
+}
+
+Status SimDds::publish_reply(uint64_t command_id, const Status& result) {
+  slam_SimReply sample{};
+  sample.command_id = command_id;
+  sample.ok = static_cast<bool>(result);
+  if (!result) cyclone::copy_bounded(result.message(), sample.message, sizeof sample.message);
+  const dds_return_t rc = dds_write(reply_writer_, &sample);
+  if (rc != DDS_RETCODE_OK)
+    return Error{fmt::format("writing {}: {}", topics::kSimReply.name, dds_strretcode(rc))};
+  return {};
 }
 
 Status SimDds::publish_world(const World& world) {

@@ -82,22 +82,32 @@ void SimNode::add_robots(const std::vector<std::string>& ids) {
   robots_.store(static_cast<int64_t>(sim_.robots().size()), std::memory_order_relaxed);
 }
 
+void SimNode::reply(uint64_t command_id, const Status& result) {
+  if (auto s = dds_->publish_reply(command_id, result); !s) {
+    bump(dds_write_failures_);
+    warn("reply", s.message());
+  }
+}
+
 void SimNode::apply_controls() {
   controls_.clear();
-  control_errors_.clear();
-  if (auto s = dds_->take_controls(controls_, control_errors_); !s) warn("take", s.message());
-  for (const std::string& e : control_errors_) {
+  unreadable_controls_.clear();
+  if (auto s = dds_->take_controls(controls_, unreadable_controls_); !s) warn("take", s.message());
+  for (const UnreadableControl& u : unreadable_controls_) {
     bump(controls_rejected_);
-    warn("control", "control ignored: " + e);
+    warn("control", "control ignored: " + u.error);
+    reply(u.command_id, Error{u.error});
   }
   for (const ControlCommand& c : controls_) {
     auto outcome = apply_control(sim_, c);
     if (!outcome) {
       bump(controls_rejected_);
       warn("control", fmt::format("control {} ignored: {}", c.command_id, outcome.message()));
+      reply(c.command_id, Error{outcome.message()});
       continue;
     }
     bump(controls_applied_);
+    reply(c.command_id, Status::ok());
     for (const std::string& id : outcome->removed) links_->remove(id);
     add_robots(outcome->spawned);
     if (outcome->world_changed) {

@@ -1,7 +1,7 @@
 #pragma once
 // slam-simulator's service object: owns the Simulation and drives it from one thread. Each loop
-// iteration applies operator commands (Cyclone) and waypoints (MQTT intake), runs the steps due
-// for the elapsed wall time, publishes every report over MQTT and, at its own rate, ground truth.
+// iteration applies operator commands (Cyclone; each gets a SimReply) and waypoints (MQTT intake), runs the
+// steps due for the elapsed wall time, publishes every report over MQTT and, at its own rate, ground truth.
 #include <chrono>
 #include <memory>
 #include <string>
@@ -32,6 +32,7 @@ class SimNode {
   SimNode(const SimOptions& options, Simulation sim, Counters& counters);
   void add_robots(const std::vector<std::string>& ids);
   void apply_controls();
+  void reply(uint64_t command_id, const Status& result);
   void apply_orders();
   void run_steps(double wall_seconds);
   void publish_truth();
@@ -57,7 +58,7 @@ class SimNode {
   std::unique_ptr<RobotLinks> links_;
 
   std::vector<ControlCommand> controls_;
-  std::vector<std::string> control_errors_;
+  std::vector<UnreadableControl> unreadable_controls_;
   std::vector<WaypointOrder> orders_;
 };
 

@@ -10,11 +10,14 @@
 #define STB_IMAGE_IMPLEMENTATION
 #include <stb/stb_image.h>
 
+#include <algorithm>
 #include <cmath>
 #include <csignal>
 #include <filesystem>
 #include <regex>
 #include <sstream>
+#include <string>
+#include <tuple>
 
 #include "common/fastdds/fast_topics.hpp"
 #include "process_group.hpp"
@@ -149,8 +152,15 @@ Result<ViewTransform> last_view(const std::string& log) {
 float brightness(const Rgba& c) {
   return (c.r + c.g + c.b) / 3.0f;
 }
-bool close_to(const Rgba& a, const Rgba& b) {
-  return std::abs(a.r - b.r) < 0.08f && std::abs(a.g - b.g) < 0.08f && std::abs(a.b - b.b) < 0.08f;
+// `tolerance` per channel; path and target strokes are drawn at 90 % alpha and antialiased.
+bool close_to(const Rgba& a, const Rgba& b, float tolerance = 0.08f) {
+  return std::abs(a.r - b.r) < tolerance && std::abs(a.g - b.g) < tolerance &&
+         std::abs(a.b - b.b) < tolerance;
+}
+// The pixel `dx`, `dy` screen pixels away from world point `world`.
+Rgba pixel_off(const Image& img, const ViewTransform& v, Vec2 world, double dx, double dy) {
+  const Vec2 s = v.world_to_screen(world);
+  return img.at(v, v.screen_to_world({s.x + dx, s.y + dy}));
 }
 std::string str(const Rgba& c) {
   std::ostringstream s;
@@ -238,6 +248,44 @@ TEST(ViewerTest, RendersGridRobotsAndPointsAndSendsClicks) {
       << "robot alpha: got " << str(img.at(*view, {-3.0, 2.0}));
   EXPECT_TRUE(close_to(img.at(*view, {-3.0, -2.5}), viewer::default_robot_color("bravo")))
       << "robot bravo: got " << str(img.at(*view, {-3.0, -2.5}));
+  // Each robot is a triangle along its heading (alpha faces +x, bravo +y), opaque in its colour: its
+  // nose reaches 0.6 of its length ahead of the pose, its base only 0.4 behind, and it is 0.7 wide.
+  // The length is the default robot size (0.35 m) or 14 pixels, whichever is longer on screen.
+  const double len = std::max(0.35, 14.0 / view->scale());
+  for (const auto& [id, where, heading] : {std::tuple<std::string, Vec2, double>{"alpha", {-3.0, 2.0}, 0.0},
+                                           {"bravo", {-3.0, -2.5}, M_PI / 2.0}}) {
+    const Rgba want = viewer::default_robot_color(id);
+    const Vec2 dir{std::cos(heading), std::sin(heading)}, side{-dir.y, dir.x};
+    const auto along = [&](double fwd, double lateral) {
+      return img.at(*view, {where.x + len * (fwd * dir.x + lateral * side.x),
+                            where.y + len * (fwd * dir.y + lateral * side.y)});
+    };
+    EXPECT_TRUE(close_to(along(0.3, 0.0), want)) << id << " ahead: " << str(along(0.3, 0.0));
+    EXPECT_TRUE(close_to(along(-0.3, 0.2), want)) << id << " beside its base: " << str(along(-0.3, 0.2));
+    EXPECT_FALSE(close_to(along(-0.55, 0.0), want)) << id << " behind its base: " << str(along(-0.55, 0.0));
+    // Off-centre: alpha's path continues straight ahead of it.
+    EXPECT_FALSE(close_to(along(0.8, 0.25), want)) << id << " beyond its nose: " << str(along(0.8, 0.25));
+    EXPECT_FALSE(close_to(along(0.0, 0.5), want)) << id << " beyond its side: " << str(along(0.0, 0.5));
+  }
+  // alpha's path: a line in its colour from the robot through the waypoints, and the active target
+  // marker (a cross in a 9-pixel ring) at the target.
+  const Rgba alpha_color = viewer::default_robot_color("alpha");
+  for (const Vec2 on_path : {Vec2{-1.5, 2.0}, Vec2{0.5, 2.0}})
+    EXPECT_TRUE(close_to(img.at(*view, on_path), alpha_color, 0.15f))
+        << "path at (" << on_path.x << ", " << on_path.y << "): " << str(img.at(*view, on_path));
+  EXPECT_FALSE(close_to(img.at(*view, {-1.5, 2.4}), alpha_color, 0.15f)) << "beside the path";
+  const Vec2 target{1.0, 2.0};
+  // The ring is a thin antialiased polygon: one pixel of a 3 x 3 patch on it must show it.
+  bool ring = false;
+  for (double dx = -1.0; dx <= 1.0; ++dx)
+    for (double dy = -1.0; dy <= 1.0; ++dy)
+      ring = ring || close_to(pixel_off(img, *view, target, 8.5 + dx, dy), alpha_color, 0.2f);
+  EXPECT_TRUE(ring) << "target ring: " << str(pixel_off(img, *view, target, 8.5, 0.0));
+  EXPECT_TRUE(close_to(pixel_off(img, *view, target, 5.0, 5.0), alpha_color, 0.2f))
+      << "target cross: " << str(pixel_off(img, *view, target, 5.0, 5.0));
+  EXPECT_FALSE(close_to(pixel_off(img, *view, target, 0.0, 5.5), alpha_color, 0.2f))
+      << "inside the ring, off the cross: " << str(pixel_off(img, *view, target, 0.0, 5.5));
+
   // Occupied cells dark, free cells light, unknown in between.
   EXPECT_LT(brightness(img.at(*view, {3.5, -1.0})), 0.25f) << str(img.at(*view, {3.5, -1.0}));
   EXPECT_GT(brightness(img.at(*view, {0.5, -1.0})), 0.8f) << str(img.at(*view, {0.5, -1.0}));

@@ -205,6 +205,14 @@ MqttRequest sample_mqtt_request() {
   return s;
 }
 
+MqttReply sample_mqtt_reply() {
+  MqttReply s;
+  s.request_id(0xfedcba9876543210ULL);
+  s.ok(false);
+  s.message("filter 'v1/#/x': '#' must be the last level (ü)");
+  return s;
+}
+
 MqttSubscriptions sample_mqtt_subscriptions() {
   MqttSubscriptions s;
   s.connected(true);
@@ -228,6 +236,14 @@ SimControl sample_sim_control() {
   s.dropout(0.05);
   s.odometry_drift(0.01);
   s.speed_factor(2);
+  return s;
+}
+
+SimReply sample_sim_reply() {
+  SimReply s;
+  s.command_id(0x0123456789abcdefULL);
+  s.ok(false);
+  s.message("set world: no world 'maze-ü' (not built in, no such file)");
   return s;
 }
 

@@ -1,0 +1,257 @@
+// Every slamctl subcommand, through the command line only, against a running fleet (mosquitto,
+// gateway, mapper, planner, simulator): exit 0 and the expected output or effect seen on DDS, and a
+// failing case per subcommand that exits non-zero with one line.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "common/fastdds/fast_topics.hpp"
+#include "process_group.hpp"
+
+namespace slam::testkit {
+namespace {
+
+// One slamctl invocation: exit code and output (stdout and stderr).
+struct CtlRun {
+  int code = -1;
+  std::string output;
+  size_t lines() const { return static_cast<size_t>(std::count(output.begin(), output.end(), '\n')); }
+};
+
+// What slamctl's commands change, seen on DDS: ground truth, map replies and the grid layout.
+class Effects {
+ public:
+  explicit Effects(int domain) {
+    participant_ = value(dds::Participant::create(domain, "slamctl-test"));
+    truth_ = value(
+        dds::make_reader(*participant_, dds::kSimGroundTruth, [this](const SimGroundTruth& t, const auto&) {
+          std::lock_guard lock(mutex_);
+          truth_seen_ = t;
+        }));
+    replies_ = value(dds::make_reader(*participant_, dds::kMapReply, [this](const MapReply& r, const auto&) {
+      std::lock_guard lock(mutex_);
+      map_replies_.push_back(r);
+    }));
+    snapshots_ =
+        value(dds::make_reader(*participant_, dds::kGridSnapshot, [this](const GridSnapshot& s, const auto&) {
+          std::lock_guard lock(mutex_);
+          resolution_ = s.info().resolution();
+        }));
+  }
+  std::optional<SimGroundTruth> truth() {
+    std::lock_guard lock(mutex_);
+    return truth_seen_;
+  }
+  std::vector<MapReply> map_replies() {
+    std::lock_guard lock(mutex_);
+    return map_replies_;
+  }
+  double resolution() {
+    std::lock_guard lock(mutex_);
+    return resolution_;
+  }
+  bool map_replies_matched() { return replies_->matched_writers() > 0; }
+
+ private:
+  template <class T>
+  static T value(Result<T> r) {
+    if (!r) throw std::runtime_error(r.message());
+    return std::move(*r);
+  }
+  std::mutex mutex_;
+  std::optional<SimGroundTruth> truth_seen_;
+  std::vector<MapReply> map_replies_;
+  double resolution_ = 0.0;
+  std::unique_ptr<dds::Participant> participant_;
+  std::unique_ptr<dds::Reader<SimGroundTruth>> truth_;
+  std::unique_ptr<dds::Reader<MapReply>> replies_;
+  std::unique_ptr<dds::Reader<GridSnapshot>> snapshots_;
+};
+
+class SlamctlTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const std::string d = std::to_string(domain.id());
+    const std::string broker = "tcp://127.0.0.1:" + std::to_string(port);
+    group.start("gateway", {bin_path("slam-gateway"), "--domain", d, "--broker", broker});
+    group.start("mapper", {bin_path("slam-mapper"), "--domain", d, "--store", group.dir() + "/map.db"});
+    group.start("planner",
+                {bin_path("slam-planner"), "--domain", d, "--goal-store", group.dir() + "/goals.json"});
+    group.start("simulator", {bin_path("slam-simulator"), "--domain", d, "--broker", broker, "--world",
+                              "empty", "--robots", "2", "--seed", "5"});
+    ASSERT_TRUE(wait_until([&] { return robot_count() == 2; }, 30s)) << group.log("simulator");
+    ASSERT_TRUE(wait_until([&] { return effects.map_replies_matched(); }, 30s)) << group.log("mapper");
+  }
+  void TearDown() override {
+    if (!HasFailure()) return;
+    for (const char* s : {"gateway", "mapper", "planner", "simulator"})
+      std::cerr << s << " log:\n" << group.log(s) << "\n";
+  }
+
+  CtlRun ctl(std::vector<std::string> args, int domain_id = -1) {
+    const std::string name = "slamctl" + std::to_string(++runs);
+    std::vector<std::string> argv{bin_path("slamctl"), "--domain",
+                                  std::to_string(domain_id < 0 ? domain.id() : domain_id), "--timeout", "10"};
+    argv.insert(argv.end(), args.begin(), args.end());
+    group.start(name, argv);
+    CtlRun r;
+    r.code = group.wait_exit(name, 60s);
+    r.output = group.log(name);
+    return r;
+  }
+  // Exits non-zero with one line of explanation.
+  void expect_fails(const std::vector<std::string>& args, int domain_id = -1) {
+    const CtlRun r = ctl(args, domain_id);
+    EXPECT_NE(r.code, 0) << args.front() << ": " << r.output;
+    EXPECT_EQ(r.lines(), 1u) << args.front() << ": " << r.output;
+  }
+  void expect_ok(const CtlRun& r, const std::string& what) {
+    EXPECT_EQ(r.code, 0) << what << ":\n" << r.output;
+  }
+  size_t robot_count() {
+    const auto t = effects.truth();
+    return t ? t->robots().size() : 0;
+  }
+  std::vector<std::string> robot_ids() {
+    std::vector<std::string> ids;
+    if (const auto t = effects.truth())
+      for (const auto& r : t->robots()) ids.push_back(r.robot_id().to_string());
+    return ids;
+  }
+  // The command `args` was answered by the mapper with MAP_OK (the n-th reply since `before`).
+  void expect_map_ok(const std::vector<std::string>& args) {
+    const size_t before = effects.map_replies().size();
+    expect_ok(ctl(args), args.front());
+    ASSERT_TRUE(wait_until([&] { return effects.map_replies().size() > before; }, 20s))
+        << "no map reply to " << args.front();
+    const MapReply r = effects.map_replies()[before];
+    EXPECT_EQ(r.result(), MAP_OK) << args.front() << ": " << r.message().to_string();
+  }
+
+  DomainLease domain;
+  DomainLease empty_domain;  // nothing runs here: commands find no service
+  ProcessGroup group;
+  int port = group.start_mosquitto();
+  Effects effects{domain.id()};
+  int runs = 0;
+};
+
+TEST_F(SlamctlTest, StatusRobotsAndEcho) {
+  const CtlRun status = ctl({"status"});
+  expect_ok(status, "status");
+  for (const char* s : {"gateway", "mapper", "planner", "simulator"})
+    EXPECT_NE(status.output.find(s), std::string::npos) << s << " missing:\n" << status.output;
+  expect_fails({"status"}, empty_domain.id());
+
+  // The gateway lists robots once their first messages went through.
+  const std::vector<std::string> ids = robot_ids();
+  ASSERT_EQ(ids.size(), 2u);
+  CtlRun robots;
+  ASSERT_TRUE(wait_until(
+      [&] {
+        robots = ctl({"robots"});
+        return robots.code == 0 && robots.output.find(ids[0]) != std::string::npos &&
+               robots.output.find(ids[1]) != std::string::npos;
+      },
+      30s, 500ms))
+      << robots.output;
+  expect_fails({"robots"}, empty_domain.id());
+
+  const CtlRun echo = ctl({"echo", "slam/sim/ground_truth", "-n", "1"});
+  expect_ok(echo, "echo");
+  EXPECT_EQ(echo.lines(), 1u) << echo.output;
+  expect_fails({"echo", "slam/no/such/topic", "-n", "1"});
+}
+
+TEST_F(SlamctlTest, GoalAndPath) {
+  const std::string id = robot_ids().at(0);
+  const CtlRun goal = ctl({"goal", id, "direct", "5", "5"});
+  expect_ok(goal, "goal");
+  EXPECT_NE(goal.output.find("goal direct sent to " + id), std::string::npos) << goal.output;
+  // The planner takes the goal: the robot's row shows its mode.
+  CtlRun robots;
+  EXPECT_TRUE(wait_until(
+      [&] {
+        robots = ctl({"robots"});
+        std::istringstream lines(robots.output);
+        for (std::string line; std::getline(lines, line);)
+          if (line.find(id) != std::string::npos && line.find("direct/") != std::string::npos) return true;
+        return false;
+      },
+      30s, 500ms))
+      << robots.output;
+  expect_fails({"goal", id, "fly"});
+
+  // Between the two robots: both stand in space the mapper has seen.
+  const auto truth = effects.truth();
+  ASSERT_TRUE(truth);
+  const auto& a = truth->robots()[0].true_pose();
+  const auto& b = truth->robots()[1].true_pose();
+  CtlRun path;
+  EXPECT_TRUE(wait_until(
+      [&] {
+        path = ctl({"path", std::to_string(a.x()), std::to_string(a.y()), std::to_string(b.x()),
+                    std::to_string(b.y())});
+        return path.code == 0;
+      },
+      30s, 1s))
+      << path.output;
+  EXPECT_FALSE(path.output.empty());
+  const CtlRun outside = ctl({"path", "0", "0", "900", "900"});
+  EXPECT_NE(outside.code, 0) << outside.output;
+  expect_fails({"path", "1", "2", "3"});
+}
+
+TEST_F(SlamctlTest, MapFilesGridAndEdits) {
+  const std::string yaml = group.dir() + "/saved.yaml";
+  expect_map_ok({"map", "save", yaml});
+  EXPECT_TRUE(std::filesystem::exists(yaml));
+  expect_map_ok({"map", "load", yaml});
+  expect_fails({"map", "load", group.dir() + "/missing.yaml"});
+
+  expect_map_ok({"grid", "--resolution", "0.1"});
+  EXPECT_TRUE(wait_until([&] { return std::abs(effects.resolution() - 0.1) < 1e-9; }, 20s))
+      << "resolution " << effects.resolution();
+  expect_fails({"grid", "--resolution", "-1"});
+
+  expect_map_ok({"obstruct", "3", "3"});
+  expect_fails({"obstruct", "3"});
+  expect_map_ok({"unobstruct", "3", "3"});
+  expect_fails({"unobstruct"});
+  expect_map_ok({"reset", robot_ids().at(0)});
+  expect_fails({"reset"});
+}
+
+TEST_F(SlamctlTest, SimSpawnRemovePauseResume) {
+  expect_ok(ctl({"sim", "spawn", "2"}), "sim spawn");
+  EXPECT_TRUE(wait_until([&] { return robot_count() == 4; }, 20s)) << robot_count();
+  expect_fails({"sim", "spawn", "0"});
+
+  const std::string gone = robot_ids().at(0);
+  expect_ok(ctl({"sim", "remove", gone}), "sim remove");
+  EXPECT_TRUE(wait_until(
+      [&] {
+        const auto ids = robot_ids();
+        return ids.size() == 3 && std::find(ids.begin(), ids.end(), gone) == ids.end();
+      },
+      20s));
+  expect_fails({"sim", "remove"});
+
+  expect_ok(ctl({"sim", "pause"}), "sim pause");
+  EXPECT_TRUE(wait_until([&] { return effects.truth() && effects.truth()->paused(); }, 20s));
+  expect_ok(ctl({"sim", "resume"}), "sim resume");
+  EXPECT_TRUE(wait_until([&] { return effects.truth() && !effects.truth()->paused(); }, 20s));
+  expect_fails({"sim", "pause"}, empty_domain.id());
+}
+
+}  // namespace
+}  // namespace slam::testkit
