@@ -92,7 +92,7 @@ class RobotLinks {
   std::atomic<int64_t>& waypoints_rejected_;
   std::atomic<int64_t>& orders_dropped_;
   MqttLinkCounters link_counters_;
-  RateLimiter log_limiter_;
+  RateLimitedLog warnings_;
 
   std::unique_ptr<MqttLink> shared_link_;  // multiplexed mode
   std::unordered_map<std::string, Endpoint> endpoints_;
