@@ -63,12 +63,11 @@ void GatewayNode::log_rejection(std::string_view topic, Instant now) {
   std::string key = id.empty() ? std::string("?") : std::string(id);
   key += ':';
   key += reason;
-  uint64_t suppressed = 0;
-  if (!limiter_.allow(key, &suppressed) || !reject_log_budget_.take(now.mono_ns)) return;
+  const std::optional<std::string> tail = warnings_.admit(key);
+  if (!tail || !reject_log_budget_.take(now.mono_ns)) return;
   const std::string who =
       id.empty() ? "message" : "message from robot '" + protocol::escape_for_log(id) + "'";
-  const std::string tail = suppressed > 0 ? " (" + std::to_string(suppressed) + " similar suppressed)" : "";
-  spdlog::warn("rejected {} on '{}': {}{}", who, protocol::escape_for_log(topic), why.message(), tail);
+  spdlog::warn("rejected {} on '{}': {}{}", who, protocol::escape_for_log(topic), why.message(), *tail);
 }
 
 void GatewayNode::log_presence(std::string_view robot_id, const AcceptResult& result) {

@@ -161,13 +161,7 @@ void GatewayNode::publish_subscriptions() {
 }
 
 void GatewayNode::warn(const std::string& key, const std::string& line) {
-  uint64_t suppressed = 0;
-  if (!limiter_.allow(key, &suppressed)) return;
-  if (suppressed > 0) {
-    spdlog::warn("{} ({} similar line(s) suppressed)", line, suppressed);
-  } else {
-    spdlog::warn("{}", line);
-  }
+  warnings_.warn(key, "{}", line);
 }
 
 }  // namespace slam::gateway

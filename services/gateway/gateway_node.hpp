@@ -90,7 +90,7 @@ class GatewayNode {
   GatewayOptions options_;
   std::chrono::milliseconds period_;
   Metrics metrics_;
-  RateLimiter limiter_;
+  RateLimitedLog warnings_;
   TrafficQueue traffic_;
 
   // Registry: MQTT thread, waypoint reader thread and loop. urgent_ wakes the loop.

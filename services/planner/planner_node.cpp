@@ -372,13 +372,7 @@ void PlannerNode::reply(const PathJob& job, const PlanResult& result) {
 }
 
 void PlannerNode::warn(const std::string& key, const std::string& line) {
-  uint64_t suppressed = 0;
-  if (!limiter_.allow(key, &suppressed)) return;
-  if (suppressed > 0) {
-    spdlog::warn("{} ({} similar lines suppressed)", line, suppressed);
-  } else {
-    spdlog::warn("{}", line);
-  }
+  warnings_.warn(key, "{}", line);
 }
 
 }  // namespace slam::planner

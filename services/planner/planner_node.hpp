@@ -85,7 +85,7 @@ class PlannerNode {
   PlannerOptions options_;
   std::chrono::milliseconds period_;
   Metrics metrics_;
-  RateLimiter limiter_;
+  RateLimitedLog warnings_;
 
   // Loop state: touched by the loop thread only.
   PlanningGrid grid_;

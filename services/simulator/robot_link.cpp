@@ -191,10 +191,7 @@ void RobotLinks::publish(const RobotReport& report, bool driving) {
   }
   if (!status) {
     bump(reports_dropped_);
-    uint64_t dropped = 0;
-    if (log_limiter_.allow("encode", &dropped))
-      spdlog::warn("report of '{}' not sent: {} ({} similar lines suppressed)", report.robot_id,
-                   status.message(), dropped);
+    warnings_.warn("encode", "report of '{}' not sent: {}", report.robot_id, status.message());
   }
 }
 
@@ -218,10 +215,8 @@ void RobotLinks::drain_orders(std::vector<WaypointOrder>& out) {
 
 void RobotLinks::reject(std::string_view robot_id, const std::string& reason, const std::string& detail) {
   bump(waypoints_rejected_);
-  uint64_t dropped = 0;
-  if (log_limiter_.allow(reason, &dropped))
-    spdlog::warn("waypoint for '{}' ignored: {}: {} ({} similar lines suppressed)",
-                 protocol::escape_for_log(robot_id), reason, detail, dropped);
+  warnings_.warn(reason, "waypoint for '{}' ignored: {}: {}", protocol::escape_for_log(robot_id), reason,
+                 detail);
 }
 
 void RobotLinks::on_message(std::string_view topic, std::span<const uint8_t> payload) {

@@ -95,7 +95,7 @@ class RobotLinks {
   std::atomic<int64_t>& mqtt_connected_;  // gauge, refreshed by poll()
   std::atomic<int64_t>& mqtt_reconnects_;
   std::atomic<int64_t>& mqtt_connect_failures_;
-  RateLimiter log_limiter_;
+  RateLimitedLog warnings_;
 
   std::unique_ptr<mqtt::Connection> shared_link_;  // multiplexed mode
   std::unordered_map<std::string, Endpoint> endpoints_;

@@ -67,8 +67,7 @@ Result<std::unique_ptr<SimNode>> SimNode::create(const SimOptions& options, Worl
 }
 
 void SimNode::warn(const std::string& key, const std::string& text) {
-  uint64_t dropped = 0;
-  if (log_limiter_.allow(key, &dropped)) spdlog::warn("{} ({} similar lines suppressed)", text, dropped);
+  warnings_.warn(key, "{}", text);
 }
 
 void SimNode::add_robots(const std::vector<std::string>& ids) {

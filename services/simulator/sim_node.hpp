@@ -41,7 +41,7 @@ class SimNode {
   SimOptions options_;
   Counters& counters_;
   Simulation sim_;
-  RateLimiter log_limiter_;
+  RateLimitedLog warnings_;
   std::atomic<int64_t>& robots_;
   std::atomic<int64_t>& steps_;
   std::atomic<int64_t>& loop_overruns_;

@@ -9,6 +9,7 @@
 #include <thread>
 
 #include "common/core/clock.hpp"
+#include "common/core/service_options.hpp"
 #include "common/core/shutdown.hpp"
 #include "slamctl/format.hpp"
 
@@ -18,8 +19,20 @@ namespace {
 using namespace std::chrono_literals;
 
 int fail(const std::string& why) {
-  std::cerr << "slamctl: " << why << "\n";
-  return 1;
+  report_error("slamctl", why);
+  return kExitFailure;
+}
+
+int usage_error(const std::string& why) {
+  report_error("slamctl", why);
+  return kExitUsage;
+}
+
+Point2 point(double x, double y) {
+  Point2 p;
+  p.x(x);
+  p.y(y);
+  return p;
 }
 
 bool wait_until(const std::function<bool()>& pred, std::chrono::milliseconds timeout) {
@@ -139,6 +152,11 @@ uint64_t Session::next_request_id() {
          ++sequence_;
 }
 
+namespace {
+
+// Each subcommand below: its handler, then `add_*`, which adds its arguments to its CLI11 subcommand and
+// returns the handler bound to them; the table at the end names them in --help order.
+
 int cmd_status(Session& s) {
   Latest<Heartbeat> beats(s, dds::kHeartbeat, [](const Heartbeat& h) {
     return h.service().to_string() + "/" + h.instance_id().to_string();
@@ -151,6 +169,10 @@ int cmd_status(Session& s) {
   const int64_t now = now_ns();
   for (const auto& [key, hb] : seen) std::printf("%s", format_heartbeat(hb, now).c_str());
   return 0;
+}
+
+Handler add_status(CLI::App&) {
+  return cmd_status;
 }
 
 int cmd_robots(Session& s) {
@@ -171,33 +193,75 @@ int cmd_robots(Session& s) {
   return 0;
 }
 
-int cmd_goal(Session& s, const std::string& robot, GoalMode mode, const Point2& target, double square_size,
-             bool centred) {
+Handler add_robots(CLI::App&) {
+  return cmd_robots;
+}
+
+struct GoalArgs {
+  std::string robot;
+  std::string mode_name;
+  std::vector<double> xy;
+  double square_size = 1.0;
+  bool centred = false;
+};
+
+int cmd_goal(Session& s, const GoalArgs& a) {
+  const auto mode = parse_goal_mode(a.mode_name);
+  if (!mode)
+    return usage_error("unknown mode '" + a.mode_name +
+                       "' (idle, direct, planned, square, explore, home, stop)");
+  const bool needs_target = *mode == GOAL_DIRECT || *mode == GOAL_PLANNED || *mode == GOAL_SQUARE;
+  if (needs_target && a.xy.size() != 2)
+    return usage_error("mode " + a.mode_name + " needs a target: goal " + a.robot + " " + a.mode_name +
+                       " X Y");
   NavGoal goal;
-  goal.robot_id(robot == "all" ? "*" : robot);
+  goal.robot_id(a.robot == "all" ? "*" : a.robot);
   goal.goal_id(s.next_request_id());
-  goal.mode(mode);
-  goal.target(target);
-  goal.square_size(square_size);
-  goal.square_anchor(centred ? SQUARE_CENTRED : SQUARE_CORNER);
+  goal.mode(*mode);
+  goal.target(a.xy.size() == 2 ? point(a.xy[0], a.xy[1]) : point(0, 0));
+  goal.square_size(a.square_size);
+  goal.square_anchor(a.centred ? SQUARE_CENTRED : SQUARE_CORNER);
   const int rc = send(s, dds::kNavGoal, goal, "planner");
-  if (rc == 0) std::printf("goal %s sent to %s\n", goal_mode_name(mode).c_str(), robot.c_str());
+  if (rc == 0) std::printf("goal %s sent to %s\n", goal_mode_name(*mode).c_str(), a.robot.c_str());
   return rc;
 }
 
-int cmd_path(Session& s, const Point2& start, const Point2& goal, const std::string& algorithm,
-             double budget_s) {
+Handler add_goal(CLI::App& cli) {
+  auto a = std::make_shared<GoalArgs>();
+  cli.add_option("robot", a->robot, "robot id, or 'all'")->required();
+  cli.add_option("mode", a->mode_name, "idle, direct, planned, square, explore, home or stop")->required();
+  cli.add_option("xy", a->xy, "target x y in metres (direct, planned, square)")->expected(0, 2);
+  cli.add_option("--size", a->square_size, "square side in metres")->check(CLI::PositiveNumber);
+  cli.add_flag("--centred", a->centred, "square centred on the target instead of starting at it");
+  return [a](Session& s) { return cmd_goal(s, *a); };
+}
+
+struct PathArgs {
+  std::vector<double> ends;
+  std::string algorithm = "astar";
+  double budget_s = 1.0;
+};
+
+int cmd_path(Session& s, const PathArgs& a) {
   PathRequest req;
   req.request_id(s.next_request_id());
   req.client_id("slamctl:" + std::to_string(getpid()));
-  req.start(start);
-  req.goal(goal);
-  req.algorithm(algorithm);
-  req.time_budget_s(budget_s);
+  req.start(point(a.ends[0], a.ends[1]));
+  req.goal(point(a.ends[2], a.ends[3]));
+  req.algorithm(a.algorithm);
+  req.time_budget_s(a.budget_s);
   const auto reply = request(s, dds::kPathRequest, req, dds::kPathReply, "planner");
   if (!reply) return 1;
   std::printf("%s", format_path_reply(*reply).c_str());
   return reply->status() == PLAN_OK ? 0 : 1;
+}
+
+Handler add_path(CLI::App& cli) {
+  auto a = std::make_shared<PathArgs>();
+  cli.add_option("coordinates", a->ends, "start x y, goal x y (metres)")->expected(4)->required();
+  cli.add_option("--algorithm", a->algorithm, "astar, rrtconnect, rrtstar or prmstar")->capture_default_str();
+  cli.add_option("--budget", a->budget_s, "time budget in seconds")->capture_default_str();
+  return [a](Session& s) { return cmd_path(s, *a); };
 }
 
 int cmd_map_file(Session& s, MapFileAction action, const std::string& yaml_path) {
@@ -213,10 +277,47 @@ int cmd_map_file(Session& s, MapFileAction action, const std::string& yaml_path)
   return 0;
 }
 
-int cmd_grid(Session& s, const GridConfig& config) {
-  GridConfig c = config;
+Handler add_map(CLI::App& cli) {
+  auto file = std::make_shared<std::string>();
+  cli.require_subcommand(1);
+  auto* save = cli.add_subcommand("save", "export the map to FILE.yaml");
+  save->add_option("file", *file, "YAML path")->required();
+  auto* load = cli.add_subcommand("load", "import FILE.yaml as a prior");
+  load->add_option("file", *file, "YAML path")->required();
+  return
+      [file, save](Session& s) { return cmd_map_file(s, save->parsed() ? MAP_EXPORT : MAP_IMPORT, *file); };
+}
+
+struct GridArgs {
+  double resolution = 0.05;
+  double width = 0;
+  double height = 0;
+  double inflation = -1;
+  std::vector<double> origin;
+  bool legacy = false;
+};
+
+int cmd_grid(Session& s, const GridArgs& a) {
+  GridConfig c;
   c.request_id(s.next_request_id());
+  c.resolution(a.resolution);
+  c.width_m(a.width);
+  c.height_m(a.height);
+  c.origin(a.origin.size() == 2 ? point(a.origin[0], a.origin[1]) : point(0, 0));
+  c.inflation_radius(a.inflation);
+  c.legacy_mode(a.legacy);
   return send(s, dds::kGridConfig, c, "mapper");
+}
+
+Handler add_grid(CLI::App& cli) {
+  auto a = std::make_shared<GridArgs>();
+  cli.add_option("--resolution", a->resolution, "metres per cell")->check(CLI::PositiveNumber)->required();
+  cli.add_option("--width", a->width, "metres (0: keep growing as robots explore)");
+  cli.add_option("--height", a->height, "metres");
+  cli.add_option("--origin", a->origin, "x y of the lower-left corner")->expected(2);
+  cli.add_option("--inflation", a->inflation, "robot radius in metres for the restricted layer");
+  cli.add_flag("--legacy", a->legacy, "2019 behaviour: points obstruct their cell, nothing is cleared");
+  return [a](Session& s) { return cmd_grid(s, *a); };
 }
 
 int cmd_map_edit(Session& s, MapEditKind kind, const Point2& point, const std::string& robot) {
@@ -228,6 +329,26 @@ int cmd_map_edit(Session& s, MapEditKind kind, const Point2& point, const std::s
   return send(s, dds::kMapEdit, edit, "mapper");
 }
 
+// obstruct and unobstruct: one cell, x y.
+Handler add_cell_edit(CLI::App& cli, MapEditKind kind) {
+  auto cell = std::make_shared<std::vector<double>>();
+  cli.add_option("xy", *cell, "x y in metres")->expected(2)->required();
+  return [cell, kind](Session& s) { return cmd_map_edit(s, kind, point((*cell)[0], (*cell)[1]), ""); };
+}
+
+Handler add_obstruct(CLI::App& cli) {
+  return add_cell_edit(cli, EDIT_OBSTRUCT);
+}
+Handler add_unobstruct(CLI::App& cli) {
+  return add_cell_edit(cli, EDIT_UNOBSTRUCT);
+}
+
+Handler add_reset(CLI::App& cli) {
+  auto robot = std::make_shared<std::string>();
+  cli.add_option("robot", *robot, "robot id")->required();
+  return [robot](Session& s) { return cmd_map_edit(s, EDIT_RESET_ROBOT, point(0, 0), *robot); };
+}
+
 int cmd_sim(Session& s, SimCommandKind kind, uint32_t count, const std::string& robot) {
   SimControl c;
   c.command_id(s.next_request_id());
@@ -236,6 +357,27 @@ int cmd_sim(Session& s, SimCommandKind kind, uint32_t count, const std::string& 
   c.robot_id(robot);
   c.speed_factor(1.0);
   return send(s, dds::kSimControl, c, "simulator");
+}
+
+struct SimArgs {
+  uint32_t count = 1;
+  std::string robot;
+};
+
+Handler add_sim(CLI::App& cli) {
+  auto a = std::make_shared<SimArgs>();
+  cli.require_subcommand(1);
+  auto* spawn = cli.add_subcommand("spawn", "add N robots at random free poses");
+  spawn->add_option("count", a->count, "how many")->required()->check(CLI::Range(1, 10000));
+  auto* remove = cli.add_subcommand("remove", "remove a robot");
+  remove->add_option("robot", a->robot, "robot id")->required();
+  auto* pause = cli.add_subcommand("pause", "freeze every simulated robot");
+  cli.add_subcommand("resume", "continue");
+  return [a, spawn, remove, pause](Session& s) {
+    if (spawn->parsed()) return cmd_sim(s, SIM_SPAWN, a->count, "");
+    if (remove->parsed()) return cmd_sim(s, SIM_REMOVE, 0, a->robot);
+    return cmd_sim(s, pause->parsed() ? SIM_PAUSE : SIM_RESUME, 0, "");
+  };
 }
 
 int cmd_echo(Session& s, const std::string& topic, int count) {
@@ -252,6 +394,37 @@ int cmd_echo(Session& s, const std::string& topic, int count) {
   if (topic == topics::kMapReply.name) return echo(s, dds::kMapReply, count);
   if (topic == topics::kPathReply.name) return echo(s, dds::kPathReply, count);
   return fail("cannot echo '" + topic + "': see docs/topics.md for topic names");
+}
+
+struct EchoArgs {
+  std::string topic;
+  int count = 0;
+};
+
+Handler add_echo(CLI::App& cli) {
+  auto a = std::make_shared<EchoArgs>();
+  cli.add_option("topic", a->topic, "topic name, e.g. slam/robot/state")->required();
+  cli.add_option("-n,--count", a->count, "stop after N samples");
+  return [a](Session& s) { return cmd_echo(s, a->topic, a->count); };
+}
+
+}  // namespace
+
+const std::vector<Subcommand>& subcommands() {
+  static const std::vector<Subcommand> table{
+      {"status", "services seen, with their heartbeats and counters", add_status},
+      {"robots", "known robots: id, pose, last seen, goal mode", add_robots},
+      {"goal", "set a robot's standing goal: goal ROBOT|all MODE [x y]", add_goal},
+      {"path", "plan a path: path x0 y0 x1 y1", add_path},
+      {"map", "save or load the map (ROS map_server YAML + PGM, on the mapper's disk)", add_map},
+      {"grid", "change the grid layout (the mapper rebuilds from its store)", add_grid},
+      {"obstruct", "mark the cell at x y occupied by hand", add_obstruct},
+      {"unobstruct", "remove a manual obstruction at x y", add_unobstruct},
+      {"reset", "delete every observation of a robot and rebuild the map", add_reset},
+      {"sim", "control the simulator", add_sim},
+      {"echo", "print samples of a topic (see docs/topics.md) until Ctrl-C", add_echo},
+  };
+  return table;
 }
 
 }  // namespace slam::ctl

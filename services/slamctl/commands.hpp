@@ -1,9 +1,14 @@
 #pragma once
-// slamctl's commands: each one a function that talks DDS through a Session and returns the process
-// exit code (0 done, 1 failed or timed out, with a one-line reason on stderr).
+// slamctl's subcommands: a table of {name, help, add_options}, each entry defined next to its handler
+// in commands.cpp. A handler talks DDS through a Session and returns the process exit code (0 done,
+// 1 failed or timed out, 2 bad arguments), with one line "slamctl: error: ..." on stderr on failure.
+#include <CLI/CLI.hpp>
 #include <chrono>
+#include <functional>
 #include <memory>
 #include <string>
+#include <string_view>
+#include <vector>
 
 #include "common/fastdds/fast_topics.hpp"
 
@@ -25,16 +30,18 @@ class Session {
   uint64_t sequence_ = 0;
 };
 
-int cmd_status(Session& s);
-int cmd_robots(Session& s);
-int cmd_goal(Session& s, const std::string& robot, GoalMode mode, const Point2& target, double square_size,
-             bool centred);
-int cmd_path(Session& s, const Point2& start, const Point2& goal, const std::string& algorithm,
-             double budget_s);
-int cmd_map_file(Session& s, MapFileAction action, const std::string& yaml_path);
-int cmd_grid(Session& s, const GridConfig& config);
-int cmd_map_edit(Session& s, MapEditKind kind, const Point2& point, const std::string& robot);
-int cmd_sim(Session& s, SimCommandKind kind, uint32_t count, const std::string& robot);
-int cmd_echo(Session& s, const std::string& topic, int count);
+// Runs a parsed subcommand; returns the exit code.
+using Handler = std::function<int(Session&)>;
+
+struct Subcommand {
+  std::string_view name;
+  std::string_view help;
+  // Adds the subcommand's arguments (and its own subcommands) to `cli`, the CLI11 subcommand made
+  // from name and help; returns the handler that runs it with the values parsed into them.
+  Handler (*add_options)(CLI::App& cli);
+};
+
+// Every subcommand, in the order --help lists them.
+const std::vector<Subcommand>& subcommands();
 
 }  // namespace slam::ctl

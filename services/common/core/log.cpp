@@ -20,8 +20,8 @@ bool setup_logging(std::string_view service, std::string_view level) {
   return true;
 }
 
-bool RateLimiter::allow(const std::string& key, uint64_t* suppressed) {
-  const auto now = std::chrono::steady_clock::now();
+bool RateLimiter::allow(const std::string& key, uint64_t* suppressed,
+                        std::chrono::steady_clock::time_point now) {
   std::lock_guard lock(mutex_);
   // Keys may come from untrusted input (robot ids): bound the table instead of growing forever.
   if (slots_.size() >= kMaxKeys && !slots_.contains(key)) slots_.clear();
@@ -34,6 +34,14 @@ bool RateLimiter::allow(const std::string& key, uint64_t* suppressed) {
   slot.suppressed = 0;
   slot.last = now;
   return true;
+}
+
+std::optional<std::string> RateLimitedLog::admit(const std::string& key,
+                                                 std::chrono::steady_clock::time_point now) {
+  uint64_t suppressed = 0;
+  if (!limiter_.allow(key, &suppressed, now)) return std::nullopt;
+  if (suppressed == 0) return std::string();
+  return " (" + std::to_string(suppressed) + " similar suppressed)";
 }
 
 }  // namespace slam

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cstdint>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <unordered_map>
@@ -23,8 +24,9 @@ class RateLimiter {
   explicit RateLimiter(std::chrono::milliseconds interval = std::chrono::seconds(1)) : interval_(interval) {}
 
   // Returns true when a line for `key` may be written now; `*suppressed` gets the number of
-  // lines dropped for that key since the last one written.
-  bool allow(const std::string& key, uint64_t* suppressed);
+  // lines dropped for that key since the last one written. `now` is a parameter for tests.
+  bool allow(const std::string& key, uint64_t* suppressed,
+             std::chrono::steady_clock::time_point now = std::chrono::steady_clock::now());
 
  private:
   struct Slot {
@@ -35,6 +37,35 @@ class RateLimiter {
   std::chrono::milliseconds interval_;
   std::mutex mutex_;
   std::unordered_map<std::string, Slot> slots_;
+};
+
+// The one way to write a warning that a flood could repeat (bad input, failed writes): at most
+// one line per key per interval, and the first line after a quiet spell ends with
+// " (N similar suppressed)" when N lines of that key were dropped. Thread-safe.
+//   RateLimitedLog log_;                                   // a member, one per component
+//   log_.warn("bad_length:" + robot, "robot '{}': bad length {}", robot, n);
+// Keys are per cause (reason, robot, topic); keep them bounded in kind, not only in number.
+class RateLimitedLog {
+ public:
+  explicit RateLimitedLog(std::chrono::milliseconds interval = std::chrono::seconds(1))
+      : limiter_(interval) {}
+
+  // Writes the formatted warning unless `key` had a line within the interval; true when written.
+  template <typename... Args>
+  bool warn(const std::string& key, spdlog::format_string_t<Args...> format, Args&&... args) {
+    const std::optional<std::string> tail = admit(key);
+    if (!tail) return false;
+    spdlog::warn("{}{}", fmt::format(format, std::forward<Args>(args)...), *tail);
+    return true;
+  }
+
+  // For a line that has a further condition of its own (e.g. a budget over all keys): std::nullopt
+  // when `key` is suppressed now, else the tail to append to the line ("" or " (N similar suppressed)").
+  std::optional<std::string> admit(
+      const std::string& key, std::chrono::steady_clock::time_point now = std::chrono::steady_clock::now());
+
+ private:
+  RateLimiter limiter_;
 };
 
 }  // namespace slam

@@ -8,6 +8,14 @@
 
 namespace slam {
 
+void report_error(std::string_view program, std::string_view message) {
+  std::cerr << program << ": error: " << message << "\n";
+}
+
+std::string program_name(std::string_view service) {
+  return "slam-" + std::string(service);
+}
+
 void add_service_options(CLI::App& app, ServiceOptions& options) {
   app.add_option("--domain", options.domain, "DDS domain id")
       ->check(CLI::Range(0, 232))
@@ -26,22 +34,20 @@ std::optional<int> parse_command_line(CLI::App& app, int argc, char** argv) {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp&) {
     std::cout << app.help();
-    return 0;
+    return kExitOk;
   } catch (const CLI::CallForAllHelp&) {
     std::cout << app.help("", CLI::AppFormatMode::All);
-    return 0;
+    return kExitOk;
   } catch (const CLI::ParseError& e) {
-    std::cerr << app.get_name() << ": error: " << e.what() << " (see --help)\n";
-    return 2;
+    report_error(app.get_name(), std::string(e.what()) + " (see --help)");
+    return kExitUsage;
   }
   return std::nullopt;
 }
 
-bool start_logging(const std::string& service, const ServiceOptions& options) {
-  if (setup_logging(service, options.log_level)) return true;
-  std::cerr << service << ": error: --log-level " << options.log_level
-            << " is not one of trace, debug, info, warn, error, off\n";
-  return false;
+Status start_logging(const std::string& service, const ServiceOptions& options) {
+  if (setup_logging(service, options.log_level)) return Status::ok();
+  return Error{"--log-level " + options.log_level + " is not one of trace, debug, info, warn, error, off"};
 }
 
 }  // namespace slam

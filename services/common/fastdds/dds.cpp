@@ -15,7 +15,7 @@ namespace {
 
 using eprosima::fastrtps::types::ReturnCode_t;
 
-RateLimiter g_write_errors;
+RateLimitedLog g_write_errors;
 
 template <class Qos>
 void apply(const topics::QosSpec& spec, Qos& q) {
@@ -155,9 +155,7 @@ Result<fdds::DataReader*> create_datareader(fdds::Subscriber* subscriber, fdds::
 bool log_write_result(const ReturnCode_t& rc, fdds::DataWriter* writer) {
   if (rc == ReturnCode_t::RETCODE_OK) return true;
   const std::string topic = writer->get_topic()->get_name();
-  uint64_t suppressed = 0;
-  if (g_write_errors.allow(topic, &suppressed))
-    spdlog::warn("dds: write on {} failed: {} ({} more suppressed)", topic, code_name(rc), suppressed);
+  g_write_errors.warn(topic, "dds: write on {} failed: {}", topic, code_name(rc));
   return false;
 }
 

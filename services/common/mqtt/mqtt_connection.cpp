@@ -25,13 +25,9 @@ constexpr int kRefused = 0x80;
 
 // One limiter for every connection of the process: a broker restart under a fleet of robot
 // connections logs a few lines, not one per robot.
-RateLimiter& log_limiter() {
-  static RateLimiter limiter{std::chrono::seconds(5)};
-  return limiter;
-}
-
-std::string suppressed_suffix(std::uint64_t suppressed) {
-  return suppressed > 0 ? " (" + std::to_string(suppressed) + " similar lines suppressed)" : std::string();
+RateLimitedLog& rate_limited_log() {
+  static RateLimitedLog log{std::chrono::seconds(5)};
+  return log;
 }
 
 std::string failure_text(const MQTTAsync_failureData* response) {
@@ -268,21 +264,15 @@ void Connection::schedule_retry(const std::string& why, bool lost) {
     first = lost || !outage_logged_;
     outage_logged_ = true;
   }
-  std::uint64_t suppressed = 0;
   if (lost) {
     connected_.store(false, std::memory_order_release);
     version_.fetch_add(1);
-    if (log_limiter().allow("lost", &suppressed)) {
-      spdlog::warn("MQTT connection of '{}' to {} lost: {}; reconnecting (backoff {} ms, up to {} s){}",
-                   options_.client_id, options_.broker, why, delay.count(), options_.reconnect_max_s,
-                   suppressed_suffix(suppressed));
-    }
+    rate_limited_log().warn(
+        "lost", "MQTT connection of '{}' to {} lost: {}; reconnecting (backoff {} ms, up to {} s)",
+        options_.client_id, options_.broker, why, delay.count(), options_.reconnect_max_s);
   } else if (first) {
-    if (log_limiter().allow("connect", &suppressed)) {
-      spdlog::warn("MQTT '{}' cannot connect to {}: {}; retrying with backoff up to {} s{}",
-                   options_.client_id, options_.broker, why, options_.reconnect_max_s,
-                   suppressed_suffix(suppressed));
-    }
+    rate_limited_log().warn("connect", "MQTT '{}' cannot connect to {}: {}; retrying with backoff up to {} s",
+                            options_.client_id, options_.broker, why, options_.reconnect_max_s);
   } else {
     spdlog::debug("MQTT connect of '{}' to {} failed again: {}; next attempt in {} ms", options_.client_id,
                   options_.broker, why, delay.count());
@@ -304,12 +294,11 @@ void Connection::on_session(bool session_present) {
   const bool reconnect = connects_.fetch_add(1) > 0;
   connected_.store(true, std::memory_order_release);
   version_.fetch_add(1);
-  std::uint64_t suppressed = 0;
-  if (log_limiter().allow("connected", &suppressed)) {
+  if (const auto tail = rate_limited_log().admit("connected")) {
     spdlog::info("MQTT connected to {} as '{}'{}{}{}", options_.broker, options_.client_id,
                  reconnect ? " (reconnected)" : "",
                  failures > 0 ? " after " + std::to_string(failures) + " failed attempt(s)" : std::string(),
-                 suppressed_suffix(suppressed));
+                 *tail);
   }
   // A clean session starts with no subscriptions; a persistent one that the broker kept has them.
   if (!(session_present && options_.persistent_session)) {
@@ -415,16 +404,17 @@ void Connection::finish_request(Request* request, const std::vector<bool>& refus
   for (size_t i = 0; i < request->filters.size(); ++i) {
     (refused[i] ? refused_filters : accepted_filters).push_back(request->filters[i]);
   }
-  std::uint64_t suppressed = 0;
-  if (!accepted_filters.empty() && log_limiter().allow("subscribed", &suppressed)) {
-    spdlog::info("MQTT '{}' {} {}{}", options_.client_id,
-                 request->subscribe ? "subscribed to" : "unsubscribed from", quoted_list(accepted_filters),
-                 suppressed_suffix(suppressed));
+  if (!accepted_filters.empty()) {
+    if (const auto tail = rate_limited_log().admit("subscribed")) {
+      spdlog::info("MQTT '{}' {} {}{}", options_.client_id,
+                   request->subscribe ? "subscribed to" : "unsubscribed from", quoted_list(accepted_filters),
+                   *tail);
+    }
   }
-  if (!refused_filters.empty() && log_limiter().allow("refused", &suppressed)) {
-    spdlog::warn("MQTT broker refused '{}' to {} {}: {} (code {}){}", options_.client_id,
-                 request->subscribe ? "subscribe" : "unsubscribe", quoted_list(refused_filters),
-                 message ? message : MQTTAsync_strerror(code), code, suppressed_suffix(suppressed));
+  if (!refused_filters.empty()) {
+    rate_limited_log().warn("refused", "MQTT broker refused '{}' to {} {}: {} (code {})", options_.client_id,
+                            request->subscribe ? "subscribe" : "unsubscribe", quoted_list(refused_filters),
+                            message ? message : MQTTAsync_strerror(code), code);
   }
   std::lock_guard lock(requests_mutex_);
   requests_.erase(request);

@@ -85,5 +85,70 @@ TEST(ServiceOptions, BadConfigFilesAreRejected) {
   EXPECT_EQ(parse({"--config", "/nonexistent/config.yaml"}).exit, 2);
 }
 
+struct ToyOptions {
+  ServiceOptions service;
+  int robots = 1;
+};
+
+void add_toy_options(CLI::App& app, ToyOptions& options) {
+  add_service_options(app, options.service);
+  app.add_option("--robots", options.robots);
+}
+
+// Found by start_service through argument-dependent lookup, as each service's validate is.
+Status validate(const ToyOptions& options) {
+  if (options.robots < 1) return Error{"--robots must be at least 1"};
+  return Status::ok();
+}
+
+struct Started {
+  std::optional<int> exit;
+  std::string stderr_text;
+};
+
+Started start_toy(std::vector<std::string> args) {
+  args.insert(args.begin(), "slam-toy");
+  std::vector<char*> argv;
+  for (auto& a : args) argv.push_back(a.data());
+  ToyOptions options;
+  testing::internal::CaptureStderr();
+  testing::internal::CaptureStdout();
+  Started s;
+  s.exit = start_service("toy", "slam-toy: a test", static_cast<int>(argv.size()), argv.data(), options,
+                         add_toy_options);
+  testing::internal::GetCapturedStdout();
+  s.stderr_text = testing::internal::GetCapturedStderr();
+  return s;
+}
+
+TEST(StartService, CarriesOnWithGoodOptions) {
+  const Started s = start_toy({"--robots", "3"});
+  EXPECT_EQ(s.exit, std::nullopt);
+  EXPECT_EQ(s.stderr_text, "");
+}
+
+TEST(StartService, HelpExitsZero) {
+  EXPECT_EQ(start_toy({"--help"}).exit, kExitOk);
+}
+
+TEST(StartService, InvalidOptionsExitTwoWithOneErrorLine) {
+  const Started s = start_toy({"--robots", "0"});
+  EXPECT_EQ(s.exit, kExitUsage);
+  EXPECT_EQ(s.stderr_text, "slam-toy: error: --robots must be at least 1 (see --help)\n");
+}
+
+TEST(StartService, BadLogLevelExitsTwoWithOneErrorLine) {
+  const Started s = start_toy({"--log-level", "loud"});
+  EXPECT_EQ(s.exit, kExitUsage);
+  EXPECT_EQ(s.stderr_text,
+            "slam-toy: error: --log-level loud is not one of trace, debug, info, warn, error, off\n");
+}
+
+TEST(ReportError, WritesOneLineNamingTheProgram) {
+  testing::internal::CaptureStderr();
+  report_error("slamctl", "no service seen on DDS domain 3");
+  EXPECT_EQ(testing::internal::GetCapturedStderr(), "slamctl: error: no service seen on DDS domain 3\n");
+}
+
 }  // namespace
 }  // namespace slam
