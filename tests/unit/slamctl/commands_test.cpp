@@ -78,8 +78,10 @@ TEST(SlamctlSubcommands, HelpOfASubcommandExitsZero) {
 }
 
 TEST(SlamctlSubcommands, BadArgumentsExitTwoWithOneLine) {
-  for (const std::vector<std::string>& args :
-       {std::vector<std::string>{"path", "0", "0", "1"}, {"sim", "spawn", "0"}, {"map"}, {"no-such-command"}}) {
+  for (const std::vector<std::string>& args : {std::vector<std::string>{"path", "0", "0", "1"},
+                                               {"sim", "spawn", "0"},
+                                               {"map"},
+                                               {"no-such-command"}}) {
     testing::internal::CaptureStderr();
     CommandLine line;
     const auto code = line.parse(args);
