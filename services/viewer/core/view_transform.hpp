@@ -4,14 +4,10 @@
 // tests share one definition of "what is under the cursor".
 #include <string>
 
+#include "common/core/geometry.hpp"
 #include "common/core/result.hpp"
 
 namespace slam::viewer {
-
-struct Vec2 {
-  double x = 0.0;
-  double y = 0.0;
-};
 
 // p' = (a*x + c*y + tx, b*x + d*y + ty): a 2D affine map, column-major like GL's mat3.
 struct Affine2 {
