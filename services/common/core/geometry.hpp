@@ -114,9 +114,13 @@ struct GridGeometry {
   int32_t width = 0;        // cells
   int32_t height = 0;       // cells
 
-  size_t cells() const { return static_cast<size_t>(std::max(width, 0)) * static_cast<size_t>(std::max(height, 0)); }
+  size_t cells() const {
+    return static_cast<size_t>(std::max(width, 0)) * static_cast<size_t>(std::max(height, 0));
+  }
   bool contains(Cell c) const { return c.x >= 0 && c.y >= 0 && c.x < width && c.y < height; }
-  size_t index(Cell c) const { return static_cast<size_t>(c.y) * static_cast<size_t>(width) + static_cast<size_t>(c.x); }
+  size_t index(Cell c) const {
+    return static_cast<size_t>(c.y) * static_cast<size_t>(width) + static_cast<size_t>(c.x);
+  }
   Cell cell_of(size_t index) const {
     return {static_cast<int32_t>(index % static_cast<size_t>(width)),
             static_cast<int32_t>(index / static_cast<size_t>(width))};
@@ -139,7 +143,9 @@ struct GridGeometry {
   }
   // Lower-left corner of cell c (c may lie outside: corner({width, height}) is the upper-right end).
   Vec2 corner(Cell c) const { return {origin.x + c.x * resolution, origin.y + c.y * resolution}; }
-  Vec2 centre(Cell c) const { return {origin.x + (c.x + 0.5) * resolution, origin.y + (c.y + 0.5) * resolution}; }
+  Vec2 centre(Cell c) const {
+    return {origin.x + (c.x + 0.5) * resolution, origin.y + (c.y + 0.5) * resolution};
+  }
 };
 
 }  // namespace slam

@@ -57,7 +57,6 @@ class ViewTransform {
   // Centres `box` in the viewport at the current rotation with `margin` (0.05 = 5 %) around it.
   void fit(const WorldBox& box, double margin = 0.05);
 
-  Vec2 center() const { return center_; }
   double scale() const { return scale_; }
   double angle() const { return angle_; }
   bool flip_y() const { return flip_y_; }

@@ -53,7 +53,8 @@ TEST(Pose, ComposeChainsFramesLikeTransformingTwice) {
   const Pose odom_from_robot{2.0, 1.0, -1.2};
   const Pose map_from_robot = map_from_odom.compose(odom_from_robot);
   const Vec2 in_robot{0.7, -0.4};
-  expect_near(map_from_robot.transform(in_robot), map_from_odom.transform(odom_from_robot.transform(in_robot)));
+  expect_near(map_from_robot.transform(in_robot),
+              map_from_odom.transform(odom_from_robot.transform(in_robot)));
   EXPECT_NEAR(map_from_robot.theta, 0.3 - 1.2, 1e-12);
 }
 
@@ -96,7 +97,7 @@ TEST(GridGeometry, CellAtMapsPointsToCellsAndRejectsOutsideOrNonFinite) {
   EXPECT_EQ(g.cell_at({-1.0, -2.0}), (Cell{0, 0}));
   EXPECT_EQ(g.cell_at({0.2, -0.6}), (Cell{2, 2}));
   EXPECT_EQ(g.cell_at({0.99, -0.51}), (Cell{3, 2}));
-  EXPECT_FALSE(g.cell_at({1.0, -1.0}));   // x = origin + width * resolution is outside
+  EXPECT_FALSE(g.cell_at({1.0, -1.0}));    // x = origin + width * resolution is outside
   EXPECT_FALSE(g.cell_at({-1.01, -1.0}));  // just left of the grid
   EXPECT_FALSE(g.cell_at({0.0, -0.5}));    // y at the upper end
   EXPECT_FALSE(g.cell_at({std::nan(""), 0.0}));
