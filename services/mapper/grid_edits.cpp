@@ -20,36 +20,33 @@ Status OccupancyGrid::obstruct(double x, double y) {
   const auto cx = static_cast<int64_t>(fx);
   const auto cy = static_cast<int64_t>(fy);
   if (cx < 0 || cy < 0 || cx >= width_ || cy >= height_) grow(cx, cy, cx + 1, cy + 1);
-  int32_t gx = 0, gy = 0;
-  if (!world_to_cell(x, y, &gx, &gy)) return Error{"obstruction point could not be placed in the grid"};
-  const size_t i = index(gx, gy);
+  const auto cell = cell_at({x, y});
+  if (!cell) return Error{"obstruction point could not be placed in the grid"};
+  const size_t i = index(cell->x, cell->y);
   if (classes_[i] & kCellObstructed) return Status::ok();
   obstructions_.push_back({x, y});
   set_class(i, static_cast<uint8_t>(classes_[i] | kCellObstructed));
   return Status::ok();
 }
 
-std::vector<Point2d> OccupancyGrid::unobstruct(double x, double y) {
-  std::vector<Point2d> removed;
-  int32_t gx = 0, gy = 0;
-  if (!world_to_cell(x, y, &gx, &gy)) return removed;
-  const auto same_cell = [&](const Point2d& p) {
-    int32_t px = 0, py = 0;
-    return world_to_cell(p.x, p.y, &px, &py) && px == gx && py == gy;
-  };
-  for (const Point2d& p : obstructions_)
+std::vector<Vec2> OccupancyGrid::unobstruct(double x, double y) {
+  std::vector<Vec2> removed;
+  const auto cell = cell_at({x, y});
+  if (!cell) return removed;
+  const auto same_cell = [&](const Vec2& p) { return cell_at(p) == cell; };
+  for (const Vec2& p : obstructions_)
     if (same_cell(p)) removed.push_back(p);
   std::erase_if(obstructions_, same_cell);
-  const size_t i = index(gx, gy);
+  const size_t i = index(cell->x, cell->y);
   set_class(i, static_cast<uint8_t>(classes_[i] & ~kCellObstructed));
   return removed;
 }
 
 void OccupancyGrid::clear_obstructions() {
-  for (const Point2d& p : obstructions_) {
-    int32_t gx = 0, gy = 0;
-    if (!world_to_cell(p.x, p.y, &gx, &gy)) continue;
-    const size_t i = index(gx, gy);
+  for (const Vec2& p : obstructions_) {
+    const auto cell = cell_at(p);
+    if (!cell) continue;
+    const size_t i = index(cell->x, cell->y);
     set_class(i, static_cast<uint8_t>(classes_[i] & ~kCellObstructed));
   }
   obstructions_.clear();
@@ -139,13 +136,13 @@ std::optional<CellBox> OccupancyGrid::take_dirty() {
   return CellBox{dirty_x0_, dirty_y0_, dirty_x1_ - dirty_x0_ + 1, dirty_y1_ - dirty_y0_ + 1};
 }
 
-void OccupancyGrid::copy_box(const CellBox& box, std::vector<uint8_t>* out) const {
+void OccupancyGrid::copy_box(const CellBox& box, std::vector<uint8_t>& out) const {
   const int32_t x0 = std::clamp(box.x0, 0, width_);
   const int32_t y0 = std::clamp(box.y0, 0, height_);
   const int32_t x1 = std::clamp(box.x0 + box.width, x0, width_);
   const int32_t y1 = std::clamp(box.y0 + box.height, y0, height_);
-  out->resize(static_cast<size_t>(x1 - x0) * static_cast<size_t>(y1 - y0));
-  auto dst = out->begin();
+  out.resize(static_cast<size_t>(x1 - x0) * static_cast<size_t>(y1 - y0));
+  auto dst = out.begin();
   for (int32_t y = y0; y < y1; ++y) {
     const auto src = classes_.begin() + static_cast<ptrdiff_t>(index(x0, y));
     dst = std::copy(src, src + (x1 - x0), dst);

@@ -42,7 +42,6 @@ class InflationLayer {
 
   bool inflated(size_t index) const { return counts_[index] != 0; }
   uint16_t count(size_t index) const { return counts_[index]; }
-  size_t disk_size() const { return disk_.size(); }
 
  private:
   struct Offset {

@@ -7,15 +7,15 @@
 namespace slam::mapper {
 namespace {
 
-void copy_points(const std::vector<slam::Point2>& in, std::vector<Point2d>* out) {
-  out->resize(in.size());
-  for (size_t i = 0; i < in.size(); ++i) (*out)[i] = Point2d{in[i].x(), in[i].y()};
+void copy_points(const std::vector<slam::Point2>& in, std::vector<Vec2>& out) {
+  out.resize(in.size());
+  for (size_t i = 0; i < in.size(); ++i) out[i] = Vec2{in[i].x(), in[i].y()};
 }
 
 }  // namespace
 
-Result<ObservationView> to_view(const slam::RobotObservation& in, std::vector<Point2d>* hits,
-                                std::vector<Point2d>* misses) {
+Result<ObservationView> to_view(const slam::RobotObservation& in, std::vector<Vec2>& hits,
+                                std::vector<Vec2>& misses) {
   if (in.robot_id().size() == 0) return Error{"robot_id is empty"};
   const size_t points = in.hits().size() + in.misses().size();
   if (points > kMaxPointsPerObservation)
@@ -28,8 +28,8 @@ Result<ObservationView> to_view(const slam::RobotObservation& in, std::vector<Po
   view.y = in.pose().y();
   view.theta = in.has_heading() ? in.pose().theta() : 0.0;
   view.has_heading = in.has_heading();
-  view.hits = *hits;
-  view.misses = *misses;
+  view.hits = hits;
+  view.misses = misses;
   return view;
 }
 
@@ -72,7 +72,7 @@ void fill_patch(const OccupancyGrid& grid, const CellBox& box, uint32_t layout_i
   out->y0(static_cast<uint32_t>(box.y0));
   out->width(static_cast<uint32_t>(box.width));
   out->height(static_cast<uint32_t>(box.height));
-  grid.copy_box(box, &out->cells());
+  grid.copy_box(box, out->cells());
 }
 
 slam::MapResult to_map_result(FileFailure failure) {

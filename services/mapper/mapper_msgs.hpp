@@ -19,8 +19,8 @@ inline constexpr size_t kMaxPointsPerObservation = 65536;
 
 // The grid's view of an observation; points are copied into the caller's reused buffers. Errors:
 // empty robot id, too many points (NaN/Inf and range are the grid's to judge).
-Result<ObservationView> to_view(const slam::RobotObservation& in, std::vector<Point2d>* hits,
-                                std::vector<Point2d>* misses);
+Result<ObservationView> to_view(const slam::RobotObservation& in, std::vector<Vec2>& hits,
+                                std::vector<Vec2>& misses);
 
 // `current` with the fields a GridConfig request sets. width_m/height_m 0 and a negative
 // inflation_radius keep the current values (what slamctl sends for "unchanged"). Validated: the

@@ -169,9 +169,9 @@ void MapperNode::run_once() {
 
 void MapperNode::integrate(const slam::RobotObservation& sample) {
   const std::string_view robot(sample.robot_id().c_str(), sample.robot_id().size());
-  auto view = to_view(sample, &hits_, &misses_);
+  auto view = to_view(sample, hits_, misses_);
   if (view) {
-    const size_t moved = footprints_.apply(robot, view->x, view->y, monotonic_ns(), &hits_, &misses_);
+    const size_t moved = footprints_.apply(robot, {view->x, view->y}, monotonic_ns(), hits_, misses_);
     if (moved > 0) {
       bump(metrics_.robot_hits_filtered, static_cast<int64_t>(moved));
       view->hits = hits_;

@@ -72,8 +72,8 @@ class MapperNode {
     int64_t stamp_ns = 0;
     double x = 0, y = 0, theta = 0;
     bool has_heading = false;
-    std::vector<Point2d> hits;
-    std::vector<Point2d> misses;
+    std::vector<Vec2> hits;
+    std::vector<Vec2> misses;
     ObservationView view() const;
   };
 
@@ -126,8 +126,8 @@ class MapperNode {
   std::chrono::steady_clock::time_point next_tick_;
   std::chrono::steady_clock::time_point next_snapshot_;
   std::chrono::steady_clock::time_point next_store_stat_;
-  std::vector<Point2d> hits_;
-  std::vector<Point2d> misses_;
+  std::vector<Vec2> hits_;
+  std::vector<Vec2> misses_;
   RobotFootprints footprints_;
   std::vector<Deferred> deferred_;       // observations integrated during a rebuild
   std::optional<RebuildTicket> ticket_;  // the running rebuild's

@@ -73,9 +73,8 @@ void MapperNode::handle_edit(const slam::MapEdit& edit) {
   const double y = edit.point().y();
   switch (edit.kind()) {
     case slam::EDIT_OBSTRUCT: {
-      int32_t cx = 0, cy = 0;
-      const bool already =
-          grid_->world_to_cell(x, y, &cx, &cy) && (grid_->cell_class(cx, cy) & kCellObstructed) != 0;
+      const auto cell = grid_->cell_at({x, y});
+      const bool already = cell && (grid_->cell_class(cell->x, cell->y) & kCellObstructed) != 0;
       if (Status s = grid_->obstruct(x, y); !s) return reply(id, slam::MAP_INVALID_REQUEST, s.message());
       if (already)
         return reply(id, slam::MAP_OK, "the cell at " + point_text(x, y) + " is already obstructed");
@@ -89,8 +88,8 @@ void MapperNode::handle_edit(const slam::MapEdit& edit) {
     case slam::EDIT_UNOBSTRUCT: {
       if (!std::isfinite(x) || !std::isfinite(y))
         return reply(id, slam::MAP_INVALID_REQUEST, "point is not finite");
-      const std::vector<Point2d> removed = grid_->unobstruct(x, y);
-      for (const Point2d& p : removed) {
+      const std::vector<Vec2> removed = grid_->unobstruct(x, y);
+      for (const Vec2& p : removed) {
         if (Status s = store_->remove_obstruction(p); !s) {
           bump(metrics_.store_errors);
           return reply(id, slam::MAP_IO_ERROR,

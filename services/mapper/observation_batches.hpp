@@ -24,7 +24,7 @@ struct ObservationBatch {
     uint32_t misses = 0;
   };
   std::vector<Entry> entries;
-  std::vector<Point2d> points;
+  std::vector<Vec2> points;
 
   void clear() {
     entries.clear();
@@ -37,8 +37,8 @@ struct ObservationBatch {
   void for_each(Visit&& visit) const {
     size_t at = 0;
     for (const Entry& e : entries) {
-      const std::span<const Point2d> hits(points.data() + at, e.hits);
-      const std::span<const Point2d> misses(points.data() + at + e.hits, e.misses);
+      const std::span<const Vec2> hits(points.data() + at, e.hits);
+      const std::span<const Vec2> misses(points.data() + at + e.hits, e.misses);
       at += size_t{e.hits} + e.misses;
       visit(e.id, ObservationView{e.x, e.y, e.theta, e.has_heading, hits, misses});
     }

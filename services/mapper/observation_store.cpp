@@ -11,7 +11,7 @@ namespace slam::mapper {
 
 static_assert(std::endian::native == std::endian::little,
               "point blobs are stored in host (little-endian) order");
-static_assert(sizeof(Point2d) == 2 * sizeof(double), "Point2d must be two packed doubles");
+static_assert(sizeof(Vec2) == 2 * sizeof(double), "Vec2 must be two packed doubles");
 
 namespace {
 
@@ -33,10 +33,10 @@ CREATE TABLE IF NOT EXISTS prior(
   origin_x REAL NOT NULL, origin_y REAL NOT NULL, origin_yaw REAL NOT NULL, cells BLOB NOT NULL);
 )sql";
 
-Status decode_points(const void* blob, int bytes, std::vector<Point2d>* out) {
-  if (bytes < 0 || bytes % static_cast<int>(sizeof(Point2d)) != 0)
+Status decode_points(const void* blob, int bytes, std::vector<Vec2>* out) {
+  if (bytes < 0 || bytes % static_cast<int>(sizeof(Vec2)) != 0)
     return Error{"point blob size is not a multiple of 16"};
-  out->resize(static_cast<size_t>(bytes) / sizeof(Point2d));
+  out->resize(static_cast<size_t>(bytes) / sizeof(Vec2));
   if (bytes > 0) std::memcpy(out->data(), blob, static_cast<size_t>(bytes));
   return Status::ok();
 }
@@ -210,7 +210,7 @@ Result<int64_t> ObservationStore::delete_robot(std::string_view robot_id) {
   return static_cast<int64_t>(sqlite3_changes(db_.get()));
 }
 
-Status ObservationStore::add_obstruction(Point2d p) {
+Status ObservationStore::add_obstruction(Vec2 p) {
   if (Status s = flush(); !s) return s;
   auto q = prepare("INSERT OR IGNORE INTO obstructions(x, y) VALUES(?, ?)");
   if (!q) return q.status();
@@ -220,7 +220,7 @@ Status ObservationStore::add_obstruction(Point2d p) {
   return Status::ok();
 }
 
-Status ObservationStore::remove_obstruction(Point2d p) {
+Status ObservationStore::remove_obstruction(Vec2 p) {
   if (Status s = flush(); !s) return s;
   auto q = prepare("DELETE FROM obstructions WHERE x = ? AND y = ?");
   if (!q) return q.status();
@@ -235,10 +235,10 @@ Status ObservationStore::clear_obstructions() {
   return exec("DELETE FROM obstructions");
 }
 
-Result<std::vector<Point2d>> ObservationStore::obstructions() {
+Result<std::vector<Vec2>> ObservationStore::obstructions() {
   auto q = prepare("SELECT x, y FROM obstructions ORDER BY rowid");
   if (!q) return Error{q.message()};
-  std::vector<Point2d> out;
+  std::vector<Vec2> out;
   int rc = SQLITE_ROW;
   while ((rc = sqlite3_step(q->get())) == SQLITE_ROW)
     out.push_back({sqlite3_column_double(q->get(), 0), sqlite3_column_double(q->get(), 1)});

@@ -58,10 +58,10 @@ class ObservationStore {
   // Deletes one robot's observations; returns how many.
   Result<int64_t> delete_robot(std::string_view robot_id);
 
-  Status add_obstruction(Point2d p);
-  Status remove_obstruction(Point2d p);
+  Status add_obstruction(Vec2 p);
+  Status remove_obstruction(Vec2 p);
   Status clear_obstructions();
-  Result<std::vector<Point2d>> obstructions();
+  Result<std::vector<Vec2>> obstructions();
 
   Status save_config(const GridConfig& config);
   Result<std::optional<GridConfig>> load_config();  // nullopt when never saved
@@ -93,8 +93,8 @@ class ObservationStore {
   Stmt insert_;
   bool in_batch_ = false;
   int pending_ = 0;
-  std::vector<Point2d> hits_buf_;
-  std::vector<Point2d> misses_buf_;
+  std::vector<Vec2> hits_buf_;
+  std::vector<Vec2> misses_buf_;
 };
 
 }  // namespace slam::mapper

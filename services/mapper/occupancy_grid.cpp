@@ -27,7 +27,7 @@ OccupancyGrid::OccupancyGrid(const GridConfig& config)
       width_(static_cast<int32_t>(cells_for(config.width_m, config.resolution))),
       height_(static_cast<int32_t>(cells_for(config.height_m, config.resolution))) {
   const size_t n = static_cast<size_t>(width_) * static_cast<size_t>(height_);
-  cells_.assign(n, Cell{});
+  cells_.assign(n, CellEvidence{});
   classes_.assign(n, kCellUnknown);
   inflation_.configure(config.inflation_radius, config.resolution);
   inflation_.reset(width_, height_);
@@ -43,15 +43,6 @@ double OccupancyGrid::cell_x(double x) const {
 }
 double OccupancyGrid::cell_y(double y) const {
   return std::floor((y - origin_y()) / config_.resolution);
-}
-
-bool OccupancyGrid::world_to_cell(double x, double y, int32_t* cx, int32_t* cy) const {
-  const double fx = cell_x(x);
-  const double fy = cell_y(y);
-  if (!(fx >= 0.0 && fy >= 0.0 && fx < width_ && fy < height_)) return false;
-  *cx = static_cast<int32_t>(fx);
-  *cy = static_cast<int32_t>(fy);
-  return true;
 }
 
 void OccupancyGrid::mark_dirty(size_t i) {
@@ -129,7 +120,7 @@ void OccupancyGrid::grow(int64_t bx0, int64_t by0, int64_t bx1, int64_t by1) {
   const auto new_w = static_cast<int32_t>(x1 - x0);
   const auto new_h = static_cast<int32_t>(y1 - y0);
   const size_t n = static_cast<size_t>(new_w) * static_cast<size_t>(new_h);
-  std::vector<Cell> grown(n, Cell{});
+  std::vector<CellEvidence> grown(n, CellEvidence{});
   std::vector<uint8_t> cls(n, kCellUnknown);
   const auto shift_x = static_cast<size_t>(-x0);
   const auto shift_y = static_cast<size_t>(-y0);
@@ -168,9 +159,9 @@ Result<IntegrateStats> OccupancyGrid::integrate(const ObservationView& obs) {
   if (!std::isfinite(obs.x) || !std::isfinite(obs.y) || !std::isfinite(obs.theta))
     return Error{"robot pose (" + std::to_string(obs.x) + ", " + std::to_string(obs.y) + ") is not finite"};
   const double range2 = config_.max_range_m * config_.max_range_m;
-  const auto check = [&](std::span<const Point2d> pts, const char* kind) -> Status {
+  const auto check = [&](std::span<const Vec2> pts, const char* kind) -> Status {
     for (size_t i = 0; i < pts.size(); ++i) {
-      const Point2d& p = pts[i];
+      const Vec2& p = pts[i];
       if (!std::isfinite(p.x) || !std::isfinite(p.y))
         return Error{point_text(kind, i, p.x, p.y) + " is not finite"};
       const double dx = p.x - obs.x;
@@ -194,8 +185,8 @@ Result<IntegrateStats> OccupancyGrid::integrate(const ObservationView& obs) {
   int64_t bx0 = static_cast<int64_t>(px), bx1 = bx0 + 1;
   int64_t by0 = static_cast<int64_t>(py), by1 = by0 + 1;
   // A point past the limit pulls the grid only as far as the limit allows (its hit is clipped).
-  const auto extend = [&](std::span<const Point2d> pts) {
-    for (const Point2d& p : pts) {
+  const auto extend = [&](std::span<const Vec2> pts) {
+    for (const Vec2& p : pts) {
       const int64_t ux0 = std::min<int64_t>(bx0, 0), ux1 = std::max<int64_t>(bx1, width_);
       const int64_t uy0 = std::min<int64_t>(by0, 0), uy1 = std::max<int64_t>(by1, height_);
       const auto cx = std::clamp(static_cast<int64_t>(cell_x(p.x)), ux1 - max_side_, ux0 + max_side_ - 1);
@@ -220,20 +211,21 @@ Result<IntegrateStats> OccupancyGrid::integrate(const ObservationView& obs) {
 }
 
 void OccupancyGrid::integrate_legacy(const ObservationView& obs, IntegrateStats* stats) {
-  for (const Point2d& p : obs.hits) {
-    int32_t cx = 0, cy = 0;
-    if (!world_to_cell(p.x, p.y, &cx, &cy)) {
+  const GridGeometry geometry = this->geometry();
+  for (const Vec2& p : obs.hits) {
+    const auto cell = geometry.cell_at(p);
+    if (!cell) {
       ++stats->clipped;
       continue;
     }
-    set_value(index(cx, cy), config_.log_odds.clamp_max);
+    set_value(index(cell->x, cell->y), config_.log_odds.clamp_max);
     ++stats->hits;
   }
 }
 
 void OccupancyGrid::integrate_rays(const ObservationView& obs, IntegrateStats* stats) {
   if (++epoch_ == 0) {  // stamp wrapped: old stamps could collide with new ones
-    for (Cell& c : cells_) c.mark = 0;
+    for (CellEvidence& c : cells_) c.mark = 0;
     epoch_ = 1;
   }
   const uint16_t epoch = epoch_;
@@ -243,10 +235,11 @@ void OccupancyGrid::integrate_rays(const ObservationView& obs, IntegrateStats* s
   const int32_t lo = config_.log_odds.clamp_min;
 
   // Hits first, so no ray of the same observation clears a cell another beam saw occupied.
-  for (const Point2d& p : obs.hits) {
-    int32_t cx = 0, cy = 0;
-    if (!world_to_cell(p.x, p.y, &cx, &cy)) continue;
-    const size_t i = index(cx, cy);
+  const GridGeometry geometry = this->geometry();
+  for (const Vec2& p : obs.hits) {
+    const auto cell = geometry.cell_at(p);
+    if (!cell) continue;
+    const size_t i = index(cell->x, cell->y);
     if (cells_[i].mark == epoch) continue;
     cells_[i].mark = epoch;
     set_value(i, std::min(cells_[i].log_odds + hit, hi));
@@ -256,7 +249,7 @@ void OccupancyGrid::integrate_rays(const ObservationView& obs, IntegrateStats* s
   const auto rx = static_cast<int32_t>(cell_x(obs.x));
   const auto ry = static_cast<int32_t>(cell_y(obs.y));
   const auto clear = [&](size_t i) {
-    Cell& cell = cells_[i];
+    CellEvidence& cell = cells_[i];
     const int32_t old = cell.log_odds;
     // Saturated free space (most cells a ray crosses) needs neither an update nor a stamp: no hit of
     // this observation touched it (a hit lifts it above clamp_min) and a miss cannot lower it.
@@ -264,8 +257,8 @@ void OccupancyGrid::integrate_rays(const ObservationView& obs, IntegrateStats* s
     cell.mark = epoch;
     set_value(i, std::max(old + miss, lo));
   };
-  const auto trace = [&](std::span<const Point2d> pts, bool is_hit) {
-    for (const Point2d& p : pts) {
+  const auto trace = [&](std::span<const Vec2> pts, bool is_hit) {
+    for (const Vec2& p : pts) {
       const auto ex = static_cast<int32_t>(cell_x(p.x));
       const auto ey = static_cast<int32_t>(cell_y(p.y));
       const bool outside = ex < 0 || ey < 0 || ex >= width_ || ey >= height_;

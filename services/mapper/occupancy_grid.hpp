@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "common/core/cell_class.hpp"
+#include "common/core/geometry.hpp"
 #include "common/core/map_io.hpp"
 #include "common/core/result.hpp"
 #include "mapper/grid_config.hpp"
@@ -16,28 +17,14 @@
 
 namespace slam::mapper {
 
-struct Point2d {
-  double x = 0.0;
-  double y = 0.0;
-  bool operator==(const Point2d&) const = default;
-};
-
 // One robot message as the grid needs it (the store and the DDS edge both produce this view).
 struct ObservationView {
   double x = 0.0;  // sensor origin, map frame
   double y = 0.0;
   double theta = 0.0;
   bool has_heading = false;
-  std::span<const Point2d> hits;    // ray end occupied
-  std::span<const Point2d> misses;  // ray free, end unknown
-};
-
-// A box of cells, [x0, x0 + width) x [y0, y0 + height).
-struct CellBox {
-  int32_t x0 = 0;
-  int32_t y0 = 0;
-  int32_t width = 0;
-  int32_t height = 0;
+  std::span<const Vec2> hits;    // ray end occupied
+  std::span<const Vec2> misses;  // ray free, end unknown
 };
 
 struct IntegrateStats {
@@ -63,9 +50,9 @@ class OccupancyGrid {
   // Operator edits. obstruct grows the grid to reach the point (error past the maximum extent);
   // unobstruct returns the stored obstruction points it removed (all those in that cell).
   Status obstruct(double x, double y);
-  std::vector<Point2d> unobstruct(double x, double y);
+  std::vector<Vec2> unobstruct(double x, double y);
   void clear_obstructions();
-  const std::vector<Point2d>& obstructions() const { return obstructions_; }
+  const std::vector<Vec2>& obstructions() const { return obstructions_; }
 
   // A prior: known pixels of the image overwrite the cells they cover (occupied -> prior_occupied,
   // free -> prior_free); the grid grows to hold it. Returns the number of cells set.
@@ -76,8 +63,8 @@ class OccupancyGrid {
   // Changed class octets since the last call, as one bounding box; nullopt when nothing changed.
   // After growth the box is the whole grid.
   std::optional<CellBox> take_dirty();
-  // Copies the class octets of `box` row-major into *out (resized).
-  void copy_box(const CellBox& box, std::vector<uint8_t>* out) const;
+  // Copies the class octets of `box` row-major into `out` (resized; a buffer the caller reuses).
+  void copy_box(const CellBox& box, std::vector<uint8_t>& out) const;
 
   const GridConfig& config() const { return config_; }
   int32_t width() const { return width_; }
@@ -85,11 +72,12 @@ class OccupancyGrid {
   double resolution() const { return config_.resolution; }
   double origin_x() const { return config_.origin_x + static_cast<double>(offset_x_) * config_.resolution; }
   double origin_y() const { return config_.origin_y + static_cast<double>(offset_y_) * config_.resolution; }
+  GridGeometry geometry() const { return {{origin_x(), origin_y()}, config_.resolution, width_, height_}; }
   // Increments whenever width, height or origin change.
   uint32_t layout_version() const { return layout_version_; }
 
-  // Cell of a map-frame point; false when it lies outside the grid or is not finite.
-  bool world_to_cell(double x, double y, int32_t* cx, int32_t* cy) const;
+  // Cell of a map-frame point; nothing when it lies outside the grid or is not finite.
+  std::optional<Cell> cell_at(Vec2 p) const { return geometry().cell_at(p); }
   std::span<const uint8_t> classes() const { return classes_; }
   uint8_t cell_class(int32_t cx, int32_t cy) const { return classes_[index(cx, cy)]; }
   int16_t log_odds(int32_t cx, int32_t cy) const { return cells_[index(cx, cy)].log_odds; }
@@ -135,15 +123,15 @@ class OccupancyGrid {
   // Log-odds and the observation stamp (one update per cell per observation) side by side: a ray
   // step reads both, so they share a cache line. 16-bit stamps wrap every 65535 observations, when
   // they are cleared (a negligible amortised cost).
-  struct Cell {
+  struct CellEvidence {
     int16_t log_odds = 0;
     uint16_t mark = 0;
   };
-  std::vector<Cell> cells_;
+  std::vector<CellEvidence> cells_;
   std::vector<uint8_t> classes_;  // published as is: kept separate so snapshots are one copy
   uint16_t epoch_ = 0;
   InflationLayer inflation_;
-  std::vector<Point2d> obstructions_;
+  std::vector<Vec2> obstructions_;
 
   bool dirty_ = false;
   int32_t dirty_x0_ = 0, dirty_y0_ = 0, dirty_x1_ = 0, dirty_y1_ = 0;  // inclusive

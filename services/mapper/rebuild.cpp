@@ -66,7 +66,7 @@ Result<OccupancyGrid> rebuild_grid(const GridConfig& config, ObservationStore& s
 
   auto obstructions = store.obstructions();
   if (!obstructions) return Error{obstructions.message()};
-  for (const Point2d& p : *obstructions) {
+  for (const Vec2& p : *obstructions) {
     if (Status s = grid->obstruct(p.x, p.y); !s) {
       if (st.first_error.empty()) st.first_error = s.message();
       continue;

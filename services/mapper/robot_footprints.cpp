@@ -18,47 +18,46 @@ RobotFootprints::RobotFootprints(const FootprintConfig& config)
     : radius2_(config.radius_m * config.radius_m),
       max_age_ns_(static_cast<int64_t>(config.max_age_s * 1e9)) {}
 
-size_t RobotFootprints::apply(std::string_view robot_id, double x, double y, int64_t now_ns,
-                              std::vector<Point2d>* hits, std::vector<Point2d>* misses) {
-  size_t self = poses_.size();
+size_t RobotFootprints::apply(std::string_view robot_id, Vec2 position, int64_t now_ns,
+                              std::vector<Vec2>& hits, std::vector<Vec2>& misses) {
+  size_t self = sightings_.size();
   if (auto it = slots_.find(robot_id); it != slots_.end()) {
     self = it->second;
   } else {
     slots_.emplace(std::string(robot_id), self);
-    poses_.push_back({});
+    sightings_.push_back({});
   }
+  const auto distance2 = [](Vec2 a, Vec2 b) { return dot(a - b, a - b); };
   size_t moved = 0;
-  if (radius2_ > 0.0 && !hits->empty()) {
+  if (radius2_ > 0.0 && !hits.empty()) {
     // Only robots within reach of this observation's farthest hit can be in it.
     double reach2 = 0.0;
-    for (const Point2d& p : *hits) reach2 = std::max(reach2, (p.x - x) * (p.x - x) + (p.y - y) * (p.y - y));
+    for (const Vec2& p : hits) reach2 = std::max(reach2, distance2(p, position));
     const double reach = std::sqrt(reach2) + std::sqrt(radius2_);
     near_.clear();
-    for (size_t i = 0; i < poses_.size(); ++i) {
-      const Pose& o = poses_[i];
+    for (size_t i = 0; i < sightings_.size(); ++i) {
+      const Sighting& o = sightings_[i];
       if (i == self || now_ns - o.seen_ns > max_age_ns_) continue;
-      if ((o.x - x) * (o.x - x) + (o.y - y) * (o.y - y) <= reach * reach) near_.push_back(o);
+      if (distance2(o.position, position) <= reach * reach) near_.push_back(o.position);
     }
     if (!near_.empty()) {
-      const auto on_robot = [&](const Point2d& p) {
-        return std::any_of(near_.begin(), near_.end(), [&](const Pose& o) {
-          return (p.x - o.x) * (p.x - o.x) + (p.y - o.y) * (p.y - o.y) <= radius2_;
-        });
+      const auto on_robot = [&](const Vec2& p) {
+        return std::any_of(near_.begin(), near_.end(), [&](Vec2 o) { return distance2(p, o) <= radius2_; });
       };
       // Stable: the remaining hits keep their order; moved ones go to the misses.
-      auto keep = hits->begin();
-      for (auto it = hits->begin(); it != hits->end(); ++it) {
+      auto keep = hits.begin();
+      for (auto it = hits.begin(); it != hits.end(); ++it) {
         if (on_robot(*it)) {
-          misses->push_back(*it);
+          misses.push_back(*it);
           ++moved;
         } else {
           *keep++ = *it;
         }
       }
-      hits->erase(keep, hits->end());
+      hits.erase(keep, hits.end());
     }
   }
-  poses_[self] = Pose{x, y, now_ns};
+  sightings_[self] = Sighting{position, now_ns};
   return moved;
 }
 

@@ -26,18 +26,18 @@ class RobotFootprints {
  public:
   explicit RobotFootprints(const FootprintConfig& config);
 
-  // Moves the hits in *hits that lie near another robot's recent pose to *misses, then records
-  // (x, y) as robot_id's pose at now_ns. Returns how many hits were moved. Allocation-free once
+  // Moves the hits that lie near another robot's recent position to `misses`, then records
+  // `position` as robot_id's at now_ns. Returns how many hits were moved. Allocation-free once
   // every robot has been seen (a fleet of hundreds is a flat scan per observation).
-  size_t apply(std::string_view robot_id, double x, double y, int64_t now_ns, std::vector<Point2d>* hits,
-               std::vector<Point2d>* misses);
+  size_t apply(std::string_view robot_id, Vec2 position, int64_t now_ns, std::vector<Vec2>& hits,
+               std::vector<Vec2>& misses);
 
-  size_t robots() const { return poses_.size(); }
+  size_t robots() const { return sightings_.size(); }
 
  private:
-  struct Pose {
-    double x = 0.0;
-    double y = 0.0;
+  // Where a robot was last reported, and when.
+  struct Sighting {
+    Vec2 position;
     int64_t seen_ns = 0;
   };
   // Lets the map be searched with a string_view (no string built per observation).
@@ -48,9 +48,9 @@ class RobotFootprints {
 
   double radius2_;
   int64_t max_age_ns_;
-  std::unordered_map<std::string, size_t, IdHash, std::equal_to<>> slots_;  // robot id -> poses_ index
-  std::vector<Pose> poses_;
-  std::vector<Pose> near_;  // scratch: other robots within reach of this observation
+  std::unordered_map<std::string, size_t, IdHash, std::equal_to<>> slots_;  // robot id -> sightings_ index
+  std::vector<Sighting> sightings_;
+  std::vector<Vec2> near_;  // scratch: other robots within reach of this observation
 };
 
 }  // namespace slam::mapper

@@ -22,11 +22,11 @@ void FrontierMap::update(const PlanningGrid& grid, const CellBox& box) {
     rebuild(grid);
     return;
   }
-  if (box.width == 0 || box.height == 0) return;
-  const int32_t x0 = std::max(0, static_cast<int32_t>(box.x0) - 1);
-  const int32_t y0 = std::max(0, static_cast<int32_t>(box.y0) - 1);
-  const int32_t x1 = std::min(grid.width() - 1, static_cast<int32_t>(box.x0 + box.width));
-  const int32_t y1 = std::min(grid.height() - 1, static_cast<int32_t>(box.y0 + box.height));
+  if (box.empty()) return;
+  const int32_t x0 = std::max(0, box.x0 - 1);
+  const int32_t y0 = std::max(0, box.y0 - 1);
+  const int32_t x1 = std::min(grid.width() - 1, box.x0 + box.width);
+  const int32_t y1 = std::min(grid.height() - 1, box.y0 + box.height);
   if (x0 > x1 || y0 > y1) return;
   recompute(grid, x0, y0, x1, y1);
 }

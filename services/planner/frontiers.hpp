@@ -38,8 +38,8 @@ class FrontierMap {
 
   std::vector<uint8_t> flags_;
   size_t count_ = 0;
-  uint32_t width_ = 0;
-  uint32_t height_ = 0;
+  int32_t width_ = 0;
+  int32_t height_ = 0;
   // Clustering scratch, reused between calls.
   std::vector<uint32_t> visited_;
   uint32_t visit_stamp_ = 0;

@@ -126,8 +126,9 @@ OmplOutcome OmplPlanner::plan(const PlanningGrid& grid, Vec2 start, Vec2 goal, s
   ob::RealVectorBounds bounds(2);
   bounds.setLow(0, geo.origin.x);
   bounds.setLow(1, geo.origin.y);
-  bounds.setHigh(0, geo.origin.x + geo.width * geo.resolution);
-  bounds.setHigh(1, geo.origin.y + geo.height * geo.resolution);
+  const Vec2 top_right = geo.corner(Cell{geo.width, geo.height});
+  bounds.setHigh(0, top_right.x);
+  bounds.setHigh(1, top_right.y);
   space->setBounds(bounds);
 
   og::SimpleSetup setup(space);

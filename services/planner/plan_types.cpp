@@ -1,14 +1,9 @@
-// Small geometry helpers behind plan_types.hpp.
+// Path measures and status names behind plan_types.hpp.
 #include "planner/plan_types.hpp"
 
 #include <algorithm>
-#include <cmath>
 
 namespace slam::planner {
-
-double distance(Vec2 a, Vec2 b) {
-  return std::hypot(a.x - b.x, a.y - b.y);
-}
 
 double path_length(const std::vector<Vec2>& path) {
   double total = 0.0;

@@ -1,36 +1,19 @@
 #pragma once
-// Value types shared by every part of the planner core: points, cells and plan results.
-// They mirror the IDL (Point2, PlanStatus) so the service edge converts field by field.
+// Value types shared by every part of the planner core: plan results and path measures over the
+// common geometry types. They mirror the IDL (Point2, PlanStatus) so the service edge converts
+// field by field.
 #include <cstdint>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "common/core/geometry.hpp"
+
 namespace slam::planner {
 
-struct Vec2 {
-  double x = 0.0;
-  double y = 0.0;
-};
-
-inline bool operator==(const Vec2& a, const Vec2& b) {
-  return a.x == b.x && a.y == b.y;
-}
-
-double distance(Vec2 a, Vec2 b);
 double path_length(const std::vector<Vec2>& path);
 // Distance from p to the segment [a, b].
 double distance_to_segment(Vec2 p, Vec2 a, Vec2 b);
-
-// Integer cell coordinates; (0, 0) is the lowest-left cell, y grows with rows.
-struct Cell {
-  int32_t x = 0;
-  int32_t y = 0;
-};
-
-inline bool operator==(const Cell& a, const Cell& b) {
-  return a.x == b.x && a.y == b.y;
-}
 
 // Mirrors slam::PlanStatus in nav.idl, one to one and in the same order.
 enum class PlanStatus : uint8_t { Ok, StartBlocked, GoalBlocked, NoPath, Timeout, NoMap, InvalidRequest };

@@ -21,12 +21,22 @@ void to_points(const std::vector<Vec2>& in, std::vector<slam::Point2>& out) {
 
 Status apply_snapshot(slam::GridSnapshot& snapshot, PlanningGrid& grid) {
   const slam::GridInfo& info = snapshot.info();
-  const GridGeometry geometry{info.width(), info.height(), info.resolution(), to_vec2(info.origin())};
+  if (info.width() > static_cast<uint32_t>(INT32_MAX) || info.height() > static_cast<uint32_t>(INT32_MAX)) {
+    return Error{"grid snapshot is too large: " + std::to_string(info.width()) + "x" +
+                 std::to_string(info.height())};
+  }
+  const GridGeometry geometry{to_vec2(info.origin()), info.resolution(), static_cast<int32_t>(info.width()),
+                              static_cast<int32_t>(info.height())};
   return grid.reset(geometry, snapshot.layout_id(), snapshot.version(), std::move(snapshot.cells()));
 }
 
 Result<CellBox> apply_patch(const slam::GridPatch& patch, PlanningGrid& grid) {
-  const CellBox box{patch.x0(), patch.y0(), patch.width(), patch.height()};
+  constexpr auto kMax = static_cast<uint32_t>(INT32_MAX);
+  if (patch.x0() > kMax || patch.y0() > kMax || patch.width() > kMax || patch.height() > kMax) {
+    return Error{"grid patch box exceeds the grid"};
+  }
+  const CellBox box{static_cast<int32_t>(patch.x0()), static_cast<int32_t>(patch.y0()),
+                    static_cast<int32_t>(patch.width()), static_cast<int32_t>(patch.height())};
   if (auto s = grid.apply_patch(patch.layout_id(), patch.version(), box, patch.cells()); !s) {
     return Error{s.message()};
   }

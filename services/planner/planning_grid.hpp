@@ -12,21 +12,6 @@
 
 namespace slam::planner {
 
-struct GridGeometry {
-  uint32_t width = 0;       // cells
-  uint32_t height = 0;      // cells
-  double resolution = 0.0;  // metres per cell
-  Vec2 origin;              // map position of cell (0, 0)'s lower-left corner
-};
-
-// A rectangle of cells, used for patches and for "what changed".
-struct CellBox {
-  uint32_t x0 = 0;
-  uint32_t y0 = 0;
-  uint32_t width = 0;
-  uint32_t height = 0;
-};
-
 inline bool cell_blocked(uint8_t c) {
   return (c & kCellStateMask) == kCellOccupied || (c & (kCellInflated | kCellObstructed)) != 0;
 }
@@ -49,8 +34,8 @@ class PlanningGrid {
 
   bool empty() const { return cells_.empty(); }
   const GridGeometry& geometry() const { return geometry_; }
-  int32_t width() const { return static_cast<int32_t>(geometry_.width); }
-  int32_t height() const { return static_cast<int32_t>(geometry_.height); }
+  int32_t width() const { return geometry_.width; }
+  int32_t height() const { return geometry_.height; }
   double resolution() const { return geometry_.resolution; }
   uint32_t layout_id() const { return layout_id_; }
   uint64_t version() const { return version_; }
@@ -58,11 +43,9 @@ class PlanningGrid {
   uint64_t revision() const { return revision_; }
   const std::vector<uint8_t>& cells() const { return cells_; }
 
-  bool contains(Cell c) const { return c.x >= 0 && c.y >= 0 && c.x < width() && c.y < height(); }
-  size_t index(Cell c) const { return static_cast<size_t>(c.y) * geometry_.width + static_cast<size_t>(c.x); }
-  Cell cell_of(size_t index) const {
-    return Cell{static_cast<int32_t>(index % geometry_.width), static_cast<int32_t>(index / geometry_.width)};
-  }
+  bool contains(Cell c) const { return geometry_.contains(c); }
+  size_t index(Cell c) const { return geometry_.index(c); }
+  Cell cell_of(size_t index) const { return geometry_.cell_of(index); }
   uint8_t at(Cell c) const { return cells_[index(c)]; }
   bool blocked(Cell c) const { return cell_blocked(at(c)); }
   bool unknown(Cell c) const { return cell_unknown(at(c)); }
@@ -73,10 +56,10 @@ class PlanningGrid {
   }
 
   // The cell containing a map point, or nothing when the point lies outside the grid.
-  std::optional<Cell> cell_at(Vec2 p) const;
-  Vec2 centre(Cell c) const;
+  std::optional<Cell> cell_at(Vec2 p) const { return geometry_.cell_at(p); }
+  Vec2 centre(Cell c) const { return geometry_.centre(c); }
   // Map coordinates in cell units relative to the origin (cell (i, j) spans [i, i+1) x [j, j+1)).
-  Vec2 to_grid(Vec2 p) const;
+  Vec2 to_grid(Vec2 p) const { return geometry_.to_grid(p); }
 
   // Writes the octets (for tests and tools that build grids by hand).
   void set(Cell c, uint8_t value);

@@ -1,42 +1,13 @@
 #pragma once
-// Plane geometry the simulator's hot loops share: points, poses, segments, and the exact
-// intersection and distance tests that ray casting and collision checks are built from.
+// Plane geometry the simulator's hot loops share: segments, boxes, and the exact intersection and
+// distance tests that ray casting and collision checks are built from (points and poses are the
+// common ones).
 #include <algorithm>
 #include <cmath>
-#include <numbers>
+
+#include "common/core/geometry.hpp"
 
 namespace slam::sim {
-
-struct Vec2 {
-  double x = 0.0;
-  double y = 0.0;
-};
-
-inline Vec2 operator+(Vec2 a, Vec2 b) {
-  return {a.x + b.x, a.y + b.y};
-}
-inline Vec2 operator-(Vec2 a, Vec2 b) {
-  return {a.x - b.x, a.y - b.y};
-}
-inline Vec2 operator*(Vec2 a, double s) {
-  return {a.x * s, a.y * s};
-}
-inline double dot(Vec2 a, Vec2 b) {
-  return a.x * b.x + a.y * b.y;
-}
-inline double cross(Vec2 a, Vec2 b) {
-  return a.x * b.y - a.y * b.x;
-}
-inline double norm(Vec2 a) {
-  return std::hypot(a.x, a.y);
-}
-
-// Map-frame pose; theta in radians counter-clockwise from +x.
-struct Pose {
-  double x = 0.0;
-  double y = 0.0;
-  double theta = 0.0;
-};
 
 struct Segment {
   Vec2 a;
@@ -51,12 +22,6 @@ struct Bounds {
   double height() const { return max.y - min.y; }
   bool contains(Vec2 p) const { return p.x >= min.x && p.x <= max.x && p.y >= min.y && p.y <= max.y; }
 };
-
-// Angle folded into (-pi, pi].
-inline double wrap_angle(double a) {
-  a = std::remainder(a, 2.0 * std::numbers::pi);
-  return a <= -std::numbers::pi ? a + 2.0 * std::numbers::pi : a;
-}
 
 // Distance along the unit-length ray (origin, dir) to segment s, or +inf when it misses.
 // Collinear overlap counts as a miss: a beam grazing along a wall sees the walls it meets end-on.

@@ -1,7 +1,8 @@
 #pragma once
-// Uniform bucket grid shared by the wall index and the per-tick robot index: cell geometry, flat
-// per-cell item lists (rebuilt in bulk, capacity kept so a rebuild does not allocate), and a
-// cell-by-cell ray walk so a beam only tests the items of the cells it crosses, nearest first.
+// Uniform bucket grid shared by the wall index and the per-tick robot index: a common GridGeometry
+// sized to the world, flat per-cell item lists (rebuilt in bulk, capacity kept so a rebuild does not
+// allocate), and a cell-by-cell ray walk so a beam only tests the items of the cells it crosses, nearest
+// first.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -13,82 +14,73 @@
 
 namespace slam::sim {
 
-struct GridGeometry {
-  Vec2 origin;
-  double cell = 1.0;
-  int nx = 1;
-  int ny = 1;
+// Cells of at least `min_cell` metres, at most `max_cells` per axis, covering `b`.
+inline GridGeometry covering_grid(const Bounds& b, double min_cell, int max_cells) {
+  GridGeometry g;
+  g.origin = b.min;
+  const double extent = std::max(b.width(), b.height());
+  g.resolution = std::max(min_cell, extent / max_cells);
+  g.width = std::clamp(static_cast<int>(std::ceil(b.width() / g.resolution)), 1, max_cells);
+  g.height = std::clamp(static_cast<int>(std::ceil(b.height() / g.resolution)), 1, max_cells);
+  return g;
+}
 
-  // Cells of at least `min_cell` metres, at most `max_cells` per axis, covering `b`.
-  static GridGeometry covering(const Bounds& b, double min_cell, int max_cells) {
-    GridGeometry g;
-    g.origin = b.min;
-    const double extent = std::max(b.width(), b.height());
-    g.cell = std::max(min_cell, extent / max_cells);
-    g.nx = std::clamp(static_cast<int>(std::ceil(b.width() / g.cell)), 1, max_cells);
-    g.ny = std::clamp(static_cast<int>(std::ceil(b.height() / g.cell)), 1, max_cells);
-    return g;
-  }
+inline uint32_t bucket_index(const GridGeometry& g, Cell c) {
+  return static_cast<uint32_t>(g.index(c));
+}
 
-  int cell_x(double x) const {
-    return std::clamp(static_cast<int>(std::floor((x - origin.x) / cell)), 0, nx - 1);
-  }
-  int cell_y(double y) const {
-    return std::clamp(static_cast<int>(std::floor((y - origin.y) / cell)), 0, ny - 1);
-  }
-  uint32_t index(int cx, int cy) const { return static_cast<uint32_t>(cy * nx + cx); }
-  size_t cells() const { return static_cast<size_t>(nx) * static_cast<size_t>(ny); }
+// Calls visit(index) for every cell overlapping the box [lo, hi] (clamped to the grid).
+template <class Visit>
+void for_each_cell_in_box(const GridGeometry& g, Vec2 lo, Vec2 hi, Visit&& visit) {
+  const Cell c0 = g.clamped_cell_at(lo), c1 = g.clamped_cell_at(hi);
+  for (int cy = c0.y; cy <= c1.y; ++cy)
+    for (int cx = c0.x; cx <= c1.x; ++cx) visit(bucket_index(g, {cx, cy}));
+}
 
-  // Calls visit(index) for every cell overlapping the box [lo, hi] (clamped to the grid).
-  template <class Visit>
-  void for_each_cell_in_box(Vec2 lo, Vec2 hi, Visit&& visit) const {
-    const int x0 = cell_x(lo.x), x1 = cell_x(hi.x), y0 = cell_y(lo.y), y1 = cell_y(hi.y);
-    for (int cy = y0; cy <= y1; ++cy)
-      for (int cx = x0; cx <= x1; ++cx) visit(index(cx, cy));
-  }
-
-  // Walks the cells the ray (origin, unit dir) crosses for t in [0, max_t], in order. visit(index,
-  // t_exit) gets the ray parameter where the ray leaves that cell and returns true to stop.
-  template <class Visit>
-  void traverse_ray(Vec2 o, Vec2 dir, double max_t, Visit&& visit) const {
-    // Clip to the grid box first so rays starting outside still walk the right cells.
-    double t0 = 0.0, t1 = max_t;
-    const double lo[2] = {origin.x, origin.y};
-    const double hi[2] = {origin.x + nx * cell, origin.y + ny * cell};
-    const double p[2] = {o.x, o.y};
-    const double d[2] = {dir.x, dir.y};
-    for (int a = 0; a < 2; ++a) {
-      if (d[a] == 0.0) {
-        if (p[a] < lo[a] || p[a] > hi[a]) return;
-        continue;
-      }
-      double ta = (lo[a] - p[a]) / d[a], tb = (hi[a] - p[a]) / d[a];
-      if (ta > tb) std::swap(ta, tb);
-      t0 = std::max(t0, ta);
-      t1 = std::min(t1, tb);
+// Walks the cells the ray (o, unit dir) crosses for t in [0, max_t], in order. visit(index,
+// t_exit) gets the ray parameter where the ray leaves that cell and returns true to stop.
+template <class Visit>
+void traverse_ray(const GridGeometry& g, Vec2 o, Vec2 dir, double max_t, Visit&& visit) {
+  // Clip to the grid box first so rays starting outside still walk the right cells.
+  const double cell = g.resolution;
+  const Vec2 top_right = g.corner({g.width, g.height});
+  double t0 = 0.0, t1 = max_t;
+  const double lo[2] = {g.origin.x, g.origin.y};
+  const double hi[2] = {top_right.x, top_right.y};
+  const double p[2] = {o.x, o.y};
+  const double d[2] = {dir.x, dir.y};
+  for (int a = 0; a < 2; ++a) {
+    if (d[a] == 0.0) {
+      if (p[a] < lo[a] || p[a] > hi[a]) return;
+      continue;
     }
-    if (t0 > t1) return;
-    int cx = cell_x(o.x + dir.x * t0), cy = cell_y(o.y + dir.y * t0);
-    const int sx = dir.x > 0 ? 1 : -1, sy = dir.y > 0 ? 1 : -1;
-    const double dtx = dir.x != 0.0 ? cell / std::abs(dir.x) : INFINITY;
-    const double dty = dir.y != 0.0 ? cell / std::abs(dir.y) : INFINITY;
-    double tx = dir.x != 0.0 ? (origin.x + (cx + (sx > 0 ? 1 : 0)) * cell - o.x) / dir.x : INFINITY;
-    double ty = dir.y != 0.0 ? (origin.y + (cy + (sy > 0 ? 1 : 0)) * cell - o.y) / dir.y : INFINITY;
-    while (true) {
-      const double t_exit = std::min({tx, ty, t1});
-      if (visit(index(cx, cy), t_exit) || t_exit >= t1) return;
-      if (tx <= ty) {
-        cx += sx;
-        tx += dtx;
-        if (cx < 0 || cx >= nx) return;
-      } else {
-        cy += sy;
-        ty += dty;
-        if (cy < 0 || cy >= ny) return;
-      }
+    double ta = (lo[a] - p[a]) / d[a], tb = (hi[a] - p[a]) / d[a];
+    if (ta > tb) std::swap(ta, tb);
+    t0 = std::max(t0, ta);
+    t1 = std::min(t1, tb);
+  }
+  if (t0 > t1) return;
+  const Cell start = g.clamped_cell_at(o + dir * t0);
+  int cx = start.x, cy = start.y;
+  const int sx = dir.x > 0 ? 1 : -1, sy = dir.y > 0 ? 1 : -1;
+  const double dtx = dir.x != 0.0 ? cell / std::abs(dir.x) : INFINITY;
+  const double dty = dir.y != 0.0 ? cell / std::abs(dir.y) : INFINITY;
+  double tx = dir.x != 0.0 ? (g.origin.x + (cx + (sx > 0 ? 1 : 0)) * cell - o.x) / dir.x : INFINITY;
+  double ty = dir.y != 0.0 ? (g.origin.y + (cy + (sy > 0 ? 1 : 0)) * cell - o.y) / dir.y : INFINITY;
+  while (true) {
+    const double t_exit = std::min({tx, ty, t1});
+    if (visit(bucket_index(g, {cx, cy}), t_exit) || t_exit >= t1) return;
+    if (tx <= ty) {
+      cx += sx;
+      tx += dtx;
+      if (cx < 0 || cx >= g.width) return;
+    } else {
+      cy += sy;
+      ty += dty;
+      if (cy < 0 || cy >= g.height) return;
     }
   }
-};
+}
 
 // Items (uint32 ids) per cell in one flat array: stage (cell, item) pairs, then finish().
 class Buckets {

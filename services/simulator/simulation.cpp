@@ -25,10 +25,6 @@ std::mt19937_64 seeded(uint64_t seed, uint64_t stream) {
   return std::mt19937_64(seq);
 }
 
-Vec2 xy(const Pose& p) {
-  return {p.x, p.y};
-}
-
 }  // namespace
 
 Result<Simulation> Simulation::create(World world, SimulationConfig config) {
@@ -51,7 +47,7 @@ bool Simulation::pose_free(Vec2 p, size_t ignore) const {
   if (!world_.is_free(p, config_.robot.radius)) return false;
   const double min_sq = 4.0 * config_.robot.radius * config_.robot.radius;
   for (size_t j = 0; j < robots_.size(); ++j) {
-    const Vec2 d = p - xy(robots_[j].true_pose);
+    const Vec2 d = p - robots_[j].true_pose.position();
     if (j != ignore && dot(d, d) < min_sq) return false;
   }
   return true;
@@ -105,7 +101,7 @@ Result<std::string> Simulation::spawn(Pose pose, std::string id) {
 
 Result<std::vector<std::string>> Simulation::spawn_random(size_t count) {
   std::vector<Vec2> others;
-  for (const Robot& r : robots_) others.push_back(xy(r.true_pose));
+  for (const Robot& r : robots_) others.push_back(r.true_pose.position());
   std::vector<Pose> poses;
   for (size_t k = 0; k < count; ++k) {
     const auto p = random_free_pose(world_, others);
@@ -206,19 +202,19 @@ void Simulation::rebuild_robot_index() {
   const double r = config_.robot.radius;
   robot_index_.reset(g.cells());
   for (size_t i = 0; i < robots_.size(); ++i) {
-    const Vec2 p = xy(robots_[i].true_pose);
-    g.for_each_cell_in_box({p.x - r, p.y - r}, {p.x + r, p.y + r},
-                           [&](uint32_t cell) { robot_index_.add(cell, static_cast<uint32_t>(i)); });
+    const Vec2 p = robots_[i].true_pose.position();
+    for_each_cell_in_box(g, {p.x - r, p.y - r}, {p.x + r, p.y + r},
+                         [&](uint32_t cell) { robot_index_.add(cell, static_cast<uint32_t>(i)); });
   }
   robot_index_.finish();
 }
 
 double Simulation::cast(Vec2 origin, Vec2 dir, double max_range, size_t self) const {
   double best = world_.cast(origin, dir, max_range);
-  world_.grid().traverse_ray(origin, dir, best, [&](uint32_t cell, double t_exit) {
+  traverse_ray(world_.grid(), origin, dir, best, [&](uint32_t cell, double t_exit) {
     for (uint32_t j : robot_index_.at(cell))
       if (j != self)
-        best = std::min(best, ray_circle(origin, dir, xy(robots_[j].true_pose), config_.robot.radius));
+        best = std::min(best, ray_circle(origin, dir, robots_[j].true_pose.position(), config_.robot.radius));
     return best <= t_exit;
   });
   return best;
@@ -230,7 +226,7 @@ void Simulation::pick_random_target(Robot& r) {
   for (int attempt = 0; attempt < 8; ++attempt) {
     const double a = ua(r.rng);
     const Vec2 dir{std::cos(a), std::sin(a)};
-    const double free = world_.cast(xy(r.true_pose), dir, kRandomTargetMax + 2.0 * rc.radius);
+    const double free = world_.cast(r.true_pose.position(), dir, kRandomTargetMax + 2.0 * rc.radius);
     const double reach = std::min(free - 2.0 * rc.radius, kRandomTargetMax);
     if (reach < kRandomTargetMin) continue;
     const double d = std::uniform_real_distribution<double>(kRandomTargetMin, reach)(r.rng);
@@ -238,7 +234,7 @@ void Simulation::pick_random_target(Robot& r) {
     const double rot = r.reported_pose.theta - r.true_pose.theta;
     const Vec2 off{d * (std::cos(rot) * dir.x - std::sin(rot) * dir.y),
                    d * (std::sin(rot) * dir.x + std::cos(rot) * dir.y)};
-    r.waypoint = xy(r.reported_pose) + off;
+    r.waypoint = r.reported_pose.position() + off;
     r.waypoint_deadline_s = time_s_ + 2.0 * d / rc.max_linear + std::numbers::pi / rc.max_angular + 2.0;
     return;
   }
@@ -250,16 +246,17 @@ bool Simulation::robots_allow(size_t i, Vec2 from, Vec2 to) const {
   // The index is from the start of the step; robots moved since by at most one step each.
   const double margin = 2.0 * r + config_.robot.max_linear * config_.dt;
   bool allow = true;
-  world_.grid().for_each_cell_in_box(
-      {to.x - margin, to.y - margin}, {to.x + margin, to.y + margin}, [&](uint32_t cell) {
-        for (uint32_t j : robot_index_.at(cell)) {
-          if (j == i) continue;
-          const Vec2 other = xy(robots_[j].true_pose);
-          const Vec2 d_to = to - other, d_from = from - other;
-          // Only approaching is blocked, so robots that ended up touching can still part.
-          if (dot(d_to, d_to) < min_sq && dot(d_to, d_to) < dot(d_from, d_from)) allow = false;
-        }
-      });
+  for_each_cell_in_box(world_.grid(), {to.x - margin, to.y - margin}, {to.x + margin, to.y + margin},
+                       [&](uint32_t cell) {
+                         for (uint32_t j : robot_index_.at(cell)) {
+                           if (j == i) continue;
+                           const Vec2 other = robots_[j].true_pose.position();
+                           const Vec2 d_to = to - other, d_from = from - other;
+                           // Only approaching is blocked, so robots that ended up touching can still part.
+                           if (dot(d_to, d_to) < min_sq && dot(d_to, d_to) < dot(d_from, d_from))
+                             allow = false;
+                         }
+                       });
   return allow;
 }
 
@@ -267,13 +264,13 @@ void Simulation::move(size_t i) {
   Robot& r = robots_[i];
   if (!r.waypoint) return;
   const RobotConfig& rc = config_.robot;
-  if (norm(*r.waypoint - xy(r.reported_pose)) < rc.waypoint_tolerance) {
+  if (norm(*r.waypoint - r.reported_pose.position()) < rc.waypoint_tolerance) {
     r.waypoint.reset();
     return;
   }
   const Pose desired =
       integrate(r.true_pose, drive_command(r.reported_pose, *r.waypoint, config_.dt, rc), config_.dt);
-  const Vec2 from = xy(r.true_pose), step = Vec2{desired.x, desired.y} - from;
+  const Vec2 from = r.true_pose.position(), step = Vec2{desired.x, desired.y} - from;
   const auto allowed = [&](double f) {
     const Vec2 to = from + step * f;
     return world_.motion_clear(from, to, rc.radius) && robots_allow(i, from, to);
@@ -291,7 +288,7 @@ void Simulation::move(size_t i) {
   const Pose after{from.x + step.x * fraction, from.y + step.y * fraction, desired.theta};
   r.reported_pose = odometry_update(r.reported_pose, r.true_pose, after, config_.odometry, r.rng);
   r.true_pose = after;
-  if (norm(*r.waypoint - xy(r.reported_pose)) < rc.waypoint_tolerance) r.waypoint.reset();
+  if (norm(*r.waypoint - r.reported_pose.position()) < rc.waypoint_tolerance) r.waypoint.reset();
 }
 
 std::span<const RobotReport> Simulation::step() {

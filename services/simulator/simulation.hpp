@@ -56,7 +56,6 @@ class Simulation {
   void pause() { paused_ = true; }
   void resume() { paused_ = false; }
   bool paused() const { return paused_; }
-  void set_random_walk(bool on) { config_.random_walk = on; }
   Status set_speed_factor(double factor);
   // Range noise (m), dropout probability, odometry drift per metre; validated together.
   Status set_noise(double range_noise_sd, double dropout, double drift_per_metre);

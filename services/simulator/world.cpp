@@ -59,29 +59,30 @@ Result<World> World::create(std::string name, Bounds bounds, std::vector<Segment
 }
 
 void World::build_index() {
-  grid_ = GridGeometry::covering(bounds_, kMinCell, kMaxCells);
+  grid_ = covering_grid(bounds_, kMinCell, kMaxCells);
   index_.reset(grid_.cells());
   for (size_t i = 0; i < walls_.size(); ++i) {
     const auto id = static_cast<uint32_t>(i);
     const Segment& s = walls_[i];
-    const int y0 = grid_.cell_y(std::min(s.a.y, s.b.y));
-    const int y1 = grid_.cell_y(std::max(s.a.y, s.b.y));
+    const int y0 = grid_.clamped_cell_at({s.a.x, std::min(s.a.y, s.b.y)}).y;
+    const int y1 = grid_.clamped_cell_at({s.a.x, std::max(s.a.y, s.b.y)}).y;
     const double dy = s.b.y - s.a.y;
     for (int cy = y0; cy <= y1; ++cy) {
       // The part of the segment inside this row of cells spans [xa, xb] in x.
       double xa = std::min(s.a.x, s.b.x), xb = std::max(s.a.x, s.b.x);
       if (dy != 0.0 && y0 != y1) {
-        const double band_lo = grid_.origin.y + cy * grid_.cell;
-        const double band_hi = band_lo + grid_.cell;
+        const double band_lo = grid_.origin.y + cy * grid_.resolution;
+        const double band_hi = band_lo + grid_.resolution;
         const double ta = std::clamp((band_lo - s.a.y) / dy, 0.0, 1.0);
         const double tb = std::clamp((band_hi - s.a.y) / dy, 0.0, 1.0);
         const double xta = s.a.x + (s.b.x - s.a.x) * ta, xtb = s.a.x + (s.b.x - s.a.x) * tb;
         xa = std::min(xta, xtb);
         xb = std::max(xta, xtb);
       }
-      const double eps = 1e-9 * grid_.cell;
-      for (int cx = grid_.cell_x(xa - eps); cx <= grid_.cell_x(xb + eps); ++cx)
-        index_.add(grid_.index(cx, cy), id);
+      const double eps = 1e-9 * grid_.resolution;
+      const int x0 = grid_.clamped_cell_at({xa - eps, s.a.y}).x,
+                x1 = grid_.clamped_cell_at({xb + eps, s.a.y}).x;
+      for (int cx = x0; cx <= x1; ++cx) index_.add(bucket_index(grid_, {cx, cy}), id);
     }
   }
   index_.finish();
@@ -89,7 +90,7 @@ void World::build_index() {
 
 double World::cast(Vec2 origin, Vec2 dir, double max_range) const {
   double best = max_range;
-  grid_.traverse_ray(origin, dir, max_range, [&](uint32_t cell, double t_exit) {
+  traverse_ray(grid_, origin, dir, max_range, [&](uint32_t cell, double t_exit) {
     for (uint32_t id : index_.at(cell)) best = std::min(best, ray_segment(origin, dir, walls_[id]));
     return best <= t_exit;
   });
@@ -100,7 +101,7 @@ bool World::is_free(Vec2 p, double radius) const {
   if (!bounds_.contains(p) || solid_.occupied_at(p)) return false;
   const double r_sq = radius * radius;
   bool free = true;
-  grid_.for_each_cell_in_box({p.x - radius, p.y - radius}, {p.x + radius, p.y + radius}, [&](uint32_t cell) {
+  for_each_cell_in_box(grid_, {p.x - radius, p.y - radius}, {p.x + radius, p.y + radius}, [&](uint32_t cell) {
     for (uint32_t id : index_.at(cell))
       if (distance_sq(p, walls_[id]) < r_sq) free = false;
   });
@@ -113,7 +114,7 @@ bool World::motion_clear(Vec2 from, Vec2 to, double radius) const {
   bool clear = true;
   const Vec2 lo{std::min(from.x, to.x), std::min(from.y, to.y)};
   const Vec2 hi{std::max(from.x, to.x), std::max(from.y, to.y)};
-  grid_.for_each_cell_in_box(lo, hi, [&](uint32_t cell) {
+  for_each_cell_in_box(grid_, lo, hi, [&](uint32_t cell) {
     for (uint32_t id : index_.at(cell))
       if (segments_intersect(path, walls_[id])) clear = false;
   });

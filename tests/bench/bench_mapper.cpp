@@ -20,11 +20,11 @@
 
 namespace {
 
+using slam::Vec2;
 using slam::mapper::GridConfig;
 using slam::mapper::ObservationStore;
 using slam::mapper::ObservationView;
 using slam::mapper::OccupancyGrid;
-using slam::mapper::Point2d;
 
 GridConfig area_config(double resolution) {
   GridConfig c;
@@ -47,9 +47,9 @@ T must(slam::Result<T> r, const char* what) {
 }
 
 struct Scan {
-  Point2d origin;
-  std::vector<Point2d> hits;
-  std::vector<Point2d> misses;
+  Vec2 origin;
+  std::vector<Vec2> hits;
+  std::vector<Vec2> misses;
 };
 
 // `beams` rays per scan, 1-5 m long, every fourth one a miss (nothing seen up to max range).
@@ -63,7 +63,7 @@ std::vector<Scan> make_scans(int count, int beams, uint32_t seed) {
     for (int b = 0; b < beams; ++b) {
       const double a = 2.0 * std::numbers::pi * b / beams;
       const double r = range(rng);
-      const Point2d p{s.origin.x + r * std::cos(a), s.origin.y + r * std::sin(a)};
+      const Vec2 p{s.origin.x + r * std::cos(a), s.origin.y + r * std::sin(a)};
       (b % 4 == 3 ? s.misses : s.hits).push_back(p);
     }
   }

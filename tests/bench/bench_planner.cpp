@@ -80,7 +80,9 @@ PlanningGrid make_map() {
     }
   }
   PlanningGrid grid;
-  if (!grid.reset(GridGeometry{kSize, kSize, kResolution, {0.0, 0.0}}, 1, 0, std::move(inflated))) {
+  if (!grid.reset(
+          GridGeometry{{0.0, 0.0}, kResolution, static_cast<int32_t>(kSize), static_cast<int32_t>(kSize)}, 1,
+          0, std::move(inflated))) {
     return {};
   }
   return grid;
@@ -164,7 +166,8 @@ void BM_FrontierExtraction(benchmark::State& state) {
     }
   }
   PlanningGrid g;
-  if (!g.reset(GridGeometry{kSize, kSize, kResolution, {}}, 1, 0, std::move(cells))) {
+  if (!g.reset(GridGeometry{{}, kResolution, static_cast<int32_t>(kSize), static_cast<int32_t>(kSize)}, 1, 0,
+               std::move(cells))) {
     state.SkipWithError("bad grid");
     return;
   }

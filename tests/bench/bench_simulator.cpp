@@ -67,7 +67,7 @@ void BM_BeamCast(benchmark::State& state) {
   std::uniform_int_distribution<size_t> pick(0, sim.robots().size() - 1);
   std::uniform_real_distribution<double> angle(-std::numbers::pi, std::numbers::pi);
   constexpr size_t kBatch = 1024;
-  std::vector<std::pair<size_t, slam::sim::Vec2>> beams(kBatch);
+  std::vector<std::pair<size_t, slam::Vec2>> beams(kBatch);
   for (auto& [robot, dir] : beams) {
     const double a = angle(rng);
     robot = pick(rng);

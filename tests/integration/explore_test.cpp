@@ -48,7 +48,7 @@ class Observer {
   }
   void on_state(const RobotState& s) {
     std::lock_guard lock(mutex_);
-    starts_.try_emplace(s.robot_id().to_string(), sim::Vec2{s.pose().x(), s.pose().y()});
+    starts_.try_emplace(s.robot_id().to_string(), Vec2{s.pose().x(), s.pose().y()});
   }
   void on_path(const RobotPath& p) {
     std::lock_guard lock(mutex_);
@@ -77,9 +77,9 @@ class Observer {
     std::lock_guard lock(mutex_);
     return snapshot_;
   }
-  std::vector<sim::Vec2> starts() const {
+  std::vector<Vec2> starts() const {
     std::lock_guard lock(mutex_);
-    std::vector<sim::Vec2> out;
+    std::vector<Vec2> out;
     for (const auto& [id, p] : starts_) out.push_back(p);
     return out;
   }
@@ -98,14 +98,13 @@ class Observer {
   mutable std::mutex mutex_;
   std::optional<GridSnapshot> snapshot_;
   size_t snapshots_ = 0;
-  std::map<std::string, sim::Vec2> starts_;
+  std::map<std::string, Vec2> starts_;
   std::map<std::string, RobotPath> paths_;
   double drift_m_ = 0.0;
   double drift_rad_ = 0.0;
 };
 
-testkit::MapScore score(const sim::World& world, const GridSnapshot& s,
-                        const std::vector<sim::Vec2>& starts) {
+testkit::MapScore score(const sim::World& world, const GridSnapshot& s, const std::vector<Vec2>& starts) {
   const GridInfo& info = s.info();
   const testkit::TruthLayout layout{info.width(), info.height(), info.resolution(), info.origin().x(),
                                     info.origin().y()};
@@ -166,7 +165,7 @@ TEST(ExploreTest, ThreeRobotsMapTheMaze) {
   };
 
   // Judge each new snapshot until the map is good enough or the budget is spent.
-  const std::vector<sim::Vec2> starts = seen.starts();
+  const std::vector<Vec2> starts = seen.starts();
   testkit::MapScore best;
   double best_at_s = 0.0;
   size_t judged = seen.snapshots();

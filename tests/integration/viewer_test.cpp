@@ -29,7 +29,6 @@ namespace {
 
 using namespace testkit;
 using viewer::Rgba;
-using viewer::Vec2;
 using viewer::ViewTransform;
 
 // The grid: 10 x 8 m at 0.1 m, origin (-5, -4); x >= 2 m occupied, y >= 3 m unknown, rest free.

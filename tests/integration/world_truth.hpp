@@ -40,7 +40,7 @@ class WorldTruth {
   // Rasterises `world` on cells aligned with `grid` (same resolution, cell edges on the same
   // lines) but covering the whole world, whatever part of it the grid spans so far, and floods the
   // free space from `starts` (map frame).
-  WorldTruth(const sim::World& world, const TruthLayout& grid, const std::vector<sim::Vec2>& starts)
+  WorldTruth(const sim::World& world, const TruthLayout& grid, const std::vector<Vec2>& starts)
       : world_(world) {
     const sim::Bounds& b = world.bounds();
     const double res = grid.resolution;
@@ -74,7 +74,7 @@ class WorldTruth {
         const size_t g = static_cast<size_t>(gy) * grid.width + static_cast<size_t>(gx);
         const auto state = static_cast<uint8_t>(cells[g] & 3u);
         if (reachable_[index(x, y)] != 0 && state == kFree) ++s.covered;
-        const sim::Vec2 c = centre(x, y);
+        const Vec2 c = centre(x, y);
         if (!b.contains(c) || (state != kFree && state != kOccupied)) continue;
         ++s.observed;
         const bool ok = state == kFree ? world_.is_free(c, 0.25 * layout_.resolution)
@@ -100,9 +100,9 @@ class WorldTruth {
     }
   }
 
-  void flood(const std::vector<sim::Vec2>& starts) {
+  void flood(const std::vector<Vec2>& starts) {
     std::vector<size_t> queue;
-    for (const sim::Vec2& s : starts) {
+    for (const Vec2& s : starts) {
       const double cx = std::floor((s.x - layout_.origin_x) / layout_.resolution);
       const double cy = std::floor((s.y - layout_.origin_y) / layout_.resolution);
       if (cx < 0 || cy < 0 || cx >= layout_.width || cy >= layout_.height) continue;
@@ -122,7 +122,7 @@ class WorldTruth {
         const size_t j = index(static_cast<uint32_t>(nx), static_cast<uint32_t>(ny));
         if (free_[j] == 0 || reachable_[j] != 0) continue;
         // Both centres may be clear of walls with a wall between them: the step must not cross it.
-        const sim::Vec2 dir{static_cast<double>(d[0]), static_cast<double>(d[1])};
+        const Vec2 dir{static_cast<double>(d[0]), static_cast<double>(d[1])};
         if (world_.cast(centre(x, y), dir, layout_.resolution) < layout_.resolution) continue;
         reachable_[j] = 1;
         queue.push_back(j);
@@ -132,7 +132,7 @@ class WorldTruth {
   }
 
   size_t index(uint32_t x, uint32_t y) const { return static_cast<size_t>(y) * layout_.width + x; }
-  sim::Vec2 centre(uint32_t x, uint32_t y) const {
+  Vec2 centre(uint32_t x, uint32_t y) const {
     return {layout_.origin_x + (x + 0.5) * layout_.resolution,
             layout_.origin_y + (y + 0.5) * layout_.resolution};
   }

@@ -18,22 +18,12 @@ bool known(uint8_t cell) {
 
 }  // namespace
 
-void CellBox::unite(const CellBox& o) {
-  if (o.empty()) return;
-  if (empty()) {
-    *this = o;
-    return;
-  }
-  const uint32_t x1 = std::max(x0 + width, o.x0 + o.width), y1 = std::max(y0 + height, o.y0 + o.height);
-  x0 = std::min(x0, o.x0);
-  y0 = std::min(y0, o.y0);
-  width = x1 - x0;
-  height = y1 - y0;
-}
-
 Status GridMirror::apply_snapshot(GridSnapshotData&& s) {
   const uint64_t expected = uint64_t{s.info.width} * s.info.height;
   if (s.info.width == 0 || s.info.height == 0) return Error{"grid snapshot has zero width or height"};
+  if (s.info.width > static_cast<uint32_t>(INT32_MAX) || s.info.height > static_cast<uint32_t>(INT32_MAX))
+    return Error{"grid snapshot is too large: " + std::to_string(s.info.width) + "x" +
+                 std::to_string(s.info.height)};
   if (s.cells.size() != expected)
     return Error{"grid snapshot has " + std::to_string(s.cells.size()) + " cells, expected " +
                  std::to_string(expected)};
@@ -48,8 +38,10 @@ Status GridMirror::apply_snapshot(GridSnapshotData&& s) {
   layout_id_ = s.layout_id;
   version_ = s.version;
   info_ = s.info;
+  geometry_ = {info_.origin, info_.resolution, static_cast<int32_t>(info_.width),
+               static_cast<int32_t>(info_.height)};
   cells_ = std::move(s.cells);
-  dirty_ = {0, 0, info_.width, info_.height};
+  dirty_ = {0, 0, geometry_.width, geometry_.height};
   known_ = {};
   include_known(dirty_);
   return {};
@@ -73,21 +65,24 @@ PatchResult GridMirror::apply_patch(const GridPatchData& p) {
     std::copy_n(p.cells.begin() + static_cast<std::ptrdiff_t>(size_t{row} * p.width), p.width,
                 cells_.begin() + static_cast<std::ptrdiff_t>((size_t{p.y0} + row) * info_.width + p.x0));
   version_ = p.version;
-  dirty_.unite({p.x0, p.y0, p.width, p.height});
-  include_known({p.x0, p.y0, p.width, p.height});
+  // Inside the grid (checked above), so every field fits the signed box.
+  const CellBox box{static_cast<int32_t>(p.x0), static_cast<int32_t>(p.y0), static_cast<int32_t>(p.width),
+                    static_cast<int32_t>(p.height)};
+  dirty_.unite(box);
+  include_known(box);
   return PatchResult::Applied;
 }
 
 WorldBox GridMirror::bounds() const {
-  return {info_.origin.x, info_.origin.y, info_.origin.x + info_.width * info_.resolution,
-          info_.origin.y + info_.height * info_.resolution};
+  const Vec2 top_right = geometry_.corner({geometry_.width, geometry_.height});
+  return {geometry_.origin.x, geometry_.origin.y, top_right.x, top_right.y};
 }
 
 void GridMirror::include_known(const CellBox& area) {
   // Per row only the first and last known cell matter: one pass, no allocation.
-  for (uint32_t y = area.y0; y < area.y0 + area.height; ++y) {
-    const uint8_t* row = cells_.data() + size_t{y} * info_.width;
-    uint32_t first = area.x0, last = area.x0 + area.width;
+  for (int32_t y = area.y0; y < area.y0 + area.height; ++y) {
+    const uint8_t* row = cells_.data() + geometry_.index({0, y});
+    int32_t first = area.x0, last = area.x0 + area.width;
     while (first < last && !known(row[first])) ++first;
     if (first == last) continue;
     while (!known(row[last - 1])) --last;
@@ -95,21 +90,18 @@ void GridMirror::include_known(const CellBox& area) {
   }
 }
 
-bool GridMirror::known_bounds(WorldBox* box) const {
-  if (!has_grid_ || known_.empty()) return false;
-  const double r = info_.resolution;
-  *box = {info_.origin.x + known_.x0 * r, info_.origin.y + known_.y0 * r,
-          info_.origin.x + (known_.x0 + known_.width) * r, info_.origin.y + (known_.y0 + known_.height) * r};
-  return true;
+std::optional<WorldBox> GridMirror::known_bounds() const {
+  if (!has_grid_ || known_.empty()) return std::nullopt;
+  const Vec2 lo = geometry_.corner({known_.x0, known_.y0});
+  const Vec2 hi = geometry_.corner({known_.x0 + known_.width, known_.y0 + known_.height});
+  return WorldBox{lo.x, lo.y, hi.x, hi.y};
 }
 
-bool GridMirror::cell_at(Vec2 w, uint8_t* cell) const {
-  if (!has_grid_) return false;
-  const double fx = std::floor((w.x - info_.origin.x) / info_.resolution);
-  const double fy = std::floor((w.y - info_.origin.y) / info_.resolution);
-  if (!(fx >= 0.0 && fy >= 0.0 && fx < info_.width && fy < info_.height)) return false;
-  *cell = cells_[static_cast<size_t>(fy) * info_.width + static_cast<size_t>(fx)];
-  return true;
+std::optional<uint8_t> GridMirror::cell_at(Vec2 w) const {
+  if (!has_grid_) return std::nullopt;
+  const auto c = geometry_.cell_at(w);
+  if (!c) return std::nullopt;
+  return cells_[geometry_.index(*c)];
 }
 
 CellBox GridMirror::take_dirty() {

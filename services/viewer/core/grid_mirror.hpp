@@ -4,18 +4,13 @@
 // updated with that box only. The box of known cells is kept too, so the view can fit the part of
 // the grid that has been mapped rather than its whole (mostly unknown) extent.
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "common/core/result.hpp"
 #include "viewer/core/intake_types.hpp"
 
 namespace slam::viewer {
-
-struct CellBox {
-  uint32_t x0 = 0, y0 = 0, width = 0, height = 0;
-  bool empty() const { return width == 0 || height == 0; }
-  void unite(const CellBox& o);
-};
 
 enum class PatchResult {
   Applied,
@@ -38,12 +33,12 @@ class GridMirror {
   uint64_t version() const { return version_; }
   bool waiting_for_snapshot() const { return waiting_; }
   WorldBox bounds() const;
-  // Map-frame box around every free or occupied cell; false while the whole grid is unknown.
+  // Map-frame box around every free or occupied cell; nothing while the whole grid is unknown.
   // Patches only widen it (a cell that turns unknown again is rare); a snapshot recomputes it.
-  bool known_bounds(WorldBox* box) const;
+  std::optional<WorldBox> known_bounds() const;
 
-  // The cell octet at a map-frame point; false when outside the grid.
-  bool cell_at(Vec2 world, uint8_t* cell) const;
+  // The cell octet at a map-frame point; nothing when outside the grid.
+  std::optional<uint8_t> cell_at(Vec2 world) const;
 
   // Cells changed since the last call (the whole grid after a snapshot), then forgets them.
   CellBox take_dirty();
@@ -57,6 +52,7 @@ class GridMirror {
   uint32_t layout_id_ = 0;
   uint64_t version_ = 0;
   GridInfoData info_;
+  GridGeometry geometry_;  // info_ as the common grid geometry
   std::vector<uint8_t> cells_;
   CellBox dirty_;
   CellBox known_;

@@ -18,10 +18,6 @@ enum class ServiceState : uint8_t { Starting, Running, Stopping };
 const char* goal_mode_name(GoalMode m);
 const char* goal_status_name(GoalStatus s);
 
-struct Pose {
-  double x = 0.0, y = 0.0, theta = 0.0;
-};
-
 struct GridInfoData {
   uint32_t width = 0;
   uint32_t height = 0;

@@ -22,9 +22,4 @@ void ServiceHealth::update(HeartbeatData&& hb, int64_t now_ns) {
   });
 }
 
-size_t ServiceHealth::alive_count(int64_t now_ns) const {
-  return static_cast<size_t>(std::count_if(entries_.begin(), entries_.end(),
-                                           [&](const ServiceEntry& e) { return alive(e, now_ns); }));
-}
-
 }  // namespace slam::viewer

@@ -24,7 +24,6 @@ class ServiceHealth {
   static bool alive(const ServiceEntry& e, int64_t now_ns) {
     return now_ns - e.last_seen_ns < kAliveWindowNs && e.heartbeat.state != ServiceState::Stopping;
   }
-  size_t alive_count(int64_t now_ns) const;
 
  private:
   std::vector<ServiceEntry> entries_;

@@ -39,7 +39,6 @@ class SnapshotSchedule {
 
   uint32_t next_index() const { return next_index_; }
   const std::string& dir() const { return dir_; }
-  int64_t period_ns() const { return period_ns_; }
 
  private:
   std::string in_dir(const std::string& name) const;

@@ -4,14 +4,10 @@
 // tests share one definition of "what is under the cursor".
 #include <string>
 
+#include "common/core/geometry.hpp"
 #include "common/core/result.hpp"
 
 namespace slam::viewer {
-
-struct Vec2 {
-  double x = 0.0;
-  double y = 0.0;
-};
 
 // p' = (a*x + c*y + tx, b*x + d*y + ty): a 2D affine map, column-major like GL's mat3.
 struct Affine2 {
@@ -61,7 +57,6 @@ class ViewTransform {
   // Centres `box` in the viewport at the current rotation with `margin` (0.05 = 5 %) around it.
   void fit(const WorldBox& box, double margin = 0.05);
 
-  Vec2 center() const { return center_; }
   double scale() const { return scale_; }
   double angle() const { return angle_; }
   bool flip_y() const { return flip_y_; }

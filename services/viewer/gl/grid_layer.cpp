@@ -84,7 +84,7 @@ void GridLayer::sync(GridMirror& mirror) {
   glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
   glPixelStorei(GL_UNPACK_SKIP_PIXELS, 0);
   glPixelStorei(GL_UNPACK_SKIP_ROWS, 0);
-  uploaded_cells_ += uint64_t{dirty.width} * dirty.height;
+  uploaded_cells_ += dirty.cells();
 }
 
 void GridLayer::draw(const ViewTransform& view, const GridColors& colors, const GridMirror& mirror) {

@@ -25,9 +25,8 @@ bool inside(const Viewport& vp, Vec2 p) {
 std::optional<WorldBox> content_box(const ViewerState& state) {
   std::optional<WorldBox> content;
   auto add = [&](const WorldBox& b) { content = content ? unite(*content, b) : b; };
-  WorldBox b;
-  if (state.grid.known_bounds(&b)) add(b);
-  if (state.robots.bounds(&b)) add(b);
+  if (const auto known = state.grid.known_bounds()) add(*known);
+  if (WorldBox b; state.robots.bounds(&b)) add(b);
   // A simulated world's walls, when shown: the map then fills in inside a view that already
   // holds the whole world, instead of the view following the exploration.
   if (state.show_world && state.world)

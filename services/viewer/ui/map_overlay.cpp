@@ -140,9 +140,9 @@ void draw_view_bar(ViewerState& state) {
   ImGui::SameLine();
   const ImVec2 m = ImGui::GetIO().MousePos;
   const Vec2 w = state.view.screen_to_world({m.x, m.y});
-  uint8_t cell = 0;
   const char* kStates[] = {"unknown", "free", "occupied", "?"};
-  if (state.grid.cell_at(w, &cell)) {
+  if (const auto octet = state.grid.cell_at(w)) {
+    const uint8_t cell = *octet;
     ImGui::Text("x %.2f  y %.2f  m  | %s%s%s | %.1f px/m", w.x, w.y, kStates[cell & 3],
                 (cell & 4) ? " inflated" : "", (cell & 8) ? " obstructed" : "", state.view.scale());
   } else {

@@ -23,7 +23,7 @@ inline GridConfig small() {
 
 // A robot at the origin seeing a wall at x = 1.03, integrated into `grid` and stored in `store`.
 inline void feed(OccupancyGrid& grid, ObservationStore& store) {
-  std::vector<Point2d> hits;
+  std::vector<Vec2> hits;
   for (int i = -5; i <= 5; ++i) hits.push_back({1.03, 0.1 * i + 0.03});
   ObservationView v;
   v.hits = hits;

@@ -13,8 +13,8 @@ namespace {
 
 TEST(ObservationBatch, KeepsEachObservationsHitsAndMissesApart) {
   ObservationBatch b;
-  const std::vector<Point2d> hits1{{1, 1}, {2, 2}}, misses1{{3, 3}};
-  const std::vector<Point2d> hits2{}, misses2{{4, 4}, {5, 5}};
+  const std::vector<Vec2> hits1{{1, 1}, {2, 2}}, misses1{{3, 3}};
+  const std::vector<Vec2> hits2{}, misses2{{4, 4}, {5, 5}};
   b.add(7, ObservationView{0.5, 0.25, 1.0, true, hits1, misses1});
   b.add(8, ObservationView{-1.0, 2.0, 0.0, false, hits2, misses2});
   std::vector<int64_t> ids;
@@ -46,7 +46,7 @@ TEST(ObservationBatches, DeliversEveryObservationInOrderWithTheBatchesItStartedW
   std::thread producer([&] {
     ObservationBatch* b = batches.take_empty();
     for (int64_t id = 0; id < kCount; ++id) {
-      const std::vector<Point2d> hits(static_cast<size_t>(id % 5), Point2d{static_cast<double>(id), 0.0});
+      const std::vector<Vec2> hits(static_cast<size_t>(id % 5), Vec2{static_cast<double>(id), 0.0});
       b->add(id, ObservationView{static_cast<double>(id), 0.0, 0.0, false, hits, {}});
       if (b->entries.size() == kPerBatch) {
         batches.push_full(b);
@@ -64,7 +64,7 @@ TEST(ObservationBatches, DeliversEveryObservationInOrderWithTheBatchesItStartedW
       EXPECT_EQ(id, next++);
       EXPECT_DOUBLE_EQ(v.x, static_cast<double>(id));
       ASSERT_EQ(v.hits.size(), static_cast<size_t>(id % 5));
-      for (const Point2d& p : v.hits) EXPECT_DOUBLE_EQ(p.x, static_cast<double>(id));
+      for (const Vec2& p : v.hits) EXPECT_DOUBLE_EQ(p.x, static_cast<double>(id));
     });
     batches.give_back(b);
   }

@@ -19,7 +19,7 @@ struct Row {
   int64_t stamp;
   double x, y, theta;
   bool heading;
-  std::vector<Point2d> hits, misses;
+  std::vector<Vec2> hits, misses;
   bool operator==(const Row&) const = default;
 };
 
@@ -58,7 +58,7 @@ TEST(ObservationStore, RoundTripInInsertionOrderAcrossReopen) {
                     0.3,
                     i % 3 == 0,
                     {{1.0 + i, 2.0}, {3.0, 4.0 + 1e-9 * i}},
-                    i % 4 ? std::vector<Point2d>{} : std::vector<Point2d>{{5, 6}}});
+                    i % 4 ? std::vector<Vec2>{} : std::vector<Vec2>{{5, 6}}});
   {
     auto s = ObservationStore::open(path, StoreOptions{7});
     ASSERT_TRUE(s.is_ok()) << s.message();
@@ -118,7 +118,7 @@ TEST(ObservationStore, ObstructionsConfigAndPriorPersist) {
   ASSERT_TRUE(s.is_ok());
   auto obs = s->obstructions();
   ASSERT_TRUE(obs.is_ok());
-  EXPECT_EQ(*obs, (std::vector<Point2d>{{1.25, 2.5}, {-3.0, 4.0}}));
+  EXPECT_EQ(*obs, (std::vector<Vec2>{{1.25, 2.5}, {-3.0, 4.0}}));
   auto loaded = s->load_config();
   ASSERT_TRUE(loaded.is_ok()) << loaded.message();
   ASSERT_TRUE(loaded->has_value());

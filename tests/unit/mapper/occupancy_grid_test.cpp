@@ -31,8 +31,8 @@ OccupancyGrid make(const GridConfig& c = small_config()) {
   return std::move(*g);
 }
 
-Result<IntegrateStats> shoot(OccupancyGrid& g, Point2d from, std::vector<Point2d> hits,
-                             std::vector<Point2d> misses = {}) {
+Result<IntegrateStats> shoot(OccupancyGrid& g, Vec2 from, std::vector<Vec2> hits,
+                             std::vector<Vec2> misses = {}) {
   ObservationView v;
   v.x = from.x;
   v.y = from.y;
@@ -95,7 +95,7 @@ TEST(OccupancyGrid, ThresholdsAreConfigurable) {
 TEST(OccupancyGrid, OneUpdatePerCellPerObservation) {
   OccupancyGrid g = make();
   // Many beams from one origin share the cells near the robot: each cell gets one miss.
-  std::vector<Point2d> misses;
+  std::vector<Vec2> misses;
   for (int i = 0; i < 50; ++i) misses.push_back({8.5, 0.5 + 0.01 * i});
   ASSERT_TRUE(shoot(g, {0.5, 0.5}, {}, misses).is_ok());
   EXPECT_EQ(g.log_odds(1, 0), g.config().log_odds.miss);
@@ -157,7 +157,7 @@ TEST(OccupancyGrid, ObstructionsFlagInflateAndRemove) {
   EXPECT_EQ(g.obstructions().size(), 1u);
   const auto removed = g.unobstruct(3.5, 3.5);
   ASSERT_EQ(removed.size(), 1u);
-  EXPECT_EQ(removed[0], (Point2d{3.2, 3.7}));
+  EXPECT_EQ(removed[0], (Vec2{3.2, 3.7}));
   EXPECT_EQ(g.cell_class(3, 3), kCellUnknown);
   EXPECT_FALSE(g.cell_class(4, 3) & kCellInflated);
   ASSERT_TRUE(g.obstruct(1.5, 1.5).is_ok());
@@ -179,13 +179,16 @@ TEST(OccupancyGrid, GrowsInChunksAndKeepsContents) {
   EXPECT_DOUBLE_EQ(g.origin_x(), -5.0);  // grew by one 5-cell chunk to the left
   EXPECT_EQ(g.width(), 20);              // and one to the right
   EXPECT_EQ(g.height(), 10);
-  int32_t cx = 0, cy = 0;
-  ASSERT_TRUE(g.world_to_cell(5.5, 0.5, &cx, &cy));
-  EXPECT_EQ(state(g, cx, cy), kCellOccupied);
-  ASSERT_TRUE(g.world_to_cell(-3.5, 2.5, &cx, &cy));
-  EXPECT_EQ(state(g, cx, cy), kCellOccupied);
-  ASSERT_TRUE(g.world_to_cell(12.5, 2.5, &cx, &cy));
-  EXPECT_EQ(state(g, cx, cy), kCellOccupied);
+  std::optional<Cell> c;
+  c = g.cell_at({5.5, 0.5});
+  ASSERT_TRUE(c);
+  EXPECT_EQ(state(g, c->x, c->y), kCellOccupied);
+  c = g.cell_at({-3.5, 2.5});
+  ASSERT_TRUE(c);
+  EXPECT_EQ(state(g, c->x, c->y), kCellOccupied);
+  c = g.cell_at({12.5, 2.5});
+  ASSERT_TRUE(c);
+  EXPECT_EQ(state(g, c->x, c->y), kCellOccupied);
   const auto dirty = g.take_dirty();
   ASSERT_TRUE(dirty.has_value());
   EXPECT_EQ(dirty->width, g.width());
@@ -284,7 +287,7 @@ TEST(OccupancyGrid, DirtyBoxCoversChangesAndCopiesBytes) {
   EXPECT_EQ(box->width, 4);
   EXPECT_EQ(box->height, 1);
   std::vector<uint8_t> bytes;
-  g.copy_box(*box, &bytes);
+  g.copy_box(*box, bytes);
   // Radius 0: an occupied cell inflates only itself.
   EXPECT_EQ(bytes, (std::vector<uint8_t>{kCellFree, kCellFree, kCellFree, kCellOccupied | kCellInflated}));
   EXPECT_FALSE(g.take_dirty().has_value());

@@ -29,8 +29,8 @@ void feed(OccupancyGrid& grid, ObservationStore& store) {
   for (int step = 0; step < 40; ++step) {
     const double rx = -1.0 + 0.05 * step;
     const double ry = 0.2 * (step % 3);
-    std::vector<Point2d> hits;
-    std::vector<Point2d> misses;
+    std::vector<Vec2> hits;
+    std::vector<Vec2> misses;
     for (int k = 0; k < 12; ++k) {
       const double wall = 3.0;
       if (k % 4 == 0)
@@ -111,13 +111,16 @@ TEST(Rebuild, NewResolutionKeepsObstructionsAndPrior) {
   ASSERT_TRUE(g.is_ok()) << g.message();
   EXPECT_EQ(stats.observations, 40);
   EXPECT_GT(stats.prior_cells, 0);
-  int32_t cx = 0, cy = 0;
-  ASSERT_TRUE(g->world_to_cell(0.55, 0.55, &cx, &cy));
-  EXPECT_TRUE(g->cell_class(cx, cy) & kCellObstructed);
-  ASSERT_TRUE(g->world_to_cell(3.1, -0.55, &cx, &cy));  // the wall at x = 3 (hits at y = -0.6)
-  EXPECT_EQ(g->cell_class(cx, cy) & kCellStateMask, kCellOccupied);
-  ASSERT_TRUE(g->world_to_cell(-9.5, -9.5, &cx, &cy));  // grew to hold the prior
-  EXPECT_EQ(g->cell_class(cx, cy) & kCellStateMask, kCellOccupied);
+  std::optional<Cell> c;
+  c = g->cell_at({0.55, 0.55});
+  ASSERT_TRUE(c);
+  EXPECT_TRUE(g->cell_class(c->x, c->y) & kCellObstructed);
+  c = g->cell_at({3.1, -0.55});  // the wall at x = 3 (hits at y = -0.6)
+  ASSERT_TRUE(c);
+  EXPECT_EQ(g->cell_class(c->x, c->y) & kCellStateMask, kCellOccupied);
+  c = g->cell_at({-9.5, -9.5});  // grew to hold the prior
+  ASSERT_TRUE(c);
+  EXPECT_EQ(g->cell_class(c->x, c->y) & kCellStateMask, kCellOccupied);
 }
 
 TEST(Rebuild, ResetRobotRemovesItsData) {

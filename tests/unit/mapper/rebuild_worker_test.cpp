@@ -35,9 +35,9 @@ TEST(RebuildWorker, RebuildsOffThreadAndHandsTheGridBackOnce) {
   ASSERT_TRUE(outcome->grid) << outcome->grid.message();
   EXPECT_EQ(outcome->stats.observations, 1);
   EXPECT_DOUBLE_EQ(outcome->grid->resolution(), 0.05);
-  int32_t cx = 0, cy = 0;
-  ASSERT_TRUE(outcome->grid->world_to_cell(1.03, 0.03, &cx, &cy));
-  EXPECT_EQ(outcome->grid->cell_class(cx, cy) & kCellStateMask, kCellOccupied);
+  const std::optional<Cell> c = outcome->grid->cell_at({1.03, 0.03});
+  ASSERT_TRUE(c);
+  EXPECT_EQ(outcome->grid->cell_class(c->x, c->y) & kCellStateMask, kCellOccupied);
   EXPECT_EQ(done.load(), 1);
   EXPECT_FALSE(worker.busy());
   EXPECT_FALSE(worker.take()) << "handed back once";

@@ -135,15 +135,15 @@ class World {
   CellBox sense(Vec2 p) {
     const int r = 5;
     const Cell c = *truth_.cell_at(p);
-    const uint32_t x0 = static_cast<uint32_t>(std::max(0, c.x - r));
-    const uint32_t y0 = static_cast<uint32_t>(std::max(0, c.y - r));
-    const uint32_t x1 = static_cast<uint32_t>(std::min(truth_.width() - 1, c.x + r));
-    const uint32_t y1 = static_cast<uint32_t>(std::min(truth_.height() - 1, c.y + r));
+    const int32_t x0 = std::max(0, c.x - r);
+    const int32_t y0 = std::max(0, c.y - r);
+    const int32_t x1 = std::min(truth_.width() - 1, c.x + r);
+    const int32_t y1 = std::min(truth_.height() - 1, c.y + r);
     CellBox box{x0, y0, x1 - x0 + 1, y1 - y0 + 1};
     std::vector<uint8_t> cells;
-    for (uint32_t y = y0; y <= y1; ++y) {
-      for (uint32_t x = x0; x <= x1; ++x) {
-        const Cell q{static_cast<int32_t>(x), static_cast<int32_t>(y)};
+    for (int32_t y = y0; y <= y1; ++y) {
+      for (int32_t x = x0; x <= x1; ++x) {
+        const Cell q{x, y};
         uint8_t v = map_.at(q);
         bool seen = true;
         walk_segment(truth_.to_grid(p), truth_.to_grid(truth_.centre(q)), [&](Cell k, double) {

@@ -33,9 +33,9 @@ TEST(Frontiers, IncrementalUpdateMatchesRebuild) {
   FrontierMap incremental;
   incremental.rebuild(g);
   for (int step = 0; step < 200; ++step) {
-    const CellBox box{static_cast<uint32_t>(rng() % 45), static_cast<uint32_t>(rng() % 35),
-                      1 + static_cast<uint32_t>(rng() % 5), 1 + static_cast<uint32_t>(rng() % 5)};
-    std::vector<uint8_t> cells(box.width * box.height);
+    const CellBox box{static_cast<int32_t>(rng() % 45), static_cast<int32_t>(rng() % 35),
+                      1 + static_cast<int32_t>(rng() % 5), 1 + static_cast<int32_t>(rng() % 5)};
+    std::vector<uint8_t> cells(box.cells());
     for (auto& c : cells) c = static_cast<uint8_t>(rng() % 100 < 70 ? kCellFree : rng() % 3);
     ASSERT_TRUE(g.apply_patch(1, static_cast<uint64_t>(step + 1), box, cells));
     incremental.update(g, box);

@@ -55,7 +55,7 @@ PlanningGrid random_grid(std::mt19937& rng, int w, int h, double blocked, double
     c = r < blocked ? kCellOccupied : (r < blocked + unknown ? kCellUnknown : kCellFree);
   }
   PlanningGrid g;
-  EXPECT_TRUE(g.reset({static_cast<uint32_t>(w), static_cast<uint32_t>(h), 1.0, {}}, 1, 0, cells));
+  EXPECT_TRUE(g.reset({{}, 1.0, w, h}, 1, 0, cells));
   return g;
 }
 

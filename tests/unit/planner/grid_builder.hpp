@@ -10,12 +10,12 @@ namespace slam::planner::test {
 
 inline PlanningGrid grid_from_art(const std::vector<std::string>& rows, double resolution = 1.0,
                                   Vec2 origin = {0.0, 0.0}) {
-  const auto h = static_cast<uint32_t>(rows.size());
-  const auto w = static_cast<uint32_t>(rows.front().size());
-  std::vector<uint8_t> cells(static_cast<size_t>(w) * h, kCellFree);
-  for (uint32_t r = 0; r < h; ++r) {
-    const uint32_t y = h - 1 - r;
-    for (uint32_t x = 0; x < w; ++x) {
+  const auto h = static_cast<int32_t>(rows.size());
+  const auto w = static_cast<int32_t>(rows.front().size());
+  std::vector<uint8_t> cells(static_cast<size_t>(w) * static_cast<size_t>(h), kCellFree);
+  for (int32_t r = 0; r < h; ++r) {
+    const int32_t y = h - 1 - r;
+    for (int32_t x = 0; x < w; ++x) {
       uint8_t v = kCellFree;
       switch (rows[r][x]) {
         case '#':
@@ -33,18 +33,18 @@ inline PlanningGrid grid_from_art(const std::vector<std::string>& rows, double r
         default:
           break;
       }
-      cells[static_cast<size_t>(y) * w + x] = v;
+      cells[static_cast<size_t>(y) * static_cast<size_t>(w) + static_cast<size_t>(x)] = v;
     }
   }
   PlanningGrid grid;
-  if (!grid.reset(GridGeometry{w, h, resolution, origin}, 1, 0, std::move(cells))) return {};
+  if (!grid.reset(GridGeometry{origin, resolution, w, h}, 1, 0, std::move(cells))) return {};
   return grid;
 }
 
-inline PlanningGrid uniform_grid(uint32_t w, uint32_t h, uint8_t value, double resolution = 1.0) {
+inline PlanningGrid uniform_grid(int32_t w, int32_t h, uint8_t value, double resolution = 1.0) {
+  const GridGeometry geometry{{0.0, 0.0}, resolution, w, h};
   PlanningGrid grid;
-  if (!grid.reset(GridGeometry{w, h, resolution, {0.0, 0.0}}, 1, 0,
-                  std::vector<uint8_t>(static_cast<size_t>(w) * h, value))) {
+  if (!grid.reset(geometry, 1, 0, std::vector<uint8_t>(geometry.cells(), value))) {
     return {};
   }
   return grid;

@@ -93,7 +93,7 @@ TEST(PathReduction, ReducedAstarPathsStayClear) {
     std::vector<uint8_t> raw(40 * 40);
     for (auto& c : raw) c = (rng() % 100) < 25 ? kCellOccupied : kCellFree;
     PlanningGrid g;
-    ASSERT_TRUE(g.reset({40, 40, 0.05, {-1.0, -1.0}}, 1, 0, raw));
+    ASSERT_TRUE(g.reset({{-1.0, -1.0}, 0.05, 40, 40}, 1, 0, raw));
     const Cell s{static_cast<int32_t>(rng() % 40), static_cast<int32_t>(rng() % 40)};
     const Cell t{static_cast<int32_t>(rng() % 40), static_cast<int32_t>(rng() % 40)};
     if (astar.search(g, s, t, {}, cells) != PlanStatus::Ok) continue;

@@ -13,10 +13,10 @@ namespace {
 
 TEST(PlanningGrid, RejectsBadSnapshots) {
   PlanningGrid g;
-  EXPECT_FALSE(g.reset({0, 4, 0.1, {}}, 1, 0, {}));
-  EXPECT_FALSE(g.reset({2, 2, 0.0, {}}, 1, 0, std::vector<uint8_t>(4)));
-  EXPECT_FALSE(g.reset({2, 2, 0.1, {std::nan(""), 0}}, 1, 0, std::vector<uint8_t>(4)));
-  const Status s = g.reset({2, 2, 0.1, {}}, 1, 0, std::vector<uint8_t>(3));
+  EXPECT_FALSE(g.reset({{}, 0.1, 0, 4}, 1, 0, {}));
+  EXPECT_FALSE(g.reset({{}, 0.0, 2, 2}, 1, 0, std::vector<uint8_t>(4)));
+  EXPECT_FALSE(g.reset({{std::nan(""), 0}, 0.1, 2, 2}, 1, 0, std::vector<uint8_t>(4)));
+  const Status s = g.reset({{}, 0.1, 2, 2}, 1, 0, std::vector<uint8_t>(3));
   EXPECT_FALSE(s);
   EXPECT_NE(s.message().find("3 cells, expected 4"), std::string::npos);
   EXPECT_TRUE(g.empty());
@@ -42,7 +42,7 @@ TEST(PlanningGrid, AppliesPatchesInOrderOnly) {
 
 TEST(PlanningGrid, ConvertsCoordinates) {
   PlanningGrid g;
-  ASSERT_TRUE(g.reset({10, 5, 0.5, {-1.0, 2.0}}, 1, 0, std::vector<uint8_t>(50, kCellFree)));
+  ASSERT_TRUE(g.reset({{-1.0, 2.0}, 0.5, 10, 5}, 1, 0, std::vector<uint8_t>(50, kCellFree)));
   EXPECT_EQ(g.cell_at({-1.0, 2.0}).value(), (Cell{0, 0}));
   EXPECT_EQ(g.cell_at({3.99, 4.49}).value(), (Cell{9, 4}));
   EXPECT_FALSE(g.cell_at({4.0, 3.0}));

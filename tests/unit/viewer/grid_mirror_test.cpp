@@ -27,8 +27,7 @@ TEST(GridMirror, SnapshotReplacesAndMarksEverythingDirty) {
   EXPECT_TRUE(m.take_layout_changed());
   EXPECT_FALSE(m.take_layout_changed());
   const CellBox d = m.take_dirty();
-  EXPECT_EQ(d.width, 4u);
-  EXPECT_EQ(d.height, 3u);
+  EXPECT_EQ(d, (CellBox{0, 0, 4, 3}));
   EXPECT_TRUE(m.take_dirty().empty());
   const WorldBox b = m.bounds();
   EXPECT_DOUBLE_EQ(b.min_x, -1.0);
@@ -38,26 +37,27 @@ TEST(GridMirror, SnapshotReplacesAndMarksEverythingDirty) {
 
 TEST(GridMirror, KnownBoundsCoverFreeAndOccupiedCellsAndGrowWithPatches) {
   GridMirror m;
-  WorldBox b;
-  EXPECT_FALSE(m.known_bounds(&b));
+  EXPECT_FALSE(m.known_bounds());
   auto s = snapshot(1, 1);     // 4 x 3 cells of 0.5 m from (-1, -2)
   s.cells[1 * 4 + 1] = 1;      // free at (1, 1)
   s.cells[1 * 4 + 2] = 2 | 4;  // occupied + inflated at (2, 1)
   s.cells[2 * 4 + 3] = 3;      // state 3 is not a known state
   ASSERT_TRUE(m.apply_snapshot(std::move(s)));
-  ASSERT_TRUE(m.known_bounds(&b));
-  EXPECT_DOUBLE_EQ(b.min_x, -0.5);
-  EXPECT_DOUBLE_EQ(b.max_x, 0.5);
-  EXPECT_DOUBLE_EQ(b.min_y, -1.5);
-  EXPECT_DOUBLE_EQ(b.max_y, -1.0);
+  auto b = m.known_bounds();
+  ASSERT_TRUE(b);
+  EXPECT_DOUBLE_EQ(b->min_x, -0.5);
+  EXPECT_DOUBLE_EQ(b->max_x, 0.5);
+  EXPECT_DOUBLE_EQ(b->min_y, -1.5);
+  EXPECT_DOUBLE_EQ(b->max_y, -1.0);
   ASSERT_EQ(m.apply_patch(patch(1, 2, 0, 0, 1, 1, 1)), PatchResult::Applied);
-  ASSERT_TRUE(m.known_bounds(&b));
-  EXPECT_DOUBLE_EQ(b.min_x, -1.0);
-  EXPECT_DOUBLE_EQ(b.min_y, -2.0);
-  EXPECT_DOUBLE_EQ(b.max_x, 0.5);
+  b = m.known_bounds();
+  ASSERT_TRUE(b);
+  EXPECT_DOUBLE_EQ(b->min_x, -1.0);
+  EXPECT_DOUBLE_EQ(b->min_y, -2.0);
+  EXPECT_DOUBLE_EQ(b->max_x, 0.5);
   // A new snapshot with nothing known forgets it.
   ASSERT_TRUE(m.apply_snapshot(snapshot(1, 5)));
-  EXPECT_FALSE(m.known_bounds(&b));
+  EXPECT_FALSE(m.known_bounds());
 }
 
 TEST(GridMirror, RejectsMalformedSnapshots) {
@@ -81,14 +81,9 @@ TEST(GridMirror, InOrderPatchesApplyAndUniteDirtyBoxes) {
   EXPECT_EQ(m.cells()[1 * 4 + 2], 2);
   EXPECT_EQ(m.cells()[2 * 4 + 3], 1);
   const CellBox d = m.take_dirty();
-  EXPECT_EQ(d.x0, 1u);
-  EXPECT_EQ(d.y0, 1u);
-  EXPECT_EQ(d.width, 3u);
-  EXPECT_EQ(d.height, 2u);
-  uint8_t cell = 0;
-  ASSERT_TRUE(m.cell_at({-1.0 + 0.5 * 3.2, -2.0 + 0.5 * 2.1}, &cell));
-  EXPECT_EQ(cell, 1);
-  EXPECT_FALSE(m.cell_at({5.0, 5.0}, &cell));
+  EXPECT_EQ(d, (CellBox{1, 1, 3, 2}));
+  EXPECT_EQ(m.cell_at({-1.0 + 0.5 * 3.2, -2.0 + 0.5 * 2.1}), std::optional<uint8_t>{1});
+  EXPECT_FALSE(m.cell_at({5.0, 5.0}));
 }
 
 TEST(GridMirror, StaleGapAndLayoutChangesAreNotApplied) {
