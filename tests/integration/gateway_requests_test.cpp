@@ -4,59 +4,37 @@
 // is answered with an MqttReply carrying its id.
 #include <gtest/gtest.h>
 
-#include <map>
 #include <memory>
-#include <mutex>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "common/fastdds/fast_topics.hpp"
+#include "fastdds_inbox.hpp"
+#include "mqtt_test_client.hpp"
 #include "process_group.hpp"
-#include "test_mqtt_client.hpp"
 
 namespace slam::testkit {
 namespace {
-
-template <class T>
-T take(Result<T> r) {
-  if (!r) {
-    ADD_FAILURE() << r.message();
-    return T{};
-  }
-  return std::move(*r);
-}
 
 // The viewer's side of the gateway: requests out, replies and traffic in.
 class Operator {
  public:
   explicit Operator(int domain) {
-    participant_ = take(dds::Participant::create(domain, "gateway-requests-test"));
-    requests_ = take(dds::make_writer(*participant_, dds::kMqttRequest));
-    replies_ = take(dds::make_reader(*participant_, dds::kMqttReply, [this](const MqttReply& r, const auto&) {
-      std::lock_guard lock(mutex_);
-      replies_seen_[r.request_id()] = r;
-    }));
-    traffic_ =
-        take(dds::make_reader(*participant_, dds::kMqttTraffic, [this](const MqttTraffic& t, const auto&) {
-          if (t.direction() != MQTT_INBOUND) return;
-          std::lock_guard lock(mutex_);
-          traffic_seen_.push_back(
-              {t.topic().to_string(), std::string(t.payload().begin(), t.payload().end())});
-        }));
-    subscriptions_ = take(dds::make_reader(*participant_, dds::kMqttSubscriptions,
-                                           [this](const MqttSubscriptions& s, const auto&) {
-                                             std::lock_guard lock(mutex_);
-                                             connected_ = s.connected();
-                                           }));
+    auto p = dds::Participant::create(domain, "gateway-requests-test");
+    if (!p) throw std::runtime_error(p.message());
+    participant_ = std::move(*p);
+    requests_ = make_test_writer(*participant_, dds::kMqttRequest);
+    reply_reader_ = make_inbox_reader(*participant_, dds::kMqttReply, replies_);
+    traffic_reader_ = make_inbox_reader(*participant_, dds::kMqttTraffic, traffic_);
+    subscriptions_reader_ = make_inbox_reader(*participant_, dds::kMqttSubscriptions, subscriptions_);
   }
 
-  bool ready() {
-    {
-      std::lock_guard lock(mutex_);
-      if (!connected_) return false;
-    }
-    return requests_->matched_readers() > 0 && replies_->matched_writers() > 0;
+  bool ready() const {
+    const auto latest = subscriptions_.last([](const MqttSubscriptions&) { return true; });
+    return latest && latest->connected() && requests_->matched_readers() > 0 &&
+           reply_reader_->matched_writers() > 0;
   }
   void send(uint64_t id, MqttRequestKind kind, const std::string& topic, const std::string& payload = {},
             uint8_t qos = 1) {
@@ -68,35 +46,28 @@ class Operator {
     r.qos(qos);
     requests_->write(r);
   }
-  std::optional<MqttReply> reply(uint64_t id, std::chrono::milliseconds timeout = 10s) {
-    std::optional<MqttReply> out;
-    wait_until(
-        [&] {
-          std::lock_guard lock(mutex_);
-          const auto it = replies_seen_.find(id);
-          if (it != replies_seen_.end()) out = it->second;
-          return out.has_value();
-        },
-        timeout);
-    return out;
+  std::optional<MqttReply> reply(uint64_t id, std::chrono::milliseconds timeout = 10s) const {
+    return replies_.wait_for([id](const MqttReply& r) { return r.request_id() == id; }, timeout);
   }
-  bool saw_traffic(const std::string& topic, const std::string& payload) {
-    std::lock_guard lock(mutex_);
-    for (const MqttMessage& m : traffic_seen_)
-      if (m.topic == topic && m.payload == payload) return true;
-    return false;
+  // Broker traffic the gateway relayed onto DDS.
+  bool saw_traffic(const std::string& topic, const std::string& payload) const {
+    return traffic_
+        .last([&](const MqttTraffic& t) {
+          return t.direction() == MQTT_INBOUND && t.topic().to_string() == topic &&
+                 std::string(t.payload().begin(), t.payload().end()) == payload;
+        })
+        .has_value();
   }
 
  private:
-  std::mutex mutex_;
-  std::map<uint64_t, MqttReply> replies_seen_;
-  std::vector<MqttMessage> traffic_seen_;
-  bool connected_ = false;
+  Inbox<MqttReply> replies_;
+  Inbox<MqttTraffic> traffic_;
+  Inbox<MqttSubscriptions> subscriptions_;
   std::unique_ptr<dds::Participant> participant_;
   std::unique_ptr<dds::Writer<MqttRequest>> requests_;
-  std::unique_ptr<dds::Reader<MqttReply>> replies_;
-  std::unique_ptr<dds::Reader<MqttTraffic>> traffic_;
-  std::unique_ptr<dds::Reader<MqttSubscriptions>> subscriptions_;
+  std::unique_ptr<dds::Reader<MqttReply>> reply_reader_;
+  std::unique_ptr<dds::Reader<MqttTraffic>> traffic_reader_;
+  std::unique_ptr<dds::Reader<MqttSubscriptions>> subscriptions_reader_;
 };
 
 class GatewayRequestsTest : public ::testing::Test {
@@ -105,7 +76,7 @@ class GatewayRequestsTest : public ::testing::Test {
     group.start("gateway", {bin_path("slam-gateway"), "--domain", std::to_string(domain.id()), "--broker",
                             url, "--reconnect-max-s", "1"});
     ASSERT_TRUE(wait_until([&] { return op.ready(); }, 20s)) << group.log("gateway");
-    ASSERT_TRUE(client.connect());
+    ASSERT_EQ(client.connect(), 0);
   }
   void TearDown() override {
     if (HasFailure()) std::cerr << "gateway log:\n" << group.log("gateway") << "\n";
@@ -130,7 +101,7 @@ class GatewayRequestsTest : public ::testing::Test {
   int port = group.start_mosquitto();
   std::string url = "tcp://127.0.0.1:" + std::to_string(port);
   Operator op{domain.id()};
-  TestMqttClient client{url, "gateway-requests-client"};
+  MqttTestClient client{port, "gateway-requests-client"};
 };
 
 TEST_F(GatewayRequestsTest, PublishReachesASubscribedClientWithTheExactPayload) {

@@ -4,17 +4,16 @@
 // its log and delivers nothing.
 #include <gtest/gtest.h>
 
-#include <algorithm>
 #include <fstream>
 #include <memory>
-#include <mutex>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "common/fastdds/fast_topics.hpp"
+#include "fastdds_inbox.hpp"
+#include "mqtt_test_client.hpp"
 #include "process_group.hpp"
-#include "test_mqtt_client.hpp"
 
 namespace slam::testkit {
 namespace {
@@ -44,20 +43,8 @@ class GatewayTlsTest : public ::testing::Test {
     auto p = dds::Participant::create(domain.id(), "gateway-tls-test");
     ASSERT_TRUE(p) << p.message();
     participant = std::move(*p);
-    auto observations = dds::make_reader(*participant, dds::kRobotObservation,
-                                         [this](const RobotObservation& o, const auto&) {
-                                           std::lock_guard lock(mutex);
-                                           seen.push_back(o.robot_id().to_string());
-                                         });
-    ASSERT_TRUE(observations) << observations.message();
-    observation_reader = std::move(*observations);
-    auto subscriptions = dds::make_reader(*participant, dds::kMqttSubscriptions,
-                                          [this](const MqttSubscriptions& s, const auto&) {
-                                            std::lock_guard lock(mutex);
-                                            connected = s.connected();
-                                          });
-    ASSERT_TRUE(subscriptions) << subscriptions.message();
-    subscription_reader = std::move(*subscriptions);
+    observation_reader = make_inbox_reader(*participant, dds::kRobotObservation, observations_seen);
+    subscription_reader = make_inbox_reader(*participant, dds::kMqttSubscriptions, subscriptions_seen);
   }
   void TearDown() override {
     if (HasFailure()) std::cerr << "gateway log:\n" << group.log("gateway") << "\n";
@@ -95,13 +82,14 @@ class GatewayTlsTest : public ::testing::Test {
     group.start("gateway", argv);
   }
   std::string broker() const { return "ssl://127.0.0.1:" + std::to_string(port); }
-  bool gateway_connected() {
-    std::lock_guard lock(mutex);
-    return connected;
+  bool gateway_connected() const {
+    const auto latest = subscriptions_seen.last([](const MqttSubscriptions&) { return true; });
+    return latest && latest->connected();
   }
-  size_t observations(const std::string& robot) {
-    std::lock_guard lock(mutex);
-    return static_cast<size_t>(std::count(seen.begin(), seen.end(), robot));
+  bool observed(const std::string& robot) const {
+    return observations_seen
+        .last([&](const RobotObservation& o) { return o.robot_id().to_string() == robot; })
+        .has_value();
   }
   // Gateway log lines naming the broker; `problems_only`: warnings and errors only.
   size_t broker_lines(bool problems_only) {
@@ -119,25 +107,24 @@ class GatewayTlsTest : public ::testing::Test {
   ProcessGroup group;
   std::string dir = group.dir();
   int port = 0;
+  Inbox<RobotObservation> observations_seen;
+  Inbox<MqttSubscriptions> subscriptions_seen;
   std::unique_ptr<dds::Participant> participant;
   std::unique_ptr<dds::Reader<RobotObservation>> observation_reader;
   std::unique_ptr<dds::Reader<MqttSubscriptions>> subscription_reader;
-  std::mutex mutex;
-  std::vector<std::string> seen;
-  bool connected = false;
 };
 
 TEST_F(GatewayTlsTest, RobotMessageOverTlsReachesDds) {
   start_gateway(dir + "/ca.crt");
   ASSERT_TRUE(wait_until([&] { return gateway_connected(); }, 20s)) << "gateway never connected over TLS";
 
-  TestMqttClient robot(broker(), "tls-robot");
-  ASSERT_TRUE(robot.connect(dir + "/ca.crt")) << "the robot's TLS connection failed";
+  MqttTestClient robot(broker(), "tls-robot", dir + "/ca.crt");
+  ASSERT_EQ(robot.connect(), 0) << "the robot's TLS connection failed";
   // The gateway's subscription may still be on its way to the broker: send until it arrives.
   ASSERT_TRUE(wait_until(
       [&] {
         EXPECT_TRUE(robot.publish("v1/robot/tls1/adv", kAdv));
-        return wait_until([&] { return observations("tls1") > 0; }, 300ms);
+        return wait_until([&] { return observed("tls1"); }, 300ms);
       },
       15s));
 }
@@ -147,8 +134,8 @@ TEST_F(GatewayTlsTest, GatewayRefusesABrokerItsCaDidNotSign) {
   ASSERT_TRUE(wait_until([&] { return broker_lines(true) >= 1; }, 20s)) << "no failed connection logged";
 
   // The broker itself is fine: a robot trusting the right CA gets through to it.
-  TestMqttClient robot(broker(), "tls-robot");
-  ASSERT_TRUE(robot.connect(dir + "/ca.crt"));
+  MqttTestClient robot(broker(), "tls-robot", dir + "/ca.crt");
+  ASSERT_EQ(robot.connect(), 0);
   ASSERT_TRUE(robot.publish("v1/robot/tls2/adv", kAdv));
   // Two more attempts (each logs a line naming the broker; backoff at most 1 s) after the robot's
   // message, and still nothing came through.
@@ -156,7 +143,7 @@ TEST_F(GatewayTlsTest, GatewayRefusesABrokerItsCaDidNotSign) {
   ASSERT_TRUE(wait_until([&] { return broker_lines(false) >= before + 2; }, 20s));
   EXPECT_TRUE(group.running("gateway"));
   EXPECT_FALSE(gateway_connected());
-  EXPECT_EQ(observations("tls2"), 0u);
+  EXPECT_FALSE(observed("tls2"));
 }
 
 }  // namespace

@@ -5,11 +5,11 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
-#include <mutex>
 #include <string>
 #include <thread>
 #include <vector>
 
+#include "inbox.hpp"
 #include "process_group.hpp"
 
 namespace slam::mqtt {
@@ -35,8 +35,7 @@ class Peer {
     options.reconnect_max_s = 0.5;
     Callbacks callbacks;
     callbacks.message = [this](std::string_view topic, std::span<const std::uint8_t> payload) {
-      std::lock_guard lock(mutex_);
-      received_.push_back(std::string(topic) + "=" + std::string(payload.begin(), payload.end()));
+      received_.push(std::string(topic) + "=" + std::string(payload.begin(), payload.end()));
     };
     callbacks.connected = [this](bool reconnect) {
       if (reconnect) ++reconnect_callbacks_;
@@ -58,19 +57,16 @@ class Peer {
   }
 
   Connection& connection() { return *connection_; }
-  bool received(const std::string& entry) {
-    std::lock_guard lock(mutex_);
-    for (const std::string& r : received_)
-      if (r == entry) return true;
-    return false;
+  bool received(const std::string& entry) const {
+    return received_.last([&](const std::string& r) { return r == entry; }).has_value();
   }
   int reconnect_callbacks() const { return reconnect_callbacks_; }
   int lost_callbacks() const { return lost_callbacks_; }
 
  private:
+  // Declared first: it outlives the connection, whose callbacks feed it.
+  testkit::Inbox<std::string> received_;
   std::unique_ptr<Connection> connection_;
-  std::mutex mutex_;
-  std::vector<std::string> received_;
   std::atomic<int> reconnect_callbacks_{0};
   std::atomic<int> lost_callbacks_{0};
   std::atomic<bool> stop_{false};

@@ -7,16 +7,16 @@
 #include <cmath>
 #include <map>
 #include <memory>
-#include <mutex>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "common/fastdds/fast_topics.hpp"
+#include "fastdds_inbox.hpp"
+#include "mqtt_test_client.hpp"
 #include "process_group.hpp"
 #include "protocol/v1_codec.hpp"
 #include "simulator/builtin_worlds.hpp"
-#include "test_mqtt_client.hpp"
 
 namespace slam::testkit {
 namespace {
@@ -70,18 +70,11 @@ class SimulatorRangeNoiseTest : public ::testing::Test {
     auto p = dds::Participant::create(domain.id(), "sim-noise-test");
     ASSERT_TRUE(p) << p.message();
     participant = std::move(*p);
-    auto w = dds::make_writer(*participant, dds::kSimControl);
-    ASSERT_TRUE(w) << w.message();
-    controls = std::move(*w);
-    auto r = dds::make_reader(*participant, dds::kSimReply, [this](const SimReply& reply, const auto&) {
-      std::lock_guard lock(mutex);
-      replies[reply.command_id()] = reply;
-    });
-    ASSERT_TRUE(r) << r.message();
-    reply_reader = std::move(*r);
+    controls = make_test_writer(*participant, dds::kSimControl);
+    reply_reader = make_inbox_reader(*participant, dds::kSimReply, replies);
     ASSERT_TRUE(controls->wait_for_readers(20s)) << group.log("simulator");
     ASSERT_TRUE(reply_reader->wait_for_writers(20s)) << group.log("simulator");
-    ASSERT_TRUE(mqtt.connect());
+    ASSERT_EQ(mqtt.connect(), 0);
     ASSERT_TRUE(mqtt.subscribe("v1/robot/+/adv"));
     // Matching is not symmetric at once: resend a harmless command until the simulator answers it,
     // so the test's own commands are not written before the simulator's reader knows this writer.
@@ -91,12 +84,7 @@ class SimulatorRangeNoiseTest : public ::testing::Test {
     ASSERT_TRUE(wait_until(
         [&] {
           controls->write(resume);
-          return wait_until(
-              [&] {
-                std::lock_guard lock(mutex);
-                return replies.count(kHandshakeId) > 0;
-              },
-              300ms);
+          return reply(kHandshakeId, 300ms).has_value();
         },
         20s))
         << group.log("simulator");
@@ -105,16 +93,8 @@ class SimulatorRangeNoiseTest : public ::testing::Test {
     if (HasFailure()) std::cerr << "simulator log:\n" << group.log("simulator") << "\n";
   }
 
-  std::optional<SimReply> reply(uint64_t id) {
-    std::optional<SimReply> out;
-    wait_until(
-        [&] {
-          std::lock_guard lock(mutex);
-          if (const auto it = replies.find(id); it != replies.end()) out = it->second;
-          return out.has_value();
-        },
-        10s);
-    return out;
+  std::optional<SimReply> reply(uint64_t id, std::chrono::milliseconds timeout = 10s) const {
+    return replies.wait_for([id](const SimReply& r) { return r.command_id() == id; }, timeout);
   }
   // The `messages` advs that arrive after the next `skip` ones.
   std::vector<MqttMessage> collect(size_t skip, size_t messages) {
@@ -127,12 +107,11 @@ class SimulatorRangeNoiseTest : public ::testing::Test {
   DomainLease domain;
   ProcessGroup group;
   int port = group.start_mosquitto();
-  TestMqttClient mqtt{"tcp://127.0.0.1:" + std::to_string(port), "sim-noise-test"};
+  MqttTestClient mqtt{port, "sim-noise-test"};
   std::unique_ptr<dds::Participant> participant;
   std::unique_ptr<dds::Writer<SimControl>> controls;
+  Inbox<SimReply> replies;
   std::unique_ptr<dds::Reader<SimReply>> reply_reader;
-  std::mutex mutex;
-  std::map<uint64_t, SimReply> replies;
 };
 
 TEST_F(SimulatorRangeNoiseTest, PointsLieOnTheWallsWithoutNoiseAndScatterWithTheRequestedSd) {

@@ -7,7 +7,6 @@
 #include <cmath>
 #include <filesystem>
 #include <memory>
-#include <mutex>
 #include <optional>
 #include <sstream>
 #include <stdexcept>
@@ -15,6 +14,7 @@
 #include <vector>
 
 #include "common/fastdds/fast_topics.hpp"
+#include "fastdds_inbox.hpp"
 #include "process_group.hpp"
 
 namespace slam::testkit {
@@ -31,50 +31,32 @@ struct CtlRun {
 class Effects {
  public:
   explicit Effects(int domain) {
-    participant_ = value(dds::Participant::create(domain, "slamctl-test"));
-    truth_ = value(
-        dds::make_reader(*participant_, dds::kSimGroundTruth, [this](const SimGroundTruth& t, const auto&) {
-          std::lock_guard lock(mutex_);
-          truth_seen_ = t;
-        }));
-    replies_ = value(dds::make_reader(*participant_, dds::kMapReply, [this](const MapReply& r, const auto&) {
-      std::lock_guard lock(mutex_);
-      map_replies_.push_back(r);
-    }));
-    snapshots_ =
-        value(dds::make_reader(*participant_, dds::kGridSnapshot, [this](const GridSnapshot& s, const auto&) {
-          std::lock_guard lock(mutex_);
-          resolution_ = s.info().resolution();
-        }));
+    auto p = dds::Participant::create(domain, "slamctl-test");
+    if (!p) throw std::runtime_error(p.message());
+    participant_ = std::move(*p);
+    truth_reader_ = make_inbox_reader(*participant_, dds::kSimGroundTruth, truths_);
+    reply_reader_ = make_inbox_reader(*participant_, dds::kMapReply, replies_);
+    snapshot_reader_ = make_inbox_reader(*participant_, dds::kGridSnapshot, snapshots_);
   }
-  std::optional<SimGroundTruth> truth() {
-    std::lock_guard lock(mutex_);
-    return truth_seen_;
+  std::optional<SimGroundTruth> truth() const { return truths_.last(any); }
+  std::vector<MapReply> map_replies() const { return replies_.items(); }
+  // The latest snapshot's resolution; 0 before any snapshot.
+  double resolution() const {
+    const auto latest = snapshots_.last(any);
+    return latest ? latest->info().resolution() : 0.0;
   }
-  std::vector<MapReply> map_replies() {
-    std::lock_guard lock(mutex_);
-    return map_replies_;
-  }
-  double resolution() {
-    std::lock_guard lock(mutex_);
-    return resolution_;
-  }
-  bool map_replies_matched() { return replies_->matched_writers() > 0; }
+  bool map_replies_matched() const { return reply_reader_->matched_writers() > 0; }
 
  private:
-  template <class T>
-  static T value(Result<T> r) {
-    if (!r) throw std::runtime_error(r.message());
-    return std::move(*r);
-  }
-  std::mutex mutex_;
-  std::optional<SimGroundTruth> truth_seen_;
-  std::vector<MapReply> map_replies_;
-  double resolution_ = 0.0;
+  static constexpr auto any = [](const auto&) { return true; };
+
+  Inbox<SimGroundTruth> truths_;
+  Inbox<MapReply> replies_;
+  Inbox<GridSnapshot> snapshots_;
   std::unique_ptr<dds::Participant> participant_;
-  std::unique_ptr<dds::Reader<SimGroundTruth>> truth_;
-  std::unique_ptr<dds::Reader<MapReply>> replies_;
-  std::unique_ptr<dds::Reader<GridSnapshot>> snapshots_;
+  std::unique_ptr<dds::Reader<SimGroundTruth>> truth_reader_;
+  std::unique_ptr<dds::Reader<MapReply>> reply_reader_;
+  std::unique_ptr<dds::Reader<GridSnapshot>> snapshot_reader_;
 };
 
 class SlamctlTest : public ::testing::Test {

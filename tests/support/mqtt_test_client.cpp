@@ -1,11 +1,15 @@
 #include "mqtt_test_client.hpp"
 
 #include <stdexcept>
+#include <utility>
 
 namespace slam::testkit {
 
-MqttTestClient::MqttTestClient(int port, const std::string& client_id) {
-  const std::string url = "tcp://127.0.0.1:" + std::to_string(port);
+MqttTestClient::MqttTestClient(int port, const std::string& client_id)
+    : MqttTestClient("tcp://127.0.0.1:" + std::to_string(port), client_id) {}
+
+MqttTestClient::MqttTestClient(const std::string& url, const std::string& client_id, std::string ca_file)
+    : ca_file_(std::move(ca_file)) {
   if (MQTTClient_create(&client_, url.c_str(), client_id.c_str(), MQTTCLIENT_PERSISTENCE_NONE, nullptr) !=
       MQTTCLIENT_SUCCESS)
     throw std::runtime_error("MQTTClient_create failed for " + client_id);
@@ -25,6 +29,12 @@ int MqttTestClient::connect(const std::string& user, const std::string& password
   options.connectTimeout = 2;
   if (!user.empty()) options.username = user.c_str();
   if (!password.empty()) options.password = password.c_str();
+  MQTTClient_SSLOptions ssl = MQTTClient_SSLOptions_initializer;
+  if (!ca_file_.empty()) {
+    ssl.trustStore = ca_file_.c_str();
+    ssl.enableServerCertAuth = 1;
+    options.ssl = &ssl;
+  }
   return MQTTClient_connect(client_, &options);
 }
 

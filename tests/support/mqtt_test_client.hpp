@@ -1,6 +1,7 @@
 #pragma once
-// A small synchronous paho client for tests and benches: connect, subscribe, publish, and the
-// messages that arrived, recorded on paho's thread and waited on by the caller.
+// A small synchronous paho client for tests and benches: connect (tcp:// or, with a CA file,
+// ssl://), subscribe, publish, and the messages that arrived, recorded on paho's thread and waited
+// on by the caller.
 #include <MQTTClient.h>
 
 #include <chrono>
@@ -25,6 +26,9 @@ class MqttTestClient {
  public:
   // A client of the broker on 127.0.0.1:`port`; throws when paho cannot create it.
   MqttTestClient(int port, const std::string& client_id);
+  // A client of the broker at `url` (tcp:// or ssl://); with `ca_file` non-empty, connect() speaks
+  // TLS and verifies the broker's certificate with that CA. Throws when paho cannot create it.
+  MqttTestClient(const std::string& url, const std::string& client_id, std::string ca_file = {});
   ~MqttTestClient();
   MqttTestClient(const MqttTestClient&) = delete;
   MqttTestClient& operator=(const MqttTestClient&) = delete;
@@ -52,6 +56,7 @@ class MqttTestClient {
   static int arrived(void* self, char* topic, int topic_len, MQTTClient_message* message);
 
   MQTTClient client_ = nullptr;
+  std::string ca_file_;
   Inbox<MqttMessage> inbox_;
   size_t next_index_ = 0;
 };

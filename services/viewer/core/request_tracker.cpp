@@ -22,7 +22,10 @@ void RequestTracker::tick(int64_t now_ns) {
 }
 
 std::string describe(const RequestOutcome& r) {
-  std::string s = "#" + std::to_string(r.id) + " " + r.what + ": ";
+  // Appended piecewise: "#" + std::to_string(...) trips GCC 12's false -Wrestrict.
+  std::string s = "#";
+  s += std::to_string(r.id);
+  s += " " + r.what + ": ";
   switch (r.state) {
     case RequestState::Waiting:
       return s + "waiting for the reply";
