@@ -58,29 +58,29 @@ GatewayNode::GatewayNode(const GatewayOptions& options, Counters& counters)
 
 Result<std::unique_ptr<GatewayNode>> GatewayNode::create(const GatewayOptions& options, Counters& counters) {
   std::unique_ptr<GatewayNode> node(new GatewayNode(options, counters));
-  if (auto s = node->configure(); !s) return Error{s.message()};
+  SLAM_TRY(node->configure());
   return node;
 }
 
 Status GatewayNode::configure() {
   auto participant = dds::Participant::create(options_.service.domain, "slam-gateway");
-  if (!participant) return Error{participant.message()};
+  if (!participant) return participant.error();
   participant_ = std::move(*participant);
 
   auto observations = dds::make_writer(*participant_, dds::kRobotObservation);
-  if (!observations) return Error{observations.message()};
+  if (!observations) return observations.error();
   observation_writer_ = std::move(*observations);
   auto states = dds::make_writer(*participant_, dds::kRobotState);
-  if (!states) return Error{states.message()};
+  if (!states) return states.error();
   state_writer_ = std::move(*states);
   auto subscriptions = dds::make_writer(*participant_, dds::kMqttSubscriptions);
-  if (!subscriptions) return Error{subscriptions.message()};
+  if (!subscriptions) return subscriptions.error();
   subscriptions_writer_ = std::move(*subscriptions);
   auto replies = dds::make_writer(*participant_, dds::kMqttReply);
-  if (!replies) return Error{replies.message()};
+  if (!replies) return replies.error();
   reply_writer_ = std::move(*replies);
   auto traffic = TrafficPublisher::start(*participant_, traffic_, metrics_.write_failures);
-  if (!traffic) return Error{traffic.message()};
+  if (!traffic) return traffic.error();
   traffic_publisher_ = std::move(*traffic);
 
   mqtt::ConnectionOptions connection = options_.mqtt;
@@ -91,17 +91,17 @@ Status GatewayNode::configure() {
     on_mqtt_message(topic, payload);
   };
   auto mqtt = mqtt::Connection::create(std::move(connection), std::move(callbacks));
-  if (!mqtt) return Error{mqtt.message()};
+  if (!mqtt) return mqtt.error();
   mqtt_ = std::move(*mqtt);
 
   // Readers last: their callbacks publish through the MQTT client.
   auto waypoints = dds::make_reader(*participant_, dds::kWaypointCommand,
                                     [this](const slam::WaypointCommand& c, const auto&) { on_waypoint(c); });
-  if (!waypoints) return Error{waypoints.message()};
+  if (!waypoints) return waypoints.error();
   waypoint_reader_ = std::move(*waypoints);
   auto requests = dds::make_reader(*participant_, dds::kMqttRequest,
                                    [this](const slam::MqttRequest& r, const auto&) { on_request(r); });
-  if (!requests) return Error{requests.message()};
+  if (!requests) return requests.error();
   request_reader_ = std::move(*requests);
 
   spdlog::info("gateway ready on domain {}: broker {} as '{}', QoS {}, {} session, {} filter(s)",

@@ -12,7 +12,7 @@ Result<std::unique_ptr<TrafficPublisher>> TrafficPublisher::start(dds::Participa
                                                                   std::atomic<int64_t>& write_failures) {
   std::unique_ptr<TrafficPublisher> p(new TrafficPublisher(queue, write_failures));
   auto writer = dds::make_writer(participant, dds::kMqttTraffic);
-  if (!writer) return Error{writer.message()};
+  if (!writer) return writer.error();
   p->writer_ = std::move(*writer);
   p->thread_ = std::thread([raw = p.get()] { raw->run(); });
   return p;

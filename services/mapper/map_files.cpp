@@ -38,7 +38,7 @@ Result<ObservationStore> open_store(const std::filesystem::path& path, StoreOpti
 
 Result<GridConfig> startup_config(const GridConfig& defaults, ObservationStore& store) {
   auto stored = store.load_config();
-  if (!stored) return Error{stored.message()};
+  if (!stored) return stored.error();
   GridConfig config = defaults;
   if (stored->has_value()) {
     const GridConfig& s = **stored;

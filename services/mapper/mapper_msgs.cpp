@@ -43,7 +43,7 @@ Result<GridConfig> requested_config(const slam::GridConfig& request, const GridC
   if (!(request.inflation_radius() < 0.0))
     c.inflation_radius = request.inflation_radius();  // NaN: validated below
   c.legacy_mode = request.legacy_mode();
-  if (Status s = validate(c); !s) return Error{s.message()};
+  if (Status s = validate(c); !s) return s.error();
   return c;
 }
 

@@ -73,20 +73,20 @@ MapperNode::~MapperNode() {
 
 Result<std::unique_ptr<MapperNode>> MapperNode::create(const MapperOptions& options, Counters& counters) {
   std::unique_ptr<MapperNode> node(new MapperNode(options, counters));
-  if (auto s = node->configure(); !s) return Error{s.message()};
+  SLAM_TRY(node->configure());
   return node;
 }
 
 Status MapperNode::configure() {
   auto store = open_store(options_.store, StoreOptions{options_.store_batch});
-  if (!store) return Error{store.message()};
+  if (!store) return store.error();
   store_.emplace(std::move(*store));
   auto config = startup_config(options_.grid, *store_);
-  if (!config) return Error{config.message()};
+  if (!config) return config.error();
   const auto started = std::chrono::steady_clock::now();
   RebuildStats stats;
   auto grid = rebuild_grid(*config, *store_, &stats);
-  if (!grid) return Error{grid.message()};
+  if (!grid) return grid.error();
   grid_.emplace(std::move(*grid));
   const auto took = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   spdlog::info(
@@ -96,7 +96,7 @@ Status MapperNode::configure() {
   if (stats.rejected > 0)
     spdlog::warn("store: {} observations rejected: {}", stats.rejected, stats.first_error);
   auto count = store_->count();
-  if (!count) return Error{count.message()};
+  if (!count) return count.error();
   metrics_.store_observations.store(*count);
   update_periodic_counters();
 
@@ -106,16 +106,16 @@ Status MapperNode::configure() {
   (void)grid_->take_dirty();
 
   auto participant = dds::Participant::create(options_.service.domain, "slam-mapper");
-  if (!participant) return Error{participant.message()};
+  if (!participant) return participant.error();
   participant_ = std::move(*participant);
   auto snapshots = dds::make_writer(*participant_, dds::kGridSnapshot);
-  if (!snapshots) return Error{snapshots.message()};
+  if (!snapshots) return snapshots.error();
   snapshot_writer_ = std::move(*snapshots);
   auto patches = dds::make_writer(*participant_, dds::kGridPatch);
-  if (!patches) return Error{patches.message()};
+  if (!patches) return patches.error();
   patch_writer_ = std::move(*patches);
   auto replies = dds::make_writer(*participant_, dds::kMapReply);
-  if (!replies) return Error{replies.message()};
+  if (!replies) return replies.error();
   reply_writer_ = std::move(*replies);
   publish_snapshot(false);
 
@@ -123,21 +123,21 @@ Status MapperNode::configure() {
   auto observations =
       dds::make_reader(*participant_, dds::kRobotObservation,
                        [this](const slam::RobotObservation& o, const auto&) { intake_.push(o); });
-  if (!observations) return Error{observations.message()};
+  if (!observations) return observations.error();
   observation_reader_ = std::move(*observations);
   auto configs =
       dds::make_reader(*participant_, dds::kGridConfig,
                        [this](const slam::GridConfig& c, const auto&) { intake_.push(MapCommand{c}); });
-  if (!configs) return Error{configs.message()};
+  if (!configs) return configs.error();
   config_reader_ = std::move(*configs);
   auto edits = dds::make_reader(*participant_, dds::kMapEdit,
                                 [this](const slam::MapEdit& e, const auto&) { intake_.push(MapCommand{e}); });
-  if (!edits) return Error{edits.message()};
+  if (!edits) return edits.error();
   edit_reader_ = std::move(*edits);
   auto files =
       dds::make_reader(*participant_, dds::kMapFileRequest,
                        [this](const slam::MapFileRequest& r, const auto&) { intake_.push(MapCommand{r}); });
-  if (!files) return Error{files.message()};
+  if (!files) return files.error();
   file_reader_ = std::move(*files);
 
   next_tick_ = std::chrono::steady_clock::now() + patch_period_;

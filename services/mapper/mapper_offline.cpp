@@ -12,10 +12,10 @@ namespace {
 
 Result<std::string> export_store(const MapperOptions& o, ObservationStore& store) {
   auto config = startup_config(o.grid, store);
-  if (!config) return Error{config.message()};
+  if (!config) return config.error();
   RebuildStats stats;
   auto grid = rebuild_grid(*config, store, &stats);
-  if (!grid) return Error{grid.message()};
+  if (!grid) return grid.error();
   FileOutcome out = export_map_file(*grid, o.export_yaml);
   if (!out.ok()) return Error{out.message};
   std::string summary = out.message + " (" + std::to_string(stats.observations) + " observations";
@@ -27,7 +27,7 @@ Result<std::string> export_store(const MapperOptions& o, ObservationStore& store
 Result<std::string> import_prior(const MapperOptions& o, ObservationStore& store) {
   FileOutcome in = read_map_file(o.import_yaml);
   if (!in.ok()) return Error{in.message};
-  if (Status s = store.save_prior(*in.image); !s) return Error{s.message()};
+  if (Status s = store.save_prior(*in.image); !s) return s.error();
   return in.message + "; stored as the prior of " + o.store;
 }
 
@@ -38,7 +38,7 @@ Result<std::string> run_offline(const MapperOptions& o) {
   if (!o.export_yaml.empty() && !std::filesystem::is_regular_file(o.store, ec))
     return Error{"observation store " + o.store + ": no such file (nothing to export)"};
   auto store = open_store(o.store, StoreOptions{o.store_batch});
-  if (!store) return Error{store.message()};
+  if (!store) return store.error();
   return o.export_yaml.empty() ? import_prior(o, *store) : export_store(o, *store);
 }
 

@@ -107,21 +107,20 @@ Result<ObservationStore> ObservationStore::open(const std::filesystem::path& pat
   if (rc != SQLITE_OK) return store.db_error("cannot open");
   sqlite3_busy_timeout(raw, 2000);
   // The first statements read the header: a corrupt file or a non-database fails here.
-  if (Status s = store.exec("PRAGMA journal_mode=WAL; PRAGMA synchronous=NORMAL;"); !s)
-    return Error{s.message()};
+  if (Status s = store.exec("PRAGMA journal_mode=WAL; PRAGMA synchronous=NORMAL;"); !s) return s.error();
   auto version = store.prepare("PRAGMA user_version");
-  if (!version) return Error{version.message()};
+  if (!version) return version.error();
   if (sqlite3_step(version->get()) != SQLITE_ROW) return store.db_error("cannot read schema version");
   const int found = sqlite3_column_int(version->get(), 0);
   if (found > kSchemaVersion)
     return Error{"observation store " + path.string() + ": schema version " + std::to_string(found) +
                  " is newer than this program's " + std::to_string(kSchemaVersion)};
-  if (Status s = store.exec(kSchema); !s) return Error{s.message()};
-  if (Status s = store.exec("PRAGMA user_version=1"); !s) return Error{s.message()};
+  if (Status s = store.exec(kSchema); !s) return s.error();
+  if (Status s = store.exec("PRAGMA user_version=1"); !s) return s.error();
   auto insert = store.prepare(
       "INSERT INTO observations(robot, seq, stamp_ns, x, y, theta, has_heading, hits, misses) "
       "VALUES(?, ?, ?, ?, ?, ?, ?, ?, ?)");
-  if (!insert) return Error{insert.message()};
+  if (!insert) return insert.error();
   store.insert_ = std::move(*insert);
   return store;
 }
@@ -196,15 +195,15 @@ Status ObservationStore::for_each(const std::function<void(const ObservationReco
 
 Result<int64_t> ObservationStore::count() {
   auto q = prepare("SELECT count(*) FROM observations");
-  if (!q) return Error{q.message()};
+  if (!q) return q.error();
   if (sqlite3_step(q->get()) != SQLITE_ROW) return db_error("count");
   return static_cast<int64_t>(sqlite3_column_int64(q->get(), 0));
 }
 
 Result<int64_t> ObservationStore::delete_robot(std::string_view robot_id) {
-  if (Status s = flush(); !s) return Error{s.message()};
+  if (Status s = flush(); !s) return s.error();
   auto q = prepare("DELETE FROM observations WHERE robot = ?");
-  if (!q) return Error{q.message()};
+  if (!q) return q.error();
   sqlite3_bind_text(q->get(), 1, robot_id.data(), static_cast<int>(robot_id.size()), SQLITE_STATIC);
   if (sqlite3_step(q->get()) != SQLITE_DONE) return db_error("delete robot");
   return static_cast<int64_t>(sqlite3_changes(db_.get()));
@@ -237,7 +236,7 @@ Status ObservationStore::clear_obstructions() {
 
 Result<std::vector<Vec2>> ObservationStore::obstructions() {
   auto q = prepare("SELECT x, y FROM obstructions ORDER BY rowid");
-  if (!q) return Error{q.message()};
+  if (!q) return q.error();
   std::vector<Vec2> out;
   int rc = SQLITE_ROW;
   while ((rc = sqlite3_step(q->get())) == SQLITE_ROW)
@@ -270,7 +269,7 @@ Status ObservationStore::save_config(const GridConfig& config) {
 
 Result<std::optional<GridConfig>> ObservationStore::load_config() {
   auto q = prepare("SELECT key, value FROM config");
-  if (!q) return Error{q.message()};
+  if (!q) return q.error();
   GridConfig config;
   bool any = false;
   int rc = SQLITE_ROW;
@@ -326,7 +325,7 @@ Status ObservationStore::clear_prior() {
 Result<std::optional<MapImage>> ObservationStore::load_prior() {
   auto q = prepare(
       "SELECT width, height, resolution, origin_x, origin_y, origin_yaw, cells FROM prior WHERE id = 1");
-  if (!q) return Error{q.message()};
+  if (!q) return q.error();
   sqlite3_stmt* st = q->get();
   const int rc = sqlite3_step(st);
   if (rc == SQLITE_DONE) return std::optional<MapImage>{};

@@ -34,7 +34,7 @@ OccupancyGrid::OccupancyGrid(const GridConfig& config)
 }
 
 Result<OccupancyGrid> OccupancyGrid::create(const GridConfig& config) {
-  if (Status s = validate(config); !s) return Error{s.message()};
+  if (Status s = validate(config); !s) return s.error();
   return OccupancyGrid(config);
 }
 
@@ -172,8 +172,8 @@ Result<IntegrateStats> OccupancyGrid::integrate(const ObservationView& obs) {
     }
     return Status::ok();
   };
-  if (Status s = check(obs.hits, "hit"); !s) return Error{s.message()};
-  if (Status s = check(obs.misses, "miss"); !s) return Error{s.message()};
+  if (Status s = check(obs.hits, "hit"); !s) return s.error();
+  if (Status s = check(obs.misses, "miss"); !s) return s.error();
 
   // The robot must be reachable; each point extends the needed box only while it still fits.
   const double px = cell_x(obs.x);

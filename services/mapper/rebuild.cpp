@@ -21,10 +21,10 @@ Result<OccupancyGrid> rebuild_grid(const GridConfig& config, ObservationStore& s
   RebuildStats& st = stats ? *stats : local;
   st = RebuildStats{};
   auto grid = OccupancyGrid::create(config);
-  if (!grid) return Error{grid.message()};
+  if (!grid) return grid.error();
 
   auto prior = store.load_prior();
-  if (!prior) return Error{prior.message()};
+  if (!prior) return prior.error();
   if (prior->has_value()) {
     auto cells = grid->apply_prior(**prior);
     if (cells)
@@ -62,10 +62,10 @@ Result<OccupancyGrid> rebuild_grid(const GridConfig& config, ObservationStore& s
     batches.give_back(batch);
   }
   reader.join();
-  if (!read) return Error{read.message()};
+  if (!read) return read.error();
 
   auto obstructions = store.obstructions();
-  if (!obstructions) return Error{obstructions.message()};
+  if (!obstructions) return obstructions.error();
   for (const Vec2& p : *obstructions) {
     if (Status s = grid->obstruct(p.x, p.y); !s) {
       if (st.first_error.empty()) st.first_error = s.message();

@@ -47,7 +47,7 @@ void Fleet::restore_home(const std::string& robot_id, Vec2 home) {
 }
 
 Result<size_t> Fleet::set_goal(const std::string& robot_id, const Goal& goal) {
-  if (auto s = validate(goal); !s) return Error{s.message()};
+  SLAM_TRY(validate(goal));
   const uint64_t order = ++goal_order_;
   // A new exploration order gives every frontier another chance.
   if (goal.mode == GoalMode::Explore) blacklist_.clear();

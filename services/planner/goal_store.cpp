@@ -60,15 +60,15 @@ Result<StoredGoal> to_stored_goal(const json& item, size_t index) {
   }
   StoredGoal out;
   auto id = to_robot_id(item["robot_id"], where + ".robot_id");
-  if (!id) return Error{id.message()};
+  if (!id) return id.error();
   out.robot_id = *id;
   if (!item["goal_id"].is_number_unsigned()) return Error{where + ".goal_id must be a non-negative integer"};
   out.goal.goal_id = item["goal_id"].get<uint64_t>();
   auto mode = name_index(item["mode"], kModeNames, (where + ".mode").c_str());
-  if (!mode) return Error{mode.message()};
+  if (!mode) return mode.error();
   out.goal.mode = static_cast<GoalMode>(*mode);
   auto target = to_point(item["target"], where + ".target");
-  if (!target) return Error{target.message()};
+  if (!target) return target.error();
   out.goal.target = *target;
   if (item.contains("square_size")) {
     const json& size = item["square_size"];
@@ -78,7 +78,7 @@ Result<StoredGoal> to_stored_goal(const json& item, size_t index) {
   }
   if (item.contains("square_anchor")) {
     auto anchor = name_index(item["square_anchor"], kAnchorNames, (where + ".square_anchor").c_str());
-    if (!anchor) return Error{anchor.message()};
+    if (!anchor) return anchor.error();
     out.goal.square_anchor = static_cast<SquareAnchor>(*anchor);
   }
   if (!item["sent_ns"].is_number_integer()) return Error{where + ".sent_ns must be an integer"};
@@ -110,7 +110,7 @@ Result<GoalRecord> parse_goal_record(std::string_view text) {
     if (!goals.is_array()) return Error{"\"goals\" must be an array"};
     for (size_t i = 0; i < goals.size(); ++i) {
       auto goal = to_stored_goal(goals[i], i);
-      if (!goal) return Error{goal.message()};
+      if (!goal) return goal.error();
       const std::string id = goal->robot_id;
       if (!record.goals.emplace(id, std::move(*goal)).second)
         return Error{"goals[" + std::to_string(i) + "]: a second goal for robot '" + id + "'"};
@@ -121,9 +121,9 @@ Result<GoalRecord> parse_goal_record(std::string_view text) {
     if (!homes.is_object()) return Error{"\"homes\" must be an object of robot_id: [x, y]"};
     for (const auto& [key, value] : homes.items()) {
       auto id = to_robot_id(json(key), "homes key '" + key + "'");
-      if (!id) return Error{id.message()};
+      if (!id) return id.error();
       auto home = to_point(value, "homes." + key);
-      if (!home) return Error{home.message()};
+      if (!home) return home.error();
       record.homes.emplace(*id, *home);
     }
   }

@@ -38,7 +38,7 @@ Result<CellBox> apply_patch(const slam::GridPatch& patch, PlanningGrid& grid) {
   const CellBox box{static_cast<int32_t>(patch.x0()), static_cast<int32_t>(patch.y0()),
                     static_cast<int32_t>(patch.width()), static_cast<int32_t>(patch.height())};
   if (auto s = grid.apply_patch(patch.layout_id(), patch.version(), box, patch.cells()); !s) {
-    return Error{s.message()};
+    return s.error();
   }
   return box;
 }

@@ -52,28 +52,28 @@ PlannerNode::PlannerNode(const PlannerOptions& options, Counters& counters)
 
 Result<std::unique_ptr<PlannerNode>> PlannerNode::create(const PlannerOptions& options, Counters& counters) {
   std::unique_ptr<PlannerNode> node(new PlannerNode(options, counters));
-  if (auto s = node->configure(); !s) return Error{s.message()};
+  SLAM_TRY(node->configure());
   return node;
 }
 
 Status PlannerNode::configure() {
   auto store = GoalStore::open(options_.goal_store);
-  if (!store) return Error{store.message()};
+  if (!store) return store.error();
   goal_store_ = std::move(*store);
   resume_goals();
 
   auto participant = dds::Participant::create(options_.service.domain, "slam-planner");
-  if (!participant) return Error{participant.message()};
+  if (!participant) return participant.error();
   participant_ = std::move(*participant);
 
   auto replies = dds::make_writer(*participant_, dds::kPathReply);
-  if (!replies) return Error{replies.message()};
+  if (!replies) return replies.error();
   reply_writer_ = std::move(*replies);
   auto waypoints = dds::make_writer(*participant_, dds::kWaypointCommand);
-  if (!waypoints) return Error{waypoints.message()};
+  if (!waypoints) return waypoints.error();
   waypoint_writer_ = std::move(*waypoints);
   auto paths = dds::make_writer(*participant_, dds::kRobotPath);
-  if (!paths) return Error{paths.message()};
+  if (!paths) return paths.error();
   path_writer_ = std::move(*paths);
 
   try {
@@ -88,26 +88,26 @@ Status PlannerNode::configure() {
   auto snapshots =
       dds::make_reader(*participant_, dds::kGridSnapshot,
                        [this](const slam::GridSnapshot& s, const auto&) { intake_.push_snapshot(s); });
-  if (!snapshots) return Error{snapshots.message()};
+  if (!snapshots) return snapshots.error();
   snapshot_reader_ = std::move(*snapshots);
   auto patches = dds::make_reader(*participant_, dds::kGridPatch,
                                   [this](const slam::GridPatch& p, const auto&) { intake_.push_patch(p); });
-  if (!patches) return Error{patches.message()};
+  if (!patches) return patches.error();
   patch_reader_ = std::move(*patches);
   auto states = dds::make_reader(*participant_, dds::kRobotState,
                                  [this](const slam::RobotState& s, const auto&) { intake_.push_state(s); });
-  if (!states) return Error{states.message()};
+  if (!states) return states.error();
   state_reader_ = std::move(*states);
   auto goals = dds::make_reader(*participant_, dds::kNavGoal,
                                 [this](const slam::NavGoal& g, const dds::fdds::SampleInfo& info) {
                                   intake_.push_goal(g, info.source_timestamp.to_ns());
                                 });
-  if (!goals) return Error{goals.message()};
+  if (!goals) return goals.error();
   goal_reader_ = std::move(*goals);
   auto requests =
       dds::make_reader(*participant_, dds::kPathRequest,
                        [this](const slam::PathRequest& r, const auto&) { intake_.push_request(r); });
-  if (!requests) return Error{requests.message()};
+  if (!requests) return requests.error();
   request_reader_ = std::move(*requests);
   spdlog::info("planner ready on domain {} ({} request worker(s), loop {} Hz)", options_.service.domain,
                options_.request_workers, options_.loop_rate_hz);

@@ -58,7 +58,7 @@ Result<std::unique_ptr<RobotLinks>> RobotLinks::create(Settings settings, Counte
       filters.emplace_back(protocol::kV2PathFilter);
     }
     auto link = links->open(fmt::format("slam-simulator-{}", getpid()), std::move(filters), std::nullopt);
-    if (!link) return Error{link.message()};
+    if (!link) return link.error();
     links->shared_link_ = std::move(*link);
   }
   return links;
@@ -128,7 +128,7 @@ Status RobotLinks::add(const std::string& robot_id) {
     std::optional<mqtt::Will> will;
     if (!v1) will = mqtt::Will{e.status_topic, std::string(protocol::kV2OfflineStatus)};
     auto link = open(robot_id, std::move(subscriptions), std::move(will));
-    if (!link) return Error{link.message()};
+    if (!link) return link.error();
     e.own_link = std::move(*link);
     e.link = e.own_link.get();
   }

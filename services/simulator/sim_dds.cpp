@@ -74,7 +74,7 @@ Result<std::unique_ptr<SimDds>> SimDds::create(int domain) {
   const dds_entity_t p = dds->participant_.get();
 
   auto control_topic = cyclone::make_topic(p, &slam_SimControl_desc, topics::kSimControl);
-  if (!control_topic) return Error{control_topic.message()};
+  if (!control_topic) return control_topic.error();
   const auto qos = cyclone::make_qos(topics::kSimControl.qos);
   dds->control_reader_ = dds_create_reader(p, *control_topic, qos.get(), nullptr);
   if (dds->control_reader_ < 0)
@@ -82,13 +82,13 @@ Result<std::unique_ptr<SimDds>> SimDds::create(int domain) {
         fmt::format("Cyclone reader {}: {}", topics::kSimControl.name, dds_strretcode(dds->control_reader_))};
 
   auto reply = cyclone::make_writer(p, &slam_SimReply_desc, topics::kSimReply);
-  if (!reply) return Error{reply.message()};
+  if (!reply) return reply.error();
   dds->reply_writer_ = *reply;
   auto world = cyclone::make_writer(p, &slam_SimWorld_desc, topics::kSimWorld);
-  if (!world) return Error{world.message()};
+  if (!world) return world.error();
   dds->world_writer_ = *world;
   auto truth = cyclone::make_writer(p, &slam_SimGroundTruth_desc, topics::kSimGroundTruth);
-  if (!truth) return Error{truth.message()};
+  if (!truth) return truth.error();
   dds->truth_writer_ = *truth;
   return dds;
 }

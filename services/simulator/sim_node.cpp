@@ -41,16 +41,16 @@ SimNode::~SimNode() = default;
 
 Result<std::unique_ptr<SimNode>> SimNode::create(const SimOptions& options, World world, Counters& counters) {
   auto config = simulation_config(options);
-  if (!config) return Error{config.message()};
+  if (!config) return config.error();
   auto sim = Simulation::create(std::move(world), *config);
   if (!sim) return Error{"simulation: " + sim.message()};
   std::unique_ptr<SimNode> node(new SimNode(options, std::move(*sim), counters));
 
   auto dds = SimDds::create(options.service.domain);
-  if (!dds) return Error{dds.message()};
+  if (!dds) return dds.error();
   node->dds_ = std::move(*dds);
   auto heartbeat = cyclone::HeartbeatPublisher::start(node->dds_->participant(), "simulator", counters);
-  if (!heartbeat) return Error{heartbeat.message()};
+  if (!heartbeat) return heartbeat.error();
   node->heartbeat_ = std::move(*heartbeat);
 
   RobotLinks::Settings link_settings{options.broker, options.robot_protocol(), options.mqtt_multiplex,
@@ -62,7 +62,7 @@ Result<std::unique_ptr<SimNode>> SimNode::create(const SimOptions& options, Worl
   auto ids = node->sim_.spawn_random(static_cast<size_t>(options.robots));
   if (!ids) return Error{"--robots: " + ids.message()};
   node->add_robots(*ids);
-  if (auto s = node->dds_->publish_world(node->sim_.world()); !s) return Error{s.message()};
+  SLAM_TRY(node->dds_->publish_world(node->sim_.world()));
   return node;
 }
 

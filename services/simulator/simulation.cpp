@@ -28,7 +28,7 @@ std::mt19937_64 seeded(uint64_t seed, uint64_t stream) {
 }  // namespace
 
 Result<Simulation> Simulation::create(World world, SimulationConfig config) {
-  if (auto s = validate(config); !s) return Error{s.message()};
+  SLAM_TRY(validate(config));
   return Simulation(std::move(world), config);
 }
 
@@ -114,7 +114,7 @@ Result<std::vector<std::string>> Simulation::spawn_random(size_t count) {
   std::vector<std::string> ids;
   for (const Pose& p : poses) {
     auto id = spawn(p);
-    if (!id) return Error{id.message()};
+    if (!id) return id.error();
     ids.push_back(std::move(*id));
   }
   return ids;

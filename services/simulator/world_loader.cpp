@@ -35,7 +35,7 @@ Result<World> load_world(std::string_view spec) {
   const auto ext = path.extension().string();
   if (ext == ".yaml" || ext == ".yml") {
     auto map = read_ros_map(path);
-    if (!map) return Error{map.message()};
+    if (!map) return map.error();
     return world_from_map(*map, path.stem().string());
   }
   if (spec.empty())

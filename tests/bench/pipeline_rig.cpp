@@ -37,9 +37,8 @@ int cm(double metres) {
 Result<PipelineSettings> pipeline_settings_from_env() {
   PipelineSettings s;
   double robots = s.robots;
-  if (auto st = env_number("SLAM_BENCH_PIPELINE_ROBOTS", 1, 5000, robots); !st) return Error{st.message()};
-  if (auto st = env_number("SLAM_BENCH_PIPELINE_SECONDS", 2, 3600, s.seconds); !st)
-    return Error{st.message()};
+  SLAM_TRY(env_number("SLAM_BENCH_PIPELINE_ROBOTS", 1, 5000, robots));
+  if (auto st = env_number("SLAM_BENCH_PIPELINE_SECONDS", 2, 3600, s.seconds); !st) return st.error();
   s.robots = static_cast<int>(robots);
   return s;
 }
@@ -108,7 +107,7 @@ MachineCpu machine_cpu() {
 
 Result<std::unique_ptr<PipelineRig>> PipelineRig::start(const PipelineSettings& settings) {
   std::unique_ptr<PipelineRig> rig(new PipelineRig());
-  if (Status s = rig->launch(settings); !s) return Error{s.message()};
+  if (Status s = rig->launch(settings); !s) return s.error();
   return rig;
 }
 

@@ -245,16 +245,16 @@ std::string encode_map_yaml(const MapImage& map, std::string_view image_name) {
 
 Result<MapImage> read_ros_map(const std::filesystem::path& yaml_path) {
   auto text = read_text(yaml_path);
-  if (!text) return Error{text.message()};
+  if (!text) return text.error();
   auto yaml = parse_map_yaml(*text, yaml_path.string());
-  if (!yaml) return Error{yaml.message()};
+  if (!yaml) return yaml.error();
   std::filesystem::path image = yaml->image;
   if (image.is_relative()) image = yaml_path.parent_path() / image;
   auto bytes = read_text(image);
-  if (!bytes) return Error{bytes.message()};
+  if (!bytes) return bytes.error();
   const auto* data = reinterpret_cast<const uint8_t*>(bytes->data());
   auto pgm = parse_pgm(std::span<const uint8_t>(data, bytes->size()), image.string());
-  if (!pgm) return Error{pgm.message()};
+  if (!pgm) return pgm.error();
   return decode_map(*yaml, *pgm, image.string());
 }
 

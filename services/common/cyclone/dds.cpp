@@ -31,7 +31,7 @@ Result<dds_entity_t> make_topic(dds_entity_t participant, const dds_topic_descri
 Result<dds_entity_t> make_writer(dds_entity_t participant, const dds_topic_descriptor_t* type,
                                  const topics::TopicInfo& info) {
   auto topic = make_topic(participant, type, info);
-  if (!topic) return Error{topic.message()};
+  if (!topic) return topic.error();
   const auto qos = make_qos(info.qos);
   const dds_entity_t w = dds_create_writer(participant, *topic, qos.get(), nullptr);
   if (w < 0) return Error{fmt::format("Cyclone writer {}: {}", info.name, dds_strretcode(w))};

@@ -15,7 +15,7 @@ Result<std::unique_ptr<HeartbeatPublisher>> HeartbeatPublisher::start(dds_entity
                                                                       const Counters& counters,
                                                                       std::chrono::milliseconds period) {
   auto writer = make_writer(participant, &slam_Heartbeat_desc, topics::kHeartbeat);
-  if (!writer) return Error{writer.message()};
+  if (!writer) return writer.error();
   std::unique_ptr<HeartbeatPublisher> hb(new HeartbeatPublisher());
   hb->writer_ = *writer;
   hb->counters_ = &counters;

@@ -190,9 +190,9 @@ Result<fdds::DataReader*> create_datareader(fdds::Subscriber* subscriber, fdds::
 template <class T, class PubSubT>
 Result<std::unique_ptr<Writer<T>>> make_writer(Participant& p, const Topic<T, PubSubT>& t) {
   auto topic = p.template topic<PubSubT>(t.info.name);
-  if (!topic) return Error{topic.message()};
+  if (!topic) return topic.error();
   auto w = create_datawriter(p.publisher(), *topic, t.info.qos);
-  if (!w) return Error{w.message()};
+  if (!w) return w.error();
   return std::make_unique<Writer<T>>(p.publisher(), *w);
 }
 
@@ -200,10 +200,10 @@ template <class T, class PubSubT>
 Result<std::unique_ptr<Reader<T>>> make_reader(Participant& p, const Topic<T, PubSubT>& t,
                                                typename Reader<T>::Callback cb = {}) {
   auto topic = p.template topic<PubSubT>(t.info.name);
-  if (!topic) return Error{topic.message()};
+  if (!topic) return topic.error();
   auto reader = std::make_unique<Reader<T>>(p.subscriber(), std::move(cb));
   auto r = create_datareader(p.subscriber(), *topic, t.info.qos, reader->listener());
-  if (!r) return Error{r.message()};
+  if (!r) return r.error();
   reader->attach(*r);
   return reader;
 }

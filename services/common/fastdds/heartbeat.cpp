@@ -9,7 +9,7 @@ Result<std::unique_ptr<HeartbeatPublisher>> HeartbeatPublisher::start(dds::Parti
                                                                       const Counters& counters,
                                                                       std::chrono::milliseconds period) {
   auto writer = dds::make_writer(participant, dds::kHeartbeat);
-  if (!writer) return Error{writer.message()};
+  if (!writer) return writer.error();
   std::unique_ptr<HeartbeatPublisher> hb(new HeartbeatPublisher());
   hb->writer_ = std::move(*writer);
   hb->counters_ = &counters;

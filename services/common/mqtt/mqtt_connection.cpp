@@ -147,7 +147,7 @@ Result<std::unique_ptr<Connection>> Connection::create(ConnectionOptions options
   if (auto s = validate(options); !s) return Error{"MQTT options: " + s.message()};
   if (options.client_id.empty()) return Error{"MQTT options: client-id is empty"};
   std::unique_ptr<Connection> connection(new Connection(std::move(options), std::move(callbacks)));
-  if (auto s = connection->open(); !s) return Error{s.message()};
+  SLAM_TRY(connection->open());
   {
     std::lock_guard lock(connection->mutex_);
     connection->link_ = Link::Connecting;

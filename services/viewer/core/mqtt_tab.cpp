@@ -18,7 +18,7 @@ Result<std::vector<uint8_t>> payload_bytes(PayloadKind kind, const std::string& 
   switch (kind) {
     case PayloadKind::V1Pairs: {
       auto pairs = parse_pairs(text);
-      if (!pairs) return Error{pairs.message()};
+      if (!pairs) return pairs.error();
       return encode_v1_pairs(*pairs);
     }
     case PayloadKind::Hex:

@@ -43,13 +43,13 @@ ViewerNode::~ViewerNode() = default;
 Result<std::unique_ptr<ViewerNode>> ViewerNode::configure(int domain, Intake& intake, Counters& counters) {
   std::unique_ptr<ViewerNode> node(new ViewerNode(intake, counters));
   auto participant = dds::Participant::create(domain, "slam-viewer");
-  if (!participant) return Error{participant.message()};
+  if (!participant) return participant.error();
   node->participant_ = std::move(*participant);
   auto heartbeat = HeartbeatPublisher::start(*node->participant_, "viewer", counters);
-  if (!heartbeat) return Error{heartbeat.message()};
+  if (!heartbeat) return heartbeat.error();
   node->heartbeat_ = std::move(*heartbeat);
-  if (Status s = node->create_writers(); !s) return Error{s.message()};
-  if (Status s = node->create_readers(); !s) return Error{s.message()};
+  if (Status s = node->create_writers(); !s) return s.error();
+  if (Status s = node->create_readers(); !s) return s.error();
   return node;  // on any error above, `node` is destroyed here with what it had built
 }
 

@@ -26,11 +26,11 @@ Result<GLuint> compile(const char* name, GLenum kind, const char* src) {
 
 Result<GlProgram> GlProgram::build(const char* name, const char* vertex_src, const char* fragment_src) {
   auto vs = compile(name, GL_VERTEX_SHADER, vertex_src);
-  if (!vs) return Error{vs.message()};
+  if (!vs) return vs.error();
   auto fs = compile(name, GL_FRAGMENT_SHADER, fragment_src);
   if (!fs) {
     glDeleteShader(*vs);
-    return Error{fs.message()};
+    return fs.error();
   }
   const GLuint p = glCreateProgram();
   glAttachShader(p, *vs);

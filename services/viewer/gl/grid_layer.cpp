@@ -32,7 +32,7 @@ void main() {
 
 Status GridLayer::init() {
   auto p = GlProgram::build("grid", kVertex, kFragment);
-  if (!p) return Error{p.message()};
+  if (!p) return p.error();
   program_ = std::move(*p);
   glGenVertexArrays(1, &vao_);
   glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_texture_size_);

@@ -56,10 +56,10 @@ bool accumulated(const RobotSettings& s) {
 Status PointLayer::init(const PacerConfig& pacing) {
   pacer_ = PointPacer(pacing);
   auto p = GlProgram::build("points", kPointVertex, kPointFragment);
-  if (!p) return Error{p.message()};
+  if (!p) return p.error();
   points_ = std::move(*p);
   auto b = GlProgram::build("point texture", kBlitVertex, kBlitFragment);
-  if (!b) return Error{b.message()};
+  if (!b) return b.error();
   blit_ = std::move(*b);
   glGenVertexArrays(1, &blit_vao_);
   return {};

@@ -32,14 +32,14 @@ ViewerApp::ViewerApp(const ViewerOptions& options, Intake& intake, CommandSink& 
 Result<std::unique_ptr<ViewerApp>> ViewerApp::create(const ViewerOptions& options, Intake& intake,
                                                      CommandSink& sink, Counters& counters) {
   std::unique_ptr<ViewerApp> app(new ViewerApp(options, intake, sink, counters));
-  if (Status s = app->init_graphics(); !s) return Error{s.message()};
-  if (Status s = app->init_snapshots(); !s) return Error{s.message()};
+  if (Status s = app->init_graphics(); !s) return s.error();
+  if (Status s = app->init_snapshots(); !s) return s.error();
   return app;
 }
 
 Status ViewerApp::init_graphics() {
   auto w = GlWindow::create("SLAM fleet viewer", options_.width, options_.height);
-  if (!w) return Error{w.message()};
+  if (!w) return w.error();
   window_ = std::move(*w);
   state_.renderer = window_->renderer();
   spdlog::info("OpenGL renderer: {}", state_.renderer);
