@@ -3,6 +3,7 @@
 
 #include <chrono>
 
+#include "common/core/guarded_callback.hpp"
 #include "gateway/gateway_msgs.hpp"
 
 namespace slam::gateway {
@@ -28,7 +29,7 @@ void TrafficPublisher::run() {
   std::vector<TrafficRecord> batch = queue_.make_batch(64);
   slam::MqttTraffic sample;
   while (!stop_.load()) {
-    dds::call_guarded("MQTT traffic worker", [&] {
+    guarded_callback("MQTT traffic worker", [&] {
       const size_t n = queue_.pop(batch, std::chrono::milliseconds(200));
       for (size_t i = 0; i < n; ++i) {
         fill_traffic(batch[i], sample);

@@ -190,14 +190,4 @@ bool wait_matched(const std::function<int()>& matched, int n, std::chrono::milli
   return true;
 }
 
-void call_guarded(const char* where, const std::function<void()>& fn) {
-  try {
-    fn();
-  } catch (const std::exception& e) {
-    spdlog::error("{}: {}", where, e.what());
-  } catch (...) {
-    spdlog::error("{}: unknown exception", where);
-  }
-}
-
 }  // namespace slam::dds

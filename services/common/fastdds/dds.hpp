@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "common/core/guarded_callback.hpp"
 #include "common/core/result.hpp"
 #include "common/core/topics.hpp"
 
@@ -115,9 +116,6 @@ int Writer<T>::matched_readers() const {
   return matched_subscriptions(writer_);
 }
 
-// Runs `fn` and logs (never rethrows) anything it throws; for listener and callback threads.
-void call_guarded(const char* where, const std::function<void()>& fn);
-
 // Reads samples of T. With a callback, each valid sample is handed to it on the middleware's
 // listener thread (keep it short, and never touch GL or block there); without one, call take().
 template <class T>
@@ -167,7 +165,7 @@ class Reader : private fdds::DataReaderListener {
 
  private:
   void on_data_available(fdds::DataReader* reader) override {
-    call_guarded("reader callback", [&] {
+    guarded_callback("DDS reader", [&] {
       fdds::SampleInfo info;
       while (reader->take_next_sample(&scratch_, &info) ==
              eprosima::fastrtps::types::ReturnCode_t::RETCODE_OK) {

@@ -3,13 +3,14 @@
 
 #include <spdlog/spdlog.h>
 
+#include "common/core/guarded_callback.hpp"
 #include "viewer/gl/display_loss.hpp"
 
 namespace slam::viewer {
 namespace {
 
 void log_glfw_error(int code, const char* description) {
-  spdlog::error("GLFW error {}: {}", code, description);
+  guarded_callback("GLFW error", [&] { spdlog::error("GLFW error {}: {}", code, description); });
 }
 
 }  // namespace
