@@ -3,21 +3,10 @@
 
 #include <cmath>
 
+#include "common/core/service_options.hpp"
 #include "gateway/topic_filter.hpp"
 
 namespace slam::gateway {
-
-namespace {
-
-Status seconds(const char* key, double value, double min, double max) {
-  if (!std::isfinite(value) || value < min || value > max) {
-    return Error{std::string(key) + " must be between " + std::to_string(min) + " and " +
-                 std::to_string(max) + " seconds"};
-  }
-  return Status::ok();
-}
-
-}  // namespace
 
 void add_gateway_options(CLI::App& app, GatewayOptions& o) {
   add_service_options(app, o.service);
@@ -78,8 +67,8 @@ Status validate(const GatewayOptions& o) {
   }
 
   if (auto s = protocol::validate(o.limits); !s) return s;
-  if (auto s = seconds("offline-after-s", o.offline_after_s, 0.1, 86400.0); !s) return s;
-  if (auto s = seconds("state-period-s", o.state_period_s, 0.01, 10.0); !s) return s;
+  if (auto s = check_seconds("offline-after-s", o.offline_after_s, 0.1, 86400.0); !s) return s;
+  if (auto s = check_seconds("state-period-s", o.state_period_s, 0.01, 10.0); !s) return s;
   if (o.max_robots == 0) return Error{"max-robots must be at least 1"};
   if (o.traffic_queue == 0 || o.traffic_queue > 1'000'000)
     return Error{"traffic-queue must be between 1 and 1000000"};

@@ -1,5 +1,6 @@
 #include "common/core/service_options.hpp"
 
+#include <cmath>
 #include <filesystem>
 #include <iostream>
 
@@ -14,6 +15,14 @@ void report_error(std::string_view program, std::string_view message) {
 
 std::string program_name(std::string_view service) {
   return "slam-" + std::string(service);
+}
+
+Status check_seconds(const char* key, double value, double min, double max) {
+  if (!std::isfinite(value) || value < min || value > max) {
+    return Error{std::string(key) + " must be between " + std::to_string(min) + " and " +
+                 std::to_string(max) + " seconds"};
+  }
+  return Status::ok();
 }
 
 void add_service_options(CLI::App& app, ServiceOptions& options) {

@@ -29,6 +29,10 @@ std::string program_name(std::string_view service);
 // Adds --domain, --log-level and --config FILE (YAML, see config_file.hpp) to `app`.
 void add_service_options(CLI::App& app, ServiceOptions& options);
 
+// Validators' range check for a duration option: "KEY must be between MIN and MAX seconds" unless
+// `value` is finite and within [min, max].
+Status check_seconds(const char* key, double value, double min, double max);
+
 // Parses the command line. Returns an exit code when the program must stop now: 0 after --help,
 // 2 with a one-line error on stderr for bad flags or config. std::nullopt: carry on.
 std::optional<int> parse_command_line(CLI::App& app, int argc, char** argv);

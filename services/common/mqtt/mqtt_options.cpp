@@ -4,6 +4,8 @@
 #include <cmath>
 #include <fstream>
 
+#include "common/core/service_options.hpp"
+
 namespace slam::mqtt {
 
 namespace {
@@ -16,14 +18,6 @@ Status readable(const char* key, const std::string& path) {
   if (path.empty()) return Status::ok();
   std::ifstream f(path);
   if (!f) return Error{std::string(key) + ": cannot read '" + path + "'"};
-  return Status::ok();
-}
-
-Status seconds(const char* key, double value, double min, double max) {
-  if (!std::isfinite(value) || value < min || value > max) {
-    return Error{std::string(key) + " must be between " + std::to_string(min) + " and " +
-                 std::to_string(max) + " seconds"};
-  }
   return Status::ok();
 }
 
@@ -56,8 +50,8 @@ Status validate(const ConnectionOptions& m) {
   if (m.keepalive_s < 1 || m.keepalive_s > 3600) return Error{"keepalive-s must be between 1 and 3600"};
   if (m.connect_timeout_s < 1 || m.connect_timeout_s > 300)
     return Error{"connect-timeout-s must be between 1 and 300"};
-  if (auto s = seconds("reconnect-min-s", m.reconnect_min_s, 0.01, 60.0); !s) return s;
-  if (auto s = seconds("reconnect-max-s", m.reconnect_max_s, m.reconnect_min_s, 3600.0); !s) return s;
+  if (auto s = check_seconds("reconnect-min-s", m.reconnect_min_s, 0.01, 60.0); !s) return s;
+  if (auto s = check_seconds("reconnect-max-s", m.reconnect_max_s, m.reconnect_min_s, 3600.0); !s) return s;
   for (const std::string& filter : m.subscriptions) {
     if (filter.empty()) return Error{"subscribe: a filter is empty"};
   }
