@@ -7,7 +7,7 @@ PACKAGES=(
   build-essential cmake ninja-build pkg-config clang clang-format
   libfastrtps-dev fastddsgen fastdds-tools
   cyclonedds-dev cyclonedds-tools
-  libompl-dev libeigen3-dev
+  libompl-dev libeigen3-dev libceres-dev libnanoflann-dev
   libboost-serialization-dev libboost-filesystem-dev libboost-system-dev
   libpaho-mqtt-dev mosquitto mosquitto-clients
   libglfw3-dev libimgui-dev libgl-dev libx11-dev libgl1-mesa-dri xvfb xauth

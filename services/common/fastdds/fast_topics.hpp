@@ -1,5 +1,6 @@
 #pragma once
 // topics.hpp bound to the Fast DDS generated types: use these with dds::make_writer / make_reader.
+#include <slam/fastdds/correctionPubSubTypes.h>
 #include <slam/fastdds/mapPubSubTypes.h>
 #include <slam/fastdds/mqttPubSubTypes.h>
 #include <slam/fastdds/navPubSubTypes.h>
@@ -13,6 +14,9 @@ namespace slam::dds {
 
 inline const Topic<RobotObservation, RobotObservationPubSubType> kRobotObservation{topics::kRobotObservation};
 inline const Topic<RobotState, RobotStatePubSubType> kRobotState{topics::kRobotState};
+inline const Topic<RobotOdometry, RobotOdometryPubSubType> kRobotOdometry{topics::kRobotOdometry};
+inline const Topic<PoseCorrection, PoseCorrectionPubSubType> kPoseCorrection{topics::kPoseCorrection};
+inline const Topic<InitialPose, InitialPosePubSubType> kInitialPose{topics::kInitialPose};
 inline const Topic<GridSnapshot, GridSnapshotPubSubType> kGridSnapshot{topics::kGridSnapshot};
 inline const Topic<GridPatch, GridPatchPubSubType> kGridPatch{topics::kGridPatch};
 inline const Topic<GridConfig, GridConfigPubSubType> kGridConfig{topics::kGridConfig};
