@@ -1,0 +1,249 @@
+// ScanMatcher: recovers known offsets and rotations on synthetic maps (exact and noisy sparse
+// sensors), reports a corridor's ambiguity in its covariance, honours the cell classes, reuses its
+// buffers correctly, and refuses what it cannot match (too few points, off the grid, free space).
+#include "pose_correction/scan_matcher.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <random>
+#include <vector>
+
+#include "synthetic_world.hpp"
+
+namespace slam::correction {
+namespace {
+
+using testkit::ClassGrid;
+using testkit::keyframe_points;
+using testkit::SparseSensor;
+using testkit::SyntheticWorld;
+
+constexpr double kResolution = 0.05;
+constexpr double kHalfCell = kResolution / 2.0;
+constexpr double kHalfDegree = 0.5 * std::numbers::pi / 180.0;
+
+double degrees(double d) {
+  return d * std::numbers::pi / 180.0;
+}
+
+// A grid whose cell centres lie on multiples of the resolution, so walls drawn at round
+// coordinates run through cell centres and the rasterised map carries no half-cell bias.
+GridGeometry geometry_over(Vec2 lo, Vec2 hi) {
+  GridGeometry g;
+  g.resolution = kResolution;
+  g.origin = {lo.x - kHalfCell, lo.y - kHalfCell};
+  g.width = static_cast<int32_t>(std::lround((hi.x - lo.x) / kResolution)) + 1;
+  g.height = static_cast<int32_t>(std::lround((hi.y - lo.y) / kResolution)) + 1;
+  return g;
+}
+
+// A 6 x 5 m room with an L-shaped inner wall.
+SyntheticWorld l_room() {
+  SyntheticWorld w;
+  w.room({0.0, 0.0}, {6.0, 5.0});
+  w.wall({2.0, 1.5}, {2.0, 3.5});
+  w.wall({2.0, 3.5}, {3.5, 3.5});
+  return w;
+}
+
+// Three by two rooms of 4 x 4 m joined by 1 m doorways.
+SyntheticWorld several_rooms() {
+  SyntheticWorld w;
+  w.room({0.0, 0.0}, {12.0, 8.0});
+  for (double x : {4.0, 8.0}) {
+    w.wall({x, 0.0}, {x, 1.5});
+    w.wall({x, 2.5}, {x, 5.5});
+    w.wall({x, 6.5}, {x, 8.0});
+  }
+  w.wall({0.0, 4.0}, {1.5, 4.0});
+  w.wall({2.5, 4.0}, {9.5, 4.0});
+  w.wall({10.5, 4.0}, {12.0, 4.0});
+  w.wall({5.0, 5.0}, {6.0, 5.0});  // a cupboard breaks the symmetry of the middle room
+  return w;
+}
+
+struct Scene {
+  ClassGrid grid;
+  std::vector<Vec2> points;
+  Pose truth;
+  GridView view() const { return {grid.geometry, grid.classes}; }
+};
+
+Scene scene(const SyntheticWorld& world, Vec2 lo, Vec2 hi, const Pose& truth, double noise_m = 0.0,
+            unsigned seed = 7) {
+  std::mt19937 rng(seed);
+  SparseSensor sensor;
+  sensor.noise_m = noise_m;
+  Scene s{ClassGrid::rasterise(world, geometry_over(lo, hi)), {}, truth};
+  // Ten v1 messages of ten beams while the robot drives 0.5 m and turns a little.
+  s.points = keyframe_points(world, sensor, truth, {0.05, 0.0, 0.02}, 10, rng);
+  return s;
+}
+
+Pose offset(const Pose& p, double dx, double dy, double dtheta) {
+  return {p.x + dx, p.y + dy, p.theta + dtheta};
+}
+
+void expect_near_pose(const Pose& got, const Pose& want) {
+  EXPECT_NEAR(got.x, want.x, kHalfCell);
+  EXPECT_NEAR(got.y, want.y, kHalfCell);
+  EXPECT_NEAR(wrap_angle(got.theta - want.theta), 0.0, kHalfDegree);
+}
+
+struct Offset {
+  double dx, dy, dtheta_deg;
+};
+
+class ScanMatcherOffsets : public ::testing::TestWithParam<Offset> {};
+
+TEST_P(ScanMatcherOffsets, RecoversTheTruePoseInARoomWithAnLShapedWall) {
+  const Offset o = GetParam();
+  const Scene s = scene(l_room(), {-1.0, -1.0}, {7.0, 6.0}, {4.0, 1.2, 0.3});
+  ASSERT_GE(s.points.size(), 80u);
+  ScanMatcher matcher;
+  const auto r = matcher.match(s.view(), s.points, offset(s.truth, o.dx, o.dy, degrees(o.dtheta_deg)), {});
+  ASSERT_TRUE(r) << r.message();
+  expect_near_pose(r->pose, s.truth);
+  EXPECT_GT(r->score, 0.9);
+  EXPECT_EQ(r->points_used, static_cast<int>(s.points.size()));
+}
+
+TEST_P(ScanMatcherOffsets, RecoversTheTruePoseAmongSeveralRooms) {
+  const Offset o = GetParam();
+  const Scene s = scene(several_rooms(), {-1.0, -1.0}, {13.0, 9.0}, {5.5, 2.0, -1.0});
+  ScanMatcher matcher;
+  const auto r = matcher.match(s.view(), s.points, offset(s.truth, o.dx, o.dy, degrees(o.dtheta_deg)), {});
+  ASSERT_TRUE(r) << r.message();
+  expect_near_pose(r->pose, s.truth);
+}
+
+TEST_P(ScanMatcherOffsets, RecoversTheTruePoseFromANoisySparseSensor) {
+  const Offset o = GetParam();
+  const Scene s = scene(l_room(), {-1.0, -1.0}, {7.0, 6.0}, {1.0, 4.0, -0.4}, 0.01, 11);
+  ScanMatcher matcher;
+  const auto r = matcher.match(s.view(), s.points, offset(s.truth, o.dx, o.dy, degrees(o.dtheta_deg)), {});
+  ASSERT_TRUE(r) << r.message();
+  expect_near_pose(r->pose, s.truth);
+  EXPECT_GT(r->score, 0.7);
+}
+
+INSTANTIATE_TEST_SUITE_P(KnownOffsets, ScanMatcherOffsets,
+                         ::testing::Values(Offset{0.1, -0.08, 3.0}, Offset{-0.12, 0.05, -4.0},
+                                           Offset{0.07, 0.11, 1.5}, Offset{0.0, 0.0, 0.0}, Offset{-0.03, -0.13, 0.0},
+                                           Offset{0.0, 0.0, -4.5}));
+
+TEST(ScanMatcher, CovarianceNearTheFloorWhenEveryDirectionIsConstrained) {
+  const Scene s = scene(l_room(), {-1.0, -1.0}, {7.0, 6.0}, {4.0, 1.2, 0.3});
+  ScanMatcher matcher;
+  const auto r = matcher.match(s.view(), s.points, offset(s.truth, 0.05, 0.05, 0.02), {});
+  ASSERT_TRUE(r) << r.message();
+  EXPECT_LT(r->covariance(0, 0), (1.5 * kResolution) * (1.5 * kResolution));
+  EXPECT_LT(r->covariance(1, 1), (1.5 * kResolution) * (1.5 * kResolution));
+  EXPECT_LT(r->covariance(2, 2), degrees(1.5) * degrees(1.5));
+  // The floor: never more certain than half a cell and half a degree.
+  EXPECT_GE(r->covariance(0, 0), kHalfCell * kHalfCell);
+  EXPECT_GE(r->covariance(2, 2), kHalfDegree * kHalfDegree * 0.999);
+}
+
+TEST(ScanMatcher, CorridorCovarianceIsLargeAlongAndSmallAcross) {
+  SyntheticWorld corridor;
+  corridor.wall({-20.0, 0.0}, {20.0, 0.0});
+  corridor.wall({-20.0, 1.5}, {20.0, 1.5});
+  std::mt19937 rng(3);
+  SparseSensor sensor;
+  sensor.beams = 16;
+  sensor.max_range_m = 3.0;  // never sees the corridor's ends
+  const Pose truth{0.0, 0.75, 0.0};
+  const auto points = keyframe_points(corridor, sensor, truth, {0.05, 0.0, 0.0}, 10, rng);
+  const ClassGrid grid = ClassGrid::rasterise(corridor, geometry_over({-21.0, -1.0}, {21.0, 2.5}));
+  ScanMatcher matcher;
+  const auto r = matcher.match({grid.geometry, grid.classes}, points, offset(truth, 0.05, 0.08, 0.0), {});
+  ASSERT_TRUE(r) << r.message();
+  EXPECT_NEAR(r->pose.y, truth.y, kHalfCell);
+  EXPECT_NEAR(wrap_angle(r->pose.theta - truth.theta), 0.0, kHalfDegree);
+  EXPECT_GT(r->covariance(0, 0), 10.0 * r->covariance(1, 1));
+  // Along the corridor the whole +-0.15 m window scores alike: variance near 0.15^2 / 3.
+  EXPECT_GT(r->covariance(0, 0), 0.005);
+}
+
+TEST(ScanMatcher, ObstructedCellsCountAsOccupied) {
+  Scene s = scene(l_room(), {-1.0, -1.0}, {7.0, 6.0}, {4.0, 1.2, 0.3});
+  for (uint8_t& c : s.grid.classes)
+    if (c == kCellOccupied) c = kCellFree | kCellObstructed;
+  ScanMatcher matcher;
+  const auto r = matcher.match(s.view(), s.points, offset(s.truth, 0.1, -0.08, degrees(3.0)), {});
+  ASSERT_TRUE(r) << r.message();
+  expect_near_pose(r->pose, s.truth);
+}
+
+TEST(ScanMatcher, InflatedCellsDoNotCountAsOccupied) {
+  Scene s = scene(l_room(), {-1.0, -1.0}, {7.0, 6.0}, {4.0, 1.2, 0.3});
+  for (uint8_t& c : s.grid.classes)
+    if (c == kCellOccupied) c = kCellFree | kCellInflated;
+  ScanMatcher matcher;
+  const auto r = matcher.match(s.view(), s.points, s.truth, {});
+  ASSERT_FALSE(r);
+  EXPECT_NE(r.message().find("score"), std::string::npos) << r.message();
+}
+
+TEST(ScanMatcher, ReusedMatcherGivesTheSameResultAsAFreshOne) {
+  const Scene room = scene(l_room(), {-1.0, -1.0}, {7.0, 6.0}, {4.0, 1.2, 0.3});
+  const Scene rooms = scene(several_rooms(), {-1.0, -1.0}, {13.0, 9.0}, {5.5, 2.0, -1.0});
+  const Pose predicted = offset(room.truth, 0.1, -0.08, degrees(3.0));
+  ScanMatcher reused;
+  ASSERT_TRUE(reused.match(rooms.view(), rooms.points, rooms.truth, {0.5, 0.2}));
+  const auto again = reused.match(room.view(), room.points, predicted, {});
+  const auto fresh = ScanMatcher{}.match(room.view(), room.points, predicted, {});
+  ASSERT_TRUE(again && fresh);
+  EXPECT_EQ(again->pose, fresh->pose);
+  EXPECT_EQ(again->covariance, fresh->covariance);
+  EXPECT_EQ(again->score, fresh->score);
+}
+
+TEST(ScanMatcher, TooFewPointsIsAnError) {
+  const Scene s = scene(l_room(), {-1.0, -1.0}, {7.0, 6.0}, {4.0, 1.2, 0.3});
+  const std::vector<Vec2> few(s.points.begin(), s.points.begin() + 11);
+  ScanMatcher matcher;  // min_points 12
+  const auto r = matcher.match(s.view(), few, s.truth, {});
+  ASSERT_FALSE(r);
+  EXPECT_NE(r.message().find("points"), std::string::npos) << r.message();
+}
+
+TEST(ScanMatcher, WindowOffTheGridIsAnError) {
+  const Scene s = scene(l_room(), {-1.0, -1.0}, {7.0, 6.0}, {4.0, 1.2, 0.3});
+  ScanMatcher matcher;
+  const auto r = matcher.match(s.view(), s.points, {100.0, 100.0, 0.0}, {});
+  ASSERT_FALSE(r);
+  EXPECT_NE(r.message().find("off the grid"), std::string::npos) << r.message();
+}
+
+TEST(ScanMatcher, EmptyGridViewIsAnError) {
+  const Scene s = scene(l_room(), {-1.0, -1.0}, {7.0, 6.0}, {4.0, 1.2, 0.3});
+  ScanMatcher matcher;
+  const auto r = matcher.match(GridView{}, s.points, s.truth, {});
+  ASSERT_FALSE(r);
+  EXPECT_NE(r.message().find("empty"), std::string::npos) << r.message();
+}
+
+TEST(ScanMatcher, NonFinitePredictionIsAnError) {
+  const Scene s = scene(l_room(), {-1.0, -1.0}, {7.0, 6.0}, {4.0, 1.2, 0.3});
+  ScanMatcher matcher;
+  EXPECT_FALSE(matcher.match(s.view(), s.points, {std::nan(""), 1.0, 0.0}, {}));
+}
+
+TEST(ScanMatcher, MatchInFreeSpaceIsALowScoreError) {
+  // Points seen in the small room, predicted in the middle of a large empty hall.
+  const Scene s = scene(l_room(), {-1.0, -1.0}, {7.0, 6.0}, {4.0, 1.2, 0.3});
+  SyntheticWorld hall;
+  hall.room({0.0, 0.0}, {20.0, 20.0});
+  const ClassGrid grid = ClassGrid::rasterise(hall, geometry_over({-1.0, -1.0}, {21.0, 21.0}));
+  ScanMatcher matcher;
+  const auto r = matcher.match({grid.geometry, grid.classes}, s.points, {10.0, 10.0, 0.0}, {});
+  ASSERT_FALSE(r);
+  EXPECT_NE(r.message().find("score"), std::string::npos) << r.message();
+}
+
+}  // namespace
+}  // namespace slam::correction
