@@ -10,7 +10,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-ALL=(protocol mapper planner simulator gateway viewer pipeline)
+ALL=(protocol mapper planner simulator gateway viewer pipeline slam)
 BUILD_DIR=build
 QUICK=0
 WRITE_DOCS=0

@@ -41,6 +41,12 @@ def figures: [
   {fig: "simulator: 500 robots × 16 beams at 10 Hz", bench: "simulator", name: "BM_FleetTick/500/16",
    field: "core_share_at_10Hz", scale: 1, unit: "of a core", target: {op: "<", value: 0.5, text: "< 0.5 of a core"}},
 
+  {fig: "slam: keyframe match, 100 points, ±0.15 m / ±0.08 rad, 400² grid at 5 cm (CPU)", bench: "slam",
+   name: "BM_KeyframeMatch", field: "items_per_second", scale: 1, unit: "matches/s",
+   target: {op: ">=", value: 500, text: "≥ 500 matches/s (≤ 2 ms each)"}},
+  {fig: "slam: loop-closure match, 100 points, ±1 m / ±0.3 rad (CPU)", bench: "slam",
+   name: "BM_LoopClosureMatch", field: "cpu_time", scale: 1e3, unit: "ms"},
+
   {id: "broker", fig: "gateway: (a) broker baseline, mosquitto → subscriber", bench: "gateway",
    name: "BM_BrokerBaseline/iterations:1/real_time", field: "items_per_second", scale: 1, unit: "msg/s"},
   {id: "gateway", fig: "gateway: (b) MQTT → gateway → DDS, sustained", bench: "gateway",

@@ -73,8 +73,8 @@ double mean_likelihood(const FieldInterpolator& field, const FieldFrame& frame, 
   for (const Vec2& p : points) {
     const Vec2 q = pose.transform(p);
     double likelihood = 0.0;
-    field.Evaluate((q.y - frame.origin.y) * frame.inverse_resolution, (q.x - frame.origin.x) * frame.inverse_resolution,
-                   &likelihood);
+    field.Evaluate((q.y - frame.origin.y) * frame.inverse_resolution,
+                   (q.x - frame.origin.x) * frame.inverse_resolution, &likelihood);
     sum += std::clamp(likelihood, 0.0, 1.0);
   }
   return sum / static_cast<double>(points.size());
@@ -92,8 +92,8 @@ Status check_options(const MatcherOptions& o) {
 
 ScanMatcher::ScanMatcher(const MatcherOptions& options) : options_(options) {}
 
-Result<MatchResult> ScanMatcher::match(const GridView& grid, std::span<const Vec2> points, const Pose& predicted,
-                                       const SearchWindow& window) {
+Result<MatchResult> ScanMatcher::match(const GridView& grid, std::span<const Vec2> points,
+                                       const Pose& predicted, const SearchWindow& window) {
   SLAM_TRY(check_options(options_));
   const GridGeometry& geo = grid.geometry;
   if (geo.cells() == 0 || grid.classes.size() != geo.cells() || !(geo.resolution > 0.0))
@@ -114,13 +114,15 @@ Result<MatchResult> ScanMatcher::match(const GridView& grid, std::span<const Vec
   // The search lattice: x/y steps are whole cells so a candidate is one lookup per point.
   const double res = geo.resolution;
   const int32_t step_cells =
-      options_.linear_step_m > 0.0 ? std::max<int32_t>(1, static_cast<int32_t>(std::lround(options_.linear_step_m / res)))
-                                   : 1;
+      options_.linear_step_m > 0.0
+          ? std::max<int32_t>(1, static_cast<int32_t>(std::lround(options_.linear_step_m / res)))
+          : 1;
   const double step_m = step_cells * res;
   const int32_t linear_steps = static_cast<int32_t>(std::ceil(window.linear_m / step_m - 1e-9));
   const double nominal_angular_step =
       options_.angular_step_rad > 0.0 ? options_.angular_step_rad : res / std::max(max_range, res);
-  const int32_t angular_steps = static_cast<int32_t>(std::ceil(window.angular_rad / nominal_angular_step - 1e-9));
+  const int32_t angular_steps =
+      static_cast<int32_t>(std::ceil(window.angular_rad / nominal_angular_step - 1e-9));
   const double angular_step = angular_steps > 0 ? window.angular_rad / angular_steps : 0.0;
   const int32_t side = 2 * linear_steps + 1;
   const int32_t headings = 2 * angular_steps + 1;
@@ -196,8 +198,8 @@ Result<MatchResult> ScanMatcher::match(const GridView& grid, std::span<const Vec
     const Pose rotated{predicted.x, predicted.y, predicted.theta + (h - angular_steps) * angular_step};
     const double c = std::cos(rotated.theta), s = std::sin(rotated.theta);
     for (size_t i = 0; i < n; ++i) {
-      const Vec2 g = geo.to_grid({rotated.x + c * points[i].x - s * points[i].y,
-                                  rotated.y + s * points[i].x + c * points[i].y});
+      const Vec2 g = geo.to_grid(
+          {rotated.x + c * points[i].x - s * points[i].y, rotated.y + s * points[i].x + c * points[i].y});
       const int32_t cx = static_cast<int32_t>(std::floor(g.x)) - field_box_.x0 - reach_offset;
       const int32_t cy = static_cast<int32_t>(std::floor(g.y)) - field_box_.y0 - reach_offset;
       lookup_[i] = cy * fw + cx;
@@ -240,9 +242,9 @@ Result<MatchResult> ScanMatcher::match(const GridView& grid, std::span<const Vec
   }
   const Eigen::Vector3d mean = first / weight_sum;
   Eigen::Matrix3d covariance = second / weight_sum - mean * mean.transpose();
-  covariance.diagonal() += Eigen::Vector3d(kFloorLinearCells * res * kFloorLinearCells * res,
-                                           kFloorLinearCells * res * kFloorLinearCells * res,
-                                           kFloorAngularRad * kFloorAngularRad);
+  covariance.diagonal() +=
+      Eigen::Vector3d(kFloorLinearCells * res * kFloorLinearCells * res,
+                      kFloorLinearCells * res * kFloorLinearCells * res, kFloorAngularRad * kFloorAngularRad);
 
   // Least-squares refinement of the best candidate on the bicubic-interpolated field.
   const FieldGrid field_grid(field_.data(), 0, fh, 0, fw);
@@ -266,10 +268,12 @@ Result<MatchResult> ScanMatcher::match(const GridView& grid, std::span<const Vec
   const Pose refined{pose_params[0], pose_params[1], wrap_angle(pose_params[2])};
   const double best_score = mean_likelihood(interpolator, frame, points, best);
   const double refined_score = mean_likelihood(interpolator, frame, points, refined);
-  const bool refined_inside = std::abs(refined.x - predicted.x) <= window.linear_m + step_m &&
-                              std::abs(refined.y - predicted.y) <= window.linear_m + step_m &&
-                              std::abs(wrap_angle(refined.theta - predicted.theta)) <= window.angular_rad + angular_step;
-  const bool use_refined = summary.IsSolutionUsable() && refined_inside && finite(refined) && refined_score >= best_score;
+  const bool refined_inside =
+      std::abs(refined.x - predicted.x) <= window.linear_m + step_m &&
+      std::abs(refined.y - predicted.y) <= window.linear_m + step_m &&
+      std::abs(wrap_angle(refined.theta - predicted.theta)) <= window.angular_rad + angular_step;
+  const bool use_refined =
+      summary.IsSolutionUsable() && refined_inside && finite(refined) && refined_score >= best_score;
 
   MatchResult result;
   result.pose = use_refined ? refined : best;

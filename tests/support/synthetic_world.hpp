@@ -95,8 +95,9 @@ struct SparseSensor {
 
 // A keyframe as the mapper gathers it: `messages` sensor readings taken while the robot drives
 // from `start` by `step` per message, every point in the frame of the first pose.
-inline std::vector<Vec2> keyframe_points(const SyntheticWorld& world, const SparseSensor& sensor, const Pose& start,
-                                         const Pose& step, int messages, std::mt19937& rng) {
+inline std::vector<Vec2> keyframe_points(const SyntheticWorld& world, const SparseSensor& sensor,
+                                         const Pose& start, const Pose& step, int messages,
+                                         std::mt19937& rng) {
   std::vector<Vec2> points;
   Pose pose = start;
   for (int m = 0; m < messages; ++m) {

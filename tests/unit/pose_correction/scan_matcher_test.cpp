@@ -131,8 +131,8 @@ TEST_P(ScanMatcherOffsets, RecoversTheTruePoseFromANoisySparseSensor) {
 
 INSTANTIATE_TEST_SUITE_P(KnownOffsets, ScanMatcherOffsets,
                          ::testing::Values(Offset{0.1, -0.08, 3.0}, Offset{-0.12, 0.05, -4.0},
-                                           Offset{0.07, 0.11, 1.5}, Offset{0.0, 0.0, 0.0}, Offset{-0.03, -0.13, 0.0},
-                                           Offset{0.0, 0.0, -4.5}));
+                                           Offset{0.07, 0.11, 1.5}, Offset{0.0, 0.0, 0.0},
+                                           Offset{-0.03, -0.13, 0.0}, Offset{0.0, 0.0, -4.5}));
 
 TEST(ScanMatcher, CovarianceNearTheFloorWhenEveryDirectionIsConstrained) {
   const Scene s = scene(l_room(), {-1.0, -1.0}, {7.0, 6.0}, {4.0, 1.2, 0.3});
