@@ -69,7 +69,8 @@ const Scene& scene() {
     sensor.noise_m = 0.01;
     sensor.max_range_m = 8.0;
     while (static_cast<int>(out.keyframes.size()) < kKeyframes) {
-      const Pose start{5.0 * office_index(rng) + inside(rng), 5.0 * office_index(rng) + inside(rng), heading(rng)};
+      const Pose start{5.0 * office_index(rng) + inside(rng), 5.0 * office_index(rng) + inside(rng),
+                       heading(rng)};
       Keyframe k;
       Pose pose = start;
       for (int message = 0; message < 10; ++message) {
