@@ -20,18 +20,18 @@ struct SearchWindow {
 };
 
 struct MatcherOptions {
-  double linear_step_m = 0.0;     // 0: the grid's resolution
+  double linear_step_m = 0.0;   // 0: the grid's resolution
   double angular_step_rad = 0.0;  // 0: chosen so the farthest point moves about one cell per step
-  double field_sigma_m = 0.05;    // blur of the likelihood field around occupied cells
-  int min_points = 12;            // fewer points: not matchable
-  double min_score = 0.45;        // mean likelihood (0..1) of the points at the best pose
+  double field_sigma_m = 0.05;  // blur of the likelihood field around occupied cells
+  int min_points = 12;          // fewer points: not matchable
+  double min_score = 0.45;      // mean likelihood (0..1) of the points at the best pose
 };
 
 struct MatchResult {
-  Pose pose;                   // the keyframe's pose in the grid's frame
-  Eigen::Matrix3d covariance;  // of (x, y, theta)
-  double score = 0.0;          // mean likelihood of the points at `pose`, 0..1
-  int points_used = 0;         // points that fell inside the grid
+  Pose pose;                    // the keyframe's pose in the grid's frame
+  Eigen::Matrix3d covariance;   // of (x, y, theta)
+  double score = 0.0;           // mean likelihood of the points at `pose`, 0..1
+  int points_used = 0;          // points that fell inside the grid
 };
 
 class ScanMatcher {

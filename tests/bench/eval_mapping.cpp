@@ -29,6 +29,8 @@ namespace {
 using namespace std::chrono_literals;
 using Clock = std::chrono::steady_clock;
 
+constexpr double kMaxTruthRateHz = 50.0;  // the largest --truth-rate the simulator accepts
+
 struct EvalOptions {
   std::string world = "office";
   std::string protocol = "v1";
@@ -260,9 +262,9 @@ class Evaluation {
                                     "--world", o_.world, "--robots", std::to_string(o_.robots), "--protocol",
                                     o_.protocol, "--drift", fmt::format("{}", o_.drift), "--seed",
                                     std::to_string(o_.seed), "--speed", fmt::format("{}", o_.speed),
-                                    // A truth sample per simulated step: arrivals pair with the
-                                    // truth at most one step later; the ATE takes one per second.
-                                    "--truth-rate", fmt::format("{}", o_.speed / sim::SimulationConfig{}.dt),
+                                    // A truth sample per simulated step, up to the simulator's
+                                    // limit: arrivals pair with the next one; the ATE takes one a second.
+                                    "--truth-rate", fmt::format("{}", std::min(kMaxTruthRateHz, o_.speed / sim::SimulationConfig{}.dt)),
                                     "--log-level", "warn"};
     if (!o_.odom_frame.empty()) sim.insert(sim.end(), {"--odom-frame", o_.odom_frame});
     group_.start("simulator", with(sim, o_.sim_args));
