@@ -4,9 +4,9 @@
 // truly are to waypoints the planner counts reached, and the exported map against the true walls.
 // Writes <out>/<name>.json (one object), <name>.png (the map with the true walls over it) and the
 // exported <name>.yaml/.pgm. See docs/mapping-quality.md; scripts/bench.sh runs the matrix.
-#include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include <CLI/CLI.hpp>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -43,7 +43,7 @@ struct EvalOptions {
   std::string odom_frame;  // passed to the simulator when set
   std::vector<std::string> sim_args, mapper_args, planner_args;
   std::string out_dir = "build/bench/mapping";
-  std::string name;  // default: from world, protocol, drift and the extra arguments
+  std::string name;                 // default: from world, protocol, drift and the extra arguments
   double reach_tolerance_m = 0.20;  // the planner's 0.15 m plus motion between its decision and the sample
   int pixels_per_cell = 2;
 };
@@ -177,7 +177,8 @@ class SystemTap {
 std::vector<sim::Segment> walls_of(const SimWorld& world, const Pose& map_from_world) {
   std::vector<sim::Segment> out;
   for (const Segment2& w : world.walls())
-    out.push_back({map_from_world.transform({w.a().x(), w.a().y()}), map_from_world.transform({w.b().x(), w.b().y()})});
+    out.push_back(
+        {map_from_world.transform({w.a().x(), w.a().y()}), map_from_world.transform({w.b().x(), w.b().y()})});
   return out;
 }
 
@@ -219,8 +220,9 @@ class Evaluation {
     while (simulated_s < o_.duration_s) {
       SLAM_TRY(check_running());
       if (Clock::now() - t0 > budget)
-        return Error{fmt::format("only {:.0f} of {:.0f} simulated seconds after {:.0f} s: the simulator fell behind",
-                                 simulated_s, o_.duration_s, budget.count())};
+        return Error{
+            fmt::format("only {:.0f} of {:.0f} simulated seconds after {:.0f} s: the simulator fell behind",
+                        simulated_s, o_.duration_s, budget.count())};
       std::this_thread::sleep_for(200ms);
       simulated_s = static_cast<double>(tap_->counter("simulator", "steps") - steps0) * step_s;
       if (Clock::now() >= next_report) {
@@ -258,14 +260,15 @@ class Evaluation {
     group_.start("planner", with({testkit::bin_path("slam-planner"), "--domain", domain, "--goal-store",
                                   group_.dir() + "/goals.json", "--log-level", "warn"},
                                  o_.planner_args));
-    std::vector<std::string> sim = {testkit::bin_path("slam-simulator"), "--domain", domain, "--broker", broker,
-                                    "--world", o_.world, "--robots", std::to_string(o_.robots), "--protocol",
-                                    o_.protocol, "--drift", fmt::format("{}", o_.drift), "--seed",
-                                    std::to_string(o_.seed), "--speed", fmt::format("{}", o_.speed),
-                                    // A truth sample per simulated step, up to the simulator's
-                                    // limit: arrivals pair with the next one; the ATE takes one a second.
-                                    "--truth-rate", fmt::format("{}", std::min(kMaxTruthRateHz, o_.speed / sim::SimulationConfig{}.dt)),
-                                    "--log-level", "warn"};
+    std::vector<std::string> sim = {
+        testkit::bin_path("slam-simulator"), "--domain", domain, "--broker", broker, "--world", o_.world,
+        "--robots", std::to_string(o_.robots), "--protocol", o_.protocol, "--drift",
+        fmt::format("{}", o_.drift), "--seed", std::to_string(o_.seed), "--speed",
+        fmt::format("{}", o_.speed),
+        // A truth sample per simulated step, up to the simulator's
+        // limit: arrivals pair with the next one; the ATE takes one a second.
+        "--truth-rate", fmt::format("{}", std::min(kMaxTruthRateHz, o_.speed / sim::SimulationConfig{}.dt)),
+        "--log-level", "warn"};
     if (!o_.odom_frame.empty()) sim.insert(sim.end(), {"--odom-frame", o_.odom_frame});
     group_.start("simulator", with(sim, o_.sim_args));
   }
@@ -302,7 +305,8 @@ class Evaluation {
     return Status::ok();
   }
 
-  Result<nlohmann::json> score(const MapImage& map, const std::string& yaml, double simulated_s, double wall_s) {
+  Result<nlohmann::json> score(const MapImage& map, const std::string& yaml, double simulated_s,
+                               double wall_s) {
     const TrajectoryErrors ate = trajectory_errors(recorder_.samples(), o_.align);
     // Published states: aligned like the corrected poses (both are in the map frame).
     std::vector<Vec2> published, truth;
@@ -384,8 +388,11 @@ int main(int argc, char** argv) {
   using slam::bench::EvalOptions;
   EvalOptions o;
   CLI::App app{"eval_mapping: one run of the whole system scored against the simulator's ground truth"};
-  app.add_option("--world", o.world, "simulator world: office, maze, track, rooms or a file")->capture_default_str();
-  app.add_option("--protocol", o.protocol, "robot protocol")->check(CLI::IsMember({"v1", "v2"}))->capture_default_str();
+  app.add_option("--world", o.world, "simulator world: office, maze, track, rooms or a file")
+      ->capture_default_str();
+  app.add_option("--protocol", o.protocol, "robot protocol")
+      ->check(CLI::IsMember({"v1", "v2"}))
+      ->capture_default_str();
   app.add_option("--drift", o.drift, "simulator odometry drift (m per sqrt(m))")
       ->check(CLI::Range(0.0, 1.0))
       ->capture_default_str();
@@ -397,18 +404,24 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--robots", o.robots, "simulated robots")->check(CLI::Range(1, 100))->capture_default_str();
   app.add_option("--seed", o.seed, "simulator random seed")->capture_default_str();
-  app.add_flag("--align", o.align, "fit the map frame to the world (rigid 2-D) before scoring; for --odom-frame start");
+  app.add_flag("--align", o.align,
+               "fit the map frame to the world (rigid 2-D) before scoring; for --odom-frame start");
   app.add_option("--odom-frame", o.odom_frame, "passed to the simulator (world or start)");
-  app.add_option("--sim-arg", o.sim_args, "extra simulator argument (repeat: --sim-arg=--heading-drift --sim-arg=0.02)")
+  app.add_option("--sim-arg", o.sim_args,
+                 "extra simulator argument (repeat: --sim-arg=--heading-drift --sim-arg=0.02)")
       ->allow_extra_args(false);
   app.add_option("--mapper-arg", o.mapper_args, "extra mapper argument (repeat)")->allow_extra_args(false);
   app.add_option("--planner-arg", o.planner_args, "extra planner argument (repeat)")->allow_extra_args(false);
   app.add_option("--out", o.out_dir, "directory of the results")->capture_default_str();
-  app.add_option("--name", o.name, "run name (file names); default from world, protocol, drift and extra arguments");
-  app.add_option("--reach-tolerance", o.reach_tolerance_m, "distance (m) at which a vanished path counts as reached")
+  app.add_option("--name", o.name,
+                 "run name (file names); default from world, protocol, drift and extra arguments");
+  app.add_option("--reach-tolerance", o.reach_tolerance_m,
+                 "distance (m) at which a vanished path counts as reached")
       ->check(CLI::Range(0.01, 5.0))
       ->capture_default_str();
-  app.add_option("--pixels-per-cell", o.pixels_per_cell, "image scale")->check(CLI::Range(1, 16))->capture_default_str();
+  app.add_option("--pixels-per-cell", o.pixels_per_cell, "image scale")
+      ->check(CLI::Range(1, 16))
+      ->capture_default_str();
   CLI11_PARSE(app, argc, argv);
 
   try {

@@ -19,7 +19,9 @@ Status check_axis_aligned(const MapImage& map) {
 }
 
 GridGeometry geometry_of(const MapImage& map) {
-  return {{map.origin_x, map.origin_y}, map.resolution, static_cast<int32_t>(map.width),
+  return {{map.origin_x, map.origin_y},
+          map.resolution,
+          static_cast<int32_t>(map.width),
           static_cast<int32_t>(map.height)};
 }
 

@@ -26,7 +26,8 @@ struct CoverageScore {
   size_t reachable_cells = 0;  // cells a 4-connected walk from a start reaches without touching a wall
   size_t known_free = 0;       // of those, free in the map
   double share() const {
-    return reachable_cells == 0 ? 0.0 : static_cast<double>(known_free) / static_cast<double>(reachable_cells);
+    return reachable_cells == 0 ? 0.0
+                                : static_cast<double>(known_free) / static_cast<double>(reachable_cells);
   }
 };
 

@@ -24,7 +24,8 @@ viewer::RgbImage render_overlay(const MapImage& map, std::span<const LineLayer> 
     for (int px = 0; px < image.width; ++px) {
       const uint8_t cell = map.cells[static_cast<size_t>(py / k) * map.width + static_cast<size_t>(px / k)];
       const uint8_t grey = cell == kMapFree ? kFreeGrey : cell == kMapOccupied ? kOccupiedGrey : kUnknownGrey;
-      const size_t at = (static_cast<size_t>(py) * static_cast<size_t>(image.width) + static_cast<size_t>(px)) * 3;
+      const size_t at =
+          (static_cast<size_t>(py) * static_cast<size_t>(image.width) + static_cast<size_t>(px)) * 3;
       std::fill_n(image.pixels.begin() + static_cast<std::ptrdiff_t>(at), 3, grey);
     }
   }
@@ -38,7 +39,8 @@ viewer::RgbImage render_overlay(const MapImage& map, std::span<const LineLayer> 
         const double fx = std::floor((p.x - map.origin_x) / pixel_m);
         const double fy = std::floor((p.y - map.origin_y) / pixel_m);
         if (fx < 0 || fy < 0 || fx >= image.width || fy >= image.height) continue;
-        const size_t at = (static_cast<size_t>(fy) * static_cast<size_t>(image.width) + static_cast<size_t>(fx)) * 3;
+        const size_t at =
+            (static_cast<size_t>(fy) * static_cast<size_t>(image.width) + static_cast<size_t>(fx)) * 3;
         std::copy(layer.rgb.begin(), layer.rgb.end(), image.pixels.begin() + static_cast<std::ptrdiff_t>(at));
       }
     }

@@ -106,8 +106,8 @@ TEST(ReachableCoverage, WallsStopTheFloodAndStartsOutsideCountNothing) {
 TEST(SegmentTouchesBox, InsideCrossingAndMissing) {
   EXPECT_TRUE(segment_touches_box({{0.5, 0.5}, {0.6, 0.6}}, {0, 0}, {1, 1}));  // inside
   EXPECT_TRUE(segment_touches_box({{-1, 0.5}, {2, 0.5}}, {0, 0}, {1, 1}));     // through
-  EXPECT_FALSE(segment_touches_box({{-1, 1.5}, {1, 3}}, {0, 0}, {1, 1}));  // passes above
-  EXPECT_TRUE(segment_touches_box({{1, -1}, {1, 2}}, {0, 0}, {1, 1}));  // along an edge
+  EXPECT_FALSE(segment_touches_box({{-1, 1.5}, {1, 3}}, {0, 0}, {1, 1}));      // passes above
+  EXPECT_TRUE(segment_touches_box({{1, -1}, {1, 2}}, {0, 0}, {1, 1}));         // along an edge
 }
 
 }  // namespace

@@ -51,8 +51,8 @@ TEST(TrajectoryErrors, AlignmentRemovesTheMapFrameButNotTheError) {
     // "b" 0.2 m off on every second sample (not a rigid error: alignment cannot remove it).
     const std::string robot = i % 2 == 0 ? "a" : "b";
     const Vec2 off = robot == "b" && i % 4 == 1 ? Vec2{0.2, 0.0} : Vec2{};
-    samples.push_back({robot, truth[i], map_from_world.transform(truth[i]) + off,
-                       map_from_world.transform(truth[i])});
+    samples.push_back(
+        {robot, truth[i], map_from_world.transform(truth[i]) + off, map_from_world.transform(truth[i])});
   }
   const TrajectoryErrors unaligned = trajectory_errors(samples, false);
   EXPECT_GT(unaligned.corrected.rmse, 1.0);
