@@ -1,0 +1,81 @@
+#pragma once
+// What an evaluation run keeps from the system while it runs, fed from DDS callbacks (any thread)
+// as plain values: every ground-truth sample pairs each robot's true pose with its raw odometry and
+// with the server's corrected pose (the mapper's latest map <- odom correction applied to that
+// same odometry, so no transport delay enters the error), and with the latest published RobotState;
+// waypoints the planner counts reached are paired with the next truth sample of that robot.
+#include <cstdint>
+#include <map>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "eval/trajectory_metrics.hpp"
+#include "eval/waypoint_arrivals.hpp"
+
+namespace slam::bench {
+
+struct RobotTruth {
+  std::string robot_id;
+  Pose true_pose;
+  Pose reported_pose;  // the robot's odometry, in its own frame
+};
+
+// A waypoint counted reached: where it was, and how far from it the robot truly and reportedly was.
+struct GoalArrival {
+  std::string robot_id;
+  Vec2 waypoint;
+  double true_distance_m = 0.0;
+  double reported_distance_m = 0.0;
+};
+
+class RunRecorder {
+ public:
+  // `sample_period_ns`: wall time between trajectory samples (one simulated second at the run's
+  // speed); `reach_tolerance_m` as WaypointArrivals.
+  RunRecorder(int64_t sample_period_ns, double reach_tolerance_m);
+
+  // Sampling runs between start() and stop(); the other inputs are kept all the time.
+  void start();
+  void stop();
+
+  void on_truth(int64_t stamp_ns, const std::vector<RobotTruth>& robots);
+  void on_state(const std::string& robot_id, Vec2 map_position);
+  void on_correction(const std::string& robot_id, const Pose& map_from_odom, uint64_t version);
+  void on_path(const std::string& robot_id, const PathView& path);
+
+  std::vector<TrajectorySample> samples() const;
+  // Latest published RobotState position beside the truth, per sample where one was known.
+  std::vector<std::pair<Vec2, Vec2>> published_vs_truth() const;
+  std::vector<GoalArrival> arrivals() const;
+  // First true position of every robot seen (flood-fill starts) and each robot's true track.
+  std::vector<Vec2> true_starts() const;
+  std::map<std::string, std::vector<Vec2>> true_tracks() const;
+  size_t robots_seen() const;
+  size_t states_seen() const;
+  size_t corrected_robots() const;  // robots with a correction of version > 0
+
+ private:
+  struct Robot {
+    std::optional<RobotTruth> truth;
+    std::optional<Vec2> state;
+    Pose correction;
+    uint64_t correction_version = 0;
+    std::vector<Vec2> track;
+    std::vector<GoalArrival> pending;  // waiting for the next truth sample
+  };
+
+  mutable std::mutex mutex_;
+  int64_t sample_period_ns_;
+  WaypointArrivals waypoint_arrivals_;
+  bool sampling_ = false;
+  int64_t next_sample_ns_ = -1;
+  std::map<std::string, Robot> robots_;
+  std::vector<Vec2> starts_;
+  std::vector<TrajectorySample> samples_;
+  std::vector<std::pair<Vec2, Vec2>> published_;
+  std::vector<GoalArrival> arrivals_;
+};
+
+}  // namespace slam::bench

@@ -1,0 +1,443 @@
+// eval_mapping: runs the whole system (mosquitto, gateway, mapper, planner, simulator) with
+// simulated robots exploring one world faster than real time, and scores it against the
+// simulator's ground truth: trajectory error (ATE) of corrected and raw poses, how close robots
+// truly are to waypoints the planner counts reached, and the exported map against the true walls.
+// Writes <out>/<name>.json (one object), <name>.png (the map with the true walls over it) and the
+// exported <name>.yaml/.pgm. See docs/mapping-quality.md; scripts/bench.sh runs the matrix.
+#include <fmt/format.h>
+
+#include <CLI/CLI.hpp>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <mutex>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <thread>
+
+#include "common/fastdds/fast_topics.hpp"
+#include "eval/map_metrics.hpp"
+#include "eval/map_overlay.hpp"
+#include "eval/run_recorder.hpp"
+#include "process_group.hpp"
+#include "simulator/config.hpp"
+
+namespace slam::bench {
+namespace {
+
+using namespace std::chrono_literals;
+using Clock = std::chrono::steady_clock;
+
+constexpr double kMaxTruthRateHz = 50.0;  // the largest --truth-rate the simulator accepts
+
+struct EvalOptions {
+  std::string world = "office";
+  std::string protocol = "v1";
+  double drift = 0.02;  // the simulator's default
+  double speed = 8.0;
+  double duration_s = 1200.0;  // simulated, from the exploration goal on
+  int robots = 3;
+  uint64_t seed = 1;
+  bool align = false;
+  std::string odom_frame;  // passed to the simulator when set
+  std::vector<std::string> sim_args, mapper_args, planner_args;
+  std::string out_dir = "build/bench/mapping";
+  std::string name;                 // default: from world, protocol, drift and the extra arguments
+  double reach_tolerance_m = 0.20;  // the planner's 0.15 m plus motion between its decision and the sample
+  int pixels_per_cell = 2;
+};
+
+std::string default_name(const EvalOptions& o) {
+  std::string name = fmt::format("{}-{}-drift{}", o.world, o.protocol, o.drift);
+  for (const auto* args : {&o.sim_args, &o.mapper_args})
+    for (const std::string& a : *args) name += "-" + a;
+  if (!o.odom_frame.empty()) name += "-odom" + o.odom_frame;
+  for (char& c : name)
+    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '.') c = '_';
+  return name;
+}
+
+// "on"/"off" when the mapper arguments say so ("--slam X" or "--slam=X"), else what the run showed.
+std::string slam_label(const std::vector<std::string>& mapper_args, size_t corrected_robots) {
+  for (size_t i = 0; i < mapper_args.size(); ++i) {
+    if (mapper_args[i] == "--slam" && i + 1 < mapper_args.size()) return mapper_args[i + 1];
+    if (mapper_args[i].starts_with("--slam=")) return mapper_args[i].substr(7);
+  }
+  return corrected_robots > 0 ? "on" : "off";
+}
+
+Pose to_pose(const Pose2& p) {
+  return {p.x(), p.y(), p.theta()};
+}
+
+nlohmann::json to_json(const ErrorStats& s) {
+  return {{"count", s.count}, {"mean_m", s.mean}, {"rmse_m", s.rmse}, {"max_m", s.max}};
+}
+
+// Everything the run hears on DDS, and the two request writers.
+class SystemTap {
+ public:
+  static Result<std::unique_ptr<SystemTap>> create(int domain, RunRecorder& recorder) {
+    std::unique_ptr<SystemTap> tap(new SystemTap(recorder));
+    SLAM_TRY(tap->connect(domain));
+    return tap;
+  }
+
+  int64_t counter(const std::string& service, const std::string& name) const {
+    std::lock_guard lock(mutex_);
+    const auto s = counters_.find(service);
+    if (s == counters_.end()) return -1;
+    const auto c = s->second.find(name);
+    return c == s->second.end() ? -1 : c->second;
+  }
+  std::optional<SimWorld> world() const {
+    std::lock_guard lock(mutex_);
+    return world_;
+  }
+  std::optional<MapReply> reply(uint64_t id) const {
+    std::lock_guard lock(mutex_);
+    const auto it = replies_.find(id);
+    return it == replies_.end() ? std::nullopt : std::optional<MapReply>(it->second);
+  }
+  dds::Writer<NavGoal>& goals() { return *goals_; }
+  dds::Writer<MapFileRequest>& files() { return *files_; }
+
+ private:
+  explicit SystemTap(RunRecorder& recorder) : recorder_(recorder) {}
+
+  template <class T, class P, class F>
+  Status open(std::unique_ptr<dds::Reader<T>>& out, const dds::Topic<T, P>& topic, F on_sample) {
+    auto r = dds::make_reader(*participant_, topic, [on_sample](const T& s, const auto&) { on_sample(s); });
+    if (!r) return Error{fmt::format("{} reader: {}", topic.info.name, r.message())};
+    out = std::move(*r);
+    return Status::ok();
+  }
+
+  Status connect(int domain) {
+    auto participant = dds::Participant::create(domain, "eval-mapping");
+    if (!participant) return Error{"DDS participant: " + participant.message()};
+    participant_ = std::move(*participant);
+    SLAM_TRY(open(truth_, dds::kSimGroundTruth, [this](const SimGroundTruth& t) {
+      std::vector<RobotTruth> robots;
+      for (const SimRobotTruth& r : t.robots())
+        robots.push_back({r.robot_id().to_string(), to_pose(r.true_pose()), to_pose(r.reported_pose())});
+      recorder_.on_truth(t.stamp_ns(), robots);
+    }));
+    SLAM_TRY(open(states_, dds::kRobotState, [this](const RobotState& s) {
+      recorder_.on_state(s.robot_id().to_string(), {s.pose().x(), s.pose().y()});
+    }));
+    SLAM_TRY(open(corrections_, dds::kPoseCorrection, [this](const PoseCorrection& c) {
+      recorder_.on_correction(c.robot_id().to_string(), to_pose(c.map_from_odom()), c.version());
+    }));
+    SLAM_TRY(open(paths_, dds::kRobotPath, [this](const RobotPath& p) {
+      PathView view{p.goal_id(), {}, p.current()};
+      for (const Point2& w : p.waypoints()) view.waypoints.push_back({w.x(), w.y()});
+      recorder_.on_path(p.robot_id().to_string(), view);
+    }));
+    SLAM_TRY(open(worlds_, dds::kSimWorld, [this](const SimWorld& w) {
+      std::lock_guard lock(mutex_);
+      world_ = w;
+    }));
+    SLAM_TRY(open(heartbeats_, dds::kHeartbeat, [this](const Heartbeat& h) {
+      std::lock_guard lock(mutex_);
+      auto& counters = counters_[h.service().to_string()];
+      for (const Counter& c : h.counters()) counters[c.name().to_string()] = c.value();
+    }));
+    SLAM_TRY(open(replies_reader_, dds::kMapReply, [this](const MapReply& r) {
+      std::lock_guard lock(mutex_);
+      replies_[r.request_id()] = r;
+    }));
+    auto goals = dds::make_writer(*participant_, dds::kNavGoal);
+    if (!goals) return Error{"NavGoal writer: " + goals.message()};
+    goals_ = std::move(*goals);
+    auto files = dds::make_writer(*participant_, dds::kMapFileRequest);
+    if (!files) return Error{"MapFileRequest writer: " + files.message()};
+    files_ = std::move(*files);
+    return Status::ok();
+  }
+
+  RunRecorder& recorder_;
+  std::unique_ptr<dds::Participant> participant_;
+  std::unique_ptr<dds::Reader<SimGroundTruth>> truth_;
+  std::unique_ptr<dds::Reader<RobotState>> states_;
+  std::unique_ptr<dds::Reader<PoseCorrection>> corrections_;
+  std::unique_ptr<dds::Reader<RobotPath>> paths_;
+  std::unique_ptr<dds::Reader<SimWorld>> worlds_;
+  std::unique_ptr<dds::Reader<Heartbeat>> heartbeats_;
+  std::unique_ptr<dds::Reader<MapReply>> replies_reader_;
+  std::unique_ptr<dds::Writer<NavGoal>> goals_;
+  std::unique_ptr<dds::Writer<MapFileRequest>> files_;
+  mutable std::mutex mutex_;
+  std::optional<SimWorld> world_;
+  std::map<std::string, std::map<std::string, int64_t>> counters_;
+  std::map<uint64_t, MapReply> replies_;
+};
+
+std::vector<sim::Segment> walls_of(const SimWorld& world, const Pose& map_from_world) {
+  std::vector<sim::Segment> out;
+  for (const Segment2& w : world.walls())
+    out.push_back(
+        {map_from_world.transform({w.a().x(), w.a().y()}), map_from_world.transform({w.b().x(), w.b().y()})});
+  return out;
+}
+
+std::vector<sim::Segment> polyline(const std::vector<Vec2>& points, const Pose& transform) {
+  std::vector<sim::Segment> out;
+  for (size_t i = 1; i < points.size(); ++i)
+    out.push_back({transform.transform(points[i - 1]), transform.transform(points[i])});
+  return out;
+}
+
+class Evaluation {
+ public:
+  explicit Evaluation(const EvalOptions& o)
+      : o_(o), recorder_(static_cast<int64_t>(1e9 / o.speed), o.reach_tolerance_m) {}
+
+  Result<nlohmann::json> run() {
+    start_processes();
+    auto tap = SystemTap::create(lease_.id(), recorder_);
+    if (!tap) return tap.error();
+    tap_ = std::move(*tap);
+    SLAM_TRY(wait_for("every robot's truth and state, the world and the planner's goal reader", 90s, [&] {
+      return recorder_.robots_seen() >= static_cast<size_t>(o_.robots) &&
+             recorder_.states_seen() >= static_cast<size_t>(o_.robots) && tap_->world().has_value() &&
+             tap_->counter("simulator", "steps") >= 0 && tap_->goals().wait_for_readers(10ms);
+    }));
+
+    const double step_s = sim::SimulationConfig{}.dt;
+    const int64_t steps0 = tap_->counter("simulator", "steps");
+    NavGoal goal;
+    goal.robot_id("*");
+    goal.goal_id(1);
+    goal.mode(GOAL_EXPLORE);
+    if (!tap_->goals().write(goal)) return Error{"writing the exploration goal failed"};
+    recorder_.start();
+    const auto t0 = Clock::now();
+    const auto budget = std::chrono::duration<double>(3.0 * o_.duration_s / o_.speed + 60.0);
+    double simulated_s = 0.0;
+    auto next_report = t0 + 30s;
+    while (simulated_s < o_.duration_s) {
+      SLAM_TRY(check_running());
+      if (Clock::now() - t0 > budget)
+        return Error{
+            fmt::format("only {:.0f} of {:.0f} simulated seconds after {:.0f} s: the simulator fell behind",
+                        simulated_s, o_.duration_s, budget.count())};
+      std::this_thread::sleep_for(200ms);
+      simulated_s = static_cast<double>(tap_->counter("simulator", "steps") - steps0) * step_s;
+      if (Clock::now() >= next_report) {
+        std::fprintf(stderr, "eval_mapping: %s: %.0f of %.0f simulated s\n", name().c_str(), simulated_s,
+                     o_.duration_s);
+        next_report += 30s;
+      }
+    }
+    recorder_.stop();
+    const double wall_s = std::chrono::duration<double>(Clock::now() - t0).count();
+
+    std::filesystem::create_directories(o_.out_dir);
+    const std::string yaml = std::filesystem::absolute(o_.out_dir + "/" + name() + ".yaml").string();
+    SLAM_TRY(export_map(yaml));
+    auto map = read_ros_map(yaml);
+    if (!map) return Error{"reading the exported map: " + map.message()};
+    return score(*map, yaml, simulated_s, wall_s);
+  }
+
+  std::string name() const { return o_.name.empty() ? default_name(o_) : o_.name; }
+
+ private:
+  void start_processes() {
+    const std::string domain = std::to_string(lease_.id());
+    const std::string broker = "tcp://127.0.0.1:" + std::to_string(group_.start_mosquitto());
+    const auto with = [](std::vector<std::string> argv, const std::vector<std::string>& extra) {
+      argv.insert(argv.end(), extra.begin(), extra.end());
+      return argv;
+    };
+    group_.start("gateway", {testkit::bin_path("slam-gateway"), "--domain", domain, "--broker", broker,
+                             "--log-level", "warn"});
+    group_.start("mapper", with({testkit::bin_path("slam-mapper"), "--domain", domain, "--store",
+                                 group_.dir() + "/map.db", "--log-level", "warn"},
+                                o_.mapper_args));
+    group_.start("planner", with({testkit::bin_path("slam-planner"), "--domain", domain, "--goal-store",
+                                  group_.dir() + "/goals.json", "--log-level", "warn"},
+                                 o_.planner_args));
+    std::vector<std::string> sim = {
+        testkit::bin_path("slam-simulator"), "--domain", domain, "--broker", broker, "--world", o_.world,
+        "--robots", std::to_string(o_.robots), "--protocol", o_.protocol, "--drift",
+        fmt::format("{}", o_.drift), "--seed", std::to_string(o_.seed), "--speed",
+        fmt::format("{}", o_.speed),
+        // A truth sample per simulated step, up to the simulator's
+        // limit: arrivals pair with the next one; the ATE takes one a second.
+        "--truth-rate", fmt::format("{}", std::min(kMaxTruthRateHz, o_.speed / sim::SimulationConfig{}.dt)),
+        "--log-level", "warn"};
+    if (!o_.odom_frame.empty()) sim.insert(sim.end(), {"--odom-frame", o_.odom_frame});
+    group_.start("simulator", with(sim, o_.sim_args));
+  }
+
+  Status check_running() {
+    for (const char* p : {"mosquitto", "gateway", "mapper", "planner", "simulator"}) {
+      if (group_.running(p)) continue;
+      const std::string log = group_.log(p);
+      return Error{fmt::format("{} exited:\n{}", p, log.size() > 2000 ? log.substr(log.size() - 2000) : log)};
+    }
+    return Status::ok();
+  }
+
+  Status wait_for(const std::string& what, std::chrono::seconds timeout, const std::function<bool()>& ready) {
+    const auto until = Clock::now() + timeout;
+    while (!ready()) {
+      SLAM_TRY(check_running());
+      if (Clock::now() > until) return Error{fmt::format("no {} within {} s", what, timeout.count())};
+      std::this_thread::sleep_for(100ms);
+    }
+    return Status::ok();
+  }
+
+  Status export_map(const std::string& yaml) {
+    MapFileRequest request;
+    request.request_id(1);
+    request.action(MAP_EXPORT);
+    request.yaml_path(yaml);
+    if (!tap_->files().wait_for_readers(30s) || !tap_->files().write(request))
+      return Error{"the mapper does not take map file requests"};
+    SLAM_TRY(wait_for("reply to the map export", 120s, [&] { return tap_->reply(1).has_value(); }));
+    const MapReply reply = *tap_->reply(1);
+    if (reply.result() != MAP_OK) return Error{"map export failed: " + reply.message().to_string()};
+    return Status::ok();
+  }
+
+  Result<nlohmann::json> score(const MapImage& map, const std::string& yaml, double simulated_s,
+                               double wall_s) {
+    const TrajectoryErrors ate = trajectory_errors(recorder_.samples(), o_.align);
+    // Published states: aligned like the corrected poses (both are in the map frame).
+    std::vector<Vec2> published, truth;
+    for (const auto& [p, t] : recorder_.published_vs_truth()) {
+      published.push_back(ate.alignment.transform(p));
+      truth.push_back(t);
+    }
+    std::vector<double> goal_true, goal_reported;
+    for (const GoalArrival& a : recorder_.arrivals()) {
+      goal_true.push_back(a.true_distance_m);
+      goal_reported.push_back(a.reported_distance_m);
+    }
+    // The true walls and starts in the map frame: through the alignment's inverse when aligned.
+    const Pose map_from_world = ate.alignment.inverse();
+    const std::vector<sim::Segment> walls = walls_of(*tap_->world(), map_from_world);
+    std::vector<Vec2> starts = transformed(map_from_world, recorder_.true_starts());
+    auto walls_score = score_walls(map, walls);
+    if (!walls_score) return walls_score.error();
+    auto coverage = reachable_coverage(map, walls, starts);
+    if (!coverage) return coverage.error();
+
+    std::vector<LineLayer> layers;
+    for (const auto& [id, track] : recorder_.true_tracks())
+      layers.push_back({polyline(track, map_from_world), {80, 160, 255}});
+    layers.push_back({walls, {230, 30, 30}});
+    const std::string png = yaml.substr(0, yaml.size() - 5) + ".png";
+    SLAM_TRY(viewer::write_png(png, render_overlay(map, layers, o_.pixels_per_cell)));
+
+    const size_t corrected = recorder_.corrected_robots();
+    nlohmann::json j;
+    j["name"] = name();
+    j["world"] = o_.world;
+    j["protocol"] = o_.protocol;
+    j["drift"] = o_.drift;
+    j["sim_args"] = o_.sim_args;
+    j["mapper_args"] = o_.mapper_args;
+    j["planner_args"] = o_.planner_args;
+    j["odom_frame"] = o_.odom_frame.empty() ? "world" : o_.odom_frame;
+    j["slam"] = slam_label(o_.mapper_args, corrected);
+    j["corrected_robots"] = corrected;
+    j["robots"] = o_.robots;
+    j["seed"] = o_.seed;
+    j["speed"] = o_.speed;
+    j["simulated_s"] = simulated_s;
+    j["wall_s"] = wall_s;
+    j["achieved_speed"] = simulated_s / wall_s;
+    j["simulator_loop_overruns"] = tap_->counter("simulator", "loop_overruns");
+    j["mapper_dropped"] = tap_->counter("mapper", "dropped");
+    j["aligned"] = o_.align;
+    j["alignment"] = {{"x", ate.alignment.x}, {"y", ate.alignment.y}, {"theta", ate.alignment.theta}};
+    j["ate_corrected"] = to_json(ate.corrected);
+    j["ate_raw"] = to_json(ate.raw);
+    j["ate_published"] = to_json(position_errors(published, truth));
+    j["goal_true"] = to_json(summarise(goal_true));
+    j["goal_reported"] = to_json(summarise(goal_reported));
+    j["map"] = {{"resolution_m", map.resolution},
+                {"occupied_cells", walls_score->occupied_cells},
+                {"near_wall_share", walls_score->near_wall_share},
+                {"mean_wall_distance_m", walls_score->mean_wall_distance_m},
+                {"wall_found_share", walls_score->wall_found_share},
+                {"reachable_cells", coverage->reachable_cells},
+                {"coverage", coverage->share()}};
+    j["image"] = std::filesystem::path(png).filename().string();
+    j["map_yaml"] = std::filesystem::path(yaml).filename().string();
+    return j;
+  }
+
+  EvalOptions o_;
+  RunRecorder recorder_;
+  testkit::DomainLease lease_;
+  testkit::ProcessGroup group_;
+  std::unique_ptr<SystemTap> tap_;
+};
+
+}  // namespace
+}  // namespace slam::bench
+
+int main(int argc, char** argv) {
+  using slam::bench::EvalOptions;
+  EvalOptions o;
+  CLI::App app{"eval_mapping: one run of the whole system scored against the simulator's ground truth"};
+  app.add_option("--world", o.world, "simulator world: office, maze, track, rooms or a file")
+      ->capture_default_str();
+  app.add_option("--protocol", o.protocol, "robot protocol")
+      ->check(CLI::IsMember({"v1", "v2"}))
+      ->capture_default_str();
+  app.add_option("--drift", o.drift, "simulator odometry drift (m per sqrt(m))")
+      ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
+  app.add_option("--speed", o.speed, "simulated seconds per wall-clock second")
+      ->check(CLI::Range(0.1, 100.0))
+      ->capture_default_str();
+  app.add_option("--duration", o.duration_s, "simulated seconds of exploration")
+      ->check(CLI::Range(1.0, 86400.0))
+      ->capture_default_str();
+  app.add_option("--robots", o.robots, "simulated robots")->check(CLI::Range(1, 100))->capture_default_str();
+  app.add_option("--seed", o.seed, "simulator random seed")->capture_default_str();
+  app.add_flag("--align", o.align,
+               "fit the map frame to the world (rigid 2-D) before scoring; for --odom-frame start");
+  app.add_option("--odom-frame", o.odom_frame, "passed to the simulator (world or start)");
+  app.add_option("--sim-arg", o.sim_args,
+                 "extra simulator argument (repeat: --sim-arg=--heading-drift --sim-arg=0.02)")
+      ->allow_extra_args(false);
+  app.add_option("--mapper-arg", o.mapper_args, "extra mapper argument (repeat)")->allow_extra_args(false);
+  app.add_option("--planner-arg", o.planner_args, "extra planner argument (repeat)")->allow_extra_args(false);
+  app.add_option("--out", o.out_dir, "directory of the results")->capture_default_str();
+  app.add_option("--name", o.name,
+                 "run name (file names); default from world, protocol, drift and extra arguments");
+  app.add_option("--reach-tolerance", o.reach_tolerance_m,
+                 "distance (m) at which a vanished path counts as reached")
+      ->check(CLI::Range(0.01, 5.0))
+      ->capture_default_str();
+  app.add_option("--pixels-per-cell", o.pixels_per_cell, "image scale")
+      ->check(CLI::Range(1, 16))
+      ->capture_default_str();
+  CLI11_PARSE(app, argc, argv);
+
+  try {
+    slam::bench::Evaluation evaluation(o);
+    auto result = evaluation.run();
+    if (!result) {
+      std::fprintf(stderr, "eval_mapping: %s: %s\n", evaluation.name().c_str(), result.message().c_str());
+      return 1;
+    }
+    const std::string json_path = o.out_dir + "/" + evaluation.name() + ".json";
+    std::ofstream(json_path) << result->dump(2) << "\n";
+    std::printf("%s\n", result->dump(2).c_str());
+    std::fprintf(stderr, "eval_mapping: wrote %s\n", json_path.c_str());
+    return 0;
+  } catch (const std::exception& e) {  // process start-up (the harness throws when it cannot start)
+    std::fprintf(stderr, "eval_mapping: %s\n", e.what());
+    return 1;
+  }
+}

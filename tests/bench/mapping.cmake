@@ -1,0 +1,21 @@
+# eval_mapping: one run of the whole system (mosquitto, gateway, mapper, planner, simulator) with
+# simulated robots exploring a world faster than real time, scored against the simulator's ground
+# truth: ATE, goal accuracy, the exported map against the true walls (include() from
+# tests/bench/CMakeLists.txt). Not a Google Benchmark: it writes <out>/<name>.json and .png;
+# scripts/bench.sh --only mapping runs the matrix and writes docs/mapping-quality.md.
+# Run: build/bin/eval_mapping --world office --protocol v1 --speed 8 --duration 1200
+# mapping_eval: the metrics and the recorder, plain C++ (unit tests in tests/unit/bench).
+add_library(mapping_eval STATIC ${CMAKE_CURRENT_LIST_DIR}/eval/trajectory_metrics.cpp
+                                ${CMAKE_CURRENT_LIST_DIR}/eval/waypoint_arrivals.cpp
+                                ${CMAKE_CURRENT_LIST_DIR}/eval/map_metrics.cpp
+                                ${CMAKE_CURRENT_LIST_DIR}/eval/map_overlay.cpp
+                                ${CMAKE_CURRENT_LIST_DIR}/eval/run_recorder.cpp)
+target_include_directories(mapping_eval PUBLIC ${CMAKE_CURRENT_LIST_DIR})
+# simulator_core for its segment geometry, viewer_core for PNG files.
+target_link_libraries(mapping_eval PUBLIC slam_core simulator_core viewer_core)
+slam_warnings(mapping_eval)
+
+add_executable(eval_mapping ${CMAKE_CURRENT_LIST_DIR}/eval_mapping.cpp)
+target_link_libraries(eval_mapping PRIVATE mapping_eval slam_fastdds slam_testkit nlohmann_json::nlohmann_json)
+add_dependencies(eval_mapping slam-gateway slam-mapper slam-planner slam-simulator)
+slam_warnings(eval_mapping)

@@ -1,0 +1,49 @@
+#include "eval/run_recorder.hpp"
+
+#include <gtest/gtest.h>
+
+namespace slam::bench {
+namespace {
+
+constexpr int64_t kSecond = 1'000'000'000;
+
+TEST(RunRecorder, SamplesOncePerPeriodWhileStartedAndAppliesTheCorrection) {
+  RunRecorder recorder(kSecond, 0.2);
+  const auto truth_at = [&](int64_t t, double x) {
+    recorder.on_truth(t, {{"r1", Pose{x, 0.0, 0.0}, Pose{x + 0.5, 0.0, 0.0}}});
+  };
+  truth_at(0, 0.0);  // before start: a start position, no sample
+  recorder.start();
+  recorder.on_correction("r1", Pose{-0.5, 0.0, 0.0}, 3);
+  for (int i = 1; i <= 20; ++i) truth_at(i * kSecond / 4, 0.1 * i);  // 4 per period
+  recorder.stop();
+  truth_at(10 * kSecond, 9.0);
+
+  const auto samples = recorder.samples();
+  ASSERT_EQ(samples.size(), 5u);
+  for (const TrajectorySample& s : samples) {
+    EXPECT_NEAR(s.raw.x - s.truth.x, 0.5, 1e-12);
+    EXPECT_NEAR(s.corrected.x, s.truth.x, 1e-12);
+  }
+  EXPECT_EQ(recorder.true_starts(), (std::vector<Vec2>{{0.0, 0.0}}));
+  EXPECT_EQ(recorder.corrected_robots(), 1u);
+  EXPECT_TRUE(recorder.published_vs_truth().empty());  // no RobotState heard
+}
+
+TEST(RunRecorder, AnArrivalTakesTheNextTruthSample) {
+  RunRecorder recorder(kSecond, 0.2);
+  recorder.start();
+  const std::vector<Vec2> path = {{1.0, 0.0}, {2.0, 0.0}};
+  recorder.on_path("r1", {1, path, 0});
+  recorder.on_state("r1", {1.0, 0.1});
+  recorder.on_path("r1", {1, path, 1});
+  EXPECT_TRUE(recorder.arrivals().empty());  // waits for the truth
+  recorder.on_truth(kSecond, {{"r1", Pose{1.0, 0.3, 0.0}, Pose{1.0, 0.1, 0.0}}});
+  const auto arrivals = recorder.arrivals();
+  ASSERT_EQ(arrivals.size(), 1u);
+  EXPECT_NEAR(arrivals[0].true_distance_m, 0.3, 1e-12);
+  EXPECT_NEAR(arrivals[0].reported_distance_m, 0.1, 1e-12);
+}
+
+}  // namespace
+}  // namespace slam::bench
