@@ -81,7 +81,9 @@ class GatewayFramesTest : public ::testing::Test {
   }
   std::optional<RobotState> state_at(const std::string& id, double x, double y) {
     return states.wait_for(
-        [&](const RobotState& s) { return s.robot_id() == id && near(s.pose().x(), x) && near(s.pose().y(), y); },
+        [&](const RobotState& s) {
+          return s.robot_id() == id && near(s.pose().x(), x) && near(s.pose().y(), y);
+        },
         10s);
   }
   std::optional<RobotOdometry> odometry_with(const std::string& id, uint64_t version) {
