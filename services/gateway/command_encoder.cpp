@@ -1,6 +1,8 @@
-// CommandEncoder: topics and payloads per protocol, with every codec error passed through.
+// CommandEncoder: one frame conversion for every protocol, then topics and payloads per protocol,
+// with every codec error passed through.
 #include "gateway/command_encoder.hpp"
 
+#include "gateway/frame_correction.hpp"
 #include "protocol/topic.hpp"
 #include "protocol/v1_codec.hpp"
 #include "protocol/v2_server_codec.hpp"
@@ -8,15 +10,25 @@
 namespace slam::gateway {
 
 protocol::CodecStatus CommandEncoder::encode(std::string_view robot_id, Protocol protocol, std::uint64_t seq,
-                                             protocol::Point waypoint,
+                                             const Pose& map_from_odom, protocol::Point waypoint,
                                              std::span<const protocol::Point> remaining,
                                              CommandMessages& out) {
   out.count = 0;
+  // Planners differ on whether "remaining" includes the current waypoint; robots get it once.
+  // (Compared in the map frame, where the planner made them equal.) v1 robots take the waypoint only.
+  path_.assign(1, waypoint);
+  if (protocol == Protocol::V2) {
+    const bool repeats = !remaining.empty() && remaining.front() == waypoint;
+    path_.insert(path_.end(), remaining.begin() + (repeats ? 1 : 0), remaining.end());
+  }
+  to_odometry_frame(map_from_odom, path_);
+  const protocol::Point target = path_.front();
+
   if (protocol == Protocol::V1) {
     OutboundMessage& m = out.messages[0];
     if (auto s = protocol::v1_command_topic(robot_id, m.topic); !s) return s;
     std::array<std::uint8_t, protocol::kV1PairBytes> bytes{};
-    if (auto s = protocol::encode_v1_waypoint(waypoint, limits_.units_per_meter, bytes); !s) return s;
+    if (auto s = protocol::encode_v1_waypoint(target, limits_.units_per_meter, bytes); !s) return s;
     m.payload.assign(reinterpret_cast<const char*>(bytes.data()), bytes.size());
     out.count = 1;
     return protocol::CodecStatus::ok();
@@ -26,11 +38,7 @@ protocol::CodecStatus CommandEncoder::encode(std::string_view robot_id, Protocol
   OutboundMessage& p = out.messages[1];
   if (auto s = protocol::v2_waypoint_topic(robot_id, w.topic); !s) return s;
   if (auto s = protocol::v2_path_topic(robot_id, p.topic); !s) return s;
-  if (auto s = protocol::encode_v2_waypoint({seq, waypoint}, limits_, w.payload); !s) return s;
-  // Planners differ on whether "remaining" includes the current waypoint; robots get it once.
-  path_.clear();
-  if (remaining.empty() || !(remaining.front() == waypoint)) path_.push_back(waypoint);
-  path_.insert(path_.end(), remaining.begin(), remaining.end());
+  if (auto s = protocol::encode_v2_waypoint({seq, target}, limits_, w.payload); !s) return s;
   if (auto s = protocol::encode_v2_path(seq, path_, limits_, p.payload); !s) return s;
   out.count = 2;
   return protocol::CodecStatus::ok();

@@ -1,7 +1,8 @@
 #pragma once
-// A waypoint command from the planner, turned into what the robot understands in the protocol it
-// spoke last: v1 gets exactly one 4-byte int16 pair on v1/server/<id>/cmd (never wrapped: out of
-// range is an error), v2 gets the waypoint JSON and the whole remaining path JSON.
+// A waypoint command from the planner (map frame), turned into what the robot understands: first
+// into the robot's odometry frame with its correction, then into the protocol it spoke last: v1
+// gets exactly one 4-byte int16 pair on v1/server/<id>/cmd (never wrapped: out of range is an
+// error), v2 gets the waypoint JSON and the whole remaining path JSON.
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -10,6 +11,7 @@
 #include <string_view>
 #include <vector>
 
+#include "common/core/geometry.hpp"
 #include "gateway/robot_registry.hpp"
 #include "protocol/codec_types.hpp"
 #include "protocol/reject_reason.hpp"
@@ -32,16 +34,17 @@ class CommandEncoder {
  public:
   explicit CommandEncoder(const protocol::CodecLimits& limits) : limits_(limits) {}
 
-  // Encodes the command for `robot_id` speaking `protocol`. `remaining` is the rest of the path;
-  // whether or not it starts with `waypoint`, the v2 path sent starts with it exactly once.
+  // Encodes the command for `robot_id` speaking `protocol`, whose odometry frame is placed in the
+  // map by `map_from_odom`. `waypoint` and `remaining` (the rest of the path) are in the map frame;
+  // whether or not `remaining` starts with `waypoint`, the v2 path sent starts with it exactly once.
   // On error (bad id, non-finite or out-of-range waypoint, too many points) out.count is 0.
   protocol::CodecStatus encode(std::string_view robot_id, Protocol protocol, std::uint64_t seq,
-                               protocol::Point waypoint, std::span<const protocol::Point> remaining,
-                               CommandMessages& out);
+                               const Pose& map_from_odom, protocol::Point waypoint,
+                               std::span<const protocol::Point> remaining, CommandMessages& out);
 
  private:
   protocol::CodecLimits limits_;
-  std::vector<protocol::Point> path_;
+  std::vector<protocol::Point> path_;  // waypoint then the rest, in the odometry frame
 };
 
 }  // namespace slam::gateway

@@ -33,13 +33,13 @@ void fill_observation(std::string_view robot_id, std::uint64_t seq, std::int64_t
   copy_points(in.misses, out.misses());
 }
 
-void fill_state(const RobotRecord& in, slam::RobotState& out) {
+void fill_state(const RobotRecord& in, const Pose& map_pose, slam::RobotState& out) {
   set_text(out.robot_id(), in.id);
   out.protocol(to_dds(in.protocol));
   out.presence(in.presence == Presence::Online ? slam::PRESENCE_ONLINE : slam::PRESENCE_OFFLINE);
-  out.pose().x(in.x);
-  out.pose().y(in.y);
-  out.pose().theta(in.theta);
+  out.pose().x(map_pose.x);
+  out.pose().y(map_pose.y);
+  out.pose().theta(map_pose.theta);
   out.has_heading(in.has_heading);
   out.first_seen_ns(in.first_seen_ns);
   out.last_seen_ns(in.last_seen_ns);
@@ -48,6 +48,21 @@ void fill_state(const RobotRecord& in, slam::RobotState& out) {
   out.rejected(in.rejected);
   out.battery(in.battery);
   set_text(out.status(), in.status);
+}
+
+void fill_odometry(const RobotRecord& in, std::uint64_t correction_version, slam::RobotOdometry& out) {
+  set_text(out.robot_id(), in.id);
+  out.stamp_ns(in.last_seen_ns);
+  out.odom_pose().x(in.x);
+  out.odom_pose().y(in.y);
+  out.odom_pose().theta(in.theta);
+  out.has_heading(in.has_heading);
+  out.correction_version(correction_version);
+}
+
+Correction to_correction(const slam::PoseCorrection& in) {
+  const slam::Pose2& t = in.map_from_odom();
+  return {{t.x(), t.y(), t.theta()}, in.version()};
 }
 
 void fill_traffic(const TrafficRecord& in, slam::MqttTraffic& out) {

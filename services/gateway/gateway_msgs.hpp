@@ -1,6 +1,7 @@
 #pragma once
 // Conversions between the gateway core and the generated DDS types, in one place. Samples are
 // filled in place so the caller's reused sample keeps its sequence capacity between messages.
+#include <slam/fastdds/correction.h>
 #include <slam/fastdds/mqtt.h>
 #include <slam/fastdds/nav.h>
 #include <slam/fastdds/robot.h>
@@ -13,6 +14,7 @@
 #include <vector>
 
 #include "common/core/bounded_text.hpp"
+#include "gateway/frame_correction.hpp"
 #include "gateway/robot_registry.hpp"
 #include "gateway/traffic_queue.hpp"
 #include "protocol/codec_types.hpp"
@@ -38,7 +40,12 @@ std::string_view text_of(const eprosima::fastrtps::fixed_string<N>& s) {
 
 void fill_observation(std::string_view robot_id, std::uint64_t seq, std::int64_t stamp_ns, Protocol protocol,
                       const protocol::DecodedObservation& in, slam::RobotObservation& out);
-void fill_state(const RobotRecord& in, slam::RobotState& out);
+// The robot's state with `map_pose` (its reported pose in the map frame).
+void fill_state(const RobotRecord& in, const Pose& map_pose, slam::RobotState& out);
+// The robot's pose as it reported it, and the correction version `fill_state` was given a pose for.
+void fill_odometry(const RobotRecord& in, std::uint64_t correction_version, slam::RobotOdometry& out);
+// A PoseCorrection sample as the gateway keeps it.
+Correction to_correction(const slam::PoseCorrection& in);
 void fill_traffic(const TrafficRecord& in, slam::MqttTraffic& out);
 // DDS points into `out` (replaced, capacity kept).
 void to_points(const std::vector<slam::Point2>& in, std::vector<protocol::Point>& out);

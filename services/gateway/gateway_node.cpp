@@ -36,6 +36,8 @@ GatewayNode::Metrics::Metrics(Counters& c)
       commands_sent(c.get("commands_sent")),
       commands_failed(c.get("commands_failed")),
       commands_unknown_robot(c.get("commands_unknown_robot")),
+      corrections(c.get("corrections")),
+      corrections_rejected(c.get("corrections_rejected")),
       mqtt_requests(c.get("mqtt_requests")),
       mqtt_requests_failed(c.get("mqtt_requests_failed")),
       publish_failures(c.get("publish_failures")),
@@ -53,6 +55,7 @@ GatewayNode::GatewayNode(const GatewayOptions& options, Counters& counters)
       metrics_(counters),
       traffic_(options.traffic_queue, options.traffic_rate),
       registry_(RegistryConfig{static_cast<int64_t>(options.offline_after_s * 1e9), options.max_robots}),
+      corrections_(options.max_robots),
       decoder_(options.limits),
       encoder_(options.limits) {}
 
@@ -73,6 +76,9 @@ Status GatewayNode::configure() {
   auto states = dds::make_writer(*participant_, dds::kRobotState);
   if (!states) return states.error();
   state_writer_ = std::move(*states);
+  auto odometry = dds::make_writer(*participant_, dds::kRobotOdometry);
+  if (!odometry) return odometry.error();
+  odometry_writer_ = std::move(*odometry);
   auto subscriptions = dds::make_writer(*participant_, dds::kMqttSubscriptions);
   if (!subscriptions) return subscriptions.error();
   subscriptions_writer_ = std::move(*subscriptions);
@@ -94,7 +100,13 @@ Status GatewayNode::configure() {
   if (!mqtt) return mqtt.error();
   mqtt_ = std::move(*mqtt);
 
-  // Readers last: their callbacks publish through the MQTT client.
+  // Readers last: their callbacks publish through the MQTT client (or, for corrections, wake the
+  // loop, and waypoints need them).
+  auto corrections =
+      dds::make_reader(*participant_, dds::kPoseCorrection,
+                       [this](const slam::PoseCorrection& c, const auto&) { on_correction(c); });
+  if (!corrections) return corrections.error();
+  correction_reader_ = std::move(*corrections);
   auto waypoints = dds::make_reader(*participant_, dds::kWaypointCommand,
                                     [this](const slam::WaypointCommand& c, const auto&) { on_waypoint(c); });
   if (!waypoints) return waypoints.error();
@@ -136,10 +148,47 @@ void GatewayNode::run_once() {
   publish_subscriptions();
 }
 
+void GatewayNode::on_correction(const slam::PoseCorrection& sample) {
+  const std::string_view id = text_of(sample.robot_id());
+  Result<bool> changed = false;
+  {
+    std::lock_guard lock(corrections_mutex_);
+    changed = corrections_.update(id, to_correction(sample));
+  }
+  if (!changed) {
+    bump(metrics_.corrections_rejected);
+    const std::string shown = protocol::escape_for_log(id);
+    warn("correction:" + shown, "correction " + std::to_string(sample.version()) + " for robot '" + shown +
+                                    "' ignored: " + changed.message());
+    return;
+  }
+  bump(metrics_.corrections);
+  if (!*changed) return;
+  bool known = false;
+  {
+    std::lock_guard lock(registry_mutex_);
+    known = registry_.mark_changed(id);
+    if (known) urgent_ = true;
+  }
+  if (known) loop_wake_.notify_one();
+}
+
 void GatewayNode::publish_states() {
   for (const RobotRecord& r : changed_) {
-    fill_state(r, state_);
+    Correction correction;
+    {
+      std::lock_guard lock(corrections_mutex_);
+      correction = corrections_.of(r.id);
+    }
+    const Pose odom_pose{r.x, r.y, r.theta};
+    // A robot heard only through status messages has no pose to place in the map.
+    const Pose map_pose =
+        r.has_pose ? to_map_frame(correction.map_from_odom, odom_pose, r.has_heading) : odom_pose;
+    fill_state(r, map_pose, state_);
     bump(state_writer_->write(state_) ? metrics_.robot_states : metrics_.write_failures);
+    if (!r.has_pose) continue;
+    fill_odometry(r, correction.version, odometry_);
+    if (!odometry_writer_->write(odometry_)) bump(metrics_.write_failures);
   }
 }
 

@@ -1,8 +1,10 @@
 #pragma once
 // slam-gateway's edges: MQTT in (decode, registry, RobotObservation written straight from the
-// MQTT thread), DDS in (waypoint commands and the viewer's MQTT requests, published to the broker
-// from the reader threads), and a loop that turns robot presence and subscriptions into state
-// samples. The MQTT traffic log goes through a bounded queue to its own worker.
+// MQTT thread), DDS in (pose corrections kept per robot; waypoint commands, turned into the robot's
+// odometry frame, and the viewer's MQTT requests, published to the broker from the reader
+// threads), and a loop that turns robot presence, poses (in the map frame, the raw odometry
+// beside) and subscriptions into state samples. The MQTT traffic log goes through a bounded queue to its own
+// worker.
 #include <array>
 #include <atomic>
 #include <chrono>
@@ -21,6 +23,7 @@
 #include "common/fastdds/fast_topics.hpp"
 #include "common/mqtt/mqtt_connection.hpp"
 #include "gateway/command_encoder.hpp"
+#include "gateway/frame_correction.hpp"
 #include "gateway/gateway_options.hpp"
 #include "gateway/inbound_decoder.hpp"
 #include "gateway/robot_registry.hpp"
@@ -40,9 +43,10 @@ class GatewayNode {
 
   dds::Participant& participant() { return *participant_; }
 
-  // One loop pass: waits up to the state period (less when a robot appears or changes presence, or
-  // an MQTT reconnection attempt is due), starts a due attempt, marks silent robots offline, publishes
-  // changed RobotStates and, when changed, MqttSubscriptions.
+  // One loop pass: waits up to the state period (less when a robot appears, changes presence or gets
+  // a new correction, or an MQTT reconnection attempt is due), starts a due attempt, marks silent
+  // robots offline, publishes changed RobotStates with their RobotOdometry and, when changed,
+  // MqttSubscriptions.
   void run_once();
 
  private:
@@ -60,6 +64,8 @@ class GatewayNode {
     std::atomic<int64_t>& commands_sent;
     std::atomic<int64_t>& commands_failed;
     std::atomic<int64_t>& commands_unknown_robot;
+    std::atomic<int64_t>& corrections;
+    std::atomic<int64_t>& corrections_rejected;
     std::atomic<int64_t>& mqtt_requests;
     std::atomic<int64_t>& mqtt_requests_failed;
     std::atomic<int64_t>& publish_failures;
@@ -76,6 +82,7 @@ class GatewayNode {
   void log_rejection(std::string_view topic, Instant now);
   void log_presence(std::string_view robot_id, const AcceptResult& result);
   // DDS reader threads.
+  void on_correction(const slam::PoseCorrection& sample);
   void on_waypoint(const slam::WaypointCommand& command);
   void on_request(const slam::MqttRequest& request);
   Status execute(const slam::MqttRequest& request);
@@ -99,6 +106,11 @@ class GatewayNode {
   bool urgent_ = false;
   RobotRegistry registry_;
 
+  // Correction reader thread writes; waypoint reader thread and loop read. Never held with
+  // registry_mutex_.
+  std::mutex corrections_mutex_;
+  CorrectionTable corrections_;
+
   // MQTT receive thread only (the mutex makes that a guarantee rather than an assumption).
   std::mutex inbound_mutex_;
   InboundDecoder decoder_;
@@ -115,6 +127,7 @@ class GatewayNode {
   std::vector<RobotRecord> changed_;
   std::vector<std::string> went_offline_;
   slam::RobotState state_;
+  slam::RobotOdometry odometry_;
   std::uint64_t published_version_ = 0;
 
   // Destroyed bottom-up: readers stop first (they publish through the MQTT client), then the MQTT
@@ -122,10 +135,12 @@ class GatewayNode {
   std::unique_ptr<dds::Participant> participant_;
   std::unique_ptr<dds::Writer<slam::RobotObservation>> observation_writer_;
   std::unique_ptr<dds::Writer<slam::RobotState>> state_writer_;
+  std::unique_ptr<dds::Writer<slam::RobotOdometry>> odometry_writer_;
   std::unique_ptr<dds::Writer<slam::MqttSubscriptions>> subscriptions_writer_;
   std::unique_ptr<dds::Writer<slam::MqttReply>> reply_writer_;
   std::unique_ptr<TrafficPublisher> traffic_publisher_;
   std::unique_ptr<mqtt::Connection> mqtt_;
+  std::unique_ptr<dds::Reader<slam::PoseCorrection>> correction_reader_;
   std::unique_ptr<dds::Reader<slam::WaypointCommand>> waypoint_reader_;
   std::unique_ptr<dds::Reader<slam::MqttRequest>> request_reader_;
 };

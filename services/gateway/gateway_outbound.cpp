@@ -1,6 +1,6 @@
-// GatewayNode, DDS -> MQTT: waypoint commands in each robot's protocol and the viewer's raw MQTT
-// requests, each answered with an MqttReply. Runs on the DDS reader threads; publishing only queues in the
-// MQTT client, so nothing here blocks on the network.
+// GatewayNode, DDS -> MQTT: waypoint commands in each robot's odometry frame and protocol, and the
+// viewer's raw MQTT requests (sent as given), each answered with an MqttReply. Runs on the DDS reader
+// threads; publishing only queues in the MQTT client, so nothing here blocks on the network.
 #include <string>
 
 #include "common/core/clock.hpp"
@@ -61,15 +61,24 @@ void GatewayNode::on_waypoint(const slam::WaypointCommand& command) {
     return;
   }
 
+  Correction correction;
+  {
+    std::lock_guard lock(corrections_mutex_);
+    correction = corrections_.of(id);
+  }
+
   std::lock_guard lock(outbound_mutex_);
   to_points(command.remaining(), remaining_);
   const protocol::Point waypoint{command.waypoint().x(), command.waypoint().y()};
-  if (auto s = encoder_.encode(id, *protocol, command.seq(), waypoint, remaining_, commands_); !s) {
+  if (auto s = encoder_.encode(id, *protocol, command.seq(), correction.map_from_odom, waypoint, remaining_,
+                               commands_);
+      !s) {
     // Never wrapped or clamped: a v1 robot would drive somewhere else entirely.
     bump(metrics_.commands_failed);
     warn("command:" + shown, "waypoint " + std::to_string(command.seq()) + " (" + std::to_string(waypoint.x) +
-                                 ", " + std::to_string(waypoint.y) + ") m for robot '" + shown + "' (" +
-                                 (*protocol == Protocol::V1 ? "v1" : "v2") + ") not sent: " + s.message());
+                                 ", " + std::to_string(waypoint.y) + ") m (map frame) for robot '" + shown +
+                                 "' (" + (*protocol == Protocol::V1 ? "v1" : "v2") +
+                                 ") not sent: " + s.message());
     return;
   }
   for (const OutboundMessage& m : commands_.view()) {

@@ -116,6 +116,13 @@ void RobotRegistry::expire(Instant now, const std::function<void(const RobotReco
   }
 }
 
+bool RobotRegistry::mark_changed(std::string_view id) {
+  RobotRecord* r = lookup(id);
+  if (!r) return false;
+  r->changed = true;
+  return true;
+}
+
 void RobotRegistry::take_changed(const std::function<void(const RobotRecord&)>& fn) {
   for (auto& [id, r] : robots_) {
     if (!r.changed) continue;

@@ -80,6 +80,9 @@ class RobotRegistry {
 
   // Turns robots silent for longer than offline_after offline; `on_offline` is called for each.
   void expire(Instant now, const std::function<void(const RobotRecord&)>& on_offline = {});
+  // Marks a known robot changed, so its state is published again (its correction moved); false for
+  // an unknown robot (nothing to publish until it speaks).
+  bool mark_changed(std::string_view id);
   // Calls `fn` for every robot changed since the last call and clears the flags.
   void take_changed(const std::function<void(const RobotRecord&)>& fn);
 

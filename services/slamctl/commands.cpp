@@ -2,13 +2,17 @@
 
 #include <unistd.h>
 
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <iostream>
 #include <map>
 #include <mutex>
+#include <numbers>
 #include <thread>
 
 #include "common/core/clock.hpp"
+#include "common/core/geometry.hpp"
 #include "common/core/service_options.hpp"
 #include "common/core/shutdown.hpp"
 #include "slamctl/format.hpp"
@@ -94,6 +98,18 @@ std::optional<Rep> request(Session& s, const dds::Topic<Req, ReqP>& req_topic, c
   return reply;
 }
 
+// Sends a request the mapper answers with a MapReply and prints the reply: 0 on MAP_OK, else one
+// error line and 1.
+template <class Req, class ReqP>
+int map_request(Session& s, const dds::Topic<Req, ReqP>& req_topic, const Req& req) {
+  const auto reply = request(s, req_topic, req, dds::kMapReply, "mapper");
+  if (!reply) return 1;
+  if (reply->result() != MAP_OK)
+    return fail(map_result_name(reply->result()) + ": " + reply->message().to_string());
+  std::printf("%s\n", reply->message().c_str());
+  return 0;
+}
+
 // The latest sample per key of a state topic, collected on the reader's thread.
 template <class T>
 class Latest {
@@ -175,21 +191,30 @@ Handler add_status(CLI::App&) {
   return cmd_status;
 }
 
+// The value for `key`, or nullptr.
+template <class T>
+const T* find_in(const std::map<std::string, T>& samples, const std::string& key) {
+  auto it = samples.find(key);
+  return it == samples.end() ? nullptr : &it->second;
+}
+
 int cmd_robots(Session& s) {
   Latest<RobotPath> paths(s, dds::kRobotPath, [](const RobotPath& p) { return p.robot_id().to_string(); });
+  Latest<PoseCorrection> corrections(s, dds::kPoseCorrection,
+                                     [](const PoseCorrection& c) { return c.robot_id().to_string(); });
   Latest<RobotState> states(s, dds::kRobotState,
                             [](const RobotState& r) { return r.robot_id().to_string(); });
-  if (!paths.ok() || !states.ok()) return 1;
-  // Paths are optional (no planner, no paths): the window follows the robot states' writer.
+  if (!paths.ok() || !corrections.ok() || !states.ok()) return 1;
+  // Paths and corrections are optional (no planner, no mapper): the window follows the robot states'
+  // writer.
   listen_after_match(s, states, std::min<std::chrono::milliseconds>(s.timeout(), 1500ms));
   const auto path_of = paths.take();
+  const auto correction_of = corrections.take();
   const auto robots = states.take();
   if (robots.empty()) return fail("no robot known on DDS domain " + std::to_string(s.domain()));
   const int64_t now = now_ns();
-  for (const auto& [id, st] : robots) {
-    auto it = path_of.find(id);
-    std::printf("%s", format_robot(st, it == path_of.end() ? nullptr : &it->second, now).c_str());
-  }
+  for (const auto& [id, st] : robots)
+    std::printf("%s", format_robot(st, find_in(correction_of, id), find_in(path_of, id), now).c_str());
   return 0;
 }
 
@@ -269,12 +294,7 @@ int cmd_map_file(Session& s, MapFileAction action, const std::string& yaml_path)
   req.request_id(s.next_request_id());
   req.action(action);
   req.yaml_path(yaml_path);
-  const auto reply = request(s, dds::kMapFileRequest, req, dds::kMapReply, "mapper");
-  if (!reply) return 1;
-  if (reply->result() != MAP_OK)
-    return fail(map_result_name(reply->result()) + ": " + reply->message().to_string());
-  std::printf("%s\n", reply->message().c_str());
-  return 0;
+  return map_request(s, dds::kMapFileRequest, req);
 }
 
 Handler add_map(CLI::App& cli) {
@@ -349,6 +369,46 @@ Handler add_reset(CLI::App& cli) {
   return [robot](Session& s) { return cmd_map_edit(s, EDIT_RESET_ROBOT, point(0, 0), *robot); };
 }
 
+struct PoseArgs {
+  std::string robot;
+  double x = 0;
+  double y = 0;
+  double theta_deg = 0;
+};
+
+int cmd_pose(Session& s, const PoseArgs& a) {
+  InitialPose req;
+  req.request_id(s.next_request_id());
+  req.robot_id(a.robot);
+  req.pose().x(a.x);
+  req.pose().y(a.y);
+  req.pose().theta(wrap_angle(a.theta_deg * std::numbers::pi / 180.0));
+  return map_request(s, dds::kInitialPose, req);
+}
+
+// CLI11 reads "nan" and "inf" as doubles; a pose must be finite.
+std::string finite_number(std::string& text) {
+  char* end = nullptr;
+  const double v = std::strtod(text.c_str(), &end);
+  if (text.empty() || end != text.c_str() + text.size()) return "'" + text + "' is not a number";
+  if (!std::isfinite(v)) return "'" + text + "' is not a finite number";
+  return {};
+}
+
+Handler add_pose(CLI::App& cli) {
+  auto a = std::make_shared<PoseArgs>();
+  const CLI::Validator finite(finite_number, "FINITE");
+  cli.add_option("robot", a->robot, "robot id")->required();
+  cli.add_option("x", a->x, "map x in metres")->required()->check(finite);
+  cli.add_option("y", a->y, "map y in metres")->required()->check(finite);
+  cli.add_option("theta", a->theta_deg,
+                 "heading in degrees, counter-clockwise from +x (v1 robots: the rotation of their "
+                 "odometry axes in the map)")
+      ->required()
+      ->check(finite);
+  return [a](Session& s) { return cmd_pose(s, *a); };
+}
+
 int cmd_sim(Session& s, SimCommandKind kind, uint32_t count, const std::string& robot) {
   SimControl c;
   c.command_id(s.next_request_id());
@@ -383,6 +443,9 @@ Handler add_sim(CLI::App& cli) {
 int cmd_echo(Session& s, const std::string& topic, int count) {
   if (topic == topics::kRobotObservation.name) return echo(s, dds::kRobotObservation, count);
   if (topic == topics::kRobotState.name) return echo(s, dds::kRobotState, count);
+  if (topic == topics::kRobotOdometry.name) return echo(s, dds::kRobotOdometry, count);
+  if (topic == topics::kPoseCorrection.name) return echo(s, dds::kPoseCorrection, count);
+  if (topic == topics::kInitialPose.name) return echo(s, dds::kInitialPose, count);
   if (topic == topics::kGridSnapshot.name) return echo(s, dds::kGridSnapshot, count);
   if (topic == topics::kGridPatch.name) return echo(s, dds::kGridPatch, count);
   if (topic == topics::kRobotPath.name) return echo(s, dds::kRobotPath, count);
@@ -413,7 +476,7 @@ Handler add_echo(CLI::App& cli) {
 const std::vector<Subcommand>& subcommands() {
   static const std::vector<Subcommand> table{
       {"status", "services seen, with their heartbeats and counters", add_status},
-      {"robots", "known robots: id, pose, last seen, goal mode", add_robots},
+      {"robots", "known robots: id, map-frame pose, last seen, goal mode, correction", add_robots},
       {"goal", "set a robot's standing goal: goal ROBOT|all MODE [x y]", add_goal},
       {"path", "plan a path: path x0 y0 x1 y1", add_path},
       {"map", "save or load the map (ROS map_server YAML + PGM, on the mapper's disk)", add_map},
@@ -421,6 +484,7 @@ const std::vector<Subcommand>& subcommands() {
       {"obstruct", "mark the cell at x y occupied by hand", add_obstruct},
       {"unobstruct", "remove a manual obstruction at x y", add_unobstruct},
       {"reset", "delete every observation of a robot and rebuild the map", add_reset},
+      {"pose", "set a robot's pose in the map (initial pose): pose ROBOT X Y THETA_DEG", add_pose},
       {"sim", "control the simulator", add_sim},
       {"echo", "print samples of a topic (see docs/topics.md) until Ctrl-C", add_echo},
   };

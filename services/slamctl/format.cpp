@@ -2,6 +2,7 @@
 
 #include <array>
 #include <cstdio>
+#include <numbers>
 #include <utility>
 
 namespace slam::ctl {
@@ -25,6 +26,15 @@ std::string fmt(const char* f, auto... args) {
 
 std::string point(const Point2& p) {
   return fmt("(%.2f, %.2f)", p.x(), p.y());
+}
+
+double degrees(double radians) {
+  return radians * 180.0 / std::numbers::pi;
+}
+
+// "(x, y, theta deg)"
+std::string pose_deg(const Pose2& p) {
+  return fmt("(%.2f, %.2f, %.1f deg)", p.x(), p.y(), degrees(p.theta()));
 }
 
 }  // namespace
@@ -91,6 +101,22 @@ std::string map_result_name(MapResult result) {
   return "result " + std::to_string(static_cast<int>(result));
 }
 
+std::string correction_source_name(CorrectionSource source) {
+  switch (source) {
+    case CORRECTION_IDENTITY:
+      return "identity";
+    case CORRECTION_MATCH:
+      return "match";
+    case CORRECTION_LOOP:
+      return "loop";
+    case CORRECTION_OPERATOR:
+      return "operator";
+    case CORRECTION_RESTORED:
+      return "restored";
+  }
+  return "source " + std::to_string(static_cast<int>(source));
+}
+
 double age_s(int64_t stamp_ns, int64_t now_ns) {
   return static_cast<double>(now_ns - stamp_ns) * 1e-9;
 }
@@ -106,16 +132,25 @@ std::string format_heartbeat(const Heartbeat& hb, int64_t now_ns) {
   return out;
 }
 
-std::string format_robot(const RobotState& s, const RobotPath* path, int64_t now_ns) {
+std::string format_correction(const PoseCorrection& c) {
+  return fmt("%s version %llu keyframes %u loops %u %s", pose_deg(c.map_from_odom()).c_str(),
+             static_cast<unsigned long long>(c.version()), c.keyframes(), c.loop_closures(),
+             correction_source_name(c.source()).c_str());
+}
+
+std::string format_robot(const RobotState& s, const PoseCorrection* correction, const RobotPath* path,
+                         int64_t now_ns) {
   std::string mode = path ? goal_mode_name(path->mode()) + "/" + goal_status_name(path->status()) : "-";
+  const std::string corrected = correction ? format_correction(*correction) : "-";
   return fmt(
-      "%-16s %-7s %-3s x %8.2f  y %8.2f  %s  seen %6.1f s ago  msgs %llu  pts %llu  rejected %llu  %s\n",
+      "%-16s %-7s %-3s x %8.2f  y %8.2f  %s  seen %6.1f s ago  msgs %llu  pts %llu  rejected %llu  %s  "
+      "correction %s\n",
       s.robot_id().c_str(), s.presence() == PRESENCE_ONLINE ? "online" : "offline",
       s.protocol() == PROTOCOL_V1 ? "v1" : "v2", s.pose().x(), s.pose().y(),
       s.has_heading() ? fmt("th %6.2f", s.pose().theta()).c_str() : "th      -",
       age_s(s.last_seen_ns(), now_ns), static_cast<unsigned long long>(s.messages()),
       static_cast<unsigned long long>(s.points()), static_cast<unsigned long long>(s.rejected()),
-      mode.c_str());
+      mode.c_str(), corrected.c_str());
 }
 
 std::string format_path_reply(const PathReply& r) {
@@ -135,7 +170,19 @@ std::string describe(const RobotObservation& s) {
              s.misses().size());
 }
 std::string describe(const RobotState& s) {
-  return "state " + format_robot(s, nullptr, s.last_seen_ns());
+  return "state " + format_robot(s, nullptr, nullptr, s.last_seen_ns());
+}
+std::string describe(const RobotOdometry& s) {
+  return fmt("odometry %s (%.2f, %.2f, %s) correction version %llu", s.robot_id().c_str(), s.odom_pose().x(),
+             s.odom_pose().y(), s.has_heading() ? fmt("%.2f", s.odom_pose().theta()).c_str() : "-",
+             static_cast<unsigned long long>(s.correction_version()));
+}
+std::string describe(const PoseCorrection& s) {
+  return "correction " + s.robot_id().to_string() + " " + format_correction(s);
+}
+std::string describe(const InitialPose& s) {
+  return fmt("initial pose %llu %s %s", static_cast<unsigned long long>(s.request_id()), s.robot_id().c_str(),
+             pose_deg(s.pose()).c_str());
 }
 std::string describe(const GridSnapshot& s) {
   return fmt("snapshot layout %u version %llu %ux%u cells at %.3f m, origin (%.2f, %.2f), inflation %.2f m",

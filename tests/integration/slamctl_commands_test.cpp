@@ -146,6 +146,8 @@ TEST_F(SlamctlTest, StatusRobotsAndEcho) {
       },
       30s, 500ms))
       << robots.output;
+  EXPECT_EQ(robots.lines(), 2u) << robots.output;
+  EXPECT_NE(robots.output.find(" correction "), std::string::npos) << robots.output;
   expect_fails({"robots"}, empty_domain.id());
 
   const CtlRun echo = ctl({"echo", "slam/sim/ground_truth", "-n", "1"});
@@ -233,6 +235,42 @@ TEST_F(SlamctlTest, SimSpawnRemovePauseResume) {
   expect_ok(ctl({"sim", "resume"}), "sim resume");
   EXPECT_TRUE(wait_until([&] { return effects.truth() && !effects.truth()->paused(); }, 20s));
   expect_fails({"sim", "pause"}, empty_domain.id());
+}
+
+// `slamctl pose` without a fleet: the arguments are checked before DDS is touched, and with no
+// mapper to answer the command says so on one line and exits 1.
+TEST(SlamctlPoseTest, ValidatesArgumentsAndTimesOutWithoutAMapper) {
+  DomainLease nothing_runs;
+  ProcessGroup group;
+  const auto run = [&](const std::string& name, std::vector<std::string> args) {
+    std::vector<std::string> argv{bin_path("slamctl"), "--domain", std::to_string(nothing_runs.id()),
+                                  "--timeout",         "1",        "pose"};
+    argv.insert(argv.end(), args.begin(), args.end());
+    group.start(name, argv);
+    CtlRun r;
+    r.code = group.wait_exit(name, 30s);
+    r.output = group.log(name);
+    return r;
+  };
+
+  const CtlRun help = run("help", {"--help"});
+  EXPECT_EQ(help.code, 0) << help.output;
+  EXPECT_NE(help.output.find("THETA"), std::string::npos) << help.output;
+
+  for (const auto& [name, args] :
+       std::vector<std::pair<std::string, std::vector<std::string>>>{{"nan", {"r1", "nan", "2", "90"}},
+                                                                     {"inf", {"r1", "1", "2", "inf"}},
+                                                                     {"word", {"r1", "1", "y", "90"}},
+                                                                     {"missing", {"r1", "1", "2"}}}) {
+    const CtlRun bad = run(name, args);
+    EXPECT_EQ(bad.code, 2) << name << ": " << bad.output;
+    EXPECT_EQ(bad.lines(), 1u) << name << ": " << bad.output;
+  }
+
+  const CtlRun unanswered = run("unanswered", {"r1", "1.5", "-2", "90"});
+  EXPECT_EQ(unanswered.code, 1) << unanswered.output;
+  EXPECT_EQ(unanswered.lines(), 1u) << unanswered.output;
+  EXPECT_NE(unanswered.output.find("mapper"), std::string::npos) << unanswered.output;
 }
 
 }  // namespace

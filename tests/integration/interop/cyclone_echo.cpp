@@ -1,6 +1,7 @@
 // Cyclone DDS side of the vendor interop test: for every IDL topic type, a Cyclone reader takes
 // each sample (decoding it into the idlc-generated C struct) and a Cyclone writer sends that struct
 // back on "<topic>/echo". The Fast DDS test compares the echo with what it sent, field by field.
+#include <slam/cyclone/correction.h>
 #include <slam/cyclone/map.h>
 #include <slam/cyclone/mqtt.h>
 #include <slam/cyclone/nav.h>
@@ -27,6 +28,9 @@ struct EchoTopic {
 const EchoTopic kTopics[] = {
     {&slam_RobotObservation_desc, slam::topics::kRobotObservation},
     {&slam_RobotState_desc, slam::topics::kRobotState},
+    {&slam_RobotOdometry_desc, slam::topics::kRobotOdometry},
+    {&slam_PoseCorrection_desc, slam::topics::kPoseCorrection},
+    {&slam_InitialPose_desc, slam::topics::kInitialPose},
     {&slam_GridSnapshot_desc, slam::topics::kGridSnapshot},
     {&slam_GridPatch_desc, slam::topics::kGridPatch},
     {&slam_GridConfig_desc, slam::topics::kGridConfig},

@@ -81,6 +81,9 @@ const std::vector<Case>& cases() {
   static const std::vector<Case> all = {
       make_case("RobotObservation", dds::kRobotObservation, &sample_robot_observation),
       make_case("RobotState", dds::kRobotState, &sample_robot_state),
+      make_case("RobotOdometry", dds::kRobotOdometry, &sample_robot_odometry),
+      make_case("PoseCorrection", dds::kPoseCorrection, &sample_pose_correction),
+      make_case("InitialPose", dds::kInitialPose, &sample_initial_pose),
       make_case("GridSnapshot", dds::kGridSnapshot, &sample_grid_snapshot),
       make_case("GridPatch", dds::kGridPatch, &sample_grid_patch),
       make_case("GridConfig", dds::kGridConfig, &sample_grid_config),
@@ -106,7 +109,7 @@ const std::vector<Case>& cases() {
 }
 
 // Topic types in topics.hpp: a new type there must get a case (and a line in cyclone_echo.cpp).
-constexpr size_t kTopicTypes = 22;
+constexpr size_t kTopicTypes = 25;
 
 class InteropTest : public ::testing::TestWithParam<size_t> {};
 

@@ -1,5 +1,7 @@
 #include "samples.hpp"
 
+#include <array>
+
 namespace slam::interop {
 namespace {
 
@@ -60,6 +62,38 @@ RobotState sample_robot_state() {
   s.rejected(3);
   s.battery(0.75f);
   s.status("exploring");
+  return s;
+}
+
+RobotOdometry sample_robot_odometry() {
+  RobotOdometry s;
+  s.robot_id("robot-ö3");
+  s.stamp_ns(1763800000987654321LL);
+  s.odom_pose(pose(-3.5, 0.0625, 2.75));
+  s.has_heading(true);
+  s.correction_version((1ULL << 50) + 3);
+  return s;
+}
+
+PoseCorrection sample_pose_correction() {
+  PoseCorrection s;
+  s.robot_id("r9");
+  s.version((1ULL << 45) + 17);
+  s.stamp_ns(-123456789);
+  s.map_from_odom(pose(0.25, -1.75, -3.0));
+  s.covariance(std::array<double, 6>{1e-4, -2e-6, 3e-7, 4e-4, -5e-8, 6e-5});
+  s.segment(4);
+  s.keyframes(1234567);
+  s.loop_closures(89);
+  s.source(CORRECTION_RESTORED);
+  return s;
+}
+
+InitialPose sample_initial_pose() {
+  InitialPose s;
+  s.request_id(0xfedcba9876543210ULL);
+  s.robot_id("legacy-07");
+  s.pose(pose(12.5, -8.125, 1.0471975511965976));
   return s;
 }
 

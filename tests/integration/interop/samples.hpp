@@ -7,6 +7,9 @@ namespace slam::interop {
 
 RobotObservation sample_robot_observation();
 RobotState sample_robot_state();
+RobotOdometry sample_robot_odometry();
+PoseCorrection sample_pose_correction();
+InitialPose sample_initial_pose();
 GridSnapshot sample_grid_snapshot();
 GridPatch sample_grid_patch();
 GridConfig sample_grid_config();

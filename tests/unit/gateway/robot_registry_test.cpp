@@ -177,6 +177,18 @@ TEST(RobotRegistry, ChangedRobotsAreReportedOnce) {
   EXPECT_EQ(changed_ids(registry), std::vector<std::string>{"b"});
 }
 
+TEST(RobotRegistry, MarkingAKnownRobotChangedReportsItAgain) {
+  RobotRegistry registry;
+  auto o = pose_at(0, 0);
+  registry.accept_observation("a", Protocol::V1, o, at(1));
+  EXPECT_EQ(changed_ids(registry), std::vector<std::string>{"a"});
+  EXPECT_TRUE(registry.mark_changed("a"));
+  EXPECT_EQ(changed_ids(registry), std::vector<std::string>{"a"});
+  EXPECT_FALSE(registry.mark_changed("unknown"));
+  EXPECT_TRUE(changed_ids(registry).empty());
+  EXPECT_EQ(registry.size(), 1u);
+}
+
 TEST(RobotRegistry, NewRobotsBeyondTheLimitAreRefusedKnownOnesContinue) {
   RobotRegistry registry(RegistryConfig{5 * kSecond, 2});
   auto o = pose_at(0, 0);

@@ -46,7 +46,7 @@ TEST(SlamctlSubcommands, NamesAreUniqueAndEachHasAHandler) {
     EXPECT_TRUE(names.insert(sub.name).second) << sub.name;
     EXPECT_FALSE(sub.help.empty()) << sub.name;
   }
-  EXPECT_EQ(names.size(), 11u);
+  EXPECT_EQ(names.size(), 12u);
   for (const auto& [cli, run] : line.handlers) EXPECT_TRUE(run) << cli->get_name();
 }
 
@@ -58,6 +58,7 @@ TEST(SlamctlSubcommands, OnlyTheGivenSubcommandIsParsed) {
       {"map", "save", "/tmp/m.yaml"},
       {"grid", "--resolution", "0.1", "--origin", "-5", "-5"},
       {"unobstruct", "1.5", "2"},
+      {"pose", "r1", "-1.5", "2", "-90"},
       {"sim", "spawn", "3"},
       {"echo", "slam/robot/state", "-n", "2"},
   };
@@ -77,16 +78,31 @@ TEST(SlamctlSubcommands, HelpOfASubcommandExitsZero) {
   EXPECT_NE(out.find("--resolution"), std::string::npos) << out;
 }
 
+TEST(SlamctlSubcommands, PoseHelpNamesItsArguments) {
+  testing::internal::CaptureStdout();
+  CommandLine line;
+  const auto code = line.parse({"pose", "--help"});
+  const std::string out = testing::internal::GetCapturedStdout();
+  EXPECT_EQ(code, 0);
+  for (const char* word : {"robot", "theta", "degrees"}) EXPECT_NE(out.find(word), std::string::npos) << out;
+}
+
 TEST(SlamctlSubcommands, BadArgumentsExitTwoWithOneLine) {
   for (const std::vector<std::string>& args : {std::vector<std::string>{"path", "0", "0", "1"},
                                                {"sim", "spawn", "0"},
                                                {"map"},
-                                               {"no-such-command"}}) {
+                                               {"no-such-command"},
+                                               {"pose", "r1", "1", "2"},
+                                               {"pose", "r1", "nan", "2", "0"},
+                                               {"pose", "r1", "1", "inf", "0"},
+                                               {"pose", "r1", "1", "2", "-inf"},
+                                               {"pose", "r1", "1", "2", "ninety"},
+                                               {"pose", "r1", "1", "2", "3", "4"}}) {
     testing::internal::CaptureStderr();
     CommandLine line;
     const auto code = line.parse(args);
     const std::string err = testing::internal::GetCapturedStderr();
-    EXPECT_EQ(code, 2) << args[0];
+    EXPECT_EQ(code, 2) << testing::PrintToString(args);
     EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << err;
   }
 }

@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 namespace slam::ctl {
 namespace {
 
@@ -28,13 +30,33 @@ TEST(SlamctlFormat, RobotLineShowsPoseAgeAndMode) {
   RobotPath p;
   p.mode(GOAL_EXPLORE);
   p.status(GOAL_STATUS_ACTIVE);
-  const std::string line = format_robot(s, &p, 3'500'000'000);
+  const std::string line = format_robot(s, nullptr, &p, 3'500'000'000);
   EXPECT_NE(line.find("r7"), std::string::npos);
   EXPECT_NE(line.find("online"), std::string::npos);
   EXPECT_NE(line.find("1.50"), std::string::npos);
   EXPECT_NE(line.find("-2.25"), std::string::npos);
   EXPECT_NE(line.find("2.5 s ago"), std::string::npos);
   EXPECT_NE(line.find("explore/active"), std::string::npos);
+  EXPECT_NE(line.find("correction -"), std::string::npos) << line;
+}
+
+TEST(SlamctlFormat, RobotLineShowsTheCorrection) {
+  RobotState s;
+  s.robot_id("r7");
+  PoseCorrection c;
+  c.robot_id("r7");
+  c.map_from_odom().x(1.0);
+  c.map_from_odom().y(-2.0);
+  c.map_from_odom().theta(-1.5707963267948966);
+  c.version(4);
+  c.keyframes(31);
+  c.loop_closures(2);
+  c.source(CORRECTION_LOOP);
+  const std::string line = format_robot(s, &c, nullptr, 0);
+  EXPECT_EQ(std::count(line.begin(), line.end(), '\n'), 1) << line;
+  EXPECT_NE(line.find("correction (1.00, -2.00, -90.0 deg) version 4 keyframes 31 loops 2 loop"),
+            std::string::npos)
+      << line;
 }
 
 TEST(SlamctlFormat, PathReplyListsStatusAndPoints) {
