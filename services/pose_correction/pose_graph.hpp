@@ -19,9 +19,9 @@ enum class EdgeKind : uint8_t { Sequential, LoopClosure, Prior };
 
 struct GraphEdge {
   EdgeKind kind = EdgeKind::Sequential;
-  NodeId from = 0;            // Prior: the node constrained
-  NodeId to = 0;              // unused for Prior
-  Pose measurement;           // relative: from^-1 ∘ to; Prior: the node's pose in the map
+  NodeId from = 0;   // Prior: the node constrained
+  NodeId to = 0;     // unused for Prior
+  Pose measurement;  // relative: from^-1 ∘ to; Prior: the node's pose in the map
   Eigen::Matrix3d information = Eigen::Matrix3d::Identity();  // inverse covariance of (x, y, theta)
 };
 
