@@ -155,7 +155,37 @@ Result<World> track() {
   return World::create("track", bounds, std::move(w), std::move(solid));
 }
 
-constexpr std::array<std::string_view, 4> kNames = {"empty", "office", "maze", "track"};
+// Four identical rooms in a row above one corridor: each room is the previous one shifted by its
+// width, door and furniture included, so a scan in one room matches every other room equally well.
+Result<World> rooms() {
+  constexpr int kRooms = 4;
+  constexpr double kWidth = 3.0, kCorridor = 2.0, kTop = 8.0;
+  constexpr double kDoorFrom = 1.0, kDoorTo = 2.0;  // along each room's corridor wall
+  // Per room, relative to its bottom-left corner: a table in the middle, a shelf against the left wall.
+  const std::array<Bounds, 2> furniture_in_room = {{
+      {{0.9, 2.6}, {2.1, 3.4}},  // table
+      {{0.0, 4.6}, {0.4, 5.6}},  // shelf
+  }};
+  Walls w;
+  std::vector<Bounds> furniture;
+  for (int k = 0; k < kRooms; ++k) {
+    const double x0 = k * kWidth;
+    wall_x(w, kCorridor, x0, x0 + kWidth, {{x0 + kDoorFrom, x0 + kDoorTo}});
+    if (k > 0) wall_y(w, x0, kCorridor, kTop, {});
+    for (const Bounds& f : furniture_in_room)
+      furniture.push_back({{x0 + f.min.x, kCorridor + f.min.y}, {x0 + f.max.x, kCorridor + f.max.y}});
+  }
+  for (const Bounds& f : furniture) box(w, f.min, f.max);
+  const Bounds bounds{{0.0, 0.0}, {kRooms * kWidth, kTop}};
+  auto solid = solid_mask(bounds, [&](Vec2 p) {
+    for (const Bounds& f : furniture)
+      if (f.contains(p)) return true;
+    return false;
+  });
+  return World::create("rooms", bounds, std::move(w), std::move(solid));
+}
+
+constexpr std::array<std::string_view, 5> kNames = {"empty", "office", "maze", "track", "rooms"};
 
 }  // namespace
 
@@ -168,6 +198,7 @@ Result<World> builtin_world(std::string_view name) {
   if (name == "office") return office();
   if (name == "maze") return maze();
   if (name == "track") return track();
+  if (name == "rooms") return rooms();
   return Error{fmt::format("unknown built-in world '{}' (known: {})", name, fmt::join(kNames, ", "))};
 }
 

@@ -1,5 +1,5 @@
 #pragma once
-// Worlds that need no file, by name: "empty", "office", "maze" and "track".
+// Worlds that need no file, by name: "empty", "office", "maze", "track" and "rooms".
 #include <span>
 #include <string_view>
 
@@ -17,6 +17,8 @@ std::span<const std::string_view> builtin_world_names();
 // "maze":   12 x 12 m perfect maze of 1.2 m cells (fixed layout, the same on every machine).
 // "track":  6 x 6 m with the circular test track of the 2019 thesis (ch. 10.3): a 1 m wide ring
 //           corridor between circles of 1.5 m and 2.5 m radius, each drawn with 64 segments.
+// "rooms":  12 x 8 m, four identical 3 x 6 m rooms (same 1 m door, table and shelf) in a row above a
+//           2 m corridor: a world built to tempt a wrong loop closure.
 Result<World> builtin_world(std::string_view name);
 
 }  // namespace slam::sim

@@ -31,12 +31,18 @@ struct OdometryConfig {
   double drift_per_radian = 0.01;  // rad per sqrt(rad) turned
 };
 
+// Where a robot's odometry frame is: World puts its origin at the world's, so a robot starts
+// believing its true spawn pose; Start puts it at the robot's own spawn pose, so it starts at
+// (0, 0, 0) as a real robot does. Every reported pose, obstacle point and waypoint is in that frame.
+enum class OdomFrame : uint8_t { World, Start };
+
 struct SimulationConfig {
   double dt = 0.05;            // s of simulated time per step
   double report_period = 0.1;  // s between a robot's reports (10 Hz)
   double speed_factor = 1.0;   // simulated seconds per wall-clock second
   uint64_t seed = 1;           // robot k's generator is seeded from (seed, k)
   bool random_walk = false;    // idle robots pick random reachable targets
+  OdomFrame odom_frame = OdomFrame::World;
   RobotConfig robot;
   SensorConfig sensor;
   OdometryConfig odometry;

@@ -124,7 +124,8 @@ void SimNode::apply_orders() {
   links_->drain_orders(orders_);
   const Bounds& bounds = sim_.world().bounds();
   for (const WaypointOrder& o : orders_) {
-    if (sim_.find(o.robot_id) == nullptr) {
+    const Robot* robot = sim_.find(o.robot_id);
+    if (robot == nullptr) {
       bump(waypoints_unknown_robot_);  // multiplexed: commands for robots this simulator does not run
       continue;
     }
@@ -132,7 +133,8 @@ void SimNode::apply_orders() {
       (void)sim_.clear_waypoint(o.robot_id);
       continue;
     }
-    if (!bounds.contains(*o.target)) {
+    // The target is in the robot's odometry frame; where it lies in the world decides.
+    if (!bounds.contains(world_from_odom(*robot).transform(*o.target))) {
       bump(waypoints_rejected_);
       bump(waypoints_outside_world_);
       warn("outside",

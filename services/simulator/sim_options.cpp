@@ -18,7 +18,7 @@ constexpr double kDefaultDt = 0.05;
 void add_sim_options(CLI::App& app, SimOptions& o) {
   add_service_options(app, o.service);
   app.add_option("--world", o.world,
-                 "built-in world (empty, office, maze, track) or a world file (.txt, .yaml)")
+                 "built-in world (empty, office, maze, track, rooms) or a world file (.txt, .yaml)")
       ->capture_default_str();
   app.add_option("--robots", o.robots, "robots spawned at random free poses at start")
       ->check(CLI::Range(0, static_cast<int>(kMaxFleet)))
@@ -37,6 +37,14 @@ void add_sim_options(CLI::App& app, SimOptions& o) {
       ->capture_default_str();
   app.add_option("--drift", o.drift, "odometry drift (m per sqrt(m) driven)")
       ->check(CLI::Range(0.0, 10.0))
+      ->capture_default_str();
+  app.add_option("--heading-drift", o.heading_drift, "odometry heading drift (rad per sqrt(rad) turned)")
+      ->check(CLI::Range(0.0, 10.0))
+      ->capture_default_str();
+  app.add_option("--odom-frame", o.odom_frame,
+                 "where each robot's odometry starts: world (at its true spawn pose) or start (at 0, 0, 0, "
+                 "as a real robot)")
+      ->check(CLI::IsMember({"world", "start"}))
       ->capture_default_str();
   app.add_option("--seed", o.seed, "random seed (same seed, same run)")->capture_default_str();
   app.add_option("--broker", o.broker, "MQTT broker URL (tcp://HOST:PORT)")->capture_default_str();
@@ -74,6 +82,8 @@ Result<SimulationConfig> simulation_config(const SimOptions& o) {
   c.sensor.range_noise_sd = o.noise;
   c.sensor.dropout = o.dropout;
   c.odometry.drift_per_metre = o.drift;
+  c.odometry.drift_per_radian = o.heading_drift;
+  c.odom_frame = o.odom_frame == "start" ? OdomFrame::Start : OdomFrame::World;
   if (auto s = validate(c); !s) return Error{"simulation settings: " + s.message()};
   return c;
 }

@@ -16,13 +16,15 @@ enum class RobotProtocol : uint8_t { V1, V2 };
 
 struct SimOptions {
   ServiceOptions service;
-  std::string world = "office";  // built-in name or file (see load_world)
-  int robots = 3;                // spawned at random free poses at start
-  std::string protocol = "v1";   // "v1" or "v2"
-  double rate_hz = 10.0;         // reports per robot per second
-  double noise = 0.01;           // range noise standard deviation, m
-  double dropout = 0.0;          // probability a beam returns nothing
-  double drift = 0.02;           // odometry drift, m per sqrt(m) driven
+  std::string world = "office";                              // built-in name or file (see load_world)
+  int robots = 3;                                            // spawned at random free poses at start
+  std::string protocol = "v1";                               // "v1" or "v2"
+  double rate_hz = 10.0;                                     // reports per robot per second
+  double noise = 0.01;                                       // range noise standard deviation, m
+  double dropout = 0.0;                                      // probability a beam returns nothing
+  double drift = 0.02;                                       // odometry drift, m per sqrt(m) driven
+  double heading_drift = OdometryConfig{}.drift_per_radian;  // rad per sqrt(rad) turned
+  std::string odom_frame = "world";                          // "world" or "start" (see OdomFrame)
   uint64_t seed = 1;
   std::string broker = "tcp://127.0.0.1:1883";
   bool random_walk = false;

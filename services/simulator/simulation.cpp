@@ -53,6 +53,10 @@ bool Simulation::pose_free(Vec2 p, size_t ignore) const {
   return true;
 }
 
+Pose Simulation::odometry_start(const Pose& spawn) const {
+  return config_.odom_frame == OdomFrame::Start ? Pose{} : spawn;
+}
+
 std::optional<Pose> Simulation::random_free_pose(const World& w, const std::vector<Vec2>& others) {
   const double r = config_.robot.radius;
   const Bounds& b = w.bounds();
@@ -91,7 +95,8 @@ Result<std::string> Simulation::spawn(Pose pose, std::string id) {
   r.id = id;
   r.serial = serial;
   pose.theta = wrap_angle(pose.theta);
-  r.true_pose = r.reported_pose = pose;
+  r.true_pose = pose;
+  r.reported_pose = odometry_start(pose);
   r.rng = seeded(config_.seed, r.serial);
   r.next_report_s = time_s_ + std::uniform_real_distribution<double>(0.0, config_.report_period)(r.rng);
   robots_.push_back(std::move(r));
@@ -141,7 +146,8 @@ Status Simulation::set_world(World world) {
   }
   world_ = std::move(world);
   for (size_t k = 0; k < robots_.size(); ++k) {
-    robots_[k].true_pose = robots_[k].reported_pose = poses[k];
+    robots_[k].true_pose = poses[k];
+    robots_[k].reported_pose = odometry_start(poses[k]);
     robots_[k].waypoint.reset();
   }
   rebuild_robot_index();
@@ -230,11 +236,8 @@ void Simulation::pick_random_target(Robot& r) {
     const double reach = std::min(free - 2.0 * rc.radius, kRandomTargetMax);
     if (reach < kRandomTargetMin) continue;
     const double d = std::uniform_real_distribution<double>(kRandomTargetMin, reach)(r.rng);
-    // The target is reachable in the true world; the robot is told it in its believed frame.
-    const double rot = r.reported_pose.theta - r.true_pose.theta;
-    const Vec2 off{d * (std::cos(rot) * dir.x - std::sin(rot) * dir.y),
-                   d * (std::sin(rot) * dir.x + std::cos(rot) * dir.y)};
-    r.waypoint = r.reported_pose.position() + off;
+    // The target is reachable in the true world; the robot is told it in its odometry frame.
+    r.waypoint = world_from_odom(r).inverse().transform(r.true_pose.position() + dir * d);
     r.waypoint_deadline_s = time_s_ + 2.0 * d / rc.max_linear + std::numbers::pi / rc.max_angular + 2.0;
     return;
   }

@@ -22,12 +22,17 @@ struct Robot {
   std::string id;
   uint64_t serial = 0;  // spawn order from 1; seeds the generator with the simulation seed
   Pose true_pose;
-  Pose reported_pose;  // odometry estimate; waypoints are in this frame
+  Pose reported_pose;  // odometry estimate, in the robot's odometry frame (see OdomFrame); waypoints too
   std::optional<Vec2> waypoint;
   double waypoint_deadline_s = 0.0;  // random walk gives up on a target after this time
   double next_report_s = 0.0;
   std::mt19937_64 rng;
 };
+
+// Where the robot's odometry frame lies in the world now, drift included: world <- odom.
+inline Pose world_from_odom(const Robot& r) {
+  return r.true_pose.compose(r.reported_pose.inverse());
+}
 
 class Simulation {
  public:
@@ -39,17 +44,19 @@ class Simulation {
   std::span<const Robot> robots() const { return robots_; }
   const Robot* find(std::string_view id) const;
 
-  // Places a robot at `pose` (true and reported). An empty id becomes "sim-<serial>". Fails when
+  // Places a robot at `pose` in the world; its odometry starts there (OdomFrame::World) or at
+  // (0, 0, 0) (OdomFrame::Start). An empty id becomes "sim-<serial>". Fails when
   // the id is taken or the pose is not free (in a wall, off the world, overlapping a robot).
   Result<std::string> spawn(Pose pose, std::string id = {});
   // `count` robots at random free poses with random headings; all or none are added.
   Result<std::vector<std::string>> spawn_random(size_t count);
   // False when no robot has that id.
   bool remove(std::string_view id);
-  // Replaces the world and moves every robot to a random free pose (ids kept, odometry reset).
+  // Replaces the world and moves every robot to a random free pose (ids kept, odometry restarted
+  // as at a spawn).
   Status set_world(World world);
 
-  // Target in the robot's own (reported) frame, as a server sends it.
+  // Target in the robot's own odometry frame, as a server sends it.
   Status set_waypoint(std::string_view id, Vec2 target);
   Status clear_waypoint(std::string_view id);
 
@@ -74,6 +81,7 @@ class Simulation {
  private:
   Simulation(World world, SimulationConfig config);
   bool pose_free(Vec2 p, size_t ignore) const;
+  Pose odometry_start(const Pose& spawn) const;
   std::optional<Pose> random_free_pose(const World& w, const std::vector<Vec2>& others);
   void rebuild_robot_index();
   void pick_random_target(Robot& r);

@@ -163,6 +163,46 @@ TEST_F(SimulatorTest, V1RobotDrivesToWaypointAndSeesTheTrueWalls) {
       << "robot never reported a position near (" << tx << ", " << ty << ")";
 }
 
+TEST_F(SimulatorTest, StartOdomFrameReportsFromTheOriginAndTakesWaypointsInIt) {
+  start({"--robots", "1", "--noise", "0", "--drift", "0", "--heading-drift", "0", "--odom-frame", "start",
+         "--speed", "4"});
+  const std::string id = first_robot_v1();
+  ASSERT_FALSE(id.empty());
+  const auto first = decode_adv(mqtt_->messages().front().payload);
+  EXPECT_NEAR(first.x, 0.0, 0.011);
+  EXPECT_NEAR(first.y, 0.0, 0.011);
+  // Drive 0.5 m towards the farthest hit (open floor), given in the robot's own start frame.
+  ASSERT_FALSE(first.hits.empty());
+  const auto far = *std::max_element(first.hits.begin(), first.hits.end(), [](const auto& a, const auto& b) {
+    return std::hypot(a.x, a.y) < std::hypot(b.x, b.y);
+  });
+  const double d = std::hypot(far.x, far.y);
+  ASSERT_GT(d, 1.0);
+  const double tx = 0.5 * far.x / d, ty = 0.5 * far.y / d;
+  EXPECT_TRUE(mqtt_->publish("v1/server/" + id + "/cmd", v1_waypoint(tx, ty)));
+  EXPECT_TRUE(arrives_v1(id, tx, ty, 30s)) << "robot never reported (" << tx << ", " << ty << ")";
+}
+
+TEST(SimulatorCli, OdometryFlagsAndTheRoomsWorldAreListedAndChecked) {
+  testkit::ProcessGroup group;
+  group.start("help", {testkit::bin_path("slam-simulator"), "--help"});
+  ASSERT_EQ(group.wait_exit("help", 20s), 0);
+  const std::string help = group.log("help");
+  for (const char* word : {"--heading-drift", "--odom-frame", "rooms"})
+    EXPECT_NE(help.find(word), std::string::npos) << word << " missing from --help:\n" << help;
+  // {flag, value, what the one-line error names}; NaN passes CLI11's range and fails the config check.
+  const std::vector<std::array<std::string, 3>> bad = {{"--heading-drift", "-0.1", "--heading-drift"},
+                                                       {"--heading-drift", "nan", "drift_per_radian"},
+                                                       {"--odom-frame", "map", "--odom-frame"}};
+  for (size_t k = 0; k < bad.size(); ++k) {
+    const auto& [flag, value, named] = bad[k];
+    const std::string name = "bad" + std::to_string(k);
+    group.start(name, {testkit::bin_path("slam-simulator"), flag, value});
+    EXPECT_EQ(group.wait_exit(name, 20s), 2) << flag << " " << value << ": " << group.log(name);
+    EXPECT_NE(group.log(name).find(named), std::string::npos) << group.log(name);
+  }
+}
+
 TEST_F(SimulatorTest, GroundTruthWorldAndHeartbeatReachFastDds) {
   start({"--robots", "2"});
   std::mutex m;

@@ -309,6 +309,89 @@ TEST(ViewerTest, RendersGridRobotsAndPointsAndSendsClicks) {
   EXPECT_NEAR(edits.back().point().y(), edit_at.y, 1e-6);
 }
 
+// Observations arrive raw (odometry frame): the viewer draws them through the robot's PoseCorrection.
+// The pose tool's synthetic drags: one released (an InitialPose goes out), one held at the
+// screenshot (its arrow is drawn).
+TEST(ViewerTest, DrawsRawPointsThroughTheCorrectionAndSendsInitialPose) {
+  if (!have_xvfb()) GTEST_SKIP() << "xvfb-run is not installed";
+  DomainLease domain;
+  auto participant = dds::Participant::create(domain.id(), "viewer_test");
+  ASSERT_TRUE(participant) << participant.message();
+  auto& p = **participant;
+  auto grid_w = dds::make_writer(p, dds::kGridSnapshot);
+  auto state_w = dds::make_writer(p, dds::kRobotState);
+  auto obs_w = dds::make_writer(p, dds::kRobotObservation);
+  auto correction_w = dds::make_writer(p, dds::kPoseCorrection);
+  auto initial_r = dds::make_reader(p, dds::kInitialPose);
+  ASSERT_TRUE(grid_w && state_w && obs_w && correction_w && initial_r);
+
+  // map <- odom: a quarter turn and (1, -1): the raw square around (2, 1) lands around (0, 1).
+  PoseCorrection c;
+  c.robot_id("alpha");
+  c.version(4);
+  c.map_from_odom(pose(1.0, -1.0, M_PI / 2.0));
+  c.keyframes(3);
+  c.source(CORRECTION_LOOP);
+  (*correction_w)->write(c);
+
+  ProcessGroup group;
+  const std::string png = group.dir() + "/viewer.png";
+  group.start("viewer", {"xvfb-run",
+                         "-a",
+                         "-s",
+                         "-screen 0 1280x800x24",
+                         bin_path("slam-viewer"),
+                         "--domain",
+                         std::to_string(domain.id()),
+                         "--width",
+                         "1280",
+                         "--height",
+                         "800",
+                         "--screenshot",
+                         png,
+                         "--frames",
+                         "20",
+                         "--wait-map",
+                         "--wait-robots",
+                         "1",
+                         "--max-wait",
+                         "60",
+                         "--pose-drag",
+                         "alpha:800,300>900,300@3-6",
+                         "--pose-drag",
+                         "alpha:1000,600>1000,500@10-100"});
+  ASSERT_TRUE(
+      wait_until([&] { return (*obs_w)->matched_readers() > 0 && (*grid_w)->matched_readers() > 0; }, 60s))
+      << group.log("viewer");
+  (*grid_w)->write(make_grid());
+  (*state_w)->write(state("alpha", pose(-3.0, 2.0, 0.0)));
+  (*obs_w)->write(observation("alpha", pose(0.0, 0.0, 0.0), 2.0, 1.0));
+
+  ASSERT_EQ(group.wait_exit("viewer", 90s), 0) << group.log("viewer");
+  const std::string log = group.log("viewer");
+  auto view = last_view(log);
+  ASSERT_TRUE(view) << view.message() << "\n" << log;
+  const Image img = load_png(png);
+  ASSERT_EQ(img.w, 1280) << "cannot read " << png;
+
+  const Rgba alpha = viewer::default_robot_color("alpha");
+  EXPECT_TRUE(close_to(img.at(*view, {0.0, 1.0}), alpha)) << "corrected: " << str(img.at(*view, {0.0, 1.0}));
+  EXPECT_FALSE(close_to(img.at(*view, {2.0, 1.0}), alpha)) << "raw place: " << str(img.at(*view, {2.0, 1.0}));
+  // The held drag's arrow: amber along the drag, between press and release.
+  const Rgba amber{1.0f, 200.0f / 255.0f, 0.0f, 1.0f};
+  const Vec2 mid = view->screen_to_world({1000.0, 550.0});
+  EXPECT_TRUE(close_to(img.at(*view, mid), amber, 0.15f)) << "arrow: " << str(img.at(*view, mid));
+
+  // The released drag: alpha is at the press point, heading along the drag (screen right = +x).
+  std::vector<InitialPose> poses;
+  ASSERT_TRUE(wait_until([&] { return (*initial_r)->take(poses) + poses.size() > 0; }, 10s)) << log;
+  const Vec2 at = view->screen_to_world({800.0, 300.0});
+  EXPECT_EQ(poses.front().robot_id().to_string(), "alpha");
+  EXPECT_NEAR(poses.front().pose().x(), at.x, 1e-6);
+  EXPECT_NEAR(poses.front().pose().y(), at.y, 1e-6);
+  EXPECT_NEAR(poses.front().pose().theta(), 0.0, 1e-6);
+}
+
 TEST(ViewerTest, SnapshotsPeriodicallyAndFitsToDataThatArrivesLater) {
   if (!have_xvfb()) GTEST_SKIP() << "xvfb-run is not installed";
   DomainLease domain;

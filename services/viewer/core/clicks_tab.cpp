@@ -1,6 +1,7 @@
 // Click settings and map clicks (see clicks_tab.hpp).
 #include "viewer/core/clicks_tab.hpp"
 
+#include <cmath>
 #include <cstdio>
 
 namespace slam::viewer {
@@ -27,6 +28,47 @@ void apply_click(ViewerState& state, CommandSink& sink, Vec2 screen, MouseButton
     const std::string what = std::string(click_action_name(action)) + " at " + where;
     if (!state.note_sent(sink.send(*out.edit), what, error)) state.status_line = error;
   }
+}
+
+void arm_pose_tool(ViewerState& state) {
+  if (Status s = state.pose_tool.arm(state.selected_robot); !s) {
+    state.status_line = s.message();
+    return;
+  }
+  state.status_line = "set pose of " + state.selected_robot +
+                      ": press at its true position, drag towards its heading (Esc cancels)";
+}
+
+void pose_press(ViewerState& state, Vec2 screen) {
+  state.pose_tool.press(state.view.screen_to_world(screen));
+}
+
+void pose_drag(ViewerState& state, Vec2 screen) {
+  state.pose_tool.drag(state.view.screen_to_world(screen));
+}
+
+void pose_release(ViewerState& state, CommandSink& sink, Vec2 screen, int64_t now_ns) {
+  const auto pose =
+      state.pose_tool.release(state.view.screen_to_world(screen), kPoseMinDragPx / state.view.scale());
+  if (!pose) {
+    if (state.pose_tool.armed()) state.status_line = "set pose: drag towards the robot's heading";
+    return;
+  }
+  char what[160];
+  std::snprintf(what, sizeof what, "pose of %s: (%.2f, %.2f, %.0f deg)", pose->robot_id.c_str(), pose->pose.x,
+                pose->pose.y, pose->pose.theta * 180.0 / M_PI);
+  std::string error;
+  if (const uint64_t id = state.note_sent(sink.send(*pose), what, error)) {
+    state.pose_requests.sent(id, what, now_ns);
+  } else {
+    state.status_line = error;
+  }
+}
+
+void cancel_pose_tool(ViewerState& state) {
+  if (!state.pose_tool.armed()) return;
+  state.pose_tool.cancel();
+  state.status_line = "set pose cancelled";
 }
 
 }  // namespace slam::viewer

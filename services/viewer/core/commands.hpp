@@ -71,6 +71,12 @@ struct MapFileCommand {
   std::string yaml_path;
 };
 
+// An operator's initial pose (InitialPose): `robot_id` is now at `pose` in the map frame.
+struct InitialPoseCommand {
+  std::string robot_id;
+  Pose pose;
+};
+
 class CommandSink {
  public:
   virtual ~CommandSink() = default;
@@ -80,6 +86,7 @@ class CommandSink {
   virtual uint64_t send(const MqttRequestCommand& c) = 0;
   virtual uint64_t send(const SimCommand& c) = 0;
   virtual uint64_t send(const MapFileCommand& c) = 0;
+  virtual uint64_t send(const InitialPoseCommand& c) = 0;
 };
 
 }  // namespace slam::viewer

@@ -39,12 +39,29 @@ const char* goal_status_name(GoalStatus s) {
   return "?";
 }
 
+const char* correction_source_name(CorrectionSource s) {
+  switch (s) {
+    case CorrectionSource::Identity:
+      return "identity";
+    case CorrectionSource::Match:
+      return "match";
+    case CorrectionSource::Loop:
+      return "loop closure";
+    case CorrectionSource::Operator:
+      return "operator";
+    case CorrectionSource::Restored:
+      return "restored";
+  }
+  return "?";
+}
+
 void IntakeBatch::clear() {
   snapshot.reset();
   patches.clear();
   observations.clear();
   states.clear();
   paths.clear();
+  corrections.clear();
   heartbeats.clear();
   mqtt.clear();
   subscriptions.reset();
@@ -90,6 +107,16 @@ void Intake::push(RobotPathData&& p) {
       return;
     }
   pending_.paths.push_back(std::move(p));
+}
+
+void Intake::push(PoseCorrectionData&& c) {
+  std::lock_guard lock(mutex_);
+  for (auto& old : pending_.corrections)
+    if (old.robot_id == c.robot_id) {
+      old = std::move(c);
+      return;
+    }
+  pending_.corrections.push_back(std::move(c));
 }
 
 void Intake::push(HeartbeatData&& h) {

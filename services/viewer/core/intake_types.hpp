@@ -14,9 +14,11 @@ namespace slam::viewer {
 enum class GoalMode : uint8_t { Idle, Direct, Planned, Square, Explore, Home, Stop };
 enum class GoalStatus : uint8_t { None, Active, Reached, Failed };
 enum class ServiceState : uint8_t { Starting, Running, Stopping };
+enum class CorrectionSource : uint8_t { Identity, Match, Loop, Operator, Restored };
 
 const char* goal_mode_name(GoalMode m);
 const char* goal_status_name(GoalStatus s);
+const char* correction_source_name(CorrectionSource s);
 
 struct GridInfoData {
   uint32_t width = 0;
@@ -40,11 +42,22 @@ struct GridPatchData {
   std::vector<uint8_t> cells;
 };
 
+// RAW: in the robot's odometry frame (its PoseCorrection maps it into the map frame).
 struct ObservationData {
   std::string robot_id;
   uint64_t seq = 0;
   Pose pose;
-  std::vector<float> hits_xy;  // x0, y0, x1, y1, ... (map frame, metres)
+  std::vector<float> hits_xy;  // x0, y0, x1, y1, ... (odometry frame, metres)
+};
+
+// One robot's correction map <- odom (the mapper's PoseCorrection).
+struct PoseCorrectionData {
+  std::string robot_id;
+  uint64_t version = 0;
+  Pose map_from_odom;
+  uint32_t keyframes = 0;
+  uint32_t loop_closures = 0;
+  CorrectionSource source = CorrectionSource::Identity;
 };
 
 struct RobotStateData {

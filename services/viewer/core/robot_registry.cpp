@@ -39,6 +39,12 @@ void RobotRegistry::ingest(RobotPathData&& p) {
   r.has_path = true;
 }
 
+void RobotRegistry::ingest(PoseCorrectionData&& c) {
+  RobotView& r = get_or_add(c.robot_id);
+  r.correction = std::move(c);
+  r.has_correction = true;
+}
+
 void RobotRegistry::apply_defaults_to_all() {
   for (auto& r : robots_) {
     const Rgba keep = r->settings.color;
@@ -71,8 +77,14 @@ bool RobotRegistry::bounds(WorldBox* box) const {
   for (const auto& r : robots_) {
     if (r->has_state) add(r->state.pose.x, r->state.pose.y, r->state.pose.x, r->state.pose.y);
     if (!r->points.empty()) {
+      // The raw box's corners through the correction bound the corrected points.
       const WorldBox& b = r->points.bounds();
-      add(b.min_x, b.min_y, b.max_x, b.max_y);
+      const Pose m = r->map_from_odom();
+      for (const Vec2 corner :
+           {Vec2{b.min_x, b.min_y}, Vec2{b.max_x, b.min_y}, Vec2{b.min_x, b.max_y}, Vec2{b.max_x, b.max_y}}) {
+        const Vec2 p = m.transform(corner);
+        add(p.x, p.y, p.x, p.y);
+      }
     }
   }
   return any;

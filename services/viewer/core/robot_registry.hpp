@@ -32,9 +32,14 @@ struct RobotView {
   RobotStateData state;
   bool has_path = false;
   RobotPathData path;
-  PointStore points;
+  bool has_correction = false;
+  PoseCorrectionData correction;
+  PointStore points;  // raw, in the robot's odometry frame: draw them through map_from_odom()
   uint64_t observations = 0;
   Pose last_observed_pose;
+
+  // The robot's current correction map <- odom; the identity before the mapper sent one.
+  Pose map_from_odom() const { return has_correction ? correction.map_from_odom : Pose{}; }
 };
 
 class RobotRegistry {
@@ -51,6 +56,7 @@ class RobotRegistry {
   void ingest(const ObservationData& o);
   void ingest(RobotStateData&& s);
   void ingest(RobotPathData&& p);
+  void ingest(PoseCorrectionData&& c);
 
   // Settings given to robots seen from now on; apply_defaults_to_all() pushes them to every robot.
   RobotSettings& defaults() { return defaults_; }
@@ -58,7 +64,7 @@ class RobotRegistry {
 
   size_t online() const;
   size_t total_points() const;
-  // Box around every robot position and point; false when there is nothing.
+  // Box around every robot position and point (points corrected); false when there is nothing.
   bool bounds(WorldBox* box) const;
 
  private:

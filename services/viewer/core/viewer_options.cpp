@@ -24,6 +24,22 @@ Result<ClickSpec> parse_click_spec(const std::string& text) {
   return c;
 }
 
+Result<PoseDragSpec> parse_pose_drag_spec(const std::string& text) {
+  PoseDragSpec d;
+  const auto colon = text.find(':');
+  const std::string expected = "--pose-drag '" + text + "': expected ROBOT:X0,Y0>X1,Y1@PRESS-RELEASE";
+  if (colon == std::string::npos || colon == 0) return Error{expected};
+  d.robot = text.substr(0, colon);
+  const std::string rest = text.substr(colon + 1);
+  int consumed = 0;
+  if (std::sscanf(rest.c_str(), "%lf,%lf>%lf,%lf@%u-%u%n", &d.x0, &d.y0, &d.x1, &d.y1, &d.press, &d.release,
+                  &consumed) != 6 ||
+      static_cast<size_t>(consumed) != rest.size())
+    return Error{expected};
+  if (d.release <= d.press) return Error{"--pose-drag '" + text + "': RELEASE must come after PRESS"};
+  return d;
+}
+
 void add_viewer_options(CLI::App& app, ViewerOptions& o) {
   add_service_options(app, o.service);
   app.add_option("--width", o.width, "window width in pixels")->capture_default_str();
@@ -58,6 +74,8 @@ void add_viewer_options(CLI::App& app, ViewerOptions& o) {
                  "numbered snapshots kept, older ones deleted (0 keeps all)")
       ->capture_default_str();
   app.add_option("--click", o.click_texts, "test hook: synthetic click X,Y,left|right@FRAME (repeatable)");
+  app.add_option("--pose-drag", o.pose_drag_texts,
+                 "test hook: synthetic Set pose drag ROBOT:X0,Y0>X1,Y1@PRESS-RELEASE (repeatable)");
 }
 
 Status validate(ViewerOptions& o) {
@@ -93,6 +111,12 @@ Status validate(ViewerOptions& o) {
     auto c = parse_click_spec(t);
     if (!c) return c.status();
     o.clicks.push_back(*c);
+  }
+  o.pose_drags.clear();
+  for (const auto& t : o.pose_drag_texts) {
+    auto d = parse_pose_drag_spec(t);
+    if (!d) return d.status();
+    o.pose_drags.push_back(*d);
   }
   return {};
 }

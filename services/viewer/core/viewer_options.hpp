@@ -28,6 +28,17 @@ inline constexpr const char* kTabNames[] = {"main",  "mqtt", "clicks", "robots",
 // "X,Y,left|right@FRAME"
 Result<ClickSpec> parse_click_spec(const std::string& text);
 
+// A synthetic "Set pose" drag for tests: selects `robot`, presses at window pixel (x0, y0) and drags
+// to (x1, y1) at frame `press`, releases there at frame `release` (frames as for --click).
+struct PoseDragSpec {
+  std::string robot;
+  double x0 = 0.0, y0 = 0.0, x1 = 0.0, y1 = 0.0;
+  uint32_t press = 0, release = 0;
+};
+
+// "ROBOT:X0,Y0>X1,Y1@PRESS-RELEASE"
+Result<PoseDragSpec> parse_pose_drag_spec(const std::string& text);
+
 struct ViewerOptions {
   ServiceOptions service;
   int width = 1280;
@@ -45,6 +56,7 @@ struct ViewerOptions {
   std::string left_click = "target";
   std::string right_click = "obstruct";
   std::vector<std::string> click_texts;
+  std::vector<std::string> pose_drag_texts;
   std::string tab;           // open this tab at start (main, mqtt, clicks, robots, drive, grid, sim, map)
   std::string snapshot_dir;  // keep running; every snapshot_period_s write DIR/snapshot-NNNN.png + latest.png
   double snapshot_period_s = 10.0;
@@ -52,6 +64,7 @@ struct ViewerOptions {
 
   // Filled by validate():
   std::vector<ClickSpec> clicks;
+  std::vector<PoseDragSpec> pose_drags;
   ClickAction left_action = ClickAction::SetTarget;
   ClickAction right_action = ClickAction::Obstruct;
   int tab_index = -1;

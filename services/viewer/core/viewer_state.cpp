@@ -40,6 +40,7 @@ void ViewerState::ingest(IntakeBatch& batch, int64_t now_ns) {
   }
   for (auto& s : batch.states) robots.ingest(std::move(s));
   for (auto& p : batch.paths) robots.ingest(std::move(p));
+  for (auto& c : batch.corrections) robots.ingest(std::move(c));
   for (auto& h : batch.heartbeats) services.update(std::move(h), now_ns);
   for (auto& e : batch.mqtt) {
     (e.inbound ? rates.mqtt_in : rates.mqtt_out).add();
@@ -53,6 +54,7 @@ void ViewerState::ingest(IntakeBatch& batch, int64_t now_ns) {
   if (batch.world) world = std::move(batch.world);
   if (batch.truth) truth = std::move(batch.truth);
   for (auto& r : batch.replies) {
+    pose_requests.reply(r.request_id, r.result == 0, r.message);
     status_line =
         "request " + std::to_string(r.request_id) + (r.result == 0 ? ": ok " : ": failed ") + r.message;
     replies.push_front(std::move(r));
@@ -62,6 +64,7 @@ void ViewerState::ingest(IntakeBatch& batch, int64_t now_ns) {
   for (auto& r : batch.sim_replies) sim_requests.reply(r.request_id, r.ok, std::move(r.message));
   mqtt_requests.tick(now_ns);
   sim_requests.tick(now_ns);
+  pose_requests.tick(now_ns);
   rates.tick(now_ns);
 }
 

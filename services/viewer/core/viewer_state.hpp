@@ -12,6 +12,7 @@
 #include "viewer/core/grid_mirror.hpp"
 #include "viewer/core/intake.hpp"
 #include "viewer/core/mqtt_log.hpp"
+#include "viewer/core/pose_tool.hpp"
 #include "viewer/core/rate_meter.hpp"
 #include "viewer/core/request_tracker.hpp"
 #include "viewer/core/robot_registry.hpp"
@@ -44,6 +45,7 @@ struct ViewerState {
   std::deque<MapReplyData> replies;  // newest first, a few kept
   RequestTracker mqtt_requests;      // the MQTT tab's last request and the gateway's reply
   RequestTracker sim_requests;       // the Sim tab's last command and the simulator's reply
+  RequestTracker pose_requests;      // the pose tool's last InitialPose and the mapper's reply
   uint64_t snapshots = 0;
   uint64_t patches_dropped = 0;
   uint64_t mqtt_dropped = 0;
@@ -67,6 +69,7 @@ struct ViewerState {
   std::string selected_robot = "*";  // goals and manual drive go here; "*" = every robot
   double square_size = 1.0;
   bool square_centred = false;
+  PoseTool pose_tool;  // "Set pose": drag on the map sends the selected robot an InitialPose
 
   // Process info.
   int64_t started_ns = 0;  // monotonic

@@ -131,6 +131,12 @@ SimReplyData from_idl(const slam::SimReply& r) {
   return {{r.command_id(), r.ok(), r.message().to_string()}};
 }
 
+PoseCorrectionData from_idl(const slam::PoseCorrection& c) {
+  return {c.robot_id().to_string(), c.version(),
+          pose(c.map_from_odom()),  c.keyframes(),
+          c.loop_closures(),        static_cast<CorrectionSource>(c.source())};
+}
+
 slam::NavGoal to_idl(const GoalCommand& c, uint64_t goal_id) {
   slam::NavGoal g;
   g.robot_id(c.robot_id);
@@ -194,6 +200,18 @@ slam::MapFileRequest to_idl(const MapFileCommand& c, uint64_t request_id) {
   r.action(c.import ? slam::MAP_IMPORT : slam::MAP_EXPORT);
   r.yaml_path(c.yaml_path);
   return r;
+}
+
+slam::InitialPose to_idl(const InitialPoseCommand& c, uint64_t request_id) {
+  slam::InitialPose p;
+  p.request_id(request_id);
+  p.robot_id(c.robot_id);
+  slam::Pose2 pose;
+  pose.x(c.pose.x);
+  pose.y(c.pose.y);
+  pose.theta(c.pose.theta);
+  p.pose(pose);
+  return p;
 }
 
 }  // namespace slam::viewer

@@ -20,6 +20,7 @@ SimTruthData from_idl(const slam::SimGroundTruth& t);
 MapReplyData from_idl(const slam::MapReply& r);
 MqttReplyData from_idl(const slam::MqttReply& r);
 SimReplyData from_idl(const slam::SimReply& r);
+PoseCorrectionData from_idl(const slam::PoseCorrection& c);
 
 slam::NavGoal to_idl(const GoalCommand& c, uint64_t goal_id);
 slam::MapEdit to_idl(const MapEditCommand& c, uint64_t request_id);
@@ -27,5 +28,6 @@ slam::GridConfig to_idl(const GridConfigCommand& c, uint64_t request_id);
 slam::MqttRequest to_idl(const MqttRequestCommand& c, uint64_t request_id);
 slam::SimControl to_idl(const SimCommand& c, uint64_t command_id);
 slam::MapFileRequest to_idl(const MapFileCommand& c, uint64_t request_id);
+slam::InitialPose to_idl(const InitialPoseCommand& c, uint64_t request_id);
 
 }  // namespace slam::viewer

@@ -60,7 +60,8 @@ Status ViewerNode::create_writers() {
         make_writer_into(p, dds::kGridConfig, config_writer_),
         make_writer_into(p, dds::kMqttRequest, mqtt_writer_),
         make_writer_into(p, dds::kSimControl, sim_writer_),
-        make_writer_into(p, dds::kMapFileRequest, file_writer_)})
+        make_writer_into(p, dds::kMapFileRequest, file_writer_),
+        make_writer_into(p, dds::kInitialPose, initial_pose_writer_)})
     if (!s) return s;
   return {};
 }
@@ -74,6 +75,7 @@ Status ViewerNode::create_readers() {
                    make_intake_reader(p, dds::kRobotObservation, in, rx, observation_reader_),
                    make_intake_reader(p, dds::kRobotState, in, rx, state_reader_),
                    make_intake_reader(p, dds::kRobotPath, in, rx, path_reader_),
+                   make_intake_reader(p, dds::kPoseCorrection, in, rx, correction_reader_),
                    make_intake_reader(p, dds::kHeartbeat, in, rx, heartbeat_reader_),
                    make_intake_reader(p, dds::kMqttTraffic, in, rx, traffic_reader_),
                    make_intake_reader(p, dds::kMqttSubscriptions, in, rx, subscriptions_reader_),
@@ -119,6 +121,11 @@ uint64_t ViewerNode::send(const SimCommand& c) {
 uint64_t ViewerNode::send(const MapFileCommand& c) {
   const uint64_t id = ++next_id_;
   return write(*file_writer_, to_idl(c, id), id);
+}
+
+uint64_t ViewerNode::send(const InitialPoseCommand& c) {
+  const uint64_t id = ++next_id_;
+  return write(*initial_pose_writer_, to_idl(c, id), id);
 }
 
 }  // namespace slam::viewer

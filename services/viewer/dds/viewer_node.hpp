@@ -27,6 +27,7 @@ class ViewerNode final : public CommandSink {
   uint64_t send(const MqttRequestCommand& c) override;
   uint64_t send(const SimCommand& c) override;
   uint64_t send(const MapFileCommand& c) override;
+  uint64_t send(const InitialPoseCommand& c) override;
 
  private:
   ViewerNode(Intake& intake, Counters& counters);
@@ -50,11 +51,13 @@ class ViewerNode final : public CommandSink {
   std::unique_ptr<dds::Writer<MqttRequest>> mqtt_writer_;
   std::unique_ptr<dds::Writer<SimControl>> sim_writer_;
   std::unique_ptr<dds::Writer<MapFileRequest>> file_writer_;
+  std::unique_ptr<dds::Writer<InitialPose>> initial_pose_writer_;
   std::unique_ptr<dds::Reader<GridSnapshot>> snapshot_reader_;
   std::unique_ptr<dds::Reader<GridPatch>> patch_reader_;
   std::unique_ptr<dds::Reader<RobotObservation>> observation_reader_;
   std::unique_ptr<dds::Reader<RobotState>> state_reader_;
   std::unique_ptr<dds::Reader<RobotPath>> path_reader_;
+  std::unique_ptr<dds::Reader<PoseCorrection>> correction_reader_;
   std::unique_ptr<dds::Reader<Heartbeat>> heartbeat_reader_;
   std::unique_ptr<dds::Reader<MqttTraffic>> traffic_reader_;
   std::unique_ptr<dds::Reader<MqttSubscriptions>> subscriptions_reader_;

@@ -51,6 +51,12 @@ bool accumulated(const RobotSettings& s) {
   return s.visible && s.last_n == 0;
 }
 
+// Points are stored raw (odometry frame): the robot's current correction maps them into the map,
+// so a new correction moves every point of the robot at once.
+Affine2 odom_to_ndc(const RobotView& r, const Affine2& world_to_ndc) {
+  return pose_affine(r.map_from_odom()).then(world_to_ndc);
+}
+
 }  // namespace
 
 Status PointLayer::init(const PacerConfig& pacing) {
@@ -133,7 +139,9 @@ void PointLayer::fingerprint(const RobotRegistry& robots, std::vector<float>& ou
       out.push_back(-1.0f);
       continue;
     }
-    out.insert(out.end(), {s.color.r, s.color.g, s.color.b, s.color.a, s.point_radius_px});
+    const Pose m = robots.at(i).map_from_odom();
+    out.insert(out.end(), {s.color.r, s.color.g, s.color.b, s.color.a, s.point_radius_px,
+                           static_cast<float>(m.x), static_cast<float>(m.y), static_cast<float>(m.theta)});
   }
 }
 
@@ -174,8 +182,11 @@ void PointLayer::reset(Target& t, const ViewTransform& view, const std::vector<f
   t.drawn.assign(t.drawn.size(), 0);
 }
 
-void PointLayer::draw_range(const RobotBuffer& b, const RobotSettings& s, size_t first, size_t count,
-                            const float m[9], double fb_scale) {
+void PointLayer::draw_range(const RobotBuffer& b, const RobotView& r, size_t first, size_t count,
+                            const Affine2& world_to_ndc, double fb_scale) {
+  const RobotSettings& s = r.settings;
+  float m[9];
+  odom_to_ndc(r, world_to_ndc).to_mat3(m);
   const float size = std::max(1.0f, 2.0f * s.point_radius_px * static_cast<float>(fb_scale));
   glUniformMatrix3fv(points_.uniform("u_world_to_ndc"), 1, GL_FALSE, m);
   glUniform1f(points_.uniform("u_size"), size);
@@ -189,8 +200,7 @@ void PointLayer::draw_range(const RobotBuffer& b, const RobotSettings& s, size_t
 bool PointLayer::advance(Target& t, const RobotRegistry& robots, double fb_scale) {
   uint64_t budget = stats_.step_budget;
   if (t.drawn.size() < robots.size()) t.drawn.resize(robots.size(), 0);
-  float m[9];
-  t.view.world_to_ndc().to_mat3(m);
+  const Affine2 world_to_ndc = t.view.world_to_ndc();
   bool complete = true;
   bool bound = false;
   for (size_t i = 0; i < robots.size(); ++i) {
@@ -206,7 +216,7 @@ bool PointLayer::advance(Target& t, const RobotRegistry& robots, double fb_scale
         glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
         bound = true;
       }
-      draw_range(buffers_[i], s, t.drawn[i], n, m, fb_scale);
+      draw_range(buffers_[i], robots.at(i), t.drawn[i], n, world_to_ndc, fb_scale);
       t.drawn[i] += n;
       budget -= n;
     }
@@ -283,13 +293,12 @@ void PointLayer::draw(const ViewTransform& view, const PixelRect& px, const Robo
   // Robots limited to their last N points: bounded, drawn directly every frame.
   glUseProgram(points_.id());
   glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
-  float m[9];
-  view.world_to_ndc().to_mat3(m);
+  const Affine2 world_to_ndc = view.world_to_ndc();
   for (size_t i = 0; i < robots.size() && i < buffers_.size(); ++i) {
     const RobotSettings& s = robots.at(i).settings;
     if (!s.visible || s.last_n == 0 || buffers_[i].uploaded == 0) continue;
     const size_t n = std::min<size_t>(s.last_n, buffers_[i].uploaded);
-    draw_range(buffers_[i], s, buffers_[i].uploaded - n, n, m, fb_scale);
+    draw_range(buffers_[i], robots.at(i), buffers_[i].uploaded - n, n, world_to_ndc, fb_scale);
   }
   glBindVertexArray(0);
 }

@@ -45,19 +45,38 @@ bool fit_box(const ViewerState& state, WorldBox* box) {
   return true;
 }
 
-void MapInput::handle(ViewerState& state, CommandSink& sink) {
+void MapInput::handle(ViewerState& state, CommandSink& sink, int64_t now_ns) {
   ImGuiIO& io = ImGui::GetIO();
   const Vec2 mouse{io.MousePos.x, io.MousePos.y};
   const bool over_map = inside(state.view.viewport(), mouse) && !io.WantCaptureMouse;
 
+  // The pose tool owns the left button while armed; Escape or a right click cancels it.
+  const bool pose_tool = state.pose_tool.armed();
+  if (pose_tool && ImGui::IsKeyPressed(GLFW_KEY_ESCAPE)) cancel_pose_tool(state);
+  if (pose_drag_ && state.pose_tool.dragging()) {
+    pose_drag(state, mouse);
+    if (!ImGui::IsMouseDown(0)) pose_release(state, sink, mouse, now_ns);
+  }
+  pose_drag_ = pose_drag_ && state.pose_tool.dragging();
   if (drag_button_ < 0 && over_map) {
-    for (int b : {1, 2})
-      if (ImGui::IsMouseClicked(b)) {
-        drag_button_ = b;
-        press_ = last_ = mouse;
-        dragged_ = false;
+    if (pose_tool && ImGui::IsMouseClicked(1)) {
+      cancel_pose_tool(state);
+    } else {
+      for (int b : {1, 2})
+        if (ImGui::IsMouseClicked(b)) {
+          drag_button_ = b;
+          press_ = last_ = mouse;
+          dragged_ = false;
+        }
+    }
+    if (ImGui::IsMouseClicked(0)) {
+      if (state.pose_tool.armed()) {
+        pose_press(state, mouse);
+        pose_drag_ = true;
+      } else {
+        apply_click(state, sink, mouse, MouseButton::Left);
       }
-    if (ImGui::IsMouseClicked(0)) apply_click(state, sink, mouse, MouseButton::Left);
+    }
     if (io.MouseWheel != 0.0f) {
       if (io.KeyShift) {
         state.view.rotate_about(mouse, io.MouseWheel * kRotateStep);

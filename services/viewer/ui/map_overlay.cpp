@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "viewer/core/clicks_tab.hpp"
 #include "viewer/ui/map_input.hpp"
 
 namespace slam::viewer {
@@ -70,6 +71,19 @@ void draw_path(ImDrawList* dl, const ViewTransform& v, const RobotView& r) {
                 r.path.status == GoalStatus::Failed ? IM_COL32(255, 40, 40, 255) : col);
 }
 
+// The pose tool's drag: a thick arrow from the pressed point (a ring marks it) to the cursor.
+void draw_pose_arrow(ImDrawList* dl, const ViewTransform& v, const PoseTool::Arrow& a) {
+  constexpr ImU32 kColor = IM_COL32(255, 200, 0, 255);
+  const ImVec2 from = screen(v, a.from.x, a.from.y), to = screen(v, a.to.x, a.to.y);
+  dl->AddCircle(from, 6.0f, kColor, 16, 2.5f);
+  dl->AddLine(from, to, kColor, 3.0f);
+  const float dx = to.x - from.x, dy = to.y - from.y, len = std::hypot(dx, dy);
+  if (len < 1.0f) return;
+  const float ux = dx / len, uy = dy / len, head = std::min(14.0f, len);
+  dl->AddTriangleFilled(to, {to.x - head * ux - 0.5f * head * uy, to.y - head * uy + 0.5f * head * ux},
+                        {to.x - head * ux + 0.5f * head * uy, to.y - head * uy - 0.5f * head * ux}, kColor);
+}
+
 }  // namespace
 
 void draw_map_overlay(const ViewerState& state) {
@@ -104,6 +118,7 @@ void draw_map_overlay(const ViewerState& state) {
         dl->AddText({c.x + 12.0f, c.y - 18.0f}, IM_COL32(255, 255, 255, 240), r.id.c_str());
       }
     }
+  if (const auto arrow = state.pose_tool.arrow()) draw_pose_arrow(dl, v, *arrow);
   dl->PopClipRect();
 }
 
@@ -136,6 +151,12 @@ void draw_view_bar(ViewerState& state) {
   if (ImGui::Button("Rot -15")) {
     state.view.rotate_about(centre, -M_PI / 12.0);
     state.view_touched = true;
+  }
+  ImGui::SameLine();
+  if (state.pose_tool.armed()) {
+    if (ImGui::Button("Cancel pose")) cancel_pose_tool(state);
+  } else if (ImGui::Button("Set pose")) {
+    arm_pose_tool(state);
   }
   ImGui::SameLine();
   const ImVec2 m = ImGui::GetIO().MousePos;

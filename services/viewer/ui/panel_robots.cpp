@@ -1,10 +1,11 @@
-// Robots tab: the default goal mode for every robot, and per robot its display settings, its own
-// goal, a reset of its observations, and its counters.
+// Robots tab: the default goal mode for every robot, the pose tool, and per robot its display
+// settings, its own goal, a reset of its observations, its correction and its counters.
 #include <imgui.h>
 #include <imgui_stdlib.h>
 
 #include <cmath>
 
+#include "viewer/core/clicks_tab.hpp"
 #include "viewer/ui/panels.hpp"
 
 namespace slam::viewer {
@@ -48,6 +49,15 @@ void robot_details(RobotsTab& tab, ViewerState& state, CommandSink& sink, RobotV
                 static_cast<unsigned long long>(st.points), static_cast<unsigned long long>(st.rejected));
     if (st.battery >= 0.0f) ImGui::Text("battery %.0f %%  status %s", st.battery * 100.0f, st.status.c_str());
   }
+  if (r.has_correction) {
+    const PoseCorrectionData& c = r.correction;
+    ImGui::Text("correction (%.3f, %.3f, %.2f deg) v%llu", c.map_from_odom.x, c.map_from_odom.y,
+                c.map_from_odom.theta * 180.0 / M_PI, static_cast<unsigned long long>(c.version));
+    ImGui::Text("  keyframes %u  loop closures %u  source %s", c.keyframes, c.loop_closures,
+                correction_source_name(c.source));
+  } else {
+    ImGui::TextDisabled("correction: none yet (identity)");
+  }
   ImGui::Text("here: %llu observations, %zu points stored, %llu dropped",
               static_cast<unsigned long long>(r.observations), r.points.size(),
               static_cast<unsigned long long>(r.points.dropped()));
@@ -74,6 +84,14 @@ void draw_robots_tab(RobotsTab& tab, ViewerState& state, CommandSink& sink) {
   if (ImGui::Button("apply defaults to every robot")) RobotsTab::apply_defaults(state);
   robot_selector(state, "goals go to");
   error_line(tab.error);
+  if (state.pose_tool.armed()) {
+    ImGui::Text("setting the pose of %s: drag on the map", state.pose_tool.robot_id().c_str());
+    ImGui::SameLine();
+    if (ImGui::SmallButton("cancel")) cancel_pose_tool(state);
+  } else if (ImGui::Button("set pose of the selected robot (drag on the map)")) {
+    arm_pose_tool(state);
+  }
+  request_line(state.pose_requests);
 
   section_title("Robots");
   ImGui::SetNextItemWidth(-1.0f);

@@ -148,13 +148,26 @@ void ViewerApp::frame(int64_t now_ns, long ready_frame) {
   ImGui::NewFrame();
   if (panel > 0.0) panel_.draw(state_, sink_, static_cast<float>(panel), static_cast<float>(wh), now_ns);
   draw_view_bar(state_);
-  input_.handle(state_, sink_);
+  input_.handle(state_, sink_, now_ns);
   for (const ClickSpec& c : options_.clicks)
     if (ready_frame == static_cast<long>(c.frame)) {
       apply_click(state_, sink_, {c.x, c.y}, c.button == 0 ? MouseButton::Left : MouseButton::Right);
       spdlog::info("synthetic {} click at ({}, {}): {}", c.button == 0 ? "left" : "right", c.x, c.y,
                    state_.status_line);
     }
+  for (const PoseDragSpec& d : options_.pose_drags) {
+    if (ready_frame == static_cast<long>(d.press)) {
+      state_.selected_robot = d.robot;
+      arm_pose_tool(state_);
+      pose_press(state_, {d.x0, d.y0});
+      pose_drag(state_, {d.x1, d.y1});
+      spdlog::info("synthetic pose drag for {} from ({}, {}) to ({}, {})", d.robot, d.x0, d.y0, d.x1, d.y1);
+    }
+    if (ready_frame == static_cast<long>(d.release)) {
+      pose_release(state_, sink_, {d.x1, d.y1}, now_ns);
+      spdlog::info("synthetic pose release: {}", state_.status_line);
+    }
+  }
   draw_map_overlay(state_);
   ImGui::Render();
 

@@ -37,14 +37,19 @@ TEST(SimOptions, DefaultsMatchTheDocumentedOnes) {
   ASSERT_TRUE(c);
   EXPECT_DOUBLE_EQ(c->report_period, 0.1);
   EXPECT_DOUBLE_EQ(c->dt, 0.05);
+  EXPECT_DOUBLE_EQ(c->odometry.drift_per_radian, OdometryConfig{}.drift_per_radian);
+  EXPECT_EQ(c->odom_frame, OdomFrame::World);
 }
 
 TEST(SimOptions, FlagsReachTheConfiguration) {
   SimOptions o;
-  ASSERT_EQ(
-      parse(o, {"--protocol", "v2", "--rate", "50", "--noise", "0.03", "--dropout", "0.2", "--drift", "0.1",
-                "--seed", "9", "--speed", "2", "--random-walk", "--mqtt-multiplex", "--robots", "500"}),
-      "");
+  ASSERT_EQ(parse(o, {"--protocol",   "v2",   "--rate",          "50",
+                      "--noise",      "0.03", "--dropout",       "0.2",
+                      "--drift",      "0.1",  "--seed",          "9",
+                      "--speed",      "2",    "--random-walk",   "--mqtt-multiplex",
+                      "--robots",     "500",  "--heading-drift", "0.05",
+                      "--odom-frame", "start"}),
+            "");
   EXPECT_EQ(o.robot_protocol(), RobotProtocol::V2);
   EXPECT_TRUE(o.mqtt_multiplex);
   auto c = simulation_config(o);
@@ -54,6 +59,8 @@ TEST(SimOptions, FlagsReachTheConfiguration) {
   EXPECT_DOUBLE_EQ(c->sensor.range_noise_sd, 0.03);
   EXPECT_DOUBLE_EQ(c->sensor.dropout, 0.2);
   EXPECT_DOUBLE_EQ(c->odometry.drift_per_metre, 0.1);
+  EXPECT_DOUBLE_EQ(c->odometry.drift_per_radian, 0.05);
+  EXPECT_EQ(c->odom_frame, OdomFrame::Start);
   EXPECT_EQ(c->seed, 9u);
   EXPECT_DOUBLE_EQ(c->speed_factor, 2.0);
   EXPECT_TRUE(c->random_walk);
@@ -61,9 +68,15 @@ TEST(SimOptions, FlagsReachTheConfiguration) {
 
 TEST(SimOptions, BadValuesNameTheFlag) {
   const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
-      {{"--rate", "0"}, "--rate"},          {{"--robots", "-1"}, "--robots"},
-      {{"--protocol", "v3"}, "--protocol"}, {{"--dropout", "1.5"}, "--dropout"},
-      {{"--noise", "abc"}, "--noise"},      {{"--speed", "0"}, "--speed"},
+      {{"--rate", "0"}, "--rate"},
+      {{"--robots", "-1"}, "--robots"},
+      {{"--protocol", "v3"}, "--protocol"},
+      {{"--dropout", "1.5"}, "--dropout"},
+      {{"--noise", "abc"}, "--noise"},
+      {{"--speed", "0"}, "--speed"},
+      {{"--heading-drift", "-0.1"}, "--heading-drift"},
+      {{"--heading-drift", "11"}, "--heading-drift"},
+      {{"--odom-frame", "map"}, "--odom-frame"},
   };
   for (const auto& [args, flag] : cases) {
     SimOptions o;

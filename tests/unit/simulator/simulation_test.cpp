@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 
 #include "simulator/builtin_worlds.hpp"
 #include "simulator/kinematics.hpp"
@@ -185,6 +186,59 @@ TEST(Simulation, ReportsHitWallsExactlyWithoutNoise) {
   for (const Vec2& h : rep.hits) EXPECT_LT(wall_distance(sim.world(), h), 1e-9);
 }
 
+TEST(Simulation, StartFrameReportsFromTheOriginAndPlacesHitsInIt) {
+  SimulationConfig c = exact_config();
+  c.odom_frame = OdomFrame::Start;
+  Simulation sim = make(*builtin_world("office"), c);
+  const Pose spawn{12.5, 7.5, 0.7};
+  ASSERT_TRUE(sim.spawn(spawn, "r1"));
+  const auto reports = next_reports(sim);
+  ASSERT_EQ(reports.size(), 1u);
+  const RobotReport& rep = reports[0];
+  EXPECT_EQ(rep.reported_pose.x, 0.0);
+  EXPECT_EQ(rep.reported_pose.y, 0.0);
+  EXPECT_EQ(rep.reported_pose.theta, 0.0);
+  EXPECT_EQ(rep.true_pose.x, spawn.x);
+  // Hits are in the start frame: mapped through the spawn pose they lie on the world's walls.
+  ASSERT_GT(rep.hits.size(), 4u);
+  for (const Vec2& h : rep.hits) EXPECT_LT(wall_distance(sim.world(), spawn.transform(h)), 1e-9);
+}
+
+TEST(Simulation, StartFrameWaypointDrivesToTheTruePlace) {
+  SimulationConfig c = exact_config();
+  c.odom_frame = OdomFrame::Start;
+  Simulation sim = make(*builtin_world("empty"), c);
+  const Pose spawn{2, 3, std::numbers::pi / 2};
+  ASSERT_TRUE(sim.spawn(spawn, "r1"));
+  // 4 m ahead and 1 m to the right of where the robot started, which faces +y in the world.
+  ASSERT_TRUE(sim.set_waypoint("r1", {4, -1}));
+  for (int steps = 0; sim.find("r1")->waypoint && steps < 1000; ++steps) sim.step();
+  const Robot& r = *sim.find("r1");
+  EXPECT_FALSE(r.waypoint);
+  EXPECT_NEAR(r.reported_pose.x, 4.0, 0.05);
+  EXPECT_NEAR(r.reported_pose.y, -1.0, 0.05);
+  EXPECT_NEAR(r.true_pose.x, 3.0, 0.05);
+  EXPECT_NEAR(r.true_pose.y, 7.0, 0.05);
+  EXPECT_NEAR(world_from_odom(r).x, spawn.x, 1e-9);
+  EXPECT_NEAR(world_from_odom(r).theta, spawn.theta, 1e-9);
+}
+
+TEST(Simulation, StartFrameRandomWalkStaysInside) {
+  SimulationConfig c = exact_config();
+  c.odom_frame = OdomFrame::Start;
+  c.random_walk = true;
+  c.odometry = {0.05, 0.05};  // targets must follow the drifting frame too
+  Simulation sim = make(*builtin_world("office"), c);
+  ASSERT_TRUE(sim.spawn_random(10));
+  for (int i = 0; i < 1200; ++i) {
+    sim.step();
+    for (const Robot& r : sim.robots()) ASSERT_TRUE(sim.world().bounds().contains(r.true_pose.position()));
+  }
+  double driven = 0.0;
+  for (const Robot& r : sim.robots()) driven += norm(r.reported_pose.position());
+  EXPECT_GT(driven, 5.0);
+}
+
 TEST(Simulation, ReportRateFollowsThePeriod) {
   SimulationConfig c = exact_config();
   c.dt = 0.05;
@@ -328,6 +382,21 @@ TEST(Simulation, SetWorldRespawnsEveryRobot) {
   ASSERT_TRUE(sim.set_world(*builtin_world("track")));
   EXPECT_EQ(sim.world().name(), "track");
   for (const Robot& r : sim.robots()) EXPECT_TRUE(sim.world().is_free({r.true_pose.x, r.true_pose.y}, 0.15));
+}
+
+TEST(Simulation, SetWorldRestartsStartFrameOdometryAtTheOrigin) {
+  SimulationConfig c = exact_config();
+  c.odom_frame = OdomFrame::Start;
+  Simulation sim = make(*builtin_world("office"), c);
+  ASSERT_TRUE(sim.spawn_random(3));
+  ASSERT_TRUE(sim.set_waypoint(sim.robots()[0].id, {1, 0}));
+  for (int i = 0; i < 20; ++i) sim.step();
+  EXPECT_GT(norm(sim.robots()[0].reported_pose.position()), 0.1);
+  ASSERT_TRUE(sim.set_world(*builtin_world("maze")));
+  for (const Robot& r : sim.robots()) {
+    EXPECT_EQ(norm(r.reported_pose.position()), 0.0);
+    EXPECT_EQ(r.reported_pose.theta, 0.0);
+  }
 }
 
 TEST(Simulation, StepsForFollowsSpeedFactor) {

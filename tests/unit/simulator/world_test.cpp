@@ -5,6 +5,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <random>
@@ -140,6 +141,57 @@ TEST(BuiltinWorlds, TrackIsARingCorridor) {
   }
   EXPECT_FALSE(w->is_free({3.0, 3.0}, 0.1));  // inside the inner circle: solid
   EXPECT_FALSE(w->is_free({0.3, 0.3}, 0.1));  // outside the track: solid
+}
+
+// Every point of a `step` lattice a robot of `radius` can drive to from `start` (4-neighbour moves).
+std::vector<Vec2> reachable(const World& w, Vec2 start, double radius, double step) {
+  const Bounds& b = w.bounds();
+  const int nx = static_cast<int>(b.width() / step), ny = static_cast<int>(b.height() / step);
+  const auto at = [&](int x, int y) { return Vec2{b.min.x + (x + 0.5) * step, b.min.y + (y + 0.5) * step}; };
+  std::vector<char> seen(static_cast<size_t>(nx * ny), 0);
+  std::vector<std::pair<int, int>> todo{
+      {static_cast<int>((start.x - b.min.x) / step), static_cast<int>((start.y - b.min.y) / step)}};
+  std::vector<Vec2> out;
+  if (!w.is_free(at(todo[0].first, todo[0].second), radius)) return out;
+  seen[static_cast<size_t>(todo[0].second * nx + todo[0].first)] = 1;
+  while (!todo.empty()) {
+    const auto [x, y] = todo.back();
+    todo.pop_back();
+    out.push_back(at(x, y));
+    for (const auto& [dx, dy] : {std::pair{1, 0}, {-1, 0}, {0, 1}, {0, -1}}) {
+      const int u = x + dx, v = y + dy;
+      if (u < 0 || v < 0 || u >= nx || v >= ny || seen[static_cast<size_t>(v * nx + u)]) continue;
+      if (!w.motion_clear(at(x, y), at(u, v), radius)) continue;
+      seen[static_cast<size_t>(v * nx + u)] = 1;
+      todo.push_back({u, v});
+    }
+  }
+  return out;
+}
+
+TEST(BuiltinWorlds, RoomsAreIdenticalAndEveryOneIsReachableFromTheCorridor) {
+  const auto w = builtin_world("rooms");
+  ASSERT_TRUE(w) << w.message();
+  EXPECT_DOUBLE_EQ(w->bounds().width(), 12.0);
+  EXPECT_DOUBLE_EQ(w->bounds().height(), 8.0);
+  const auto free = reachable(*w, {6.0, 1.0}, 0.15, 0.1);
+  for (int k = 0; k < 4; ++k) {
+    const double x0 = 3.0 * k;
+    // Somewhere in each room's back half, behind its table, is reachable.
+    const bool reached = std::any_of(free.begin(), free.end(), [&](Vec2 p) {
+      return p.x > x0 + 0.5 && p.x < x0 + 2.5 && p.y > 6.5 && p.y < 7.5;
+    });
+    EXPECT_TRUE(reached) << "room " << k;
+    // The same scan from the same spot in every room: identical rooms tempt a wrong loop closure.
+    for (int beam = 0; beam < 16; ++beam) {
+      const double a = 2.0 * std::numbers::pi * beam / 16 + 0.05;
+      const Vec2 dir{std::cos(a), std::sin(a)};
+      EXPECT_NEAR(w->cast({x0 + 1.5, 4.0}, dir, 4.0), w->cast({1.5, 4.0}, dir, 4.0), 1e-9)
+          << "room " << k << " beam " << beam;
+    }
+  }
+  EXPECT_FALSE(w->is_free({1.5, 5.0}, 0.1));  // inside the first room's table
+  EXPECT_FALSE(w->is_free({9.2, 7.0}, 0.1));  // inside the last room's shelf
 }
 
 TEST(BuiltinWorlds, MazeIsTheSameEveryTime) {

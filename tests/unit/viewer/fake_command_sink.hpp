@@ -16,9 +16,11 @@ class FakeCommandSink final : public CommandSink {
   uint64_t send(const MqttRequestCommand& c) override { return record(mqtt, c); }
   uint64_t send(const SimCommand& c) override { return record(sim, c); }
   uint64_t send(const MapFileCommand& c) override { return record(map_files, c); }
+  uint64_t send(const InitialPoseCommand& c) override { return record(initial_poses, c); }
 
   size_t total() const {
-    return goals.size() + edits.size() + grid_configs.size() + mqtt.size() + sim.size() + map_files.size();
+    return goals.size() + edits.size() + grid_configs.size() + mqtt.size() + sim.size() + map_files.size() +
+           initial_poses.size();
   }
 
   std::vector<GoalCommand> goals;
@@ -27,6 +29,7 @@ class FakeCommandSink final : public CommandSink {
   std::vector<MqttRequestCommand> mqtt;
   std::vector<SimCommand> sim;
   std::vector<MapFileCommand> map_files;
+  std::vector<InitialPoseCommand> initial_poses;
   bool refuse = false;
   uint64_t last_id = 0;
 

@@ -45,6 +45,24 @@ TEST(Intake, StatesKeepNewestPerRobot) {
   EXPECT_EQ(b.states[0].messages, 2u);
 }
 
+TEST(Intake, CorrectionsKeepNewestPerRobot) {
+  Intake in;
+  const auto correction = [](const char* id, uint64_t version) {
+    PoseCorrectionData c;
+    c.robot_id = id;
+    c.version = version;
+    return c;
+  };
+  in.push(correction("a", 1));
+  in.push(correction("a", 2));
+  in.push(correction("b", 2));
+  IntakeBatch b;
+  in.drain(b);
+  ASSERT_EQ(b.corrections.size(), 2u);
+  EXPECT_EQ(b.corrections[0].version, 2u);
+  EXPECT_EQ(b.corrections[1].robot_id, "b");
+}
+
 TEST(Intake, MqttBacklogIsBounded) {
   Intake in(4);
   for (uint64_t i = 0; i < 10; ++i) in.push(MqttEntry{i, 0, true, "t", {}, 0});

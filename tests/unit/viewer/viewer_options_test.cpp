@@ -66,6 +66,22 @@ TEST(ViewerOptions, ClickSpecsParse) {
   EXPECT_FALSE(parse_click_spec("1,2,left@3junk"));
 }
 
+TEST(ViewerOptions, PoseDragSpecsParse) {
+  auto d = parse_pose_drag_spec("sim-1:640.5,400>700,380@5-12");
+  ASSERT_TRUE(d) << d.message();
+  EXPECT_EQ(d->robot, "sim-1");
+  EXPECT_DOUBLE_EQ(d->x0, 640.5);
+  EXPECT_DOUBLE_EQ(d->y1, 380.0);
+  EXPECT_EQ(d->press, 5u);
+  EXPECT_EQ(d->release, 12u);
+  EXPECT_FALSE(parse_pose_drag_spec("640,400>700,380@5-12"));    // no robot
+  EXPECT_FALSE(parse_pose_drag_spec("r:640,400>700,380@12-5"));  // released before pressed
+  EXPECT_FALSE(parse_pose_drag_spec("r:640,400>700,380@5-12x"));
+  ViewerOptions o;
+  o.pose_drag_texts = {"r:1,2>3,4@5"};
+  EXPECT_NE(validate(o).message().find("--pose-drag"), std::string::npos);
+}
+
 TEST(ViewerOptions, TabNamesResolve) {
   ViewerOptions o;
   o.tab = "mqtt";
