@@ -24,7 +24,8 @@ double max_error(const PoseGraph& graph, const std::vector<Pose>& truth) {
   return worst;
 }
 
-GraphEdge relative(EdgeKind kind, NodeId from, NodeId to, const Pose& measurement, double sigma_m, double sigma_rad) {
+GraphEdge relative(EdgeKind kind, NodeId from, NodeId to, const Pose& measurement, double sigma_m,
+                   double sigma_rad) {
   return {kind, from, to, measurement, information(sigma_m, sigma_rad)};
 }
 
@@ -164,7 +165,8 @@ TEST(PoseGraph, RobustLossLimitsTheDamageOfAWrongClosure) {
   PoseGraph quadratic = graph;
   ASSERT_TRUE(graph.optimise());
   ASSERT_TRUE(quadratic.optimise({.robust_loop_closures = false}));
-  const double robust_error = max_error(graph, square.truth), quadratic_error = max_error(quadratic, square.truth);
+  const double robust_error = max_error(graph, square.truth),
+               quadratic_error = max_error(quadratic, square.truth);
   EXPECT_LT(robust_error, 0.1);
   EXPECT_GT(quadratic_error, 0.3);
   EXPECT_LT(4.0 * robust_error, quadratic_error);
@@ -191,7 +193,8 @@ TEST(ConsistencyCheck, AcceptsTheTrueClosureAndRejectsOneAMetreOff) {
 TEST(ConsistencyCheck, WrapsTheHeadingDifference) {
   const ConsistencyCheck check;
   const Eigen::Matrix3d uncertainty = Eigen::Vector3d{0.01, 0.01, 0.001}.asDiagonal();
-  EXPECT_TRUE(check.accepts({1.0, 0.0, std::numbers::pi - 0.01}, {1.0, 0.0, -std::numbers::pi + 0.01}, uncertainty));
+  EXPECT_TRUE(
+      check.accepts({1.0, 0.0, std::numbers::pi - 0.01}, {1.0, 0.0, -std::numbers::pi + 0.01}, uncertainty));
   EXPECT_FALSE(check.accepts({1.0, 0.0, 0.0}, {1.0, 0.0, 0.5}, uncertainty));
 }
 
@@ -263,7 +266,8 @@ TEST(AccumulateChain, ComposesStepByStep) {
 
 TEST(AccumulateChain, RejectsBrokenChainsAndPriors) {
   const Eigen::Matrix3d info = Eigen::Matrix3d::Identity();
-  const std::vector<GraphEdge> gap{{EdgeKind::Sequential, 0, 1, {}, info}, {EdgeKind::Sequential, 2, 3, {}, info}};
+  const std::vector<GraphEdge> gap{{EdgeKind::Sequential, 0, 1, {}, info},
+                                   {EdgeKind::Sequential, 2, 3, {}, info}};
   EXPECT_FALSE(accumulate_chain(gap));
   const std::vector<GraphEdge> prior{{EdgeKind::Prior, 0, 0, {}, info}};
   EXPECT_FALSE(accumulate_chain(prior));

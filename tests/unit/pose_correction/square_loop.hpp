@@ -31,7 +31,8 @@ struct SquareLoop {
   }
   // The last keyframe matched against the first: both are the same place.
   GraphEdge closure() const {
-    return {EdgeKind::LoopClosure, last(), 0, truth.back().inverse().compose(truth.front()), information(0.01, 0.005)};
+    return {EdgeKind::LoopClosure, last(), 0, truth.back().inverse().compose(truth.front()),
+            information(0.01, 0.005)};
   }
 };
 
@@ -46,11 +47,12 @@ inline SquareLoop make_square_loop(int keyframes_per_leg = 20, double heading_bi
   for (int k = 0; k < steps; ++k) {
     const double turn = (k + 1) % keyframes_per_leg == 0 ? std::numbers::pi / 2.0 : 0.0;
     const Pose motion{kStep, 0.0, turn};
-    const Pose measured{kStep + linear_noise(rng), linear_noise(rng), turn + heading_bias_rad + angular_noise(rng)};
+    const Pose measured{kStep + linear_noise(rng), linear_noise(rng),
+                        turn + heading_bias_rad + angular_noise(rng)};
     square.truth.push_back(square.truth.back().compose(motion));
     square.drifted_start.push_back(square.drifted_start.back().compose(measured));
-    square.odometry.push_back({EdgeKind::Sequential, static_cast<NodeId>(k), static_cast<NodeId>(k + 1), measured,
-                               information(0.01, 0.01)});
+    square.odometry.push_back({EdgeKind::Sequential, static_cast<NodeId>(k), static_cast<NodeId>(k + 1),
+                               measured, information(0.01, 0.01)});
   }
   return square;
 }
