@@ -59,6 +59,7 @@ void GraphOptimizer::run() {
     Job job = std::move(*pending_);
     pending_.reset();
     running_ = true;
+    ++counters_.started;
     lock.unlock();
     OptimisationResult result = solve(job);
     lock.lock();

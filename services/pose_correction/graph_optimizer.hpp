@@ -27,6 +27,7 @@ struct OptimisationResult {
 struct OptimizerCounters {
   uint64_t submitted = 0;
   uint64_t coalesced = 0;  // submits replaced by a newer one before their solve started
+  uint64_t started = 0;    // solves begun
   uint64_t solved = 0;     // solves finished, failed ones included
   uint64_t failed = 0;
 };

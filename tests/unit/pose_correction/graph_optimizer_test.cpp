@@ -3,6 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <memory>
+#include <thread>
+#include <utility>
 
 #include "square_loop.hpp"
 
@@ -46,11 +49,14 @@ TEST(GraphOptimizer, DeliversWhatADirectOptimiseGives) {
 
 TEST(GraphOptimizer, NewerSubmitsReplaceWaitingOnes) {
   GraphOptimizer optimizer;
-  // A long solve first, so the later submits arrive while it runs (or before it starts: then it is
-  // replaced too). The middle one never gets solved either way.
-  const uint64_t slow = optimizer.submit(closed_square(1000), {.max_iterations = 200});
-  const uint64_t middle = optimizer.submit(closed_square());
-  const uint64_t newest = optimizer.submit(closed_square());
+  // A long solve first (a quadratic loss makes the badly drifted loop take many steps), so the later submits
+  // arrive while it runs (or before it starts: then it is replaced too). The middle one never gets solved
+  // either way. The graphs are built beforehand so the submits follow each other within microseconds.
+  PoseGraph slow_graph = closed_square(1000), middle_graph = closed_square(), newest_graph = closed_square();
+  const uint64_t slow =
+      optimizer.submit(std::move(slow_graph), {.max_iterations = 200, .robust_loop_closures = false});
+  const uint64_t middle = optimizer.submit(std::move(middle_graph));
+  const uint64_t newest = optimizer.submit(std::move(newest_graph));
   EXPECT_LT(slow, middle);
   EXPECT_LT(middle, newest);
 
@@ -62,6 +68,7 @@ TEST(GraphOptimizer, NewerSubmitsReplaceWaitingOnes) {
   const OptimizerCounters counters = optimizer.counters();
   EXPECT_EQ(counters.submitted, 3u);
   EXPECT_GE(counters.coalesced, 1u);
+  EXPECT_EQ(counters.started, counters.solved);
   EXPECT_EQ(counters.coalesced + counters.solved, 3u);
 }
 
@@ -79,7 +86,8 @@ TEST(GraphOptimizer, ReportsAFailedSolveAsAResult) {
 
 TEST(GraphOptimizer, ShutsDownDuringALongSolve) {
   auto optimizer = std::make_unique<GraphOptimizer>();
-  (void)optimizer->submit(closed_square(1000), {.max_iterations = 1000});
+  (void)optimizer->submit(closed_square(1000), {.max_iterations = 1000, .robust_loop_closures = false});
+  while (optimizer->counters().started == 0) std::this_thread::yield();
   // The destructor aborts the solve at its next iteration and joins: a hang fails by the test's
   // timeout, a leak or a use after free under the sanitizer build.
   optimizer.reset();
