@@ -165,9 +165,7 @@ Result<OptimiseStats> PoseGraph::optimise(const OptimiseOptions& options) {
 
   // Solve on a copy so a failed solve leaves the estimates untouched.
   std::vector<double> solution = poses_;
-  ceres::Problem::Options problem_options;
-  problem_options.enable_fast_removal = false;
-  ceres::Problem problem(problem_options);
+  ceres::Problem problem;
   // One loss shared by every loop closure; the problem owns and deletes it once.
   ceres::LossFunction* closure_loss =
       options.robust_loop_closures ? new ceres::CauchyLoss(options.loop_closure_loss_scale) : nullptr;
