@@ -1,0 +1,67 @@
+#include "pose_correction/keyframe_builder.hpp"
+
+#include <cmath>
+#include <utility>
+
+namespace slam::correction {
+
+KeyframeBuilder::Step KeyframeBuilder::add(uint64_t id, uint32_t robot, int64_t stamp_ns, const Pose& odom_pose,
+                                           bool has_heading, std::span<const Vec2> hits) {
+  const Pose pose{odom_pose.x, odom_pose.y, has_heading ? odom_pose.theta : 0.0};
+  if (has_last_ && !jumped_) {
+    const double step = distance(pose.position(), last_pose_.position());
+    const double dt_s = static_cast<double>(stamp_ns - last_stamp_ns_) * 1e-9;
+    const bool too_fast = dt_s > 0.0 ? step / dt_s > options_.jump_speed_mps : step > options_.jump_m * 0.5;
+    if (step > options_.jump_m || (too_fast && step > 0.05)) {
+      jumped_ = true;
+      return Step::Jump;
+    }
+  }
+  if (jumped_) {
+    jumped_ = false;
+    ++segment_;
+  }
+  has_last_ = true;
+  last_pose_ = pose;
+  last_stamp_ns_ = stamp_ns;
+
+  if (!open_) {
+    keyframe_.id = id;
+    keyframe_.robot = robot;
+    keyframe_.segment = segment_;
+    keyframe_.odom = pose;
+    keyframe_.has_heading = has_heading;
+    keyframe_.messages = 0;
+    keyframe_.first_stamp_ns = stamp_ns;
+    keyframe_.points.clear();
+    open_ = true;
+  }
+  const Pose to_keyframe = keyframe_.odom.inverse();
+  for (const Vec2& p : hits) keyframe_.points.push_back(to_keyframe.transform(p));
+  ++keyframe_.messages;
+  keyframe_.last_stamp_ns = stamp_ns;
+
+  const double travel = distance(pose.position(), keyframe_.odom.position());
+  const double turn = std::abs(wrap_angle(pose.theta - keyframe_.odom.theta));
+  const bool complete = travel >= options_.travel_m || turn >= options_.turn_rad ||
+                        keyframe_.messages >= options_.max_messages ||
+                        stamp_ns - keyframe_.first_stamp_ns >= options_.max_span_ns;
+  return complete ? Step::AddedAndClosed : Step::Added;
+}
+
+void KeyframeBuilder::start_segment() {
+  if (has_last_) jumped_ = true;
+}
+
+bool KeyframeBuilder::stale(int64_t now_ns) const {
+  return open_ && now_ns - keyframe_.last_stamp_ns >= options_.max_span_ns;
+}
+
+Keyframe KeyframeBuilder::take() {
+  open_ = false;
+  Keyframe out = std::move(keyframe_);
+  keyframe_ = Keyframe{};
+  return out;
+}
+
+}  // namespace slam::correction

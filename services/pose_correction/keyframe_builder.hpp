@@ -1,0 +1,79 @@
+#pragma once
+// Groups each robot's consecutive observations into keyframes ("multiscans"). One sparse message
+// (a v1 robot sends 1-16 points) cannot be matched; the points of a short stretch of travel,
+// expressed in the frame of the keyframe's first pose, can. Odometry is trusted over that short
+// stretch (its drift over half a metre is a few millimetres).
+//
+// A keyframe closes after a travel, a turn, a number of messages, or a time span; an odometry
+// step no robot can drive (a reset, a teleport) closes it and starts a new trajectory segment, so
+// the jump never becomes a motion in the pose graph.
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "common/core/geometry.hpp"
+
+namespace slam::correction {
+
+struct KeyframeOptions {
+  double travel_m = 0.4;           // close after this much travel...
+  double turn_rad = 0.4;           // ...or this much turning (robots that report a heading)...
+  int max_messages = 30;           // ...or this many messages...
+  int64_t max_span_ns = 4'000'000'000;  // ...or when its messages span this long
+  double jump_m = 1.0;             // an odometry step longer than this between two messages is a jump
+  double jump_speed_mps = 3.0;     // ...and so is one faster than this
+};
+
+struct Keyframe {
+  uint64_t id = 0;
+  uint32_t robot = 0;           // the corrector's robot index
+  uint32_t segment = 0;         // trajectory segment of the robot
+  Pose odom;                    // origin in the robot's odometry frame (heading 0 without one)
+  bool has_heading = false;
+  int messages = 0;
+  int64_t first_stamp_ns = 0;
+  int64_t last_stamp_ns = 0;
+  std::vector<Vec2> points;     // obstacle points in the keyframe's frame
+};
+
+// One robot's open keyframe. Plain data; the corrector owns one per robot.
+class KeyframeBuilder {
+ public:
+  enum class Step : uint8_t {
+    Added,           // the observation joined the open keyframe
+    AddedAndClosed,  // ...and completed it: take() it
+    Jump             // the odometry jumped: the open keyframe (if any) must be taken first, then
+                     // the observation starts a new segment (call add() again)
+  };
+
+  explicit KeyframeBuilder(const KeyframeOptions& options) : options_(options) {}
+
+  // `id` is used when the observation opens a new keyframe.
+  Step add(uint64_t id, uint32_t robot, int64_t stamp_ns, const Pose& odom_pose, bool has_heading,
+           std::span<const Vec2> hits);
+  // Starts a new segment: the next observation opens a keyframe whatever its distance to the last.
+  void start_segment();
+
+  bool open() const { return open_; }
+  // Whether the open keyframe's last message is older than max_span_ns at `now_ns` (a silent robot).
+  bool stale(int64_t now_ns) const;
+  uint64_t open_id() const { return keyframe_.id; }
+  uint32_t segment() const { return segment_; }
+  const Pose& last_odom() const { return last_pose_; }
+  bool has_last() const { return has_last_; }
+
+  // Hands over the open keyframe (its buffers are moved out) and closes it.
+  Keyframe take();
+
+ private:
+  KeyframeOptions options_;
+  Keyframe keyframe_;
+  bool open_ = false;
+  uint32_t segment_ = 0;
+  bool has_last_ = false;
+  bool jumped_ = false;  // the last add() reported a jump; the next add() opens a new segment
+  Pose last_pose_;
+  int64_t last_stamp_ns_ = 0;
+};
+
+}  // namespace slam::correction

@@ -1,0 +1,182 @@
+#pragma once
+// The SLAM core's front door: one per mapper. Keeps, per robot, the correction map <- odom that
+// turns what the robot reports (its own drifting odometry frame) into the map frame.
+//
+// Flow, driven by the mapper's loop thread (not thread-safe; the optimiser has its own thread):
+//  1. add() each raw observation: it joins its robot's open keyframe (KeyframeBuilder). The mapper
+//     holds the observation, unrendered, until that keyframe is finalised: matching a keyframe
+//     against a map that already holds its own points would only confirm the prediction.
+//  2. process() matches every closed keyframe against the grid near its predicted pose (narrow
+//     window), adds it to the pose graph (a sequential edge to the robot's previous keyframe, an
+//     edge to the old keyframes it matched against) and, when the robot is back among keyframes
+//     made long ago (by itself or another robot) but the narrow match fails, tries a loop closure:
+//     a wide-window match against a grid drawn from those old keyframes only, accepted only when
+//     it agrees with the odometry uncertainty accumulated since the robot was last tied to the old
+//     map (ConsistencyCheck). Finalised keyframes come back with their correction.
+//  3. Accepted closures (and every so many tied keyframes) start a background optimisation; when
+//     it lands, take_optimised() hands over every keyframe whose correction moved, so the mapper
+//     re-renders the grid from its store and persists them.
+#include <Eigen/Core>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <unordered_map>
+#include <vector>
+
+#include "common/core/geometry.hpp"
+#include "common/core/result.hpp"
+#include "pose_correction/grid_view.hpp"
+#include "pose_correction/keyframe_builder.hpp"
+#include "pose_correction/keyframe_index.hpp"
+#include "pose_correction/pose_graph.hpp"
+#include "pose_correction/scan_matcher.hpp"
+
+namespace slam::correction {
+
+class GraphOptimizer;
+
+enum class CorrectionSource : uint8_t { Identity, Match, Loop, Operator, Restored };
+
+struct CorrectorOptions {
+  KeyframeOptions keyframe;
+  MatcherOptions matcher;
+  SearchWindow track_window{0.15, 0.08};  // every keyframe, around the prediction
+  SearchWindow closure_window{1.0, 0.3};  // loop closure, around the prediction
+  double closure_min_score = 0.6;         // mean likelihood a closure match must reach
+  double old_age_s = 60.0;                // a keyframe this old (or another robot's) counts as "old map"
+  double closure_radius_m = 2.0;          // old keyframes this close to the prediction are candidates
+  int closure_min_keyframes = 4;          // fewer old keyframes around: no closure attempt
+  double odom_sigma_m_per_sqrt_m = 0.03;  // odometry edge noise (a little above the usual drift)
+  double odom_sigma_rad_per_m = 0.02;     // heading noise per metre travelled (edge and chain)
+  int optimise_every = 40;                // keyframes tied to the old map between optimisations
+  double rerender_shift_m = 0.02;         // keyframe moves smaller than this are not re-rendered
+};
+
+// A keyframe whose correction is final (for now: a later optimisation may move it again).
+struct KeyframeCorrection {
+  uint64_t id = 0;
+  std::string robot;
+  uint32_t segment = 0;
+  Pose odom;        // keyframe origin in the robot's odometry frame
+  Pose correction;  // map_from_odom for every observation of the keyframe
+};
+
+struct RobotCorrection {
+  std::string robot;
+  Pose map_from_odom;
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
+  uint64_t version = 0;
+  uint32_t segment = 0;
+  uint32_t keyframes = 0;
+  uint32_t loop_closures = 0;
+  CorrectionSource source = CorrectionSource::Identity;
+};
+
+struct CorrectorStats {
+  int64_t keyframes = 0;
+  int64_t matched = 0;         // narrow matches accepted
+  int64_t unmatched = 0;       // keyframes placed by odometry alone (too few points, poor score)
+  int64_t closures_tried = 0;
+  int64_t closures_accepted = 0;
+  int64_t closures_rejected = 0;  // a match was found but failed the consistency check
+  int64_t optimisations = 0;
+  int64_t failed_optimisations = 0;
+  int64_t segments = 0;        // odometry jumps that started a new segment
+  int64_t rejected_inputs = 0; // non-finite observations, bad initial poses
+};
+
+class PoseCorrector {
+ public:
+  explicit PoseCorrector(const CorrectorOptions& options = {});
+  ~PoseCorrector();
+  PoseCorrector(const PoseCorrector&) = delete;
+  PoseCorrector& operator=(const PoseCorrector&) = delete;
+
+  // A raw observation (pose and hits in the robot's odometry frame). Returns the id of the
+  // keyframe it belongs to. Non-finite values: an error, nothing changed, counted.
+  Result<uint64_t> add(std::string_view robot, int64_t stamp_ns, const Pose& odom_pose, bool has_heading,
+                       std::span<const Vec2> hits);
+
+  // Closes keyframes of robots silent since max_span, matches every closed keyframe against
+  // `grid` and appends the finalised ones to `out` (in order).
+  void process(const GridView& grid, int64_t now_ns, std::vector<KeyframeCorrection>& out);
+
+  // When a background optimisation has landed: appends the keyframes whose correction moved to
+  // `moved` and returns the largest move in metres (0 when nothing landed).
+  double take_optimised(std::vector<KeyframeCorrection>& moved);
+
+  // An operator's initial pose: the robot is at `map_pose` now (for robots without heading,
+  // map_pose.theta is the rotation of its odometry frame). Errors: unknown robot, non-finite.
+  Status set_initial_pose(std::string_view robot, const Pose& map_pose);
+
+  // After a restart: keyframes as stored (their corrections become each robot's current one).
+  void restore(std::span<const KeyframeCorrection> keyframes);
+
+  // The robot's current correction; identity for an unknown robot.
+  Pose correction(std::string_view robot) const;
+  // Robots whose correction changed since the last call.
+  void take_changed(std::vector<RobotCorrection>& out);
+  const CorrectorStats& stats() const { return stats_; }
+  // Whether a background optimisation is running or waiting to be taken.
+  bool optimising() const { return optimising_; }
+
+ private:
+  struct Robot {
+    std::string name;
+    KeyframeBuilder builder;
+    RobotCorrection state;
+    Eigen::Matrix3d chain_cov = Eigen::Matrix3d::Zero();  // uncertainty since last tied to old map
+    std::optional<uint32_t> last_node;                     // slot of its previous keyframe
+    std::optional<Pose> operator_pose;                     // correction set by an operator, for its next keyframe
+    bool has_heading = false;                              // of its latest observation
+    bool changed = false;
+  };
+  // One pose-graph node per finalised keyframe.
+  struct Node {
+    uint64_t id = 0;
+    uint32_t robot = 0;
+    uint32_t segment = 0;
+    int64_t stamp_ns = 0;
+    Pose odom;
+    Pose estimate;                 // map pose of the keyframe origin
+    std::vector<Vec2> points;      // keyframe frame; empty for restored keyframes
+    bool fixed = false;
+  };
+
+  uint32_t robot_index(std::string_view robot);
+  void finalise(Keyframe&& keyframe, const GridView& grid, std::vector<KeyframeCorrection>& out);
+  // Old keyframes (another robot's, or older than old_age_s) near `centre`, nearest first.
+  void old_neighbours(uint32_t robot, int64_t stamp_ns, Vec2 centre, std::vector<uint32_t>& out);
+  // Draws the points of `slots` (at their current estimates) into local_ around `centre`.
+  GridView draw_local_grid(std::span<const uint32_t> slots, Vec2 centre, double half_extent, double resolution);
+  Eigen::Matrix3d odometry_covariance(const Pose& relative) const;
+  void add_edge(EdgeKind kind, uint32_t from, uint32_t to, const Pose& measurement, const Eigen::Matrix3d& cov);
+  void start_optimisation();
+  void rebuild_index();
+  void mark_changed(Robot& robot, CorrectionSource source);
+
+  CorrectorOptions options_;
+  ScanMatcher matcher_;
+  std::vector<Robot> robots_;
+  std::unordered_map<std::string, uint32_t> robot_ids_;
+  std::vector<Keyframe> closed_;
+  std::vector<Node> nodes_;
+  std::vector<GraphEdge> edges_;  // `from`/`to` are keyframe ids
+  KeyframeIndex index_;
+  uint64_t next_id_ = 1;
+  int tied_since_optimise_ = 0;
+  bool closure_since_optimise_ = false;
+  bool optimising_ = false;
+  std::unique_ptr<GraphOptimizer> optimizer_;
+  std::vector<Pose> submitted_estimates_;  // node estimates when the running optimisation started
+  size_t submitted_nodes_ = 0;
+  CorrectorStats stats_;
+  // Reused buffers.
+  std::vector<uint32_t> neighbours_;
+  std::vector<uint8_t> local_cells_;
+};
+
+}  // namespace slam::correction

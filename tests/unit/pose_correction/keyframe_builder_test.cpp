@@ -1,0 +1,77 @@
+#include "pose_correction/keyframe_builder.hpp"
+
+#include <gtest/gtest.h>
+
+#include <vector>
+
+namespace slam::correction {
+namespace {
+
+constexpr int64_t kStep = 100'000'000;  // 10 Hz
+
+TEST(KeyframeBuilder, ClosesAfterTheConfiguredTravelWithPointsInItsOwnFrame) {
+  KeyframeOptions options;
+  options.travel_m = 0.4;
+  KeyframeBuilder builder(options);
+  const std::vector<Vec2> hit{{2.0, 1.0}};
+  // A robot heading +y (90 deg) at (1, 0), driving 0.05 m per message.
+  KeyframeBuilder::Step step = KeyframeBuilder::Step::Added;
+  int messages = 0;
+  for (; step == KeyframeBuilder::Step::Added; ++messages) {
+    const Pose pose{1.0, 0.05 * messages, 1.5707963267948966};
+    step = builder.add(7, 0, messages * kStep, pose, true, hit);
+  }
+  EXPECT_EQ(step, KeyframeBuilder::Step::AddedAndClosed);
+  EXPECT_EQ(messages, 9);  // 0.40 m after the eighth step
+  const Keyframe k = builder.take();
+  EXPECT_FALSE(builder.open());
+  EXPECT_EQ(k.id, 7u);
+  EXPECT_EQ(k.messages, 9);
+  ASSERT_EQ(k.points.size(), 9u);
+  // (2, 1) seen from (1, 0) heading +y lies 1 m ahead and 1 m to the right.
+  EXPECT_NEAR(k.points[0].x, 1.0, 1e-12);
+  EXPECT_NEAR(k.points[0].y, -1.0, 1e-12);
+}
+
+TEST(KeyframeBuilder, RobotsWithoutHeadingKeepTheOdometryAxes) {
+  KeyframeBuilder builder(KeyframeOptions{});
+  const std::vector<Vec2> hit{{3.0, 4.0}};
+  ASSERT_EQ(builder.add(1, 0, 0, {1.0, 1.0, 2.0}, false, hit), KeyframeBuilder::Step::Added);
+  const Keyframe k = builder.take();
+  EXPECT_EQ(k.odom.theta, 0.0);
+  EXPECT_NEAR(k.points[0].x, 2.0, 1e-12);
+  EXPECT_NEAR(k.points[0].y, 3.0, 1e-12);
+}
+
+TEST(KeyframeBuilder, ClosesAfterMaxMessagesWhenStandingStill) {
+  KeyframeOptions options;
+  options.max_messages = 5;
+  KeyframeBuilder builder(options);
+  for (int i = 0; i < 4; ++i) EXPECT_EQ(builder.add(1, 0, i * kStep, {}, true, {}), KeyframeBuilder::Step::Added);
+  EXPECT_EQ(builder.add(1, 0, 4 * kStep, {}, true, {}), KeyframeBuilder::Step::AddedAndClosed);
+}
+
+TEST(KeyframeBuilder, AnOdometryJumpStartsANewSegment) {
+  KeyframeBuilder builder(KeyframeOptions{});
+  ASSERT_EQ(builder.add(1, 0, 0, {0.0, 0.0, 0.0}, true, {}), KeyframeBuilder::Step::Added);
+  // 5 m in 0.1 s: a reset or a teleport, not a motion.
+  EXPECT_EQ(builder.add(2, 0, kStep, {5.0, 0.0, 0.0}, true, {}), KeyframeBuilder::Step::Jump);
+  EXPECT_EQ(builder.take().segment, 0u);
+  EXPECT_EQ(builder.add(2, 0, kStep, {5.0, 0.0, 0.0}, true, {}), KeyframeBuilder::Step::Added);
+  EXPECT_EQ(builder.segment(), 1u);
+  const Keyframe k = builder.take();
+  EXPECT_EQ(k.segment, 1u);
+  EXPECT_EQ(k.odom.x, 5.0);
+}
+
+TEST(KeyframeBuilder, ASilentRobotsKeyframeGoesStale) {
+  KeyframeOptions options;
+  options.max_span_ns = 2'000'000'000;
+  KeyframeBuilder builder(options);
+  ASSERT_EQ(builder.add(1, 0, 0, {}, true, {}), KeyframeBuilder::Step::Added);
+  EXPECT_FALSE(builder.stale(1'000'000'000));
+  EXPECT_TRUE(builder.stale(2'000'000'000));
+}
+
+}  // namespace
+}  // namespace slam::correction

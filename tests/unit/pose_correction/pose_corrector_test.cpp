@@ -1,0 +1,198 @@
+#include "pose_correction/pose_corrector.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <optional>
+#include <vector>
+
+namespace slam::correction {
+namespace {
+
+struct Wall {
+  Vec2 a, b;
+};
+
+// A 6 x 5 m room with an L-shaped inner wall and a pillar: enough structure to pin x, y and theta.
+std::vector<Wall> room() {
+  return {{{0, 0}, {6, 0}}, {{6, 0}, {6, 5}}, {{6, 5}, {0, 5}}, {{0, 5}, {0, 0}},
+          {{2, 2}, {4, 2}}, {{4, 2}, {4, 3.5}}, {{1, 4}, {1.4, 4}}, {{1.4, 4}, {1.4, 4.4}}};
+}
+
+std::optional<double> cast(const std::vector<Wall>& walls, Vec2 origin, Vec2 dir, double range) {
+  std::optional<double> best;
+  for (const Wall& w : walls) {
+    const Vec2 e = w.b - w.a;
+    const double denom = cross(dir, e);
+    if (std::abs(denom) < 1e-12) continue;
+    const Vec2 d = w.a - origin;
+    const double t = cross(d, e) / denom, u = cross(d, dir) / denom;
+    if (t > 0 && t <= range && u >= 0 && u <= 1 && (!best || t < *best)) best = t;
+  }
+  return best;
+}
+
+// The true map drawn into class octets (occupied = 2) at 5 cm.
+struct TrueMap {
+  GridGeometry geometry{{-0.5, -0.5}, 0.05, 140, 120};
+  std::vector<uint8_t> cells;
+  explicit TrueMap(const std::vector<Wall>& walls) : cells(geometry.cells(), 0) {
+    for (const Wall& w : walls) {
+      const int steps = static_cast<int>(distance(w.a, w.b) / 0.01) + 1;
+      for (int i = 0; i <= steps; ++i) {
+        const Vec2 p = w.a + (w.b - w.a) * (static_cast<double>(i) / steps);
+        if (auto c = geometry.cell_at(p)) cells[geometry.index(*c)] = 2;
+      }
+    }
+  }
+  GridView view() const { return {geometry, cells}; }
+};
+
+// Sparse sensing: 10 beams over 360 degrees, 4 m range; hits given in `frame` (the robot's belief).
+std::vector<Vec2> sense(const std::vector<Wall>& walls, const Pose& truth, const Pose& belief, int phase) {
+  std::vector<Vec2> hits;
+  for (int i = 0; i < 10; ++i) {
+    const double a = truth.theta + 2.0 * std::numbers::pi * (i + 0.37 * phase) / 10.0;
+    const Vec2 dir{std::cos(a), std::sin(a)};
+    if (auto t = cast(walls, truth.position(), dir, 4.0)) {
+      const Vec2 world = truth.position() + dir * *t;
+      // The robot computes its points with its own pose belief.
+      hits.push_back(belief.compose(truth.inverse()).transform(world));
+    }
+  }
+  return hits;
+}
+
+TEST(PoseCorrector, CorrectionKeepsADriftingRobotOnAKnownMap) {
+  const auto walls = room();
+  const TrueMap map(walls);
+  PoseCorrector corrector;
+  std::vector<KeyframeCorrection> finalised;
+
+  // A rectangle loop around the inner wall, 0.03 m per message, driven twice; the odometry
+  // heading drifts 0.0015 rad per message (about 9 degrees per lap).
+  std::vector<Vec2> corners{{1, 1}, {5, 1}, {5, 4.2}, {2.5, 4.2}, {2.5, 3}, {1, 3}};
+  Pose truth{1, 1, 0};
+  Pose belief = truth;
+  double worst_raw = 0.0, worst_corrected = 0.0;
+  int64_t stamp = 0;
+  int step = 0;
+  for (int lap = 0; lap < 2; ++lap) {
+    for (size_t c = 0; c < corners.size(); ++c) {
+      const Vec2 target = corners[(c + 1) % corners.size()];
+      while (distance(truth.position(), target) > 0.02) {
+        const Vec2 to = target - truth.position();
+        const double heading = std::atan2(to.y, to.x);
+        const double d = std::min(0.03, norm(to));
+        const Pose motion{d, 0.0, 0.0};
+        const Pose turned_truth{truth.x, truth.y, heading};
+        const Pose relative = Pose{0, 0, wrap_angle(heading - truth.theta)};
+        truth = turned_truth.compose(motion);
+        belief = belief.compose(relative).compose(Pose{d, 0.0, 0.0015});
+        stamp += 100'000'000;
+        ++step;
+        const auto hits = sense(walls, truth, belief, step);
+        ASSERT_TRUE(corrector.add("r1", stamp, belief, true, hits));
+        corrector.process(map.view(), stamp, finalised);
+        const Pose corrected = corrector.correction("r1").compose(belief);
+        worst_raw = std::max(worst_raw, distance(belief.position(), truth.position()));
+        if (step > 20) worst_corrected = std::max(worst_corrected, distance(corrected.position(), truth.position()));
+      }
+    }
+  }
+  RecordProperty("worst_raw_mm", static_cast<int>(worst_raw * 1000));
+  RecordProperty("worst_corrected_mm", static_cast<int>(worst_corrected * 1000));
+  EXPECT_GT(worst_raw, 0.5);         // the drift is real...
+  EXPECT_LT(worst_corrected, 0.08);  // ...and the correction holds the robot on the map
+  EXPECT_GT(corrector.stats().matched, corrector.stats().keyframes / 2);
+  EXPECT_FALSE(finalised.empty());
+}
+
+TEST(PoseCorrector, EveryObservationBelongsToTheKeyframeThatFinalisesIt) {
+  const TrueMap map(room());
+  PoseCorrector corrector;
+  std::vector<uint64_t> ids;
+  for (int i = 0; i < 40; ++i) {
+    auto id = corrector.add("r1", i * 100'000'000LL, Pose{1.0 + 0.03 * i, 1.0, 0.0}, true, {});
+    ASSERT_TRUE(id);
+    ids.push_back(*id);
+  }
+  std::vector<KeyframeCorrection> finalised;
+  corrector.process(map.view(), 40 * 100'000'000LL + 10'000'000'000LL, finalised);  // long silence
+  ASSERT_FALSE(finalised.empty());
+  for (uint64_t id : ids) {
+    EXPECT_TRUE(std::any_of(finalised.begin(), finalised.end(), [&](const auto& k) { return k.id == id; }))
+        << "keyframe " << id << " never finalised";
+  }
+}
+
+TEST(PoseCorrector, BadInputIsRejectedAndChangesNothing) {
+  PoseCorrector corrector;
+  const std::vector<Vec2> bad{{std::nan(""), 1.0}};
+  EXPECT_FALSE(corrector.add("r1", 0, {}, true, bad));
+  EXPECT_FALSE(corrector.add("r1", 0, {std::numeric_limits<double>::infinity(), 0, 0}, true, {}));
+  EXPECT_FALSE(corrector.set_initial_pose("ghost", {1, 2, 0}));
+  ASSERT_TRUE(corrector.add("r1", 0, {1, 1, 0}, true, {}));
+  EXPECT_FALSE(corrector.set_initial_pose("r1", {std::nan(""), 2, 0}));
+  EXPECT_EQ(corrector.correction("r1"), Pose{});
+  EXPECT_EQ(corrector.stats().rejected_inputs, 4);
+}
+
+TEST(PoseCorrector, InitialPosePlacesTheRobotWhereTheOperatorSays) {
+  PoseCorrector corrector;
+  ASSERT_TRUE(corrector.add("with_heading", 0, {1, 0, 0.5}, true, {}));
+  ASSERT_TRUE(corrector.set_initial_pose("with_heading", {3, 4, 1.0}));
+  const Pose placed = corrector.correction("with_heading").compose(Pose{1, 0, 0.5});
+  EXPECT_NEAR(placed.x, 3, 1e-9);
+  EXPECT_NEAR(placed.y, 4, 1e-9);
+  EXPECT_NEAR(placed.theta, 1.0, 1e-9);
+
+  // v1: no heading; theta is the rotation of the odometry frame.
+  ASSERT_TRUE(corrector.add("v1", 0, {1, 0, 0}, false, {}));
+  ASSERT_TRUE(corrector.set_initial_pose("v1", {3, 4, std::numbers::pi / 2}));
+  const Pose c = corrector.correction("v1");
+  const Vec2 p = c.transform({1, 0});
+  EXPECT_NEAR(p.x, 3, 1e-9);
+  EXPECT_NEAR(p.y, 4, 1e-9);
+  EXPECT_NEAR(c.theta, std::numbers::pi / 2, 1e-9);
+  std::vector<RobotCorrection> changed;
+  corrector.take_changed(changed);
+  ASSERT_EQ(changed.size(), 2u);
+  EXPECT_EQ(changed[1].source, CorrectionSource::Operator);
+  EXPECT_GT(changed[1].version, 0u);
+}
+
+TEST(PoseCorrector, AnOdometryJumpStartsANewSegmentInsteadOfAMotion) {
+  const TrueMap map(room());
+  PoseCorrector corrector;
+  std::vector<KeyframeCorrection> finalised;
+  ASSERT_TRUE(corrector.add("r1", 0, {1, 1, 0}, true, {}));
+  ASSERT_TRUE(corrector.add("r1", 100'000'000, {30, 30, 0}, true, {}));  // reset / teleport
+  corrector.process(map.view(), 10'000'000'000LL, finalised);
+  EXPECT_EQ(corrector.stats().segments, 1);
+  ASSERT_EQ(finalised.size(), 2u);
+  EXPECT_EQ(finalised[0].segment, 0u);
+  EXPECT_EQ(finalised[1].segment, 1u);
+}
+
+TEST(PoseCorrector, RestoredKeyframesGiveBackEachRobotsLatestCorrection) {
+  PoseCorrector corrector;
+  const std::vector<KeyframeCorrection> stored{{1, "a", 0, {0, 0, 0}, {0.1, 0, 0}},
+                                               {2, "a", 0, {1, 0, 0}, {0.2, 0.1, 0.01}},
+                                               {3, "b", 0, {0, 0, 0}, {-0.3, 0, 0}}};
+  corrector.restore(stored);
+  EXPECT_EQ(corrector.correction("a"), (Pose{0.2, 0.1, 0.01}));
+  EXPECT_EQ(corrector.correction("b"), (Pose{-0.3, 0, 0}));
+  std::vector<RobotCorrection> changed;
+  corrector.take_changed(changed);
+  ASSERT_EQ(changed.size(), 2u);
+  EXPECT_EQ(changed[0].source, CorrectionSource::Restored);
+  // New keyframes continue after the stored ids.
+  auto id = corrector.add("a", 0, {1, 0, 0}, true, {});
+  ASSERT_TRUE(id);
+  EXPECT_EQ(*id, 4u);
+}
+
+}  // namespace
+}  // namespace slam::correction
