@@ -51,7 +51,8 @@ Result<GridConfig> requested_config(const LayoutRequest& request, const GridConf
   c.origin_y = request.origin_y;
   if (request.width_m != 0.0) c.width_m = request.width_m;
   if (request.height_m != 0.0) c.height_m = request.height_m;
-  if (!(request.inflation_radius < 0.0)) c.inflation_radius = request.inflation_radius;  // NaN: validated below
+  if (!(request.inflation_radius < 0.0))
+    c.inflation_radius = request.inflation_radius;  // NaN: validated below
   c.legacy_mode = request.legacy_mode;
   if (Status s = validate(c); !s) return s.error();
   return c;
@@ -86,7 +87,8 @@ Mapper::~Mapper() {
 }
 
 Result<std::unique_ptr<Mapper>> Mapper::create(const MapperOptions& options, Counters& counters,
-                                               uint32_t first_layout_id, std::function<void()> on_rebuild_done) {
+                                               uint32_t first_layout_id,
+                                               std::function<void()> on_rebuild_done) {
   std::unique_ptr<Mapper> mapper(new Mapper(options, counters, first_layout_id, std::move(on_rebuild_done)));
   SLAM_TRY(mapper->open());
   return mapper;
@@ -99,15 +101,19 @@ Status Mapper::open() {
   auto config = startup_config(options_.grid, *store_);
   if (!config) return config.error();
   const auto started = std::chrono::steady_clock::now();
+  auto keyframes = store_->keyframes();
+  if (!keyframes) return keyframes.error();
+  for (const Keyframe& k : *keyframes) corrections_.set(k.id, k.map_from_odom);
   RebuildStats stats;
-  auto grid = rebuild_grid(*config, *store_, &stats);
+  auto grid = rebuild_grid(*config, *store_, &stats, corrections_);
   if (!grid) return grid.error();
   grid_.emplace(std::move(*grid));
   const auto took = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   spdlog::info(
-      "store {}: {} observations, {} obstructions, {} prior cells rebuilt in {:.3f} s ({}x{} cells of {} m)",
-      options_.store, stats.observations, stats.obstructions, stats.prior_cells, took, grid_->width(),
-      grid_->height(), grid_->resolution());
+      "store {}: {} observations, {} keyframes, {} obstructions, {} prior cells rebuilt in {:.3f} s ({}x{} "
+      "cells of {} m)",
+      options_.store, stats.observations, corrections_.size(), stats.obstructions, stats.prior_cells, took,
+      grid_->width(), grid_->height(), grid_->resolution());
   if (stats.rejected > 0)
     spdlog::warn("store: {} observations rejected: {}", stats.rejected, stats.first_error);
   auto count = store_->count();
@@ -125,33 +131,44 @@ void Mapper::reject(std::string_view robot_id, uint64_t seq, const std::string& 
 }
 
 void Mapper::integrate(const RobotScan& scan, int64_t now_ns) {
-  hits_.assign(scan.view.hits.begin(), scan.view.hits.end());
-  misses_.assign(scan.view.misses.begin(), scan.view.misses.end());
-  ObservationView view = scan.view;
-  const size_t moved = footprints_.apply(scan.robot_id, {view.x, view.y}, now_ns, hits_, misses_);
+  odom_hits_.assign(scan.view.hits.begin(), scan.view.hits.end());
+  odom_misses_.assign(scan.view.misses.begin(), scan.view.misses.end());
+  // Uncorrected, the odometry buffers are the map frame's; corrected, the filter decides in the map
+  // frame and moves the same points in both, so what is stored re-renders to what is integrated.
+  const bool corrected = !is_identity(scan.map_from_odom);
+  ObservationView view = corrected ? to_map_frame(scan.map_from_odom, scan.view, hits_, misses_) : scan.view;
+  std::vector<Vec2>& map_hits = corrected ? hits_ : odom_hits_;
+  std::vector<Vec2>& map_misses = corrected ? misses_ : odom_misses_;
+  const size_t moved =
+      footprints_.apply(scan.robot_id, {view.x, view.y}, now_ns, map_hits, map_misses,
+                        corrected ? &odom_hits_ : nullptr, corrected ? &odom_misses_ : nullptr);
   bump(metrics_.robot_hits_filtered, static_cast<int64_t>(moved));
-  view.hits = hits_;
-  view.misses = misses_;
+  view.hits = map_hits;
+  view.misses = map_misses;
+  ObservationView odom = scan.view;
+  odom.hits = odom_hits_;
+  odom.misses = odom_misses_;
   Result<IntegrateStats> stats = grid_->integrate(view);
   if (!stats) return reject(scan.robot_id, scan.seq, stats.message());
   bump(metrics_.observations);
-  bump(metrics_.points, static_cast<int64_t>(hits_.size() + misses_.size()));
+  bump(metrics_.points, static_cast<int64_t>(map_hits.size() + map_misses.size()));
   if (stats->clipped > 0) {
     const std::string robot(scan.robot_id);
     log_.warn("clip:" + robot, "robot '{}': {} point(s) clipped: {}", robot, stats->clipped, kClipReason);
   }
   if (worker_.busy()) {
     // The rebuild must see the store as it was when it started: keep this for the new grid.
-    deferred_.push_back(Deferred{std::string(scan.robot_id), scan.seq, scan.stamp_ns, view.x, view.y, view.theta,
-                                 view.has_heading, hits_, misses_});
+    deferred_.push_back(Deferred{std::string(scan.robot_id), scan.seq, scan.stamp_ns, scan.keyframe_id,
+                                 scan.map_from_odom, odom.x, odom.y, odom.theta, odom.has_heading, odom_hits_,
+                                 odom_misses_});
     return;
   }
-  store_observation(scan.robot_id, scan.seq, scan.stamp_ns, view);
+  store_observation(scan.robot_id, scan.seq, scan.stamp_ns, scan.keyframe_id, odom);
 }
 
-void Mapper::store_observation(std::string_view robot, uint64_t seq, int64_t stamp_ns,
-                               const ObservationView& view) {
-  if (Status s = store_->append(robot, seq, stamp_ns, view); !s) {
+void Mapper::store_observation(std::string_view robot, uint64_t seq, int64_t stamp_ns, KeyframeId keyframe_id,
+                               const ObservationView& odom) {
+  if (Status s = store_->append(robot, seq, stamp_ns, keyframe_id, odom); !s) {
     bump(metrics_.store_errors);
     log_.warn("store", "observation of robot '{}' not stored (the map has it until restart): {}", robot,
               s.message());
@@ -186,6 +203,20 @@ bool Mapper::take_swapped() {
   return std::exchange(swapped_, false);
 }
 
+Status Mapper::save_keyframes(std::span<const Keyframe> keyframes) {
+  if (Status s = store_->save_keyframes(keyframes); !s) {
+    bump(metrics_.store_errors);
+    return s;
+  }
+  for (const Keyframe& k : keyframes) corrections_.set(k.id, k.map_from_odom);
+  return Status::ok();
+}
+
+void Mapper::rerender() {
+  rerender_waiting_ = true;
+  run_queued_commands();
+}
+
 void Mapper::submit(MapCommand command) {
   queued_.push_back(std::move(command));
   run_queued_commands();
@@ -206,6 +237,12 @@ void Mapper::run_queued_commands() {
     MapCommand command = std::move(queued_.front());
     queued_.pop_front();
     handle(command);
+  }
+  if (!worker_.busy() && rerender_waiting_) {
+    rerender_waiting_ = false;
+    start_rebuild(RebuildTicket{
+        RebuildCause::Rerender, 0, grid_->config(),
+        "re-render with " + std::to_string(corrections_.size()) + " keyframe corrections", std::nullopt});
   }
 }
 
@@ -263,7 +300,8 @@ void Mapper::handle_edit(const EditRequest& edit) {
       for (const Vec2& p : removed) {
         if (Status s = store_->remove_obstruction(p); !s) {
           bump(metrics_.store_errors);
-          return reply(id, RequestResult::IoError, s.message() + " (the map no longer shows it; a restart would)");
+          return reply(id, RequestResult::IoError,
+                       s.message() + " (the map no longer shows it; a restart would)");
         }
       }
       return reply(id, RequestResult::Ok,
@@ -296,7 +334,8 @@ void Mapper::handle_edit(const EditRequest& edit) {
           "deleted " + std::to_string(*deleted) + " observations of robot '" + robot + "'", std::nullopt});
     }
   }
-  reply(id, RequestResult::InvalidRequest, "unknown edit kind " + std::to_string(static_cast<int>(edit.kind)));
+  reply(id, RequestResult::InvalidRequest,
+        "unknown edit kind " + std::to_string(static_cast<int>(edit.kind)));
 }
 
 void Mapper::handle_file(const FileRequest& request) {
@@ -324,10 +363,13 @@ void Mapper::handle_file(const FileRequest& request) {
 void Mapper::start_rebuild(RebuildTicket ticket) {
   // The worker reads what is committed; nothing may be pending in this connection's batch.
   Status ready = store_->flush();
-  if (ready) ready = worker_.start(ticket.config, options_.store);
+  if (ready) ready = worker_.start(ticket.config, options_.store, corrections_);
   if (!ready) {
     bump(metrics_.store_errors);
-    reply(ticket.request_id, RequestResult::IoError, "cannot rebuild: " + ready.message());
+    if (ticket.cause == RebuildCause::Rerender)
+      spdlog::error("cannot re-render: {}", ready.message());
+    else
+      reply(ticket.request_id, RequestResult::IoError, "cannot rebuild: " + ready.message());
     return;
   }
   spdlog::info("rebuilding the map: {}", ticket.done);
@@ -339,25 +381,35 @@ void Mapper::finish_rebuild(RebuildOutcome outcome) {
   ticket_.reset();
   if (!outcome.grid) {
     if (ticket.cause == RebuildCause::Import) {  // put the old prior back: the store matches the map again
-      Status restored = ticket.previous_prior ? store_->save_prior(*ticket.previous_prior) : store_->clear_prior();
+      Status restored =
+          ticket.previous_prior ? store_->save_prior(*ticket.previous_prior) : store_->clear_prior();
       if (!restored) spdlog::error("{}", restored.message());
     }
-    for (const Deferred& d : deferred_) store_observation(d.robot_id, d.seq, d.stamp_ns, d.view());
+    for (const Deferred& d : deferred_)
+      store_observation(d.robot_id, d.seq, d.stamp_ns, d.keyframe_id, d.view());
     deferred_.clear();
     std::string message = "rebuild failed, the map is unchanged: " + outcome.grid.message();
     if (ticket.cause == RebuildCause::ResetRobot) message = ticket.done + "; " + message;
-    reply(ticket.request_id, RequestResult::IoError, message);
+    if (ticket.cause == RebuildCause::Rerender)
+      spdlog::error("{}", message);
+    else
+      reply(ticket.request_id, RequestResult::IoError, message);
     return;
   }
   OccupancyGrid& fresh = *outcome.grid;
   for (const Deferred& d : deferred_) {
-    if (auto r = fresh.integrate(d.view()); !r) {
+    const Pose& correction =
+        corrections_.contains(d.keyframe_id) ? corrections_.lookup(d.keyframe_id) : d.map_from_odom;
+    const ObservationView odom = d.view();
+    const ObservationView view =
+        is_identity(correction) ? odom : to_map_frame(correction, odom, hits_, misses_);
+    if (auto r = fresh.integrate(view); !r) {
       bump(metrics_.rejected);
       log_.warn("reject:" + d.robot_id, "observation of robot '{}' seq {} rejected by the new layout: {}",
                 d.robot_id, d.seq, r.message());
       continue;
     }
-    store_observation(d.robot_id, d.seq, d.stamp_ns, d.view());
+    store_observation(d.robot_id, d.seq, d.stamp_ns, d.keyframe_id, odom);
   }
   deferred_.clear();
   if (ticket.cause == RebuildCause::Layout) {
@@ -380,7 +432,10 @@ void Mapper::finish_rebuild(RebuildOutcome outcome) {
                         std::to_string(grid_->width()) + "x" + std::to_string(grid_->height()) + " cells)";
   if (st.rejected > 0) message += "; " + std::to_string(st.rejected) + " observations rejected";
   if (!st.first_error.empty()) message += "; first problem: " + st.first_error;
-  reply(ticket.request_id, RequestResult::Ok, message);
+  if (ticket.cause == RebuildCause::Rerender)
+    spdlog::info("{}", message);
+  else
+    reply(ticket.request_id, RequestResult::Ok, message);
 }
 
 void Mapper::reply(uint64_t request_id, RequestResult result, const std::string& message) {

@@ -1,18 +1,20 @@
 #pragma once
 // The mapper's logic without transport: owns the grid and the store, integrates observations, answers
-// requests (layout, edits, map files), runs rebuilds on a worker and numbers what the loop publishes.
+// requests (layout, edits, map files), keeps the keyframe corrections, runs rebuilds and re-renders on
+// a worker and numbers what the loop publishes.
 // The DDS edge (MapperNode) feeds it plain requests and observations and sends what it returns.
 //
-// Rebuilds (layout change, robot reset, import) run on a worker with its own store connection. While
-// one runs, observations are integrated into the current grid and kept aside (not yet stored, so the
-// rebuild sees exactly what was committed when it started); when the new grid is ready they are
-// integrated into it and stored, and it is swapped in. Requests arriving meanwhile wait and run
+// Rebuilds (layout change, robot reset, import, re-render after new corrections) run on a worker with its own
+// store connection. While one runs, observations are integrated into the current grid and kept aside (not yet
+// stored, so the rebuild sees exactly what was committed when it started); when the new grid is ready they
+// are integrated into it and stored, and it is swapped in. Requests arriving meanwhile wait and run
 // afterwards, in order. Not thread-safe: one loop thread calls everything.
 #include <cstdint>
 #include <deque>
 #include <functional>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <variant>
@@ -21,6 +23,7 @@
 #include "common/core/counters.hpp"
 #include "common/core/log.hpp"
 #include "common/core/result.hpp"
+#include "mapper/corrections.hpp"
 #include "mapper/mapper_options.hpp"
 #include "mapper/observation_store.hpp"
 #include "mapper/occupancy_grid.hpp"
@@ -73,12 +76,14 @@ using MapCommand = std::variant<LayoutRequest, EditRequest, FileRequest>;
 // `current` with the fields a layout request sets, validated (the error names the key).
 Result<GridConfig> requested_config(const LayoutRequest& request, const GridConfig& current);
 
-// One robot observation as it arrived.
+// One robot observation as it arrived: raw, in the robot's odometry frame.
 struct RobotScan {
   std::string_view robot_id;
   uint64_t seq = 0;
   int64_t stamp_ns = 0;
-  ObservationView view;
+  ObservationView view;        // odometry frame
+  KeyframeId keyframe_id = 0;  // stored with it; a re-render moves it by this keyframe's correction
+  Pose map_from_odom;          // the robot's correction now: where it lands in the live grid
 };
 
 // How a change set is numbered on the wire: the layout it belongs to and its version.
@@ -93,16 +98,29 @@ class Mapper {
   // runs on the worker thread when a rebuild finishes (to wake the loop); keep it short.
   // `first_layout_id` numbers the first published layout (a restarted mapper's ids must differ).
   static Result<std::unique_ptr<Mapper>> create(const MapperOptions& options, Counters& counters,
-                                                uint32_t first_layout_id, std::function<void()> on_rebuild_done);
+                                                uint32_t first_layout_id,
+                                                std::function<void()> on_rebuild_done);
   ~Mapper();  // lands a running rebuild, commits the store
   Mapper(const Mapper&) = delete;
   Mapper& operator=(const Mapper&) = delete;
 
-  // Integrates one observation (map frame) and stores it (kept aside while a rebuild runs).
-  // now_ns: monotonic time, for the other-robot filter.
+  // Integrates one observation, moved into the map frame by scan.map_from_odom, and stores it raw with
+  // its keyframe id (kept aside while a rebuild runs). now_ns: monotonic time, for the other-robot
+  // filter.
   void integrate(const RobotScan& scan, int64_t now_ns);
   // Counts and logs an observation refused before it reached the grid.
   void reject(std::string_view robot_id, uint64_t seq, const std::string& reason);
+
+  // Stores keyframes (inserted or replaced by id, in the open batch: save a keyframe before the
+  // observations that reference it) and takes their corrections for later re-renders.
+  Status save_keyframes(std::span<const Keyframe> keyframes);
+  // Re-renders the grid from the store with the current keyframe corrections (same layout), now or
+  // after the running rebuild; several requests while one waits make one re-render. No reply: the
+  // swap publishes a snapshot.
+  void rerender();
+  const KeyframeCorrections& corrections() const { return corrections_; }
+  // Every stored keyframe (to restore the pose graph at start-up).
+  Result<std::vector<Keyframe>> load_keyframes() { return store_->keyframes(); }
 
   // Runs `command` now, or after the running rebuild; replies land in take_replies().
   void submit(MapCommand command);
@@ -147,11 +165,13 @@ class Mapper {
     std::atomic<int64_t>& robot_hits_filtered;
   };
 
-  // An observation integrated while a rebuild runs, kept for the new grid and the store.
+  // An observation integrated while a rebuild runs, kept (raw) for the new grid and the store.
   struct Deferred {
     std::string robot_id;
     uint64_t seq = 0;
     int64_t stamp_ns = 0;
+    KeyframeId keyframe_id = 0;
+    Pose map_from_odom;  // what it was integrated with, unless its keyframe has a correction by then
     double x = 0, y = 0, theta = 0;
     bool has_heading = false;
     std::vector<Vec2> hits;
@@ -159,7 +179,7 @@ class Mapper {
     ObservationView view() const;
   };
 
-  enum class RebuildCause { Layout, ResetRobot, Import };
+  enum class RebuildCause { Layout, ResetRobot, Import, Rerender };
   // Who waits for the running rebuild, and what to do when it lands.
   struct RebuildTicket {
     RebuildCause cause = RebuildCause::Layout;
@@ -173,7 +193,8 @@ class Mapper {
          std::function<void()> on_rebuild_done);
   Status open();
 
-  void store_observation(std::string_view robot, uint64_t seq, int64_t stamp_ns, const ObservationView& view);
+  void store_observation(std::string_view robot, uint64_t seq, int64_t stamp_ns, KeyframeId keyframe_id,
+                         const ObservationView& odom);
   void handle(const MapCommand& command);
   void handle_layout(const LayoutRequest& request);
   void handle_edit(const EditRequest& edit);
@@ -193,7 +214,11 @@ class Mapper {
   uint32_t seen_layout_ = 0;  // grid_->layout_version() last published
   uint64_t version_ = 0;      // last published change set (patch, or grid-replacing snapshot)
   bool swapped_ = false;      // a rebuild replaced the grid; not yet published
-  std::vector<Vec2> hits_;
+  KeyframeCorrections corrections_;
+  bool rerender_waiting_ = false;  // a re-render requested while a rebuild ran
+  std::vector<Vec2> odom_hits_;    // the observation being integrated, odometry frame
+  std::vector<Vec2> odom_misses_;
+  std::vector<Vec2> hits_;  // the same, map frame
   std::vector<Vec2> misses_;
   RobotFootprints footprints_;
   std::vector<Deferred> deferred_;       // observations integrated during a rebuild

@@ -129,7 +129,7 @@ void MapperNode::integrate(const slam::RobotObservation& sample) {
   const std::string_view robot(sample.robot_id().c_str(), sample.robot_id().size());
   auto view = to_view(sample, hits_, misses_);
   if (!view) return mapper_->reject(robot, sample.seq(), view.message());
-  mapper_->integrate(RobotScan{robot, sample.seq(), sample.stamp_ns(), *view}, monotonic_ns());
+  mapper_->integrate(RobotScan{robot, sample.seq(), sample.stamp_ns(), *view, 0, Pose{}}, monotonic_ns());
 }
 
 void MapperNode::publish_outcomes() {

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <fstream>
 #include <string>
 #include <vector>
@@ -33,7 +34,7 @@ class MapperCore : public ::testing::Test {
   static void observe(Mapper& mapper, const std::string& robot, uint64_t seq, double y, double wall_x) {
     std::vector<Vec2> hits;
     for (int i = -3; i <= 3; ++i) hits.push_back({wall_x, y + 0.1 * i + 0.03});
-    mapper.integrate(RobotScan{robot, seq, 0, ObservationView{0.0, y, 0.0, false, hits, {}}}, 0);
+    mapper.integrate(RobotScan{robot, seq, 0, ObservationView{0.0, y, 0.0, false, hits, {}}, 0, Pose{}}, 0);
   }
 
   static bool occupied(const Mapper& mapper, Vec2 p) {
@@ -187,6 +188,63 @@ TEST_F(MapperCore, ObservationsDuringARebuildAreKeptAndStored) {
   EXPECT_TRUE(occupied(*mapper, {-1.03, 0.53}));
   mapper->commit();
   EXPECT_EQ(stored_observations(), 2);
+}
+
+TEST_F(MapperCore, ReRenderAppliesTheKeyframeCorrectionsAndARestartKeepsThem) {
+  // Odometry-frame scans of a wall, keyframes 1 and 2; integrated live with no correction yet.
+  std::vector<std::vector<Vec2>> scans;
+  for (int i = 0; i < 6; ++i) {
+    std::vector<Vec2> hits;
+    for (int k = -3; k <= 3; ++k) hits.push_back({1.2, 0.1 * i + 0.1 * k});
+    scans.push_back(hits);
+  }
+  const auto keyframe_of = [](size_t i) -> KeyframeId { return i < 3 ? 1 : 2; };
+  const std::vector<Keyframe> optimised{{1, "r1", 0, Pose{}, Pose{0.1, -0.05, 0.02}},
+                                        {2, "r1", 0, Pose{}, Pose{-0.15, 0.1, -0.04}}};
+  auto expected = OccupancyGrid::create(test_data::small());
+  ASSERT_TRUE(expected.is_ok());
+  std::vector<Vec2> hits, misses;
+  for (size_t i = 0; i < scans.size(); ++i) {
+    const ObservationView odom{0.0, 0.1 * static_cast<double>(i), 0.0, false, scans[i], {}};
+    ASSERT_TRUE(
+        expected->integrate(to_map_frame(optimised[keyframe_of(i) - 1].map_from_odom, odom, hits, misses)));
+  }
+  {
+    auto mapper = make();
+    for (size_t i = 0; i < scans.size(); ++i) {
+      const ObservationView odom{0.0, 0.1 * static_cast<double>(i), 0.0, false, scans[i], {}};
+      mapper->integrate(RobotScan{"r1", i + 1, 0, odom, keyframe_of(i), Pose{}}, 0);
+    }
+    EXPECT_FALSE(test_data::same_grid(mapper->grid(), *expected));
+    ASSERT_TRUE(mapper->save_keyframes(optimised).is_ok());
+    mapper->rerender();
+    ASSERT_TRUE(mapper->rebuilding());
+    mapper->wait_for_rebuild();
+    EXPECT_FALSE(mapper->rebuilding());
+    EXPECT_TRUE(mapper->take_replies().empty());  // nobody asked: no reply
+    EXPECT_TRUE(mapper->take_swapped());
+    EXPECT_TRUE(test_data::same_grid(mapper->grid(), *expected));
+  }
+  auto restarted = make();
+  EXPECT_EQ(restarted->corrections().size(), 2u);
+  EXPECT_TRUE(test_data::same_grid(restarted->grid(), *expected));
+}
+
+TEST_F(MapperCore, ACorrectedObservationIsIntegratedInTheMapFrameAndStoredRaw) {
+  auto mapper = make();
+  std::vector<Vec2> hits;
+  for (int k = -3; k <= 3; ++k) hits.push_back({1.03, 0.1 * k + 0.03});
+  const Pose correction{0.0, 0.0, std::acos(-1.0) / 2};  // a quarter turn: x = 1.03 lands on y = 1.03
+  mapper->integrate(RobotScan{"r1", 1, 0, ObservationView{0.0, 0.0, 0.0, false, hits, {}}, 0, correction}, 0);
+  EXPECT_TRUE(occupied(*mapper, {-0.03, 1.03}));
+  EXPECT_FALSE(occupied(*mapper, {1.03, 0.03}));
+  mapper->commit();
+  auto store = ObservationStore::open(options_.store);
+  ASSERT_TRUE(store.is_ok());
+  std::vector<Vec2> stored;
+  ASSERT_TRUE(store->for_each(
+      [&](const ObservationRecord& r) { stored.assign(r.obs.hits.begin(), r.obs.hits.end()); }));
+  EXPECT_EQ(stored, hits);
 }
 
 }  // namespace
