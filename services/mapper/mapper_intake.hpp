@@ -3,19 +3,17 @@
 // Callbacks only push (short, never blocking on the grid); the loop waits here and takes everything in
 // one go. Requests keep their arrival order across kinds, since an edit after a layout change must
 // apply to the new layout. Observations are bounded: past the bound they are dropped and counted.
-#include <slam/fastdds/map.h>
 #include <slam/fastdds/robot.h>
 
 #include <chrono>
 #include <condition_variable>
 #include <cstdint>
 #include <mutex>
-#include <variant>
 #include <vector>
 
-namespace slam::mapper {
+#include "mapper/mapper.hpp"
 
-using MapCommand = std::variant<slam::GridConfig, slam::MapEdit, slam::MapFileRequest>;
+namespace slam::mapper {
 
 struct MapperBatch {
   std::vector<slam::RobotObservation> observations;  // in arrival order

@@ -33,18 +33,42 @@ Result<ObservationView> to_view(const slam::RobotObservation& in, std::vector<Ve
   return view;
 }
 
-Result<GridConfig> requested_config(const slam::GridConfig& request, const GridConfig& current) {
-  GridConfig c = current;
-  c.resolution = request.resolution();
-  c.origin_x = request.origin().x();
-  c.origin_y = request.origin().y();
-  if (request.width_m() != 0.0) c.width_m = request.width_m();
-  if (request.height_m() != 0.0) c.height_m = request.height_m();
-  if (!(request.inflation_radius() < 0.0))
-    c.inflation_radius = request.inflation_radius();  // NaN: validated below
-  c.legacy_mode = request.legacy_mode();
-  if (Status s = validate(c); !s) return s.error();
-  return c;
+LayoutRequest to_request(const slam::GridConfig& in) {
+  return LayoutRequest{in.request_id(), in.resolution(), in.origin().x(),       in.origin().y(),
+                       in.width_m(),    in.height_m(),   in.inflation_radius(), in.legacy_mode()};
+}
+
+EditRequest to_request(const slam::MapEdit& in) {
+  return EditRequest{in.request_id(), static_cast<EditKind>(in.kind()), Vec2{in.point().x(), in.point().y()},
+                     in.robot_id().to_string()};
+}
+
+FileRequest to_request(const slam::MapFileRequest& in) {
+  return FileRequest{in.request_id(), static_cast<FileAction>(in.action()), in.yaml_path().to_string()};
+}
+
+slam::MapReply to_reply(const RequestReply& in) {
+  slam::MapReply r;
+  r.request_id(in.request_id);
+  switch (in.result) {
+    case RequestResult::Ok:
+      r.result(slam::MAP_OK);
+      break;
+    case RequestResult::InvalidRequest:
+      r.result(slam::MAP_INVALID_REQUEST);
+      break;
+    case RequestResult::IoError:
+      r.result(slam::MAP_IO_ERROR);
+      break;
+    case RequestResult::BadFile:
+      r.result(slam::MAP_BAD_FILE);
+      break;
+    case RequestResult::UnknownRobot:
+      r.result(slam::MAP_UNKNOWN_ROBOT);
+      break;
+  }
+  r.message(in.message.substr(0, 511));  // string<512>
+  return r;
 }
 
 void fill_snapshot(const OccupancyGrid& grid, uint32_t layout_id, uint64_t version, int64_t stamp_ns,
@@ -73,20 +97,6 @@ void fill_patch(const OccupancyGrid& grid, const CellBox& box, uint32_t layout_i
   out->width(static_cast<uint32_t>(box.width));
   out->height(static_cast<uint32_t>(box.height));
   grid.copy_box(box, out->cells());
-}
-
-slam::MapResult to_map_result(FileFailure failure) {
-  switch (failure) {
-    case FileFailure::None:
-      return slam::MAP_OK;
-    case FileFailure::InvalidRequest:
-      return slam::MAP_INVALID_REQUEST;
-    case FileFailure::Io:
-      return slam::MAP_IO_ERROR;
-    case FileFailure::BadFile:
-      return slam::MAP_BAD_FILE;
-  }
-  return slam::MAP_IO_ERROR;
 }
 
 }  // namespace slam::mapper

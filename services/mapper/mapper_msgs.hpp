@@ -8,8 +8,7 @@
 #include <vector>
 
 #include "common/core/result.hpp"
-#include "mapper/grid_config.hpp"
-#include "mapper/map_files.hpp"
+#include "mapper/mapper.hpp"
 #include "mapper/occupancy_grid.hpp"
 
 namespace slam::mapper {
@@ -22,16 +21,15 @@ inline constexpr size_t kMaxPointsPerObservation = 65536;
 Result<ObservationView> to_view(const slam::RobotObservation& in, std::vector<Vec2>& hits,
                                 std::vector<Vec2>& misses);
 
-// `current` with the fields a GridConfig request sets. width_m/height_m 0 and a negative
-// inflation_radius keep the current values (what slamctl sends for "unchanged"). Validated: the
-// error names the key.
-Result<GridConfig> requested_config(const slam::GridConfig& request, const GridConfig& current);
+// Requests as the Mapper takes them (enum values outside the IDL's pass through, to be refused there).
+LayoutRequest to_request(const slam::GridConfig& in);
+EditRequest to_request(const slam::MapEdit& in);
+FileRequest to_request(const slam::MapFileRequest& in);
+slam::MapReply to_reply(const RequestReply& in);
 
 void fill_snapshot(const OccupancyGrid& grid, uint32_t layout_id, uint64_t version, int64_t stamp_ns,
                    slam::GridSnapshot* out);
 void fill_patch(const OccupancyGrid& grid, const CellBox& box, uint32_t layout_id, uint64_t version,
                 int64_t stamp_ns, slam::GridPatch* out);
-
-slam::MapResult to_map_result(FileFailure failure);
 
 }  // namespace slam::mapper

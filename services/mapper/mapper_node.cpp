@@ -1,16 +1,13 @@
-// MapperNode: configure, the loop pass, observations in, patches and snapshots out.
+// MapperNode: configure, the loop pass, samples into the Mapper, patches, snapshots and replies out.
 #include "mapper/mapper_node.hpp"
 
 #include <algorithm>
-#include <cmath>
 #include <filesystem>
 #include <system_error>
 #include <utility>
 
 #include "common/core/clock.hpp"
-#include "mapper/map_files.hpp"
 #include "mapper/mapper_msgs.hpp"
-#include "mapper/rebuild.hpp"
 
 namespace slam::mapper {
 namespace {
@@ -22,42 +19,21 @@ std::chrono::steady_clock::duration seconds(double s) {
 }  // namespace
 
 MapperNode::Metrics::Metrics(Counters& c)
-    : observations(c.get("observations")),
-      points(c.get("points")),
-      rejected(c.get("rejected")),
-      dropped(c.get("dropped")),
+    : dropped(c.get("dropped")),
       cells_changed(c.get("cells_changed")),
       patches(c.get("patches")),
       snapshots(c.get("snapshots")),
-      rebuilds(c.get("rebuilds")),
-      requests(c.get("requests")),
-      request_errors(c.get("request_errors")),
-      store_observations(c.get("store_observations")),
       store_bytes(c.get("store_bytes")),
-      store_errors(c.get("store_errors")),
       write_failures(c.get("write_failures")),
-      robot_hits_filtered(c.get("robot_hits_filtered")),
       observations_lost(c.get("observations_lost")) {}
-
-ObservationView MapperNode::Deferred::view() const {
-  ObservationView v;
-  v.x = x;
-  v.y = y;
-  v.theta = theta;
-  v.has_heading = has_heading;
-  v.hits = hits;
-  v.misses = misses;
-  return v;
-}
 
 MapperNode::MapperNode(const MapperOptions& options, Counters& counters)
     : options_(options),
+      counters_(counters),
       metrics_(counters),
       patch_period_(seconds(1.0 / options.patch_rate_hz)),
       snapshot_period_(seconds(options.snapshot_period_s)),
-      footprints_(options.robot_filter),
-      intake_(options.max_queued_observations),
-      worker_([this] { intake_.notify(); }) {}
+      intake_(options.max_queued_observations) {}
 
 MapperNode::~MapperNode() {
   // Stop the inflow first, then land a running rebuild so what it held aside reaches the store.
@@ -65,9 +41,9 @@ MapperNode::~MapperNode() {
   config_reader_.reset();
   edit_reader_.reset();
   file_reader_.reset();
-  if (auto outcome = worker_.wait()) finish_rebuild(std::move(*outcome));
-  if (store_) {
-    if (Status s = store_->flush(); !s) spdlog::error("{}", s.message());
+  if (mapper_ && snapshot_writer_) {
+    mapper_->wait_for_rebuild();
+    publish_outcomes();
   }
 }
 
@@ -78,32 +54,12 @@ Result<std::unique_ptr<MapperNode>> MapperNode::create(const MapperOptions& opti
 }
 
 Status MapperNode::configure() {
-  auto store = open_store(options_.store, StoreOptions{options_.store_batch});
-  if (!store) return store.error();
-  store_.emplace(std::move(*store));
-  auto config = startup_config(options_.grid, *store_);
-  if (!config) return config.error();
-  const auto started = std::chrono::steady_clock::now();
-  RebuildStats stats;
-  auto grid = rebuild_grid(*config, *store_, &stats);
-  if (!grid) return grid.error();
-  grid_.emplace(std::move(*grid));
-  const auto took = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-  spdlog::info(
-      "store {}: {} observations, {} obstructions, {} prior cells rebuilt in {:.3f} s ({}x{} cells of {} m)",
-      options_.store, stats.observations, stats.obstructions, stats.prior_cells, took, grid_->width(),
-      grid_->height(), grid_->resolution());
-  if (stats.rejected > 0)
-    spdlog::warn("store: {} observations rejected: {}", stats.rejected, stats.first_error);
-  auto count = store_->count();
-  if (!count) return count.error();
-  metrics_.store_observations.store(*count);
-  update_periodic_counters();
-
   // Layout ids continue from the clock so a restarted mapper's ids differ from the last run's.
-  layout_id_ = static_cast<uint32_t>(now_ns() / 1000000000);
-  seen_layout_ = grid_->layout_version();
-  (void)grid_->take_dirty();
+  auto mapper = Mapper::create(options_, counters_, static_cast<uint32_t>(now_ns() / 1000000000),
+                               [this] { intake_.notify(); });
+  if (!mapper) return mapper.error();
+  mapper_ = std::move(*mapper);
+  update_periodic_counters();
 
   auto participant = dds::Participant::create(options_.service.domain, "slam-mapper");
   if (!participant) return participant.error();
@@ -125,18 +81,19 @@ Status MapperNode::configure() {
                        [this](const slam::RobotObservation& o, const auto&) { intake_.push(o); });
   if (!observations) return observations.error();
   observation_reader_ = std::move(*observations);
-  auto configs =
-      dds::make_reader(*participant_, dds::kGridConfig,
-                       [this](const slam::GridConfig& c, const auto&) { intake_.push(MapCommand{c}); });
+  auto configs = dds::make_reader(
+      *participant_, dds::kGridConfig,
+      [this](const slam::GridConfig& c, const auto&) { intake_.push(MapCommand{to_request(c)}); });
   if (!configs) return configs.error();
   config_reader_ = std::move(*configs);
-  auto edits = dds::make_reader(*participant_, dds::kMapEdit,
-                                [this](const slam::MapEdit& e, const auto&) { intake_.push(MapCommand{e}); });
+  auto edits = dds::make_reader(*participant_, dds::kMapEdit, [this](const slam::MapEdit& e, const auto&) {
+    intake_.push(MapCommand{to_request(e)});
+  });
   if (!edits) return edits.error();
   edit_reader_ = std::move(*edits);
-  auto files =
-      dds::make_reader(*participant_, dds::kMapFileRequest,
-                       [this](const slam::MapFileRequest& r, const auto&) { intake_.push(MapCommand{r}); });
+  auto files = dds::make_reader(
+      *participant_, dds::kMapFileRequest,
+      [this](const slam::MapFileRequest& r, const auto&) { intake_.push(MapCommand{to_request(r)}); });
   if (!files) return files.error();
   file_reader_ = std::move(*files);
 
@@ -151,13 +108,14 @@ void MapperNode::run_once() {
   intake_.drain(batch_);
   if (batch_.dropped > 0) {
     bump(metrics_.dropped, static_cast<int64_t>(batch_.dropped));
-    warn("dropped", std::to_string(batch_.dropped) + " observations dropped: more than " +
-                        std::to_string(options_.max_queued_observations) + " waiting for the map loop");
+    log_.warn("dropped", "{} observations dropped: more than {} waiting for the map loop", batch_.dropped,
+              options_.max_queued_observations);
   }
-  if (auto outcome = worker_.take()) finish_rebuild(std::move(*outcome));
+  mapper_->poll_rebuild();
+  publish_outcomes();
   for (const slam::RobotObservation& o : batch_.observations) integrate(o);
-  for (MapCommand& c : batch_.commands) queued_.push_back(std::move(c));
-  run_queued_commands();
+  for (MapCommand& c : batch_.commands) mapper_->submit(std::move(c));
+  publish_outcomes();
 
   const auto now = std::chrono::steady_clock::now();
   if (now >= next_tick_) {
@@ -170,57 +128,20 @@ void MapperNode::run_once() {
 void MapperNode::integrate(const slam::RobotObservation& sample) {
   const std::string_view robot(sample.robot_id().c_str(), sample.robot_id().size());
   auto view = to_view(sample, hits_, misses_);
-  if (view) {
-    const size_t moved = footprints_.apply(robot, {view->x, view->y}, monotonic_ns(), hits_, misses_);
-    if (moved > 0) {
-      bump(metrics_.robot_hits_filtered, static_cast<int64_t>(moved));
-      view->hits = hits_;
-      view->misses = misses_;
-    }
-  }
-  Result<IntegrateStats> stats =
-      view ? grid_->integrate(*view) : Result<IntegrateStats>(Error{view.message()});
-  if (!stats) {
-    bump(metrics_.rejected);
-    warn("reject:" + std::string(robot), "observation of robot '" + std::string(robot) + "' seq " +
-                                             std::to_string(sample.seq()) + " rejected: " + stats.message());
-    return;
-  }
-  bump(metrics_.observations);
-  bump(metrics_.points, static_cast<int64_t>(hits_.size() + misses_.size()));
-  if (stats->clipped > 0)
-    warn("clip:" + std::string(robot), "robot '" + std::string(robot) +
-                                           "': " + std::to_string(stats->clipped) +
-                                           " point(s) clipped: " + kClipReason);
-  if (worker_.busy()) {
-    // The rebuild must see the store as it was when it started: keep this for the new grid.
-    deferred_.push_back(Deferred{std::string(robot), sample.seq(), sample.stamp_ns(), view->x, view->y,
-                                 view->theta, view->has_heading, hits_, misses_});
-    return;
-  }
-  store_observation(robot, sample.seq(), sample.stamp_ns(), *view);
+  if (!view) return mapper_->reject(robot, sample.seq(), view.message());
+  mapper_->integrate(RobotScan{robot, sample.seq(), sample.stamp_ns(), *view, 0, Pose{}}, monotonic_ns());
 }
 
-void MapperNode::store_observation(std::string_view robot, uint64_t seq, int64_t stamp_ns,
-                                   const ObservationView& view) {
-  if (Status s = store_->append(robot, seq, stamp_ns, view); !s) {
-    bump(metrics_.store_errors);
-    warn("store", "observation of robot '" + std::string(robot) +
-                      "' not stored (the map has it until restart): " + s.message());
-    return;
-  }
-  bump(metrics_.store_observations);
+void MapperNode::publish_outcomes() {
+  if (mapper_->take_swapped()) publish_snapshot(true);
+  for (const RequestReply& r : mapper_->take_replies())
+    if (!reply_writer_->write(to_reply(r))) bump(metrics_.write_failures);
 }
 
 void MapperNode::tick() {
   // One commit per tick bounds what a crash can lose to one patch period, and a published patch
   // implies its observations are on disk.
-  if (!worker_.busy()) {
-    if (Status s = store_->flush(); !s) {
-      bump(metrics_.store_errors);
-      warn("store", s.message());
-    }
-  }
+  mapper_->commit();
   publish_changes();
   // A reader that just matched got the last snapshot from the writer's history, which may predate
   // the patches it missed: send a current one rather than leave it waiting for the period.
@@ -233,32 +154,28 @@ void MapperNode::tick() {
 }
 
 void MapperNode::publish_changes() {
-  if (grid_->layout_version() != seen_layout_) {  // the grid grew: a patch cannot describe it
+  if (mapper_->needs_snapshot()) {  // the grid grew: a patch cannot describe it
     publish_snapshot(true);
     return;
   }
-  const auto box = grid_->take_dirty();
+  const auto box = mapper_->take_dirty();
   if (!box) return;
-  fill_patch(*grid_, *box, layout_id_, version_ + 1, now_ns(), &patch_);
+  const PublishStamp stamp = mapper_->next_patch();
+  fill_patch(mapper_->grid(), *box, stamp.layout_id, stamp.version, now_ns(), &patch_);
   if (!patch_writer_->write(patch_)) {
     // Receivers would see a gap: a snapshot with the changes resynchronises them.
     bump(metrics_.write_failures);
     publish_snapshot(true);
     return;
   }
-  ++version_;
+  mapper_->patch_sent();
   bump(metrics_.patches);
   bump(metrics_.cells_changed, int64_t{box->width} * box->height);
 }
 
-void MapperNode::publish_snapshot(bool bump_version) {
-  if (grid_->layout_version() != seen_layout_) {
-    seen_layout_ = grid_->layout_version();
-    ++layout_id_;
-  }
-  (void)grid_->take_dirty();  // a snapshot carries every change
-  if (bump_version) ++version_;
-  fill_snapshot(*grid_, layout_id_, version_, now_ns(), &snapshot_);
+void MapperNode::publish_snapshot(bool new_version) {
+  const PublishStamp stamp = mapper_->prepare_snapshot(new_version);
+  fill_snapshot(mapper_->grid(), stamp.layout_id, stamp.version, now_ns(), &snapshot_);
   next_snapshot_ = std::chrono::steady_clock::now() + snapshot_period_;
   if (!snapshot_writer_->write(snapshot_)) {
     bump(metrics_.write_failures);
@@ -279,15 +196,6 @@ void MapperNode::update_periodic_counters() {
   if (observation_reader_)
     metrics_.observations_lost.store(observation_reader_->samples_lost(), std::memory_order_relaxed);
   next_store_stat_ = std::chrono::steady_clock::now() + std::chrono::seconds(1);
-}
-
-void MapperNode::warn(const std::string& key, const std::string& line) {
-  uint64_t suppressed = 0;
-  if (!limiter_.allow(key, &suppressed)) return;
-  if (suppressed > 0)
-    spdlog::warn("{} ({} similar lines suppressed)", line, suppressed);
-  else
-    spdlog::warn("{}", line);
 }
 
 }  // namespace slam::mapper

@@ -15,7 +15,8 @@ static_assert(sizeof(Vec2) == 2 * sizeof(double), "Vec2 must be two packed doubl
 
 namespace {
 
-constexpr int kSchemaVersion = 1;
+// 1: observations without keyframe ids. 2: observations.keyframe, the keyframes table.
+constexpr int kSchemaVersion = 2;
 
 constexpr const char* kSchema = R"sql(
 CREATE TABLE IF NOT EXISTS observations(
@@ -24,7 +25,13 @@ CREATE TABLE IF NOT EXISTS observations(
   seq INTEGER NOT NULL,
   stamp_ns INTEGER NOT NULL,
   x REAL NOT NULL, y REAL NOT NULL, theta REAL NOT NULL, has_heading INTEGER NOT NULL,
-  hits BLOB, misses BLOB);
+  hits BLOB, misses BLOB, keyframe INTEGER NOT NULL DEFAULT 0);
+CREATE TABLE IF NOT EXISTS keyframes(
+  id INTEGER PRIMARY KEY,
+  robot TEXT NOT NULL,
+  segment INTEGER NOT NULL,
+  odom_x REAL NOT NULL, odom_y REAL NOT NULL, odom_theta REAL NOT NULL,
+  correction_x REAL NOT NULL, correction_y REAL NOT NULL, correction_theta REAL NOT NULL);
 CREATE TABLE IF NOT EXISTS obstructions(x REAL NOT NULL, y REAL NOT NULL, PRIMARY KEY(x, y));
 CREATE TABLE IF NOT EXISTS config(key TEXT PRIMARY KEY, value REAL NOT NULL);
 CREATE TABLE IF NOT EXISTS prior(
@@ -115,13 +122,27 @@ Result<ObservationStore> ObservationStore::open(const std::filesystem::path& pat
   if (found > kSchemaVersion)
     return Error{"observation store " + path.string() + ": schema version " + std::to_string(found) +
                  " is newer than this program's " + std::to_string(kSchemaVersion)};
-  if (Status s = store.exec(kSchema); !s) return s.error();
-  if (Status s = store.exec("PRAGMA user_version=1"); !s) return s.error();
+  // One transaction: a migration half done would leave a store neither version can read.
+  if (Status s = store.exec("BEGIN"); !s) return s.error();
+  Status schema = store.exec(kSchema);
+  if (schema && found == 1)
+    schema = store.exec("ALTER TABLE observations ADD COLUMN keyframe INTEGER NOT NULL DEFAULT 0");
+  if (schema) schema = store.exec(("PRAGMA user_version=" + std::to_string(kSchemaVersion)).c_str());
+  if (schema) schema = store.exec("COMMIT");
+  if (!schema) {
+    (void)store.exec("ROLLBACK");
+    return schema.error();
+  }
   auto insert = store.prepare(
-      "INSERT INTO observations(robot, seq, stamp_ns, x, y, theta, has_heading, hits, misses) "
-      "VALUES(?, ?, ?, ?, ?, ?, ?, ?, ?)");
+      "INSERT INTO observations(robot, seq, stamp_ns, x, y, theta, has_heading, hits, misses, keyframe) "
+      "VALUES(?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
   if (!insert) return insert.error();
   store.insert_ = std::move(*insert);
+  auto upsert = store.prepare(
+      "INSERT OR REPLACE INTO keyframes(id, robot, segment, odom_x, odom_y, odom_theta, correction_x, "
+      "correction_y, correction_theta) VALUES(?, ?, ?, ?, ?, ?, ?, ?, ?)");
+  if (!upsert) return upsert.error();
+  store.upsert_keyframe_ = std::move(*upsert);
   return store;
 }
 
@@ -129,12 +150,16 @@ ObservationStore::~ObservationStore() {
   if (db_ && in_batch_) (void)flush();
 }
 
+Status ObservationStore::begin_batch() {
+  if (in_batch_) return Status::ok();
+  if (Status s = exec("BEGIN"); !s) return s;
+  in_batch_ = true;
+  return Status::ok();
+}
+
 Status ObservationStore::append(std::string_view robot_id, uint64_t seq, int64_t stamp_ns,
-                                const ObservationView& obs) {
-  if (!in_batch_) {
-    if (Status s = exec("BEGIN"); !s) return s;
-    in_batch_ = true;
-  }
+                                KeyframeId keyframe_id, const ObservationView& obs) {
+  SLAM_TRY(begin_batch());
   sqlite3_stmt* st = insert_.get();
   sqlite3_reset(st);
   sqlite3_bind_text(st, 1, robot_id.data(), static_cast<int>(robot_id.size()), SQLITE_STATIC);
@@ -146,12 +171,59 @@ Status ObservationStore::append(std::string_view robot_id, uint64_t seq, int64_t
   sqlite3_bind_int(st, 7, obs.has_heading ? 1 : 0);
   sqlite3_bind_blob(st, 8, obs.hits.data(), static_cast<int>(obs.hits.size_bytes()), SQLITE_STATIC);
   sqlite3_bind_blob(st, 9, obs.misses.data(), static_cast<int>(obs.misses.size_bytes()), SQLITE_STATIC);
+  sqlite3_bind_int64(st, 10, static_cast<sqlite3_int64>(keyframe_id));
   const int rc = sqlite3_step(st);
   sqlite3_reset(st);
   sqlite3_clear_bindings(st);
   if (rc != SQLITE_DONE) return db_error("append");
   if (++pending_ >= options_.batch_size) return flush();
   return Status::ok();
+}
+
+Status ObservationStore::save_keyframes(std::span<const Keyframe> keyframes) {
+  if (keyframes.empty()) return Status::ok();
+  SLAM_TRY(begin_batch());
+  sqlite3_stmt* st = upsert_keyframe_.get();
+  for (const Keyframe& k : keyframes) {
+    sqlite3_reset(st);
+    sqlite3_bind_int64(st, 1, static_cast<sqlite3_int64>(k.id));
+    sqlite3_bind_text(st, 2, k.robot_id.data(), static_cast<int>(k.robot_id.size()), SQLITE_STATIC);
+    sqlite3_bind_int64(st, 3, k.segment);
+    sqlite3_bind_double(st, 4, k.odom.x);
+    sqlite3_bind_double(st, 5, k.odom.y);
+    sqlite3_bind_double(st, 6, k.odom.theta);
+    sqlite3_bind_double(st, 7, k.map_from_odom.x);
+    sqlite3_bind_double(st, 8, k.map_from_odom.y);
+    sqlite3_bind_double(st, 9, k.map_from_odom.theta);
+    const int rc = sqlite3_step(st);
+    sqlite3_reset(st);
+    sqlite3_clear_bindings(st);
+    if (rc != SQLITE_DONE) return db_error("save keyframe " + std::to_string(k.id));
+  }
+  return Status::ok();
+}
+
+Result<std::vector<Keyframe>> ObservationStore::keyframes() {
+  auto q = prepare(
+      "SELECT id, robot, segment, odom_x, odom_y, odom_theta, correction_x, correction_y, correction_theta "
+      "FROM keyframes ORDER BY id");
+  if (!q) return q.error();
+  sqlite3_stmt* st = q->get();
+  std::vector<Keyframe> out;
+  int rc = SQLITE_ROW;
+  while ((rc = sqlite3_step(st)) == SQLITE_ROW) {
+    Keyframe k;
+    k.id = static_cast<KeyframeId>(sqlite3_column_int64(st, 0));
+    const auto* robot = reinterpret_cast<const char*>(sqlite3_column_text(st, 1));
+    k.robot_id = robot ? robot : "";
+    k.segment = static_cast<uint32_t>(sqlite3_column_int64(st, 2));
+    k.odom = {sqlite3_column_double(st, 3), sqlite3_column_double(st, 4), sqlite3_column_double(st, 5)};
+    k.map_from_odom = {sqlite3_column_double(st, 6), sqlite3_column_double(st, 7),
+                       sqlite3_column_double(st, 8)};
+    out.push_back(std::move(k));
+  }
+  if (rc != SQLITE_DONE) return db_error("reading keyframes");
+  return out;
 }
 
 Status ObservationStore::flush() {
@@ -164,8 +236,8 @@ Status ObservationStore::flush() {
 
 Status ObservationStore::for_each(const std::function<void(const ObservationRecord&)>& visit) {
   auto q = prepare(
-      "SELECT id, robot, seq, stamp_ns, x, y, theta, has_heading, hits, misses FROM observations ORDER BY "
-      "id");
+      "SELECT id, robot, seq, stamp_ns, x, y, theta, has_heading, hits, misses, keyframe FROM observations "
+      "ORDER BY id");
   if (!q) return q.status();
   sqlite3_stmt* st = q->get();
   ObservationRecord rec;
@@ -180,6 +252,7 @@ Status ObservationStore::for_each(const std::function<void(const ObservationReco
     rec.obs.y = sqlite3_column_double(st, 5);
     rec.obs.theta = sqlite3_column_double(st, 6);
     rec.obs.has_heading = sqlite3_column_int(st, 7) != 0;
+    rec.keyframe_id = static_cast<KeyframeId>(sqlite3_column_int64(st, 10));
     const Status h = decode_points(sqlite3_column_blob(st, 8), sqlite3_column_bytes(st, 8), &hits_buf_);
     const Status m = decode_points(sqlite3_column_blob(st, 9), sqlite3_column_bytes(st, 9), &misses_buf_);
     if (!h || !m)
@@ -204,9 +277,20 @@ Result<int64_t> ObservationStore::delete_robot(std::string_view robot_id) {
   if (Status s = flush(); !s) return s.error();
   auto q = prepare("DELETE FROM observations WHERE robot = ?");
   if (!q) return q.error();
+  auto k = prepare("DELETE FROM keyframes WHERE robot = ?");
+  if (!k) return k.error();
+  SLAM_TRY(exec("BEGIN"));
   sqlite3_bind_text(q->get(), 1, robot_id.data(), static_cast<int>(robot_id.size()), SQLITE_STATIC);
-  if (sqlite3_step(q->get()) != SQLITE_DONE) return db_error("delete robot");
-  return static_cast<int64_t>(sqlite3_changes(db_.get()));
+  const bool deleted = sqlite3_step(q->get()) == SQLITE_DONE;
+  const auto observations = static_cast<int64_t>(sqlite3_changes(db_.get()));
+  sqlite3_bind_text(k->get(), 1, robot_id.data(), static_cast<int>(robot_id.size()), SQLITE_STATIC);
+  if (!deleted || sqlite3_step(k->get()) != SQLITE_DONE) {
+    const Error e = db_error("delete robot");
+    (void)exec("ROLLBACK");
+    return e;
+  }
+  SLAM_TRY(exec("COMMIT"));
+  return observations;
 }
 
 Status ObservationStore::add_obstruction(Vec2 p) {

@@ -1,6 +1,7 @@
 #pragma once
-// Every observation the mapper has integrated, with the robot pose at that moment, plus the manual
-// obstructions, the grid config and an imported prior: everything a restart or a rebuild needs.
+// Every observation the mapper has integrated, raw (the robot's odometry frame) with its keyframe id,
+// the keyframes with their corrections, the manual obstructions, the grid config and an imported
+// prior: everything a restart or a rebuild needs.
 // SQLite in WAL mode; appends are batched into explicit transactions (commit every batch_size rows
 // or on flush()), because one transaction per message would cap ingest at disk-sync speed.
 //
@@ -11,12 +12,14 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "common/core/map_io.hpp"
 #include "common/core/result.hpp"
+#include "mapper/corrections.hpp"
 #include "mapper/grid_config.hpp"
 #include "mapper/occupancy_grid.hpp"
 
@@ -35,12 +38,14 @@ struct ObservationRecord {
   std::string_view robot_id;
   uint64_t seq = 0;
   int64_t stamp_ns = 0;
-  ObservationView obs;
+  KeyframeId keyframe_id = 0;  // 0: none
+  ObservationView obs;         // odometry frame
 };
 
 class ObservationStore {
  public:
-  // Opens or creates the database. Errors name the path: cannot open, not a database (corrupt),
+  // Opens or creates the database; a store written by schema 1 gains the keyframe column (0 for its
+  // rows) and the keyframes table. Errors name the path: cannot open, not a database (corrupt),
   // written by a newer schema.
   static Result<ObservationStore> open(const std::filesystem::path& path, StoreOptions options = {});
 
@@ -49,13 +54,20 @@ class ObservationStore {
   ObservationStore& operator=(ObservationStore&&) = delete;
   ~ObservationStore();  // commits pending appends
 
-  Status append(std::string_view robot_id, uint64_t seq, int64_t stamp_ns, const ObservationView& obs);
+  // `obs` in the robot's odometry frame; keyframe_id 0 when it belongs to none.
+  Status append(std::string_view robot_id, uint64_t seq, int64_t stamp_ns, KeyframeId keyframe_id,
+                const ObservationView& obs);
+  // Inserts or replaces keyframes (by id) in the open batch, as appends are: upsert a keyframe before
+  // appending the observations that reference it and it is committed no later than they are.
+  Status save_keyframes(std::span<const Keyframe> keyframes);
   Status flush();  // commits the open batch, if any
 
   // Every observation in insertion order (pending appends included).
   Status for_each(const std::function<void(const ObservationRecord&)>& visit);
   Result<int64_t> count();
-  // Deletes one robot's observations; returns how many.
+  // Every keyframe, by id.
+  Result<std::vector<Keyframe>> keyframes();
+  // Deletes one robot's observations and keyframes; returns how many observations.
   Result<int64_t> delete_robot(std::string_view robot_id);
 
   Status add_obstruction(Vec2 p);
@@ -86,11 +98,13 @@ class ObservationStore {
   Status exec(const char* sql);
   Result<Stmt> prepare(const char* sql);
   Error db_error(std::string_view what) const;
+  Status begin_batch();
 
   std::filesystem::path path_;
   StoreOptions options_;
   Db db_;
   Stmt insert_;
+  Stmt upsert_keyframe_;
   bool in_batch_ = false;
   int pending_ = 0;
   std::vector<Vec2> hits_buf_;

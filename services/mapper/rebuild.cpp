@@ -3,6 +3,7 @@
 #include "mapper/rebuild.hpp"
 
 #include <thread>
+#include <vector>
 
 #include "mapper/observation_batches.hpp"
 
@@ -16,7 +17,8 @@ constexpr size_t kBatchesInFlight = 3;
 
 }  // namespace
 
-Result<OccupancyGrid> rebuild_grid(const GridConfig& config, ObservationStore& store, RebuildStats* stats) {
+Result<OccupancyGrid> rebuild_grid(const GridConfig& config, ObservationStore& store, RebuildStats* stats,
+                                   const KeyframeCorrections& corrections) {
   RebuildStats local;
   RebuildStats& st = stats ? *stats : local;
   st = RebuildStats{};
@@ -33,14 +35,20 @@ Result<OccupancyGrid> rebuild_grid(const GridConfig& config, ObservationStore& s
       st.first_error = cells.message();
   }
 
-  // SQLite reads and decodes on a second thread while this one ray-casts: together they take
-  // about as long as the ray casting alone (docs/performance.md, mapper rebuild).
+  // SQLite reads, decodes and corrects on a second thread while this one ray-casts: together they
+  // take about as long as the ray casting alone (docs/performance.md, mapper rebuild).
   ObservationBatches batches(kBatchesInFlight);
   Status read = Status::ok();
   std::thread reader([&] {
     ObservationBatch* batch = batches.take_empty();
+    std::vector<Vec2> hits;
+    std::vector<Vec2> misses;
     read = store.for_each([&](const ObservationRecord& rec) {
-      batch->add(rec.id, rec.obs);
+      const Pose& correction = corrections.lookup(rec.keyframe_id);
+      if (is_identity(correction))
+        batch->add(rec.id, rec.obs);
+      else
+        batch->add(rec.id, to_map_frame(correction, rec.obs, hits, misses));
       if (batch->entries.size() < kBatchObservations) return;
       batches.push_full(batch);
       batch = batches.take_empty();

@@ -1,10 +1,12 @@
 #pragma once
 // Rebuilding the grid from the store: after a config change (resolution, extent, inflation, legacy
-// mode), after a robot's data is reset, and at start-up to restore the map a restart left behind.
+// mode), after a robot's data is reset, after a pose-graph optimisation moved keyframes (re-render),
+// and at start-up to restore the map a restart left behind.
 #include <cstdint>
 #include <string>
 
 #include "common/core/result.hpp"
+#include "mapper/corrections.hpp"
 #include "mapper/grid_config.hpp"
 #include "mapper/observation_store.hpp"
 #include "mapper/occupancy_grid.hpp"
@@ -20,10 +22,12 @@ struct RebuildStats {
   std::string first_error;   // the first rejection's reason, for the log
 };
 
-// A fresh grid with `config`: the stored prior, then every observation in insertion order, then the
-// manual obstructions. Errors: invalid config, or the store cannot be read; the caller keeps its
-// current grid in that case.
+// A fresh grid with `config`: the stored prior, then every observation in insertion order moved into
+// the map frame by its keyframe's correction (identity for keyframe 0 or ids `corrections` does not
+// hold), then the manual obstructions. Errors: invalid config, or the store cannot be read; the
+// caller keeps its current grid in that case.
 Result<OccupancyGrid> rebuild_grid(const GridConfig& config, ObservationStore& store,
-                                   RebuildStats* stats = nullptr);
+                                   RebuildStats* stats = nullptr,
+                                   const KeyframeCorrections& corrections = {});
 
 }  // namespace slam::mapper

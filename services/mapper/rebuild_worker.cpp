@@ -7,12 +7,13 @@
 namespace slam::mapper {
 namespace {
 
-RebuildOutcome run(const GridConfig& config, const std::filesystem::path& path) {
+RebuildOutcome run(const GridConfig& config, const std::filesystem::path& path,
+                   const KeyframeCorrections& corrections) {
   const auto start = std::chrono::steady_clock::now();
   RebuildStats stats;
   auto store = ObservationStore::open(path);
-  Result<OccupancyGrid> grid =
-      store ? rebuild_grid(config, *store, &stats) : Result<OccupancyGrid>(Error{store.message()});
+  Result<OccupancyGrid> grid = store ? rebuild_grid(config, *store, &stats, corrections)
+                                     : Result<OccupancyGrid>(Error{store.message()});
   const auto took =
       std::chrono::duration_cast<std::chrono::milliseconds>(std::chrono::steady_clock::now() - start);
   return RebuildOutcome{std::move(grid), std::move(stats), took};
@@ -24,16 +25,17 @@ RebuildWorker::~RebuildWorker() {
   if (thread_.joinable()) thread_.join();
 }
 
-Status RebuildWorker::start(const GridConfig& config, const std::filesystem::path& path) {
+Status RebuildWorker::start(const GridConfig& config, const std::filesystem::path& path,
+                            KeyframeCorrections corrections) {
   std::lock_guard lock(mutex_);
   if (running_ || result_) return Error{"a rebuild is already running"};
   if (thread_.joinable()) thread_.join();  // the previous one has finished (its result was taken)
   running_ = true;
   try {
-    thread_ = std::thread([this, config, path] {
+    thread_ = std::thread([this, config, path, corrections = std::move(corrections)] {
       std::optional<RebuildOutcome> outcome;
       try {
-        outcome.emplace(run(config, path));
+        outcome.emplace(run(config, path, corrections));
       } catch (const std::exception& e) {  // allocation failure on a huge layout, mostly
         outcome.emplace(RebuildOutcome{Error{std::string("rebuild failed: ") + e.what()}, {}, {}});
       }

@@ -1,8 +1,8 @@
 #pragma once
-// Rebuilds off the map loop: a layout change or a robot reset replays the whole store, which may take
-// seconds, while the loop keeps integrating and publishing with the current grid. The worker reads
-// through its own SQLite connection (WAL lets it read while the loop's connection stays open) and the
-// loop swaps the finished grid in. One rebuild at a time.
+// Rebuilds off the map loop: a layout change, a robot reset or a re-render with new keyframe
+// corrections replays the whole store, which may take seconds, while the loop keeps integrating and
+// publishing with the current grid. The worker reads through its own SQLite connection (WAL lets it read
+// while the loop's connection stays open) and the loop swaps the finished grid in. One rebuild at a time.
 #include <chrono>
 #include <filesystem>
 #include <functional>
@@ -11,6 +11,7 @@
 #include <thread>
 
 #include "common/core/result.hpp"
+#include "mapper/corrections.hpp"
 #include "mapper/grid_config.hpp"
 #include "mapper/observation_store.hpp"
 #include "mapper/occupancy_grid.hpp"
@@ -32,9 +33,12 @@ class RebuildWorker {
   RebuildWorker(const RebuildWorker&) = delete;
   RebuildWorker& operator=(const RebuildWorker&) = delete;
 
-  // Starts rebuilding `config` from the store at `path`. The caller must not write to the store until
-  // the result is taken (the rebuild must see exactly what was committed when it started).
-  Status start(const GridConfig& config, const std::filesystem::path& path);
+  // Starts rebuilding `config` from the store at `path`, each observation moved by its keyframe's
+  // correction (a re-render is a rebuild with the current config and new corrections). The caller
+  // must not append observations until the result is taken (the rebuild must see exactly what was
+  // committed when it started).
+  Status start(const GridConfig& config, const std::filesystem::path& path,
+               KeyframeCorrections corrections = {});
   bool busy() const;
   // The finished rebuild, once; nullopt while running or idle.
   std::optional<RebuildOutcome> take();

@@ -19,7 +19,8 @@ RobotFootprints::RobotFootprints(const FootprintConfig& config)
       max_age_ns_(static_cast<int64_t>(config.max_age_s * 1e9)) {}
 
 size_t RobotFootprints::apply(std::string_view robot_id, Vec2 position, int64_t now_ns,
-                              std::vector<Vec2>& hits, std::vector<Vec2>& misses) {
+                              std::vector<Vec2>& hits, std::vector<Vec2>& misses,
+                              std::vector<Vec2>* odom_hits, std::vector<Vec2>* odom_misses) {
   size_t self = sightings_.size();
   if (auto it = slots_.find(robot_id); it != slots_.end()) {
     self = it->second;
@@ -45,16 +46,20 @@ size_t RobotFootprints::apply(std::string_view robot_id, Vec2 position, int64_t 
         return std::any_of(near_.begin(), near_.end(), [&](Vec2 o) { return distance2(p, o) <= radius2_; });
       };
       // Stable: the remaining hits keep their order; moved ones go to the misses.
-      auto keep = hits.begin();
-      for (auto it = hits.begin(); it != hits.end(); ++it) {
-        if (on_robot(*it)) {
-          misses.push_back(*it);
+      const bool mirrored = odom_hits && odom_misses && odom_hits->size() == hits.size();
+      size_t keep = 0;
+      for (size_t i = 0; i < hits.size(); ++i) {
+        if (on_robot(hits[i])) {
+          misses.push_back(hits[i]);
+          if (mirrored) odom_misses->push_back((*odom_hits)[i]);
           ++moved;
         } else {
-          *keep++ = *it;
+          if (mirrored) (*odom_hits)[keep] = (*odom_hits)[i];
+          hits[keep++] = hits[i];
         }
       }
-      hits.erase(keep, hits.end());
+      hits.resize(keep);
+      if (mirrored) odom_hits->resize(keep);
     }
   }
   sightings_[self] = Sighting{position, now_ns};

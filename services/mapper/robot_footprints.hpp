@@ -29,8 +29,11 @@ class RobotFootprints {
   // Moves the hits that lie near another robot's recent position to `misses`, then records
   // `position` as robot_id's at now_ns. Returns how many hits were moved. Allocation-free once
   // every robot has been seen (a fleet of hundreds is a flat scan per observation).
+  // `odom_hits`/`odom_misses`, when given, hold the same points in the robot's odometry frame (the
+  // ones stored) and get the same moves.
   size_t apply(std::string_view robot_id, Vec2 position, int64_t now_ns, std::vector<Vec2>& hits,
-               std::vector<Vec2>& misses);
+               std::vector<Vec2>& misses, std::vector<Vec2>* odom_hits = nullptr,
+               std::vector<Vec2>* odom_misses = nullptr);
 
   size_t robots() const { return sightings_.size(); }
 

@@ -134,7 +134,7 @@ class StoreFixture {
     for (int64_t i = 0; i < kObservations; ++i) {
       const Scan& s = scans[static_cast<size_t>(i) % scans.size()];
       ObservationView v{s.origin.x, s.origin.y, 0.0, false, s.hits, s.misses};
-      if (!store.append(i % 2 ? "r1" : "r2", static_cast<uint64_t>(i), i, v)) std::abort();
+      if (!store.append(i % 2 ? "r1" : "r2", static_cast<uint64_t>(i), i, 0, v)) std::abort();
     }
     if (!store.flush()) std::abort();
   }

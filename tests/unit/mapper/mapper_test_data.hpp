@@ -28,8 +28,19 @@ inline void feed(OccupancyGrid& grid, ObservationStore& store) {
   ObservationView v;
   v.hits = hits;
   ASSERT_TRUE(grid.integrate(v));
-  ASSERT_TRUE(store.append("r1", 1, 0, v));
+  ASSERT_TRUE(store.append("r1", 1, 0, 0, v));
   ASSERT_TRUE(store.flush());
+}
+
+// Same layout, log-odds and classes in every cell.
+inline bool same_grid(const OccupancyGrid& a, const OccupancyGrid& b) {
+  if (a.width() != b.width() || a.height() != b.height() || a.origin_x() != b.origin_x() ||
+      a.origin_y() != b.origin_y())
+    return false;
+  for (int32_t y = 0; y < a.height(); ++y)
+    for (int32_t x = 0; x < a.width(); ++x)
+      if (a.log_odds(x, y) != b.log_odds(x, y) || a.cell_class(x, y) != b.cell_class(x, y)) return false;
+  return true;
 }
 
 }  // namespace slam::mapper::test_data

@@ -42,7 +42,7 @@ std::vector<Row> read_all(ObservationStore& s) {
 
 Status put(ObservationStore& s, const Row& r) {
   ObservationView v{r.x, r.y, r.theta, r.heading, r.hits, r.misses};
-  return s.append(r.robot, r.seq, r.stamp, v);
+  return s.append(r.robot, r.seq, r.stamp, 0, v);
 }
 
 TEST(ObservationStore, RoundTripInInsertionOrderAcrossReopen) {

@@ -44,7 +44,7 @@ void feed(OccupancyGrid& grid, ObservationStore& store) {
     }
     ObservationView v{rx, ry, 0.0, false, hits, misses};
     ASSERT_TRUE(grid.integrate(v).is_ok());
-    ASSERT_TRUE(store.append(step % 2 ? "odd" : "even", static_cast<uint64_t>(step), step, v).is_ok());
+    ASSERT_TRUE(store.append(step % 2 ? "odd" : "even", static_cast<uint64_t>(step), step, 0, v).is_ok());
   }
 }
 
