@@ -8,6 +8,7 @@ namespace slam::mapper {
 void MapperBatch::clear() {
   observations.clear();
   commands.clear();
+  initial_poses.clear();
   dropped = 0;
 }
 
@@ -24,6 +25,15 @@ void MapperIntake::push(MapCommand command) {
   {
     std::lock_guard lock(mutex_);
     pending_.commands.push_back(std::move(command));
+    urgent_ = true;
+  }
+  wake_.notify_one();
+}
+
+void MapperIntake::push(const slam::InitialPose& request) {
+  {
+    std::lock_guard lock(mutex_);
+    pending_.initial_poses.push_back(request);
     urgent_ = true;
   }
   wake_.notify_one();

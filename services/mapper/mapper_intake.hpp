@@ -3,6 +3,7 @@
 // Callbacks only push (short, never blocking on the grid); the loop waits here and takes everything in
 // one go. Requests keep their arrival order across kinds, since an edit after a layout change must
 // apply to the new layout. Observations are bounded: past the bound they are dropped and counted.
+#include <slam/fastdds/correction.h>
 #include <slam/fastdds/robot.h>
 
 #include <chrono>
@@ -18,6 +19,7 @@ namespace slam::mapper {
 struct MapperBatch {
   std::vector<slam::RobotObservation> observations;  // in arrival order
   std::vector<MapCommand> commands;                  // in arrival order
+  std::vector<slam::InitialPose> initial_poses;      // in arrival order
   uint64_t dropped = 0;                              // observations dropped since the last drain
 
   void clear();
@@ -29,6 +31,7 @@ class MapperIntake {
 
   void push(const slam::RobotObservation& sample);
   void push(MapCommand command);
+  void push(const slam::InitialPose& request);
   // Wakes the loop now (a rebuild finished).
   void notify();
 

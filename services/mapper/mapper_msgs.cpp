@@ -99,4 +99,35 @@ void fill_patch(const OccupancyGrid& grid, const CellBox& box, uint32_t layout_i
   grid.copy_box(box, out->cells());
 }
 
+void fill_correction(const correction::RobotCorrection& in, int64_t stamp_ns, slam::PoseCorrection* out) {
+  out->robot_id(in.robot);
+  out->version(in.version);
+  out->stamp_ns(stamp_ns);
+  out->map_from_odom().x(in.map_from_odom.x);
+  out->map_from_odom().y(in.map_from_odom.y);
+  out->map_from_odom().theta(in.map_from_odom.theta);
+  const Eigen::Matrix3d& c = in.covariance;
+  out->covariance({c(0, 0), c(0, 1), c(0, 2), c(1, 1), c(1, 2), c(2, 2)});
+  out->segment(in.segment);
+  out->keyframes(in.keyframes);
+  out->loop_closures(in.loop_closures);
+  switch (in.source) {
+    case correction::CorrectionSource::Identity:
+      out->source(slam::CORRECTION_IDENTITY);
+      break;
+    case correction::CorrectionSource::Match:
+      out->source(slam::CORRECTION_MATCH);
+      break;
+    case correction::CorrectionSource::Loop:
+      out->source(slam::CORRECTION_LOOP);
+      break;
+    case correction::CorrectionSource::Operator:
+      out->source(slam::CORRECTION_OPERATOR);
+      break;
+    case correction::CorrectionSource::Restored:
+      out->source(slam::CORRECTION_RESTORED);
+      break;
+  }
+}
+
 }  // namespace slam::mapper

@@ -1,6 +1,7 @@
 #pragma once
 // IDL <-> core conversions for slam-mapper: observations in, grid requests in, snapshots and patches
 // out. The only place where map.idl / robot.idl types meet the core's types.
+#include <slam/fastdds/correction.h>
 #include <slam/fastdds/map.h>
 #include <slam/fastdds/robot.h>
 
@@ -10,6 +11,7 @@
 #include "common/core/result.hpp"
 #include "mapper/mapper.hpp"
 #include "mapper/occupancy_grid.hpp"
+#include "pose_correction/pose_corrector.hpp"
 
 namespace slam::mapper {
 
@@ -26,6 +28,8 @@ LayoutRequest to_request(const slam::GridConfig& in);
 EditRequest to_request(const slam::MapEdit& in);
 FileRequest to_request(const slam::MapFileRequest& in);
 slam::MapReply to_reply(const RequestReply& in);
+
+void fill_correction(const correction::RobotCorrection& in, int64_t stamp_ns, slam::PoseCorrection* out);
 
 void fill_snapshot(const OccupancyGrid& grid, uint32_t layout_id, uint64_t version, int64_t stamp_ns,
                    slam::GridSnapshot* out);

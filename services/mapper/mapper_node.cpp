@@ -41,6 +41,7 @@ MapperNode::~MapperNode() {
   config_reader_.reset();
   edit_reader_.reset();
   file_reader_.reset();
+  initial_pose_reader_.reset();
   if (mapper_ && snapshot_writer_) {
     mapper_->wait_for_rebuild();
     publish_outcomes();
@@ -59,6 +60,10 @@ Status MapperNode::configure() {
                                [this] { intake_.notify(); });
   if (!mapper) return mapper.error();
   mapper_ = std::move(*mapper);
+  correction::CorrectorOptions slam_options;
+  slam_options.old_age_s = options_.slam_old_age_s;
+  corrections_ = std::make_unique<CorrectionStage>(options_.slam_enabled(), slam_options);
+  SLAM_TRY(corrections_->restore(*mapper_));
   update_periodic_counters();
 
   auto participant = dds::Participant::create(options_.service.domain, "slam-mapper");
@@ -73,6 +78,10 @@ Status MapperNode::configure() {
   auto replies = dds::make_writer(*participant_, dds::kMapReply);
   if (!replies) return replies.error();
   reply_writer_ = std::move(*replies);
+  auto corrections = dds::make_writer(*participant_, dds::kPoseCorrection);
+  if (!corrections) return corrections.error();
+  correction_writer_ = std::move(*corrections);
+  publish_corrections();
   publish_snapshot(false);
 
   // Readers last: from here on callbacks run, and everything they touch exists.
@@ -96,6 +105,10 @@ Status MapperNode::configure() {
       [this](const slam::MapFileRequest& r, const auto&) { intake_.push(MapCommand{to_request(r)}); });
   if (!files) return files.error();
   file_reader_ = std::move(*files);
+  auto poses = dds::make_reader(*participant_, dds::kInitialPose,
+                                [this](const slam::InitialPose& r, const auto&) { intake_.push(r); });
+  if (!poses) return poses.error();
+  initial_pose_reader_ = std::move(*poses);
 
   next_tick_ = std::chrono::steady_clock::now() + patch_period_;
   spdlog::info("mapper ready on domain {} (patches at {} Hz, snapshots every {} s)", options_.service.domain,
@@ -114,8 +127,11 @@ void MapperNode::run_once() {
   mapper_->poll_rebuild();
   publish_outcomes();
   for (const slam::RobotObservation& o : batch_.observations) integrate(o);
+  corrections_->step(*mapper_, now_ns(), monotonic_ns());
   for (MapCommand& c : batch_.commands) mapper_->submit(std::move(c));
+  for (const slam::InitialPose& p : batch_.initial_poses) handle_initial_pose(p);
   publish_outcomes();
+  publish_corrections();
 
   const auto now = std::chrono::steady_clock::now();
   if (now >= next_tick_) {
@@ -129,7 +145,35 @@ void MapperNode::integrate(const slam::RobotObservation& sample) {
   const std::string_view robot(sample.robot_id().c_str(), sample.robot_id().size());
   auto view = to_view(sample, hits_, misses_);
   if (!view) return mapper_->reject(robot, sample.seq(), view.message());
-  mapper_->integrate(RobotScan{robot, sample.seq(), sample.stamp_ns(), *view, 0, Pose{}}, monotonic_ns());
+  corrections_->add(*mapper_, RobotScan{robot, sample.seq(), sample.stamp_ns(), *view, 0, Pose{}}, monotonic_ns());
+}
+
+void MapperNode::handle_initial_pose(const slam::InitialPose& request) {
+  const std::string robot = request.robot_id().to_string();
+  const Pose pose{request.pose().x(), request.pose().y(), request.pose().theta()};
+  const Status s = corrections_->set_initial_pose(*mapper_, robot, pose);
+  RequestReply reply{request.request_id(), RequestResult::Ok, ""};
+  if (s) {
+    reply.message = fmt::format("initial pose of {} set to ({:.3f}, {:.3f}, {:.1f} deg)", robot, pose.x, pose.y,
+                                pose.theta * 180.0 / 3.141592653589793);
+    spdlog::info("{}", reply.message);
+  } else {
+    reply.result = s.message().starts_with("unknown robot") ? RequestResult::UnknownRobot
+                                                              : RequestResult::InvalidRequest;
+    reply.message = s.message();
+    bump(counters_.get("initial_poses_rejected"));
+  }
+  if (!reply_writer_->write(to_reply(reply))) bump(metrics_.write_failures);
+}
+
+void MapperNode::publish_corrections() {
+  changed_corrections_.clear();
+  corrections_->take_changed(changed_corrections_);
+  const int64_t stamp = now_ns();
+  for (const auto& c : changed_corrections_) {
+    fill_correction(c, stamp, &correction_sample_);
+    if (!correction_writer_->write(correction_sample_)) bump(metrics_.write_failures);
+  }
 }
 
 void MapperNode::publish_outcomes() {
@@ -193,6 +237,17 @@ void MapperNode::update_periodic_counters() {
     if (!ec) bytes += static_cast<int64_t>(size);
   }
   metrics_.store_bytes.store(bytes, std::memory_order_relaxed);
+  const correction::CorrectorStats& st = corrections_->stats();
+  counters_.get("slam_keyframes").store(st.keyframes, std::memory_order_relaxed);
+  counters_.get("slam_matched").store(st.matched, std::memory_order_relaxed);
+  counters_.get("slam_unmatched").store(st.unmatched, std::memory_order_relaxed);
+  counters_.get("slam_closures_tried").store(st.closures_tried, std::memory_order_relaxed);
+  counters_.get("slam_closures_accepted").store(st.closures_accepted, std::memory_order_relaxed);
+  counters_.get("slam_closures_rejected").store(st.closures_rejected, std::memory_order_relaxed);
+  counters_.get("slam_optimisations").store(st.optimisations, std::memory_order_relaxed);
+  counters_.get("slam_segments").store(st.segments, std::memory_order_relaxed);
+  counters_.get("slam_rejected_inputs").store(st.rejected_inputs, std::memory_order_relaxed);
+
   if (observation_reader_)
     metrics_.observations_lost.store(observation_reader_->samples_lost(), std::memory_order_relaxed);
   next_store_stat_ = std::chrono::steady_clock::now() + std::chrono::seconds(1);

@@ -14,6 +14,7 @@
 #include "common/core/result.hpp"
 #include "common/fastdds/fast_topics.hpp"
 #include "mapper/mapper.hpp"
+#include "mapper/correction_stage.hpp"
 #include "mapper/mapper_intake.hpp"
 #include "mapper/mapper_options.hpp"
 
@@ -50,12 +51,15 @@ class MapperNode {
   Status configure();
 
   void integrate(const slam::RobotObservation& sample);
+  void handle_initial_pose(const slam::InitialPose& request);
+  // The corrections that changed since the last call.
+  void publish_corrections();
   void tick();
   void publish_changes();
   void publish_snapshot(bool new_version);
   // After a rebuild landed: its snapshot, then the replies due.
   void publish_outcomes();
-  // Once a second: the store's size on disk and the observations DDS lost.
+  // Once a second: the store's size on disk, the observations DDS lost, the SLAM core's figures.
   void update_periodic_counters();
 
   MapperOptions options_;
@@ -68,6 +72,9 @@ class MapperNode {
   MapperIntake intake_;  // before mapper_: its rebuild worker wakes the loop through it
   // Loop state: touched by the loop thread only.
   std::unique_ptr<Mapper> mapper_;
+  std::unique_ptr<CorrectionStage> corrections_;
+  std::vector<correction::RobotCorrection> changed_corrections_;
+  slam::PoseCorrection correction_sample_;
   int snapshot_readers_ = 0;  // matched snapshot readers at the last tick
   std::chrono::steady_clock::time_point next_tick_;
   std::chrono::steady_clock::time_point next_snapshot_;
@@ -83,10 +90,12 @@ class MapperNode {
   std::unique_ptr<dds::Writer<slam::GridSnapshot>> snapshot_writer_;
   std::unique_ptr<dds::Writer<slam::GridPatch>> patch_writer_;
   std::unique_ptr<dds::Writer<slam::MapReply>> reply_writer_;
+  std::unique_ptr<dds::Writer<slam::PoseCorrection>> correction_writer_;
   std::unique_ptr<dds::Reader<slam::RobotObservation>> observation_reader_;
   std::unique_ptr<dds::Reader<slam::GridConfig>> config_reader_;
   std::unique_ptr<dds::Reader<slam::MapEdit>> edit_reader_;
   std::unique_ptr<dds::Reader<slam::MapFileRequest>> file_reader_;
+  std::unique_ptr<dds::Reader<slam::InitialPose>> initial_pose_reader_;
 };
 
 }  // namespace slam::mapper

@@ -50,6 +50,13 @@ void add_mapper_options(CLI::App& app, MapperOptions& o) {
                  "observations waiting for the map loop beyond this are dropped (counted)")
       ->capture_default_str();
 
+  app.add_option("--slam", o.slam, "pose correction: on (correct odometry against the map) or off")
+      ->check(CLI::IsMember({"on", "off"}))
+      ->capture_default_str();
+  app.add_option("--slam-old-age-s", o.slam_old_age_s,
+                 "a robot's own keyframes this old are matched as the old map (loop closure)")
+      ->capture_default_str();
+
   auto* export_flag = app.add_option("--export", o.export_yaml,
                                      "offline: write the stored map to FILE.yaml (+ .pgm) and exit");
   auto* import_flag =
@@ -66,6 +73,9 @@ Status validate(const MapperOptions& o) {
     return Error{"patch_rate: must be between 0.1 and 1000 Hz"};
   if (!std::isfinite(o.snapshot_period_s) || o.snapshot_period_s < 0.1 || o.snapshot_period_s > 3600.0)
     return Error{"snapshot_period: must be between 0.1 and 3600 s"};
+  if (o.slam != "on" && o.slam != "off") return Error{"slam: must be on or off"};
+  if (!std::isfinite(o.slam_old_age_s) || o.slam_old_age_s < 1.0 || o.slam_old_age_s > 86400.0)
+    return Error{"slam_old_age_s: must be between 1 and 86400 s"};
   if (o.max_queued_observations < 1) return Error{"max_queued_observations: must be at least 1"};
   return Status::ok();
 }

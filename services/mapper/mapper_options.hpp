@@ -25,10 +25,15 @@ struct MapperOptions {
   double patch_rate_hz = 10.0;              // GridPatch rate (the changed box since the last patch)
   double snapshot_period_s = 5.0;           // a full GridSnapshot at least this often
   size_t max_queued_observations = 100000;  // intake bound: beyond it observations are dropped, counted
+  // Pose correction (SLAM): "on" corrects every robot's odometry against the map, "off" trusts the
+  // reported poses (odometry frame = map frame).
+  std::string slam = "on";
+  double slam_old_age_s = 60.0;  // own keyframes this old count as the old map (loop closure)
   // Offline commands (no DDS): rebuild from the store and write a ROS map, or store a map as prior.
   std::string export_yaml;
   std::string import_yaml;
 
+  bool slam_enabled() const { return slam == "on"; }
   bool offline() const { return !export_yaml.empty() || !import_yaml.empty(); }
 };
 

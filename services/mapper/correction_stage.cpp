@@ -1,0 +1,86 @@
+#include "mapper/correction_stage.hpp"
+
+#include <cmath>
+#include <utility>
+
+namespace slam::mapper {
+
+CorrectionStage::CorrectionStage(bool enabled, const correction::CorrectorOptions& options)
+    : enabled_(enabled), rerender_shift_m_(options.rerender_shift_m), corrector_(options) {}
+
+Status CorrectionStage::restore(Mapper& mapper) {
+  if (!enabled_) return Status::ok();
+  auto stored = mapper.load_keyframes();
+  if (!stored) return stored.error();
+  std::vector<correction::KeyframeCorrection> keyframes;
+  keyframes.reserve(stored->size());
+  for (const Keyframe& k : *stored) keyframes.push_back({k.id, k.robot_id, k.segment, k.odom, k.map_from_odom});
+  corrector_.restore(keyframes);
+  if (!keyframes.empty()) spdlog::info("pose correction: restored {} keyframes from the store", keyframes.size());
+  return Status::ok();
+}
+
+void CorrectionStage::add(Mapper& mapper, const RobotScan& scan, int64_t now_mono_ns) {
+  if (!enabled_) return mapper.integrate(scan, now_mono_ns);
+  const ObservationView& v = scan.view;
+  auto keyframe = corrector_.add(scan.robot_id, scan.stamp_ns, Pose{v.x, v.y, v.theta}, v.has_heading, v.hits);
+  if (!keyframe) return mapper.reject(scan.robot_id, scan.seq, keyframe.message());
+  held_[*keyframe].push_back(Held{std::string(scan.robot_id), scan.seq, scan.stamp_ns, v.x, v.y, v.theta,
+                                  v.has_heading, {v.hits.begin(), v.hits.end()},
+                                  {v.misses.begin(), v.misses.end()}});
+}
+
+void CorrectionStage::save(Mapper& mapper, std::span<const correction::KeyframeCorrection> keyframes) {
+  keyframes_.clear();
+  for (const auto& k : keyframes) keyframes_.push_back({k.id, k.robot, k.segment, k.odom, k.correction});
+  if (auto s = mapper.save_keyframes(keyframes_); !s)
+    log_.warn("save", "pose correction: keyframes not stored: {}", s.message());
+}
+
+void CorrectionStage::step(Mapper& mapper, int64_t now_ns, int64_t now_mono_ns) {
+  if (!enabled_) return;
+  const OccupancyGrid& grid = mapper.grid();
+  finalised_.clear();
+  corrector_.process(correction::GridView{grid.geometry(), grid.classes()}, now_ns, finalised_);
+  if (!finalised_.empty()) {
+    save(mapper, finalised_);  // before the observations that reference them
+    for (const auto& k : finalised_) {
+      const auto it = held_.find(k.id);
+      if (it == held_.end()) continue;
+      for (const Held& h : it->second) {
+        const ObservationView view{h.x, h.y, h.theta, h.has_heading, h.hits, h.misses};
+        mapper.integrate(RobotScan{h.robot_id, h.seq, h.stamp_ns, view, k.id, k.correction}, now_mono_ns);
+      }
+      held_.erase(it);
+    }
+  }
+  moved_.clear();
+  const double shift = corrector_.take_optimised(moved_);
+  if (!moved_.empty()) {
+    save(mapper, moved_);
+    if (shift >= rerender_shift_m_) {
+      spdlog::info("pose correction: graph optimised, {} keyframes moved (up to {:.3f} m): re-rendering the map",
+                   moved_.size(), shift);
+      mapper.rerender();
+    }
+  }
+}
+
+Status CorrectionStage::set_initial_pose(const Mapper& mapper, std::string_view robot, const Pose& map_pose) {
+  if (!enabled_) return Error{"pose correction is off (slam-mapper --slam off)"};
+  if (!std::isfinite(map_pose.x) || !std::isfinite(map_pose.y) || !std::isfinite(map_pose.theta))
+    return Error{"initial pose is not finite"};
+  const GridGeometry g = mapper.grid().geometry();
+  if (!g.cell_at(map_pose.position())) {
+    return Error{fmt::format("initial pose ({:.2f}, {:.2f}) lies outside the map [{:.2f}, {:.2f}] x [{:.2f}, {:.2f}]",
+                             map_pose.x, map_pose.y, g.origin.x, g.origin.x + g.width * g.resolution, g.origin.y,
+                             g.origin.y + g.height * g.resolution)};
+  }
+  return corrector_.set_initial_pose(robot, map_pose);
+}
+
+void CorrectionStage::take_changed(std::vector<correction::RobotCorrection>& out) {
+  corrector_.take_changed(out);
+}
+
+}  // namespace slam::mapper

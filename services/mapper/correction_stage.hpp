@@ -1,0 +1,67 @@
+#pragma once
+// Between the observation stream and the Mapper: each raw observation (robot odometry frame) goes to
+// the SLAM core (PoseCorrector) and waits here until its keyframe is matched and finalised; then it
+// reaches the Mapper with that keyframe's correction and id, so the grid gets it in the map frame
+// and the store keeps it raw. Holding it back matters: a keyframe matched against a map that
+// already holds its own points would only confirm its predicted pose.
+// After a pose-graph optimisation the moved keyframes are stored and the grid is re-rendered.
+// With SLAM off, observations pass straight through with the identity (today's behaviour).
+// Plain C++; the mapper's loop thread calls everything.
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <unordered_map>
+#include <vector>
+
+#include "common/core/log.hpp"
+#include "common/core/result.hpp"
+#include "mapper/mapper.hpp"
+#include "pose_correction/pose_corrector.hpp"
+
+namespace slam::mapper {
+
+class CorrectionStage {
+ public:
+  CorrectionStage(bool enabled, const correction::CorrectorOptions& options);
+
+  // Hands the stored keyframes to the corrector, so corrections continue where they were.
+  Status restore(Mapper& mapper);
+
+  // One raw observation (`scan.keyframe_id` and `scan.map_from_odom` are set here).
+  void add(Mapper& mapper, const RobotScan& scan, int64_t now_mono_ns);
+  // Matches the keyframes that closed, hands their observations to the mapper, and applies a
+  // finished optimisation. `now_ns`: the observations' clock (Unix epoch).
+  void step(Mapper& mapper, int64_t now_ns, int64_t now_mono_ns);
+
+  // An operator's initial pose; errors: unknown robot, not finite, outside the map, SLAM off.
+  Status set_initial_pose(const Mapper& mapper, std::string_view robot, const Pose& map_pose);
+  // Robots whose correction changed since the last call.
+  void take_changed(std::vector<correction::RobotCorrection>& out);
+  bool enabled() const { return enabled_; }
+  const correction::CorrectorStats& stats() const { return corrector_.stats(); }
+
+ private:
+  // An observation waiting for its keyframe.
+  struct Held {
+    std::string robot_id;
+    uint64_t seq = 0;
+    int64_t stamp_ns = 0;
+    double x = 0, y = 0, theta = 0;
+    bool has_heading = false;
+    std::vector<Vec2> hits;
+    std::vector<Vec2> misses;
+  };
+
+  void save(Mapper& mapper, std::span<const correction::KeyframeCorrection> keyframes);
+
+  bool enabled_;
+  double rerender_shift_m_;
+  correction::PoseCorrector corrector_;
+  std::unordered_map<uint64_t, std::vector<Held>> held_;  // keyframe id -> its observations, in order
+  std::vector<correction::KeyframeCorrection> finalised_;
+  std::vector<correction::KeyframeCorrection> moved_;
+  std::vector<Keyframe> keyframes_;
+  RateLimitedLog log_;
+};
+
+}  // namespace slam::mapper
