@@ -9,10 +9,8 @@ KeyframeBuilder::Step KeyframeBuilder::add(uint64_t id, uint32_t robot, int64_t 
                                            bool has_heading, std::span<const Vec2> hits) {
   const Pose pose{odom_pose.x, odom_pose.y, has_heading ? odom_pose.theta : 0.0};
   if (has_last_ && !jumped_) {
-    const double step = distance(pose.position(), last_pose_.position());
-    const double dt_s = static_cast<double>(stamp_ns - last_stamp_ns_) * 1e-9;
-    const bool too_fast = dt_s > 0.0 ? step / dt_s > options_.jump_speed_mps : step > options_.jump_m * 0.5;
-    if (step > options_.jump_m || (too_fast && step > 0.05)) {
+    // By distance only: receive stamps jitter (and a simulator may run faster than real time).
+    if (distance(pose.position(), last_pose_.position()) > options_.jump_m) {
       jumped_ = true;
       return Step::Jump;
     }
@@ -23,7 +21,6 @@ KeyframeBuilder::Step KeyframeBuilder::add(uint64_t id, uint32_t robot, int64_t 
   }
   has_last_ = true;
   last_pose_ = pose;
-  last_stamp_ns_ = stamp_ns;
 
   if (!open_) {
     keyframe_.id = id;

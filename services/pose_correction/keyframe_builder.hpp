@@ -21,7 +21,6 @@ struct KeyframeOptions {
   int max_messages = 30;           // ...or this many messages...
   int64_t max_span_ns = 4'000'000'000;  // ...or when its messages span this long
   double jump_m = 1.0;             // an odometry step longer than this between two messages is a jump
-  double jump_speed_mps = 3.0;     // ...and so is one faster than this
 };
 
 struct Keyframe {
@@ -73,7 +72,6 @@ class KeyframeBuilder {
   bool has_last_ = false;
   bool jumped_ = false;  // the last add() reported a jump; the next add() opens a new segment
   Pose last_pose_;
-  int64_t last_stamp_ns_ = 0;
 };
 
 }  // namespace slam::correction

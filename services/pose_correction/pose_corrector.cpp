@@ -6,6 +6,8 @@
 #include <cmath>
 #include <utility>
 
+#include <spdlog/spdlog.h>
+
 #include "pose_correction/graph_optimizer.hpp"
 
 namespace slam::correction {
@@ -205,6 +207,9 @@ void PoseCorrector::finalise(Keyframe&& keyframe, const GridView& grid, std::vec
           closure = distance(tie->pose.position(), estimate.position()) > 0.02 ||
                     std::abs(wrap_angle(tie->pose.theta - estimate.theta)) > 0.005;
           ++stats_.closures_accepted;
+          spdlog::info("loop closure: robot {} keyframe {} moved {:.3f} m, {:.2f} deg against {} old keyframes",
+                       rb.name, keyframe.id, distance(tie->pose.position(), estimate.position()),
+                       wrap_angle(tie->pose.theta - estimate.theta) * 57.29578, neighbours_.size());
         }
       } else {
         ++stats_.closures_rejected;

@@ -150,7 +150,11 @@ ProcessGroup::~ProcessGroup() {
     for (const auto& [name, c] : children_)
       std::cerr << "----- log of " << name << " (pid " << c.pid << ") -----\n" << log(name) << "\n";
   }
-  if (!failed || std::getenv("SLAM_KEEP_TEST_LOGS") == nullptr) std::filesystem::remove_all(dir_);
+  if (std::getenv("SLAM_KEEP_TEST_LOGS") == nullptr) {
+    std::filesystem::remove_all(dir_);
+  } else {
+    std::cerr << "logs kept in " << dir_ << "\n";
+  }
 }
 
 pid_t ProcessGroup::start(const std::string& name, const std::vector<std::string>& argv) {
