@@ -71,20 +71,26 @@ env_for() {
   fi
 }
 
-# The mapping matrix: one eval_mapping run per line (its arguments). World x protocol at the
-# simulator's default drift, and per world drift 0 (the reference) and twice the default. Rows with
-# the mapper's SLAM switched on and off go here as "--mapper-arg=--slam --mapper-arg=on|off".
+# The mapping matrix: one eval_mapping run per line (its arguments). Every world with correction
+# on and off at the simulator's default drift; in the office also v2 robots, drift 0 (the reference:
+# position and heading drift off) and twice the default drift.
 mapping_runs() {
   if ((QUICK)); then
     echo "--world office --protocol v1 --duration 120"
     return
   fi
-  local world
+  local world slam
+  local zero="--drift 0 --sim-arg=--heading-drift --sim-arg=0"
+  local twice="--drift 0.04 --sim-arg=--heading-drift --sim-arg=0.02"
   for world in office maze track rooms; do
-    echo "--world $world --protocol v1"
-    echo "--world $world --protocol v2"
-    echo "--world $world --protocol v1 --drift 0"
-    echo "--world $world --protocol v1 --drift 0.04"
+    for slam in on off; do
+      echo "--world $world --protocol v1 --mapper-arg=--slam --mapper-arg=$slam"
+    done
+  done
+  for slam in on off; do
+    echo "--world office --protocol v2 --mapper-arg=--slam --mapper-arg=$slam"
+    echo "--world office --protocol v1 $zero --mapper-arg=--slam --mapper-arg=$slam"
+    echo "--world office --protocol v1 $twice --mapper-arg=--slam --mapper-arg=$slam"
   done
 }
 
