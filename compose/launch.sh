@@ -19,7 +19,7 @@ DATA=run/data
 LOG_DIR=run/logs
 SNAP_DIR=run/snapshots
 SNAP_PERIOD=10
-BUILT_IN_WORLDS="office maze track empty"
+BUILT_IN_WORLDS="office maze track rooms empty"
 
 usage() {
   cat <<USAGE
