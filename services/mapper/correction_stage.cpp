@@ -5,6 +5,10 @@
 
 namespace slam::mapper {
 
+namespace {
+constexpr size_t kMaxSpare = 4096;  // recycled observation records kept for reuse
+}  // namespace
+
 CorrectionStage::CorrectionStage(bool enabled, const correction::CorrectorOptions& options)
     : enabled_(enabled), rerender_shift_m_(options.rerender_shift_m), corrector_(options) {}
 
@@ -25,9 +29,22 @@ void CorrectionStage::add(Mapper& mapper, const RobotScan& scan, int64_t now_mon
   const ObservationView& v = scan.view;
   auto keyframe = corrector_.add(scan.robot_id, scan.stamp_ns, Pose{v.x, v.y, v.theta}, v.has_heading, v.hits);
   if (!keyframe) return mapper.reject(scan.robot_id, scan.seq, keyframe.message());
-  held_[*keyframe].push_back(Held{std::string(scan.robot_id), scan.seq, scan.stamp_ns, v.x, v.y, v.theta,
-                                  v.has_heading, {v.hits.begin(), v.hits.end()},
-                                  {v.misses.begin(), v.misses.end()}});
+  // Recycled records: their strings and point buffers keep their capacity (no allocation per message).
+  Held held;
+  if (!spare_.empty()) {
+    held = std::move(spare_.back());
+    spare_.pop_back();
+  }
+  held.robot_id.assign(scan.robot_id);
+  held.seq = scan.seq;
+  held.stamp_ns = scan.stamp_ns;
+  held.x = v.x;
+  held.y = v.y;
+  held.theta = v.theta;
+  held.has_heading = v.has_heading;
+  held.hits.assign(v.hits.begin(), v.hits.end());
+  held.misses.assign(v.misses.begin(), v.misses.end());
+  held_[*keyframe].push_back(std::move(held));
 }
 
 void CorrectionStage::save(Mapper& mapper, std::span<const correction::KeyframeCorrection> keyframes) {
@@ -50,6 +67,9 @@ void CorrectionStage::step(Mapper& mapper, int64_t now_ns, int64_t now_mono_ns) 
       for (const Held& h : it->second) {
         const ObservationView view{h.x, h.y, h.theta, h.has_heading, h.hits, h.misses};
         mapper.integrate(RobotScan{h.robot_id, h.seq, h.stamp_ns, view, k.id, k.correction}, now_mono_ns);
+      }
+      for (Held& h : it->second) {
+        if (spare_.size() < kMaxSpare) spare_.push_back(std::move(h));
       }
       held_.erase(it);
     }

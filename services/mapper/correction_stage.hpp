@@ -58,6 +58,7 @@ class CorrectionStage {
   double rerender_shift_m_;
   correction::PoseCorrector corrector_;
   std::unordered_map<uint64_t, std::vector<Held>> held_;  // keyframe id -> its observations, in order
+  std::vector<Held> spare_;                               // records to reuse
   std::vector<correction::KeyframeCorrection> finalised_;
   std::vector<correction::KeyframeCorrection> moved_;
   std::vector<Keyframe> keyframes_;

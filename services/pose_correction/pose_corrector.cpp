@@ -44,6 +44,10 @@ constexpr double kSegmentSigma_rad = 0.5;
 constexpr double kOperatorSigma_m = 0.02;
 constexpr double kOperatorSigma_rad = 0.01;
 constexpr double kMovedEpsilon_m = 0.001;    // smaller keyframe moves are not reported
+constexpr double kJumpWarning_m = 0.3;       // a correction moving a robot this far is logged
+constexpr double kClosureMaxSigma_m = 0.05;  // a closure match more spread than this is ambiguous
+constexpr double kClosureMaxSigma_rad = 0.035;
+constexpr double kClosureLossScale = 3.0;    // Cauchy scale (sigmas) of tie and closure edges
 
 }  // namespace
 
@@ -56,8 +60,8 @@ uint32_t PoseCorrector::robot_index(std::string_view robot) {
   const std::string key(robot);
   if (auto it = robot_ids_.find(key); it != robot_ids_.end()) return it->second;
   const auto index = static_cast<uint32_t>(robots_.size());
-  Robot robot_state{key, KeyframeBuilder(options_.keyframe), {}, Eigen::Matrix3d::Zero(), std::nullopt,
-                    std::nullopt, false, false};
+  Robot robot_state{key,          KeyframeBuilder(options_.keyframe), {}, Eigen::Matrix3d::Zero(), std::nullopt,
+                    std::nullopt, std::nullopt, false, false};
   robot_state.state.robot = key;
   robots_.push_back(std::move(robot_state));
   robot_ids_.emplace(key, index);
@@ -197,9 +201,14 @@ void PoseCorrector::finalise(Keyframe&& keyframe, const GridView& grid, std::vec
     if (wide) ++stats_.closures_tried;
     const auto tie = matcher_.match(local, keyframe.points, estimate, window);
     if (tie && tie->score >= options_.closure_min_score) {
-      const Eigen::Matrix3d tie_cov = with_floor(tie->covariance, 0.01, 0.005);
+      const Eigen::Matrix3d tie_cov = with_floor(tie->covariance, 0.02, 0.01);
       const ConsistencyCheck check;
-      if (!wide || check.accepts(estimate, tie->pose, rb.chain_cov + tie_cov)) {
+      // A closure must be unambiguous (one clear peak: a corridor or a row of identical rooms
+      // spreads the candidates) and agree with the uncertainty accumulated since the last tie.
+      const bool distinct = tie->covariance(0, 0) <= kClosureMaxSigma_m * kClosureMaxSigma_m &&
+                            tie->covariance(1, 1) <= kClosureMaxSigma_m * kClosureMaxSigma_m &&
+                            tie->covariance(2, 2) <= kClosureMaxSigma_rad * kClosureMaxSigma_rad;
+      if (!wide || (distinct && check.accepts(estimate, tie->pose, rb.chain_cov + tie_cov))) {
         anchor = neighbours_.front();
         anchored_estimate = tie->pose;
         anchored_cov = tie_cov;
@@ -217,14 +226,15 @@ void PoseCorrector::finalise(Keyframe&& keyframe, const GridView& grid, std::vec
     }
   }
   if (anchor) {
-    estimate = anchored_estimate;
-    cov = anchored_cov;
-    rb.chain_cov = anchored_cov;
     if (closure) {
+      bend_chain(keyframe.robot, keyframe.segment, estimate, anchored_estimate);
       source = CorrectionSource::Loop;
       ++rb.state.loop_closures;
       closure_since_optimise_ = true;
     }
+    estimate = anchored_estimate;
+    cov = anchored_cov;
+    rb.chain_cov = anchored_cov;
     ++tied_since_optimise_;
   }
   if (operator_set) {
@@ -266,8 +276,15 @@ void PoseCorrector::finalise(Keyframe&& keyframe, const GridView& grid, std::vec
   }
   rb.operator_pose.reset();
   rb.last_node = slot;
+  if (anchor || operator_set || !previous) rb.last_tied = slot;
 
+  const Pose before = rb.state.map_from_odom.compose(keyframe.odom);
   rb.state.map_from_odom = estimate.compose(keyframe.odom.inverse());
+  if (distance(before.position(), estimate.position()) > kJumpWarning_m) {
+    spdlog::warn("pose correction: robot {} moved {:.2f} m by keyframe {} (tracked {}, tied {}, closure {})",
+                 rb.name, distance(before.position(), estimate.position()), keyframe.id, tracked,
+                 anchor.has_value(), closure);
+  }
   rb.state.covariance = cov;
   rb.state.segment = keyframe.segment;
   ++rb.state.keyframes;
@@ -279,6 +296,33 @@ void PoseCorrector::mark_changed(Robot& robot, CorrectionSource source) {
   robot.state.source = source;
   ++robot.state.version;
   robot.changed = true;
+}
+
+void PoseCorrector::bend_chain(uint32_t robot, uint32_t segment, const Pose& from, const Pose& to) {
+  // The keyframes since the robot was last tied to the map drifted along with it: spread the
+  // closure's correction over them (none at the tie, all of it at the closing keyframe), rotating
+  // about the closing position. The optimiser starts from a graph that already agrees with the
+  // closure instead of one whose stiff recent chain would pull the robot back.
+  Robot& rb = robots_[robot];
+  const uint32_t first = rb.last_tied ? *rb.last_tied + 1 : 0;
+  std::vector<uint32_t>& chain = neighbours_;
+  chain.clear();
+  for (uint32_t slot = first; slot < nodes_.size(); ++slot) {
+    if (nodes_[slot].robot == robot && nodes_[slot].segment == segment) chain.push_back(slot);
+  }
+  const Vec2 centre = from.position();
+  const Vec2 shift = to.position() - from.position();
+  const double turn = wrap_angle(to.theta - from.theta);
+  for (size_t i = 0; i < chain.size(); ++i) {
+    Node& n = nodes_[chain[i]];
+    const double f = static_cast<double>(i + 1) / static_cast<double>(chain.size() + 1);
+    const Pose rotate{0.0, 0.0, f * turn};
+    const Vec2 p = centre + rotate.transform(n.estimate.position() - centre) + shift * f;
+    n.estimate = Pose{p.x, p.y, wrap_angle(n.estimate.theta + f * turn)};
+    pending_moved_.push_back({n.id, rb.name, n.segment, n.odom, n.estimate.compose(n.odom.inverse())});
+    pending_shift_ = std::max(pending_shift_, norm(shift) * f);
+  }
+  ++epoch_;  // an optimisation running now started from the unbent chain: its result is stale
 }
 
 void PoseCorrector::start_optimisation() {
@@ -298,7 +342,10 @@ void PoseCorrector::start_optimisation() {
   submitted_estimates_.clear();
   for (const Node& n : nodes_) submitted_estimates_.push_back(n.estimate);
   submitted_nodes_ = nodes_.size();
-  optimizer_->submit(std::move(graph));
+  OptimiseOptions solve;
+  solve.loop_closure_loss_scale = kClosureLossScale;
+  optimizer_->submit(std::move(graph), solve);
+  submitted_epoch_ = epoch_;
   optimising_ = true;
   ++stats_.optimisations;
   tied_since_optimise_ = 0;
@@ -307,20 +354,28 @@ void PoseCorrector::start_optimisation() {
 
 
 double PoseCorrector::take_optimised(std::vector<KeyframeCorrection>& moved) {
-  if (!optimising_) return 0.0;
+  // Keyframes a closure bent since the last call.
+  double max_shift = pending_shift_;
+  moved.insert(moved.end(), pending_moved_.begin(), pending_moved_.end());
+  pending_moved_.clear();
+  pending_shift_ = 0.0;
+  if (!optimising_) return max_shift;
   auto landed = optimizer_->take_result();
-  if (!landed) return 0.0;
+  if (!landed) return max_shift;
   optimising_ = false;
   if (!landed->status) {
     ++stats_.failed_optimisations;
-    return 0.0;
+    return max_shift;
+  }
+  if (submitted_epoch_ != epoch_) {
+    closure_since_optimise_ = true;  // solve again from the current graph at the next process()
+    return max_shift;
   }
   std::unordered_map<NodeId, Pose> optimised;
   optimised.reserve(landed->estimates.size());
   for (const NodeEstimate& e : landed->estimates) optimised.emplace(e.id, e.pose);
   // Per robot: how its newest submitted keyframe moved, applied to keyframes made since.
   std::vector<std::optional<Pose>> robot_delta(robots_.size());
-  double max_shift = 0.0;
   for (size_t i = 0; i < submitted_nodes_; ++i) {
     Node& n = nodes_[i];
     const auto it = optimised.find(n.id);
@@ -347,6 +402,11 @@ double PoseCorrector::take_optimised(std::vector<KeyframeCorrection>& moved) {
   for (size_t r = 0; r < robots_.size(); ++r) {
     if (!robot_delta[r]) continue;
     Robot& rb = robots_[r];
+    if (const Vec2 at = rb.builder.last_odom().position(), corrected = rb.state.map_from_odom.transform(at);
+        distance(robot_delta[r]->transform(corrected), corrected) > kJumpWarning_m) {
+      spdlog::warn("pose correction: robot {} moved {:.2f} m by a graph optimisation", rb.name,
+                   distance(robot_delta[r]->transform(corrected), corrected));
+    }
     rb.state.map_from_odom = robot_delta[r]->compose(rb.state.map_from_odom);
     mark_changed(rb, CorrectionSource::Loop);
   }
@@ -382,6 +442,7 @@ Status PoseCorrector::set_initial_pose(std::string_view robot, const Pose& map_p
   }
   rb.operator_pose = correction;
   rb.state.map_from_odom = correction;
+  ++epoch_;
   rb.chain_cov = diagonal(kOperatorSigma_m, kOperatorSigma_m, kOperatorSigma_rad);
   rb.state.covariance = rb.chain_cov;
   mark_changed(rb, CorrectionSource::Operator);

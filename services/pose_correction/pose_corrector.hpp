@@ -130,6 +130,7 @@ class PoseCorrector {
     RobotCorrection state;
     Eigen::Matrix3d chain_cov = Eigen::Matrix3d::Zero();  // uncertainty since last tied to old map
     std::optional<uint32_t> last_node;                     // slot of its previous keyframe
+    std::optional<uint32_t> last_tied;                     // slot of its last keyframe tied to the map
     std::optional<Pose> operator_pose;                     // correction set by an operator, for its next keyframe
     bool has_heading = false;                              // of its latest observation
     bool changed = false;
@@ -154,6 +155,8 @@ class PoseCorrector {
   GridView draw_local_grid(std::span<const uint32_t> slots, Vec2 centre, double half_extent, double resolution);
   Eigen::Matrix3d odometry_covariance(const Pose& relative) const;
   void add_edge(EdgeKind kind, uint32_t from, uint32_t to, const Pose& measurement, const Eigen::Matrix3d& cov);
+  // A loop closure moves the robot's keyframe from `from` to `to`: bends its untied recent chain.
+  void bend_chain(uint32_t robot, uint32_t segment, const Pose& from, const Pose& to);
   void start_optimisation();
   void rebuild_index();
   void mark_changed(Robot& robot, CorrectionSource source);
@@ -170,6 +173,10 @@ class PoseCorrector {
   int tied_since_optimise_ = 0;
   bool closure_since_optimise_ = false;
   bool optimising_ = false;
+  uint64_t epoch_ = 0;            // bumped when keyframes move outside the optimiser (closures, operator)
+  uint64_t submitted_epoch_ = 0;  // epoch_ when the running optimisation was submitted
+  std::vector<KeyframeCorrection> pending_moved_;  // bent by closures, not yet taken
+  double pending_shift_ = 0.0;
   std::unique_ptr<GraphOptimizer> optimizer_;
   std::vector<Pose> submitted_estimates_;  // node estimates when the running optimisation started
   size_t submitted_nodes_ = 0;
