@@ -387,6 +387,13 @@ class Evaluation {
                 {"wall_found_share", walls_score->wall_found_share},
                 {"reachable_cells", coverage->reachable_cells},
                 {"coverage", coverage->share()}};
+    nlohmann::json false_list = nlohmann::json::array();
+    for (const FalseClosure& f : closures.false_closure_list)
+      false_list.push_back({{"robot", f.robot_id},
+                            {"version", f.version},
+                            {"truth_stamp_s", static_cast<double>(f.truth_stamp_ns) * 1e-9},
+                            {"error_before_m", f.errors.before_m},
+                            {"error_after_m", f.errors.after_m}});
     j["slam_counters"] = tap_->counters("mapper", "slam_");
     j["closures"] = {
         {"loop_corrections", closures.loop_corrections},
@@ -398,7 +405,8 @@ class Evaluation {
         {"largest_jump_m", closures.largest_jump_m},
         {"corrections_scored", closures.corrections},
         {"corrections_unscored", recorder_.unscored_corrections()},
-        {"versions_missed", closures.versions_missed}};
+        {"versions_missed", closures.versions_missed},
+        {"false", false_list}};
     j["image"] = std::filesystem::path(png).filename().string();
     j["map_yaml"] = std::filesystem::path(yaml).filename().string();
     return j;

@@ -25,7 +25,9 @@ ClosureAudit audit_corrections(std::span<const CorrectionChange> changes, const 
     audit.largest_loop_jump_m = std::max(audit.largest_loop_jump_m, e.jump_m);
     const double increase = e.after_m - e.before_m;
     audit.worst_increase_m = std::max(audit.worst_increase_m.value_or(increase), increase);
-    if (increase > false_closure_increase_m) ++audit.false_closures;
+    if (increase <= false_closure_increase_m) continue;
+    ++audit.false_closures;
+    audit.false_closure_list.push_back({change.robot_id, change.version, change.truth_stamp_ns, e});
   }
   return audit;
 }

@@ -26,6 +26,7 @@ void RunRecorder::on_truth(int64_t stamp_ns, const std::vector<RobotTruth>& robo
     const Vec2 truth = t.true_pose.position();
     if (!r.truth) starts_.push_back(truth);
     r.truth = t;
+    r.truth_stamp_ns = stamp_ns;
     for (GoalArrival& a : r.pending) {
       a.true_distance_m = distance(truth, a.waypoint);
       arrivals_.push_back(a);
@@ -51,8 +52,9 @@ void RunRecorder::on_correction(const std::string& robot_id, const Pose& map_fro
   // Version 0 is "never corrected", the identity: the first change (version 1) replaces it.
   const bool previous_known = version > r.correction_version && (r.correction_version > 0 || version == 1);
   if (previous_known && r.truth)
-    changes_.push_back({robot_id, loop, r.correction, map_from_odom, r.truth->reported_pose,
-                        r.truth->true_pose.position(), version - r.correction_version - 1});
+    changes_.push_back({robot_id, version, r.truth_stamp_ns, loop, r.correction, map_from_odom,
+                        r.truth->reported_pose, r.truth->true_pose.position(),
+                        version - r.correction_version - 1});
   else
     ++unscored_corrections_;
   r.correction = map_from_odom;

@@ -67,6 +67,7 @@ class RunRecorder {
  private:
   struct Robot {
     std::optional<RobotTruth> truth;
+    int64_t truth_stamp_ns = 0;
     std::optional<Vec2> state;
     Pose correction;
     uint64_t correction_version = 0;

@@ -18,7 +18,7 @@ constexpr Pose kOdometry{5.3, 2.0, 0.0};
 constexpr Vec2 kTruth{5.0, 2.0};
 
 CorrectionChange change(bool loop, Pose before, Pose after) {
-  return {"r1", loop, before, after, kOdometry, kTruth, 0};
+  return {"r1", 1, 0, loop, before, after, kOdometry, kTruth, 0};
 }
 
 TEST(ClosureAudit, ALoopCorrectionTowardsTheTruthIsNotFalse) {
@@ -38,6 +38,9 @@ TEST(ClosureAudit, ALoopCorrectionThatPullsTheRobotAwayIsFalse) {
   EXPECT_EQ(audit.false_closures, 1u);
   EXPECT_NEAR(*audit.worst_increase_m, 2.0, 1e-12);
   EXPECT_NEAR(audit.largest_jump_m, 2.0, 1e-12);
+  ASSERT_EQ(audit.false_closure_list.size(), 1u);
+  EXPECT_NEAR(audit.false_closure_list[0].errors.before_m, 0.0, 1e-12);
+  EXPECT_NEAR(audit.false_closure_list[0].errors.after_m, 2.0, 1e-12);
 }
 
 TEST(ClosureAudit, AnIncreaseWithinTheThresholdIsNotFalse) {
@@ -50,7 +53,7 @@ TEST(ClosureAudit, AnIncreaseWithinTheThresholdIsNotFalse) {
 
 TEST(ClosureAudit, OnlyLoopChangesAreJudgedButEveryChangeCountsForTheJump) {
   const std::vector<CorrectionChange> changes = {
-      change(false, Pose{}, Pose{3.0, 0.0, 0.0}),                   // a wild match: not a closure
+      change(false, Pose{}, Pose{3.0, 0.0, 0.0}),                 // a wild match: not a closure
       change(true, Pose{-0.3, 0.0, 0.0}, Pose{-0.25, 0.0, 0.0}),  // 5 cm worse
       change(true, Pose{-0.25, 0.0, 0.0}, Pose{0.0, 0.0, 0.0})};  // 25 cm worse: false
   const ClosureAudit audit = audit_corrections(changes, Pose{}, kThreshold);
@@ -95,7 +98,7 @@ TEST(ClosureAudit, TheAlignmentBringsTheMapFrameToTheWorld) {
 TEST(ClosureAudit, RecordedCorrectionSequenceIsScoredAgainstTheLatestTruth) {
   RunRecorder recorder(1'000'000'000, 0.2);
   recorder.on_correction("r1", Pose{0.1, 0.0, 0.0}, 1, false);  // no truth yet: not scored
-  recorder.on_truth(0, {{"r1", Pose{kTruth.x, kTruth.y, 0.0}, kOdometry}});
+  recorder.on_truth(7, {{"r1", Pose{kTruth.x, kTruth.y, 0.0}, kOdometry}});
   recorder.on_correction("r1", Pose{-0.2, 0.0, 0.0}, 2, false);
   recorder.on_correction("r1", Pose{-0.2, 0.0, 0.0}, 2, false);  // a repeat: not scored
   recorder.on_correction("r1", Pose{-0.3, 0.0, 0.0}, 4, true);   // version 3 missed
@@ -114,6 +117,9 @@ TEST(ClosureAudit, RecordedCorrectionSequenceIsScoredAgainstTheLatestTruth) {
   EXPECT_EQ(audit.false_closures, 1u);
   EXPECT_NEAR(*audit.worst_increase_m, 2.0, 1e-12);
   EXPECT_EQ(audit.versions_missed, 1u);
+  ASSERT_EQ(audit.false_closure_list.size(), 1u);
+  EXPECT_EQ(audit.false_closure_list[0].version, 5u);
+  EXPECT_EQ(audit.false_closure_list[0].truth_stamp_ns, 7);
 }
 
 TEST(ClosureAudit, TheFirstVersionReplacesTheIdentity) {
