@@ -401,6 +401,7 @@ class Evaluation {
         {"false_closure_increase_m", o_.false_closure_increase_m},
         {"worst_increase_m",
          closures.worst_increase_m ? nlohmann::json(*closures.worst_increase_m) : nlohmann::json(nullptr)},
+        {"false_matches", closures.false_matches},
         {"largest_loop_jump_m", closures.largest_loop_jump_m},
         {"largest_jump_m", closures.largest_jump_m},
         {"corrections_scored", closures.corrections},

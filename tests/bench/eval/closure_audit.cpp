@@ -20,10 +20,13 @@ ClosureAudit audit_corrections(std::span<const CorrectionChange> changes, const 
     ++audit.corrections;
     audit.versions_missed += change.versions_missed;
     audit.largest_jump_m = std::max(audit.largest_jump_m, e.jump_m);
-    if (!change.loop) continue;
+    const double increase = e.after_m - e.before_m;
+    if (!change.loop) {
+      if (increase > false_closure_increase_m) ++audit.false_matches;
+      continue;
+    }
     ++audit.loop_corrections;
     audit.largest_loop_jump_m = std::max(audit.largest_loop_jump_m, e.jump_m);
-    const double increase = e.after_m - e.before_m;
     audit.worst_increase_m = std::max(audit.worst_increase_m.value_or(increase), increase);
     if (increase <= false_closure_increase_m) continue;
     ++audit.false_closures;

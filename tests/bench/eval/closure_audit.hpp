@@ -50,6 +50,8 @@ struct ClosureAudit {
   size_t false_closures = 0;    // loop changes that increased the error by more than the threshold
   // Largest error increase (negative: every loop change reduced it) over loop changes, if any.
   std::optional<double> worst_increase_m;
+  // Other changes (matches, operator) that increased the error as much: a wrong scan match.
+  size_t false_matches = 0;
   double largest_jump_m = 0.0;                   // largest move of a corrected pose by one change, any source
   double largest_loop_jump_m = 0.0;              // the same over loop changes
   uint64_t versions_missed = 0;                  // changes not heard (keep-last-1 reader): scored merged

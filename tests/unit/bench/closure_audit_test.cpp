@@ -60,6 +60,7 @@ TEST(ClosureAudit, OnlyLoopChangesAreJudgedButEveryChangeCountsForTheJump) {
   EXPECT_EQ(audit.corrections, 3u);
   EXPECT_EQ(audit.loop_corrections, 2u);
   EXPECT_EQ(audit.false_closures, 1u);
+  EXPECT_EQ(audit.false_matches, 1u);  // the wild match, counted apart
   EXPECT_NEAR(*audit.worst_increase_m, 0.25, 1e-12);
   EXPECT_NEAR(audit.largest_jump_m, 3.0, 1e-12);
   EXPECT_NEAR(audit.largest_loop_jump_m, 0.25, 1e-12);
