@@ -1,7 +1,9 @@
 // eval_mapping: runs the whole system (mosquitto, gateway, mapper, planner, simulator) with
 // simulated robots exploring one world faster than real time, and scores it against the
 // simulator's ground truth: trajectory error (ATE) of corrected and raw poses, how close robots
-// truly are to waypoints the planner counts reached, and the exported map against the true walls.
+// truly are to waypoints the planner counts reached, the exported map against the true walls, and
+// whether the mapper's loop closures moved robots towards the truth (false closures); with the
+// mapper's SLAM counters at the end of the run.
 // Writes <out>/<name>.json (one object), <name>.png (the map with the true walls over it) and the
 // exported <name>.yaml/.pgm. See docs/mapping-quality.md; scripts/bench.sh runs the matrix.
 #include <fmt/format.h>
@@ -17,6 +19,7 @@
 #include <thread>
 
 #include "common/fastdds/fast_topics.hpp"
+#include "eval/closure_audit.hpp"
 #include "eval/map_metrics.hpp"
 #include "eval/map_overlay.hpp"
 #include "eval/run_recorder.hpp"
@@ -45,6 +48,7 @@ struct EvalOptions {
   std::string out_dir = "build/bench/mapping";
   std::string name;                 // default: from world, protocol, drift and the extra arguments
   double reach_tolerance_m = 0.20;  // the planner's 0.15 m plus motion between its decision and the sample
+  double false_closure_increase_m = 0.10;  // a loop correction adding more error than this is false
   int pixels_per_cell = 2;
 };
 
@@ -91,6 +95,16 @@ class SystemTap {
     const auto c = s->second.find(name);
     return c == s->second.end() ? -1 : c->second;
   }
+  // The latest Heartbeat's counters of `service` whose names start with `prefix`.
+  std::map<std::string, int64_t> counters(const std::string& service, const std::string& prefix) const {
+    std::lock_guard lock(mutex_);
+    std::map<std::string, int64_t> out;
+    const auto s = counters_.find(service);
+    if (s == counters_.end()) return out;
+    for (const auto& [name, value] : s->second)
+      if (name.starts_with(prefix)) out[name] = value;
+    return out;
+  }
   std::optional<SimWorld> world() const {
     std::lock_guard lock(mutex_);
     return world_;
@@ -128,7 +142,8 @@ class SystemTap {
       recorder_.on_state(s.robot_id().to_string(), {s.pose().x(), s.pose().y()});
     }));
     SLAM_TRY(open(corrections_, dds::kPoseCorrection, [this](const PoseCorrection& c) {
-      recorder_.on_correction(c.robot_id().to_string(), to_pose(c.map_from_odom()), c.version());
+      recorder_.on_correction(c.robot_id().to_string(), to_pose(c.map_from_odom()), c.version(),
+                              c.source() == CORRECTION_LOOP);
     }));
     SLAM_TRY(open(paths_, dds::kRobotPath, [this](const RobotPath& p) {
       PathView view{p.goal_id(), {}, p.current()};
@@ -335,6 +350,9 @@ class Evaluation {
     const std::string png = yaml.substr(0, yaml.size() - 5) + ".png";
     SLAM_TRY(viewer::write_png(png, render_overlay(map, layers, o_.pixels_per_cell)));
 
+    const ClosureAudit closures =
+        audit_corrections(recorder_.correction_changes(), ate.alignment, o_.false_closure_increase_m);
+
     const size_t corrected = recorder_.corrected_robots();
     nlohmann::json j;
     j["name"] = name();
@@ -369,6 +387,27 @@ class Evaluation {
                 {"wall_found_share", walls_score->wall_found_share},
                 {"reachable_cells", coverage->reachable_cells},
                 {"coverage", coverage->share()}};
+    nlohmann::json false_list = nlohmann::json::array();
+    for (const FalseClosure& f : closures.false_closure_list)
+      false_list.push_back({{"robot", f.robot_id},
+                            {"version", f.version},
+                            {"truth_stamp_s", static_cast<double>(f.truth_stamp_ns) * 1e-9},
+                            {"error_before_m", f.errors.before_m},
+                            {"error_after_m", f.errors.after_m}});
+    j["slam_counters"] = tap_->counters("mapper", "slam_");
+    j["closures"] = {
+        {"loop_corrections", closures.loop_corrections},
+        {"false_closures", closures.false_closures},
+        {"false_closure_increase_m", o_.false_closure_increase_m},
+        {"worst_increase_m",
+         closures.worst_increase_m ? nlohmann::json(*closures.worst_increase_m) : nlohmann::json(nullptr)},
+        {"false_matches", closures.false_matches},
+        {"largest_loop_jump_m", closures.largest_loop_jump_m},
+        {"largest_jump_m", closures.largest_jump_m},
+        {"corrections_scored", closures.corrections},
+        {"corrections_unscored", recorder_.unscored_corrections()},
+        {"versions_missed", closures.versions_missed},
+        {"false", false_list}};
     j["image"] = std::filesystem::path(png).filename().string();
     j["map_yaml"] = std::filesystem::path(yaml).filename().string();
     return j;
@@ -418,6 +457,10 @@ int main(int argc, char** argv) {
   app.add_option("--reach-tolerance", o.reach_tolerance_m,
                  "distance (m) at which a vanished path counts as reached")
       ->check(CLI::Range(0.01, 5.0))
+      ->capture_default_str();
+  app.add_option("--false-closure-increase", o.false_closure_increase_m,
+                 "error increase (m) beyond which a loop-closure correction counts as false")
+      ->check(CLI::Range(0.0, 10.0))
       ->capture_default_str();
   app.add_option("--pixels-per-cell", o.pixels_per_cell, "image scale")
       ->check(CLI::Range(1, 16))

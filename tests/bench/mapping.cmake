@@ -9,7 +9,8 @@ add_library(mapping_eval STATIC ${CMAKE_CURRENT_LIST_DIR}/eval/trajectory_metric
                                 ${CMAKE_CURRENT_LIST_DIR}/eval/waypoint_arrivals.cpp
                                 ${CMAKE_CURRENT_LIST_DIR}/eval/map_metrics.cpp
                                 ${CMAKE_CURRENT_LIST_DIR}/eval/map_overlay.cpp
-                                ${CMAKE_CURRENT_LIST_DIR}/eval/run_recorder.cpp)
+                                ${CMAKE_CURRENT_LIST_DIR}/eval/run_recorder.cpp
+                                ${CMAKE_CURRENT_LIST_DIR}/eval/closure_audit.cpp)
 target_include_directories(mapping_eval PUBLIC ${CMAKE_CURRENT_LIST_DIR})
 # simulator_core for its segment geometry, viewer_core for PNG files.
 target_link_libraries(mapping_eval PUBLIC slam_core simulator_core viewer_core)

@@ -26,6 +26,7 @@ void RunRecorder::on_truth(int64_t stamp_ns, const std::vector<RobotTruth>& robo
     const Vec2 truth = t.true_pose.position();
     if (!r.truth) starts_.push_back(truth);
     r.truth = t;
+    r.truth_stamp_ns = stamp_ns;
     for (GoalArrival& a : r.pending) {
       a.true_distance_m = distance(truth, a.waypoint);
       arrivals_.push_back(a);
@@ -44,9 +45,18 @@ void RunRecorder::on_state(const std::string& robot_id, Vec2 map_position) {
   robots_[robot_id].state = map_position;
 }
 
-void RunRecorder::on_correction(const std::string& robot_id, const Pose& map_from_odom, uint64_t version) {
+void RunRecorder::on_correction(const std::string& robot_id, const Pose& map_from_odom, uint64_t version,
+                                bool loop) {
   std::lock_guard lock(mutex_);
   Robot& r = robots_[robot_id];
+  // Version 0 is "never corrected", the identity: the first change (version 1) replaces it.
+  const bool previous_known = version > r.correction_version && (r.correction_version > 0 || version == 1);
+  if (previous_known && r.truth)
+    changes_.push_back({robot_id, version, r.truth_stamp_ns, loop, r.correction, map_from_odom,
+                        r.truth->reported_pose, r.truth->true_pose.position(),
+                        version - r.correction_version - 1});
+  else
+    ++unscored_corrections_;
   r.correction = map_from_odom;
   r.correction_version = version;
 }
@@ -85,6 +95,16 @@ std::map<std::string, std::vector<Vec2>> RunRecorder::true_tracks() const {
   std::map<std::string, std::vector<Vec2>> out;
   for (const auto& [id, r] : robots_) out[id] = r.track;
   return out;
+}
+
+std::vector<CorrectionChange> RunRecorder::correction_changes() const {
+  std::lock_guard lock(mutex_);
+  return changes_;
+}
+
+size_t RunRecorder::unscored_corrections() const {
+  std::lock_guard lock(mutex_);
+  return unscored_corrections_;
 }
 
 size_t RunRecorder::robots_seen() const {

@@ -3,7 +3,8 @@
 // as plain values: every ground-truth sample pairs each robot's true pose with its raw odometry and
 // with the server's corrected pose (the mapper's latest map <- odom correction applied to that
 // same odometry, so no transport delay enters the error), and with the latest published RobotState;
-// waypoints the planner counts reached are paired with the next truth sample of that robot.
+// waypoints the planner counts reached are paired with the next truth sample of that robot; every
+// change of a robot's correction is kept with the robot's latest truth sample (closure_audit.hpp).
 #include <cstdint>
 #include <map>
 #include <mutex>
@@ -11,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "eval/closure_audit.hpp"
 #include "eval/trajectory_metrics.hpp"
 #include "eval/waypoint_arrivals.hpp"
 
@@ -42,7 +44,8 @@ class RunRecorder {
 
   void on_truth(int64_t stamp_ns, const std::vector<RobotTruth>& robots);
   void on_state(const std::string& robot_id, Vec2 map_position);
-  void on_correction(const std::string& robot_id, const Pose& map_from_odom, uint64_t version);
+  // `loop`: the change comes from a loop closure (CORRECTION_LOOP).
+  void on_correction(const std::string& robot_id, const Pose& map_from_odom, uint64_t version, bool loop);
   void on_path(const std::string& robot_id, const PathView& path);
 
   std::vector<TrajectorySample> samples() const;
@@ -55,10 +58,16 @@ class RunRecorder {
   size_t robots_seen() const;
   size_t states_seen() const;
   size_t corrected_robots() const;  // robots with a correction of version > 0
+  // Changes whose previous correction and truth were known; the others are only counted: before
+  // the robot's first truth sample, or when the first version heard is not 1 (what it replaced is
+  // unknown), or when the version did not grow (a repeat, or a sequence that started again).
+  std::vector<CorrectionChange> correction_changes() const;
+  size_t unscored_corrections() const;
 
  private:
   struct Robot {
     std::optional<RobotTruth> truth;
+    int64_t truth_stamp_ns = 0;
     std::optional<Vec2> state;
     Pose correction;
     uint64_t correction_version = 0;
@@ -76,6 +85,8 @@ class RunRecorder {
   std::vector<TrajectorySample> samples_;
   std::vector<std::pair<Vec2, Vec2>> published_;
   std::vector<GoalArrival> arrivals_;
+  std::vector<CorrectionChange> changes_;
+  size_t unscored_corrections_ = 0;
 };
 
 }  // namespace slam::bench

@@ -14,7 +14,7 @@ TEST(RunRecorder, SamplesOncePerPeriodWhileStartedAndAppliesTheCorrection) {
   };
   truth_at(0, 0.0);  // before start: a start position, no sample
   recorder.start();
-  recorder.on_correction("r1", Pose{-0.5, 0.0, 0.0}, 3);
+  recorder.on_correction("r1", Pose{-0.5, 0.0, 0.0}, 3, false);
   for (int i = 1; i <= 20; ++i) truth_at(i * kSecond / 4, 0.1 * i);  // 4 per period
   recorder.stop();
   truth_at(10 * kSecond, 9.0);
