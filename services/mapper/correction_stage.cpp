@@ -14,19 +14,28 @@ Status CorrectionStage::restore(Mapper& mapper) {
   if (!stored) return stored.error();
   std::vector<correction::KeyframeCorrection> keyframes;
   keyframes.reserve(stored->size());
-  for (const Keyframe& k : *stored) keyframes.push_back({k.id, k.robot_id, k.segment, k.odom, k.map_from_odom});
+  for (const Keyframe& k : *stored)
+    keyframes.push_back({k.id, k.robot_id, k.segment, k.odom, k.map_from_odom});
   corrector_.restore(keyframes);
-  if (!keyframes.empty()) spdlog::info("pose correction: restored {} keyframes from the store", keyframes.size());
+  if (!keyframes.empty())
+    spdlog::info("pose correction: restored {} keyframes from the store", keyframes.size());
   return Status::ok();
 }
 
 void CorrectionStage::add(Mapper& mapper, const RobotScan& scan, int64_t now_mono_ns) {
   if (!enabled_) return mapper.integrate(scan, now_mono_ns);
   const ObservationView& v = scan.view;
-  auto keyframe = corrector_.add(scan.robot_id, scan.stamp_ns, Pose{v.x, v.y, v.theta}, v.has_heading, v.hits);
+  auto keyframe =
+      corrector_.add(scan.robot_id, scan.stamp_ns, Pose{v.x, v.y, v.theta}, v.has_heading, v.hits);
   if (!keyframe) return mapper.reject(scan.robot_id, scan.seq, keyframe.message());
-  held_[*keyframe].push_back(Held{std::string(scan.robot_id), scan.seq, scan.stamp_ns, v.x, v.y, v.theta,
-                                  v.has_heading, {v.hits.begin(), v.hits.end()},
+  held_[*keyframe].push_back(Held{std::string(scan.robot_id),
+                                  scan.seq,
+                                  scan.stamp_ns,
+                                  v.x,
+                                  v.y,
+                                  v.theta,
+                                  v.has_heading,
+                                  {v.hits.begin(), v.hits.end()},
                                   {v.misses.begin(), v.misses.end()}});
 }
 
@@ -59,8 +68,9 @@ void CorrectionStage::step(Mapper& mapper, int64_t now_ns, int64_t now_mono_ns) 
   if (!moved_.empty()) {
     save(mapper, moved_);
     if (shift >= rerender_shift_m_) {
-      spdlog::info("pose correction: graph optimised, {} keyframes moved (up to {:.3f} m): re-rendering the map",
-                   moved_.size(), shift);
+      spdlog::info(
+          "pose correction: graph optimised, {} keyframes moved (up to {:.3f} m): re-rendering the map",
+          moved_.size(), shift);
       mapper.rerender();
     }
   }
@@ -72,9 +82,10 @@ Status CorrectionStage::set_initial_pose(const Mapper& mapper, std::string_view 
     return Error{"initial pose is not finite"};
   const GridGeometry g = mapper.grid().geometry();
   if (!g.cell_at(map_pose.position())) {
-    return Error{fmt::format("initial pose ({:.2f}, {:.2f}) lies outside the map [{:.2f}, {:.2f}] x [{:.2f}, {:.2f}]",
-                             map_pose.x, map_pose.y, g.origin.x, g.origin.x + g.width * g.resolution, g.origin.y,
-                             g.origin.y + g.height * g.resolution)};
+    return Error{
+        fmt::format("initial pose ({:.2f}, {:.2f}) lies outside the map [{:.2f}, {:.2f}] x [{:.2f}, {:.2f}]",
+                    map_pose.x, map_pose.y, g.origin.x, g.origin.x + g.width * g.resolution, g.origin.y,
+                    g.origin.y + g.height * g.resolution)};
   }
   return corrector_.set_initial_pose(robot, map_pose);
 }

@@ -145,7 +145,8 @@ void MapperNode::integrate(const slam::RobotObservation& sample) {
   const std::string_view robot(sample.robot_id().c_str(), sample.robot_id().size());
   auto view = to_view(sample, hits_, misses_);
   if (!view) return mapper_->reject(robot, sample.seq(), view.message());
-  corrections_->add(*mapper_, RobotScan{robot, sample.seq(), sample.stamp_ns(), *view, 0, Pose{}}, monotonic_ns());
+  corrections_->add(*mapper_, RobotScan{robot, sample.seq(), sample.stamp_ns(), *view, 0, Pose{}},
+                    monotonic_ns());
 }
 
 void MapperNode::handle_initial_pose(const slam::InitialPose& request) {
@@ -154,12 +155,12 @@ void MapperNode::handle_initial_pose(const slam::InitialPose& request) {
   const Status s = corrections_->set_initial_pose(*mapper_, robot, pose);
   RequestReply reply{request.request_id(), RequestResult::Ok, ""};
   if (s) {
-    reply.message = fmt::format("initial pose of {} set to ({:.3f}, {:.3f}, {:.1f} deg)", robot, pose.x, pose.y,
-                                pose.theta * 180.0 / 3.141592653589793);
+    reply.message = fmt::format("initial pose of {} set to ({:.3f}, {:.3f}, {:.1f} deg)", robot, pose.x,
+                                pose.y, pose.theta * 180.0 / 3.141592653589793);
     spdlog::info("{}", reply.message);
   } else {
     reply.result = s.message().starts_with("unknown robot") ? RequestResult::UnknownRobot
-                                                              : RequestResult::InvalidRequest;
+                                                            : RequestResult::InvalidRequest;
     reply.message = s.message();
     bump(counters_.get("initial_poses_rejected"));
   }

@@ -13,8 +13,8 @@
 #include "common/core/log.hpp"
 #include "common/core/result.hpp"
 #include "common/fastdds/fast_topics.hpp"
-#include "mapper/mapper.hpp"
 #include "mapper/correction_stage.hpp"
+#include "mapper/mapper.hpp"
 #include "mapper/mapper_intake.hpp"
 #include "mapper/mapper_options.hpp"
 

@@ -5,8 +5,9 @@
 
 namespace slam::correction {
 
-KeyframeBuilder::Step KeyframeBuilder::add(uint64_t id, uint32_t robot, int64_t stamp_ns, const Pose& odom_pose,
-                                           bool has_heading, std::span<const Vec2> hits) {
+KeyframeBuilder::Step KeyframeBuilder::add(uint64_t id, uint32_t robot, int64_t stamp_ns,
+                                           const Pose& odom_pose, bool has_heading,
+                                           std::span<const Vec2> hits) {
   const Pose pose{odom_pose.x, odom_pose.y, has_heading ? odom_pose.theta : 0.0};
   if (has_last_ && !jumped_) {
     // By distance only: receive stamps jitter (and a simulator may run faster than real time).

@@ -16,23 +16,23 @@
 namespace slam::correction {
 
 struct KeyframeOptions {
-  double travel_m = 0.4;           // close after this much travel...
-  double turn_rad = 0.4;           // ...or this much turning (robots that report a heading)...
-  int max_messages = 30;           // ...or this many messages...
+  double travel_m = 0.4;                // close after this much travel...
+  double turn_rad = 0.4;                // ...or this much turning (robots that report a heading)...
+  int max_messages = 30;                // ...or this many messages...
   int64_t max_span_ns = 4'000'000'000;  // ...or when its messages span this long
-  double jump_m = 1.0;             // an odometry step longer than this between two messages is a jump
+  double jump_m = 1.0;                  // an odometry step longer than this between two messages is a jump
 };
 
 struct Keyframe {
   uint64_t id = 0;
-  uint32_t robot = 0;           // the corrector's robot index
-  uint32_t segment = 0;         // trajectory segment of the robot
-  Pose odom;                    // origin in the robot's odometry frame (heading 0 without one)
+  uint32_t robot = 0;    // the corrector's robot index
+  uint32_t segment = 0;  // trajectory segment of the robot
+  Pose odom;             // origin in the robot's odometry frame (heading 0 without one)
   bool has_heading = false;
   int messages = 0;
   int64_t first_stamp_ns = 0;
   int64_t last_stamp_ns = 0;
-  std::vector<Vec2> points;     // obstacle points in the keyframe's frame
+  std::vector<Vec2> points;  // obstacle points in the keyframe's frame
 };
 
 // One robot's open keyframe. Plain data; the corrector owns one per robot.

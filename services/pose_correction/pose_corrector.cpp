@@ -1,12 +1,11 @@
 #include "pose_correction/pose_corrector.hpp"
 
-#include <Eigen/LU>
+#include <spdlog/spdlog.h>
 
+#include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
 #include <utility>
-
-#include <spdlog/spdlog.h>
 
 #include "pose_correction/graph_optimizer.hpp"
 
@@ -35,15 +34,15 @@ Eigen::Matrix3d with_floor(const Eigen::Matrix3d& c, double sigma_m, double sigm
 }
 
 constexpr size_t kMaxNeighbours = 40;
-constexpr double kPointReach_m = 4.5;        // sensor range plus margin: local grids cover it
-constexpr double kTiedSigma_m = 0.05;        // chain uncertainty above which a wide search is needed
-constexpr double kStartSigma_m = 0.05;       // a robot's first keyframe: its start pose is trusted
+constexpr double kPointReach_m = 4.5;   // sensor range plus margin: local grids cover it
+constexpr double kTiedSigma_m = 0.05;   // chain uncertainty above which a wide search is needed
+constexpr double kStartSigma_m = 0.05;  // a robot's first keyframe: its start pose is trusted
 constexpr double kStartSigma_rad = 0.02;
-constexpr double kSegmentSigma_m = 2.0;      // after an odometry jump the pose is barely known
+constexpr double kSegmentSigma_m = 2.0;  // after an odometry jump the pose is barely known
 constexpr double kSegmentSigma_rad = 0.5;
 constexpr double kOperatorSigma_m = 0.02;
 constexpr double kOperatorSigma_rad = 0.01;
-constexpr double kMovedEpsilon_m = 0.001;    // smaller keyframe moves are not reported
+constexpr double kMovedEpsilon_m = 0.001;  // smaller keyframe moves are not reported
 
 }  // namespace
 
@@ -56,8 +55,10 @@ uint32_t PoseCorrector::robot_index(std::string_view robot) {
   const std::string key(robot);
   if (auto it = robot_ids_.find(key); it != robot_ids_.end()) return it->second;
   const auto index = static_cast<uint32_t>(robots_.size());
-  Robot robot_state{key, KeyframeBuilder(options_.keyframe), {}, Eigen::Matrix3d::Zero(), std::nullopt,
-                    std::nullopt, false, false};
+  Robot robot_state{key,          KeyframeBuilder(options_.keyframe),
+                    {},           Eigen::Matrix3d::Zero(),
+                    std::nullopt, std::nullopt,
+                    false,        false};
   robot_state.state.robot = key;
   robots_.push_back(std::move(robot_state));
   robot_ids_.emplace(key, index);
@@ -103,7 +104,8 @@ Eigen::Matrix3d PoseCorrector::odometry_covariance(const Pose& relative) const {
   return diagonal(st, st, sr);
 }
 
-void PoseCorrector::old_neighbours(uint32_t robot, int64_t stamp_ns, Vec2 centre, std::vector<uint32_t>& out) {
+void PoseCorrector::old_neighbours(uint32_t robot, int64_t stamp_ns, Vec2 centre,
+                                   std::vector<uint32_t>& out) {
   out.clear();
   index_.near(centre, options_.closure_radius_m, out);
   const auto min_age_ns = static_cast<int64_t>(options_.old_age_s * 1e9);
@@ -145,7 +147,8 @@ void PoseCorrector::add_edge(EdgeKind kind, uint32_t from, uint32_t to, const Po
   edges_.push_back(e);
 }
 
-void PoseCorrector::finalise(Keyframe&& keyframe, const GridView& grid, std::vector<KeyframeCorrection>& out) {
+void PoseCorrector::finalise(Keyframe&& keyframe, const GridView& grid,
+                             std::vector<KeyframeCorrection>& out) {
   Robot& rb = robots_[keyframe.robot];
   ++stats_.keyframes;
   const Pose predicted = rb.state.map_from_odom.compose(keyframe.odom);
@@ -207,9 +210,10 @@ void PoseCorrector::finalise(Keyframe&& keyframe, const GridView& grid, std::vec
           closure = distance(tie->pose.position(), estimate.position()) > 0.02 ||
                     std::abs(wrap_angle(tie->pose.theta - estimate.theta)) > 0.005;
           ++stats_.closures_accepted;
-          spdlog::info("loop closure: robot {} keyframe {} moved {:.3f} m, {:.2f} deg against {} old keyframes",
-                       rb.name, keyframe.id, distance(tie->pose.position(), estimate.position()),
-                       wrap_angle(tie->pose.theta - estimate.theta) * 57.29578, neighbours_.size());
+          spdlog::info(
+              "loop closure: robot {} keyframe {} moved {:.3f} m, {:.2f} deg against {} old keyframes",
+              rb.name, keyframe.id, distance(tie->pose.position(), estimate.position()),
+              wrap_angle(tie->pose.theta - estimate.theta) * 57.29578, neighbours_.size());
         }
       } else {
         ++stats_.closures_rejected;
@@ -272,7 +276,8 @@ void PoseCorrector::finalise(Keyframe&& keyframe, const GridView& grid, std::vec
   rb.state.segment = keyframe.segment;
   ++rb.state.keyframes;
   mark_changed(rb, source);
-  out.push_back(KeyframeCorrection{keyframe.id, rb.name, keyframe.segment, keyframe.odom, rb.state.map_from_odom});
+  out.push_back(
+      KeyframeCorrection{keyframe.id, rb.name, keyframe.segment, keyframe.odom, rb.state.map_from_odom});
 }
 
 void PoseCorrector::mark_changed(Robot& robot, CorrectionSource source) {
@@ -304,7 +309,6 @@ void PoseCorrector::start_optimisation() {
   tied_since_optimise_ = 0;
   closure_since_optimise_ = false;
 }
-
 
 double PoseCorrector::take_optimised(std::vector<KeyframeCorrection>& moved) {
   if (!optimising_) return 0.0;

@@ -77,15 +77,15 @@ struct RobotCorrection {
 
 struct CorrectorStats {
   int64_t keyframes = 0;
-  int64_t matched = 0;         // narrow matches accepted
-  int64_t unmatched = 0;       // keyframes placed by odometry alone (too few points, poor score)
+  int64_t matched = 0;    // narrow matches accepted
+  int64_t unmatched = 0;  // keyframes placed by odometry alone (too few points, poor score)
   int64_t closures_tried = 0;
   int64_t closures_accepted = 0;
   int64_t closures_rejected = 0;  // a match was found but failed the consistency check
   int64_t optimisations = 0;
   int64_t failed_optimisations = 0;
-  int64_t segments = 0;        // odometry jumps that started a new segment
-  int64_t rejected_inputs = 0; // non-finite observations, bad initial poses
+  int64_t segments = 0;         // odometry jumps that started a new segment
+  int64_t rejected_inputs = 0;  // non-finite observations, bad initial poses
 };
 
 class PoseCorrector {
@@ -129,9 +129,9 @@ class PoseCorrector {
     KeyframeBuilder builder;
     RobotCorrection state;
     Eigen::Matrix3d chain_cov = Eigen::Matrix3d::Zero();  // uncertainty since last tied to old map
-    std::optional<uint32_t> last_node;                     // slot of its previous keyframe
-    std::optional<Pose> operator_pose;                     // correction set by an operator, for its next keyframe
-    bool has_heading = false;                              // of its latest observation
+    std::optional<uint32_t> last_node;                    // slot of its previous keyframe
+    std::optional<Pose> operator_pose;  // correction set by an operator, for its next keyframe
+    bool has_heading = false;           // of its latest observation
     bool changed = false;
   };
   // One pose-graph node per finalised keyframe.
@@ -141,8 +141,8 @@ class PoseCorrector {
     uint32_t segment = 0;
     int64_t stamp_ns = 0;
     Pose odom;
-    Pose estimate;                 // map pose of the keyframe origin
-    std::vector<Vec2> points;      // keyframe frame; empty for restored keyframes
+    Pose estimate;             // map pose of the keyframe origin
+    std::vector<Vec2> points;  // keyframe frame; empty for restored keyframes
     bool fixed = false;
   };
 
@@ -151,9 +151,11 @@ class PoseCorrector {
   // Old keyframes (another robot's, or older than old_age_s) near `centre`, nearest first.
   void old_neighbours(uint32_t robot, int64_t stamp_ns, Vec2 centre, std::vector<uint32_t>& out);
   // Draws the points of `slots` (at their current estimates) into local_ around `centre`.
-  GridView draw_local_grid(std::span<const uint32_t> slots, Vec2 centre, double half_extent, double resolution);
+  GridView draw_local_grid(std::span<const uint32_t> slots, Vec2 centre, double half_extent,
+                           double resolution);
   Eigen::Matrix3d odometry_covariance(const Pose& relative) const;
-  void add_edge(EdgeKind kind, uint32_t from, uint32_t to, const Pose& measurement, const Eigen::Matrix3d& cov);
+  void add_edge(EdgeKind kind, uint32_t from, uint32_t to, const Pose& measurement,
+                const Eigen::Matrix3d& cov);
   void start_optimisation();
   void rebuild_index();
   void mark_changed(Robot& robot, CorrectionSource source);

@@ -47,7 +47,8 @@ TEST(KeyframeBuilder, ClosesAfterMaxMessagesWhenStandingStill) {
   KeyframeOptions options;
   options.max_messages = 5;
   KeyframeBuilder builder(options);
-  for (int i = 0; i < 4; ++i) EXPECT_EQ(builder.add(1, 0, i * kStep, {}, true, {}), KeyframeBuilder::Step::Added);
+  for (int i = 0; i < 4; ++i)
+    EXPECT_EQ(builder.add(1, 0, i * kStep, {}, true, {}), KeyframeBuilder::Step::Added);
   EXPECT_EQ(builder.add(1, 0, 4 * kStep, {}, true, {}), KeyframeBuilder::Step::AddedAndClosed);
 }
 

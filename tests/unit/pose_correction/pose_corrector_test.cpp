@@ -16,7 +16,7 @@ struct Wall {
 
 // A 6 x 5 m room with an L-shaped inner wall and a pillar: enough structure to pin x, y and theta.
 std::vector<Wall> room() {
-  return {{{0, 0}, {6, 0}}, {{6, 0}, {6, 5}}, {{6, 5}, {0, 5}}, {{0, 5}, {0, 0}},
+  return {{{0, 0}, {6, 0}}, {{6, 0}, {6, 5}},   {{6, 5}, {0, 5}},   {{0, 5}, {0, 0}},
           {{2, 2}, {4, 2}}, {{4, 2}, {4, 3.5}}, {{1, 4}, {1.4, 4}}, {{1.4, 4}, {1.4, 4.4}}};
 }
 
@@ -97,7 +97,8 @@ TEST(PoseCorrector, CorrectionKeepsADriftingRobotOnAKnownMap) {
         corrector.process(map.view(), stamp, finalised);
         const Pose corrected = corrector.correction("r1").compose(belief);
         worst_raw = std::max(worst_raw, distance(belief.position(), truth.position()));
-        if (step > 20) worst_corrected = std::max(worst_corrected, distance(corrected.position(), truth.position()));
+        if (step > 20)
+          worst_corrected = std::max(worst_corrected, distance(corrected.position(), truth.position()));
       }
     }
   }
