@@ -43,8 +43,9 @@ class CorrectionStageTest : public ::testing::Test {
     std::vector<Vec2> hits;
     for (int i = -3; i <= 3; ++i) hits.push_back({x + 0.1 * i + 0.03, kWallY});
     const int64_t stamp = step * kStepNs;
-    stage.add(mapper, RobotScan{robot, static_cast<uint64_t>(step), stamp,
-                                ObservationView{x, y, theta, true, hits, {}}, 0, Pose{}},
+    stage.add(mapper,
+              RobotScan{robot, static_cast<uint64_t>(step), stamp,
+                        ObservationView{x, y, theta, true, hits, {}}, 0, Pose{}},
               stamp);
   }
 
@@ -69,9 +70,8 @@ class CorrectionStageTest : public ::testing::Test {
     auto store = ObservationStore::open(options_.store);
     EXPECT_TRUE(store.is_ok()) << store.message();
     if (!store) return ids;
-    EXPECT_TRUE(store->for_each([&](const ObservationRecord& r) {
-      ids[std::string(r.robot_id)].push_back(r.keyframe_id);
-    }));
+    EXPECT_TRUE(store->for_each(
+        [&](const ObservationRecord& r) { ids[std::string(r.robot_id)].push_back(r.keyframe_id); }));
     return ids;
   }
 
@@ -138,7 +138,8 @@ TEST_F(CorrectionStageTest, HoldsObservationsUntilTheirKeyframeIsFinalised) {
   EXPECT_EQ(ids.at("r2").size(), 2u);
   std::set<KeyframeId> stored;
   for (const Keyframe& k : stored_keyframes()) stored.insert(k.id);
-  for (const KeyframeId id : referenced) EXPECT_EQ(stored.count(id), 1u) << "keyframe " << id << " not stored";
+  for (const KeyframeId id : referenced)
+    EXPECT_EQ(stored.count(id), 1u) << "keyframe " << id << " not stored";
 }
 
 TEST_F(CorrectionStageTest, WithSlamOffObservationsPassStraightThrough) {
