@@ -42,11 +42,15 @@ constexpr double kSegmentSigma_m = 2.0;  // after an odometry jump the pose is b
 constexpr double kSegmentSigma_rad = 0.5;
 constexpr double kOperatorSigma_m = 0.02;
 constexpr double kOperatorSigma_rad = 0.01;
+<<<<<<< HEAD
 constexpr double kMovedEpsilon_m = 0.001;    // smaller keyframe moves are not reported
 constexpr double kJumpWarning_m = 0.3;       // a correction moving a robot this far is logged
 constexpr double kClosureMaxSigma_m = 0.05;  // a closure match more spread than this is ambiguous
 constexpr double kClosureMaxSigma_rad = 0.035;
 constexpr double kClosureLossScale = 3.0;  // Cauchy scale (sigmas) of tie and closure edges
+=======
+constexpr double kMovedEpsilon_m = 0.001;  // smaller keyframe moves are not reported
+>>>>>>> slamtests
 
 }  // namespace
 
@@ -62,8 +66,12 @@ uint32_t PoseCorrector::robot_index(std::string_view robot) {
   Robot robot_state{key,          KeyframeBuilder(options_.keyframe),
                     {},           Eigen::Matrix3d::Zero(),
                     std::nullopt, std::nullopt,
+<<<<<<< HEAD
                     std::nullopt, false,
                     false};
+=======
+                    false,        false};
+>>>>>>> slamtests
   robot_state.state.robot = key;
   robots_.push_back(std::move(robot_state));
   robot_ids_.emplace(key, index);
