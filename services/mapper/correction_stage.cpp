@@ -32,7 +32,6 @@ void CorrectionStage::add(Mapper& mapper, const RobotScan& scan, int64_t now_mon
   auto keyframe =
       corrector_.add(scan.robot_id, scan.stamp_ns, Pose{v.x, v.y, v.theta}, v.has_heading, v.hits);
   if (!keyframe) return mapper.reject(scan.robot_id, scan.seq, keyframe.message());
-<<<<<<< HEAD
   // Recycled records: their strings and point buffers keep their capacity (no allocation per message).
   Held held;
   if (!spare_.empty()) {
@@ -49,17 +48,6 @@ void CorrectionStage::add(Mapper& mapper, const RobotScan& scan, int64_t now_mon
   held.hits.assign(v.hits.begin(), v.hits.end());
   held.misses.assign(v.misses.begin(), v.misses.end());
   held_[*keyframe].push_back(std::move(held));
-=======
-  held_[*keyframe].push_back(Held{std::string(scan.robot_id),
-                                  scan.seq,
-                                  scan.stamp_ns,
-                                  v.x,
-                                  v.y,
-                                  v.theta,
-                                  v.has_heading,
-                                  {v.hits.begin(), v.hits.end()},
-                                  {v.misses.begin(), v.misses.end()}});
->>>>>>> slamtests
 }
 
 void CorrectionStage::save(Mapper& mapper, std::span<const correction::KeyframeCorrection> keyframes) {

@@ -33,6 +33,18 @@ Eigen::Matrix3d with_floor(const Eigen::Matrix3d& c, double sigma_m, double sigm
   return out;
 }
 
+// The information-weighted mean of two estimates of one pose (angles compared wrapped).
+Pose fuse(const Pose& a, const Eigen::Matrix3d& ca, const Pose& b, const Eigen::Matrix3d& cb) {
+  const Eigen::Matrix3d gain = ca * (ca + cb).inverse();
+  const Eigen::Vector3d delta(b.x - a.x, b.y - a.y, wrap_angle(b.theta - a.theta));
+  const Eigen::Vector3d step = gain * delta;
+  return {a.x + step.x(), a.y + step.y(), wrap_angle(a.theta + step.z())};
+}
+
+Eigen::Matrix3d fused_covariance(const Eigen::Matrix3d& ca, const Eigen::Matrix3d& cb) {
+  return (ca.inverse() + cb.inverse()).inverse();
+}
+
 constexpr size_t kMaxNeighbours = 40;
 constexpr double kPointReach_m = 4.5;   // sensor range plus margin: local grids cover it
 constexpr double kTiedSigma_m = 0.05;   // chain uncertainty above which a wide search is needed
@@ -42,15 +54,11 @@ constexpr double kSegmentSigma_m = 2.0;  // after an odometry jump the pose is b
 constexpr double kSegmentSigma_rad = 0.5;
 constexpr double kOperatorSigma_m = 0.02;
 constexpr double kOperatorSigma_rad = 0.01;
-<<<<<<< HEAD
 constexpr double kMovedEpsilon_m = 0.001;    // smaller keyframe moves are not reported
 constexpr double kJumpWarning_m = 0.3;       // a correction moving a robot this far is logged
 constexpr double kClosureMaxSigma_m = 0.05;  // a closure match more spread than this is ambiguous
 constexpr double kClosureMaxSigma_rad = 0.035;
 constexpr double kClosureLossScale = 3.0;  // Cauchy scale (sigmas) of tie and closure edges
-=======
-constexpr double kMovedEpsilon_m = 0.001;  // smaller keyframe moves are not reported
->>>>>>> slamtests
 
 }  // namespace
 
@@ -66,12 +74,8 @@ uint32_t PoseCorrector::robot_index(std::string_view robot) {
   Robot robot_state{key,          KeyframeBuilder(options_.keyframe),
                     {},           Eigen::Matrix3d::Zero(),
                     std::nullopt, std::nullopt,
-<<<<<<< HEAD
                     std::nullopt, false,
                     false};
-=======
-                    false,        false};
->>>>>>> slamtests
   robot_state.state.robot = key;
   robots_.push_back(std::move(robot_state));
   robot_ids_.emplace(key, index);
@@ -187,8 +191,11 @@ void PoseCorrector::finalise(Keyframe&& keyframe, const GridView& grid,
   CorrectionSource source = rb.state.source;
   const auto narrow = matcher_.match(grid, keyframe.points, predicted, options_.track_window);
   if (narrow) {
-    estimate = narrow->pose;
+    // Fused with the odometry prediction by their covariances (a Kalman update): a sparse
+    // keyframe's match is noisier than half a metre of odometry, and taking it as is would
+    // random-walk the pose where the map is only the robot's own recent trail.
     cov = with_floor(narrow->covariance, 0.005, 0.002);
+    estimate = fuse(predicted, odom_cov, narrow->pose, cov);
     source = CorrectionSource::Match;
     ++stats_.matched;
   } else {
@@ -244,10 +251,15 @@ void PoseCorrector::finalise(Keyframe&& keyframe, const GridView& grid,
       source = CorrectionSource::Loop;
       ++rb.state.loop_closures;
       closure_since_optimise_ = true;
+      estimate = anchored_estimate;
+      rb.chain_cov = anchored_cov;
+    } else {
+      // A tie inside the tracking window: the same update, weighted by what the robot has
+      // accumulated since it was last tied.
+      estimate = fuse(estimate, rb.chain_cov, anchored_estimate, anchored_cov);
+      rb.chain_cov = fused_covariance(rb.chain_cov, anchored_cov);
     }
-    estimate = anchored_estimate;
     cov = anchored_cov;
-    rb.chain_cov = anchored_cov;
     ++tied_since_optimise_;
   }
   if (operator_set) {
