@@ -23,7 +23,6 @@
 namespace slam::testkit {
 namespace {
 
-
 // What the test hears, written by listener threads. Each RobotState is paired with the RobotOdometry
 // published beside it (same stamp). Each ground-truth sample is paired with the state whose raw
 // odometry pose is nearest to the pose the simulator reported at that instant, moved by the small
@@ -45,7 +44,6 @@ class DriftObserver {
     std::lock_guard lock(mutex_);
     truths_.push_back(
         {Vec2{r.true_pose().x(), r.true_pose().y()}, Vec2{r.reported_pose().x(), r.reported_pose().y()}});
-
   }
 
   struct Pair {
@@ -103,10 +101,29 @@ TEST(SlamDriftTest, DriftingRobotStaysCloseToTheTruth) {
   const std::string broker = "tcp://127.0.0.1:" + std::to_string(port);
   group.start("gateway", {bin_path("slam-gateway"), "--domain", domain, "--broker", broker});
   group.start("mapper", {bin_path("slam-mapper"), "--domain", domain, "--store", group.dir() + "/map.db"});
-  group.start("planner", {bin_path("slam-planner"), "--domain", domain, "--goal-store", group.dir() + "/goals.json"});
-  group.start("simulator", {bin_path("slam-simulator"), "--domain", domain, "--broker", broker, "--world", "office",
-                            "--robots", "1", "--protocol", "v1", "--speed", std::to_string(kSpeed), "--drift",
-                            "0.06", "--heading-drift", "0.03", "--seed", "11", "--truth-rate", "20"});
+  group.start("planner",
+              {bin_path("slam-planner"), "--domain", domain, "--goal-store", group.dir() + "/goals.json"});
+  group.start("simulator", {bin_path("slam-simulator"),
+                            "--domain",
+                            domain,
+                            "--broker",
+                            broker,
+                            "--world",
+                            "office",
+                            "--robots",
+                            "1",
+                            "--protocol",
+                            "v1",
+                            "--speed",
+                            std::to_string(kSpeed),
+                            "--drift",
+                            "0.06",
+                            "--heading-drift",
+                            "0.03",
+                            "--seed",
+                            "11",
+                            "--truth-rate",
+                            "20"});
   const auto dump_logs = [&] {
     for (const char* s : {"gateway", "mapper", "planner", "simulator"})
       std::cerr << "--- " << s << " log ---\n" << group.log(s) << "\n";
@@ -156,12 +173,14 @@ TEST(SlamDriftTest, DriftingRobotStaysCloseToTheTruth) {
   }
   // The errors over the run, ten points, so a failure shows when the correction went astray.
   for (size_t i = 0; i < pairs.size(); i += std::max<size_t>(pairs.size() / 10, 1))
-    std::printf("slam_drift_test: pair %3zu: corrected %.3f m, raw %.3f m\n", i, pairs[i].corrected_m, pairs[i].raw_m);
+    std::printf("slam_drift_test: pair %3zu: corrected %.3f m, raw %.3f m\n", i, pairs[i].corrected_m,
+                pairs[i].raw_m);
   double raw_sq = 0.0;
   for (const auto& p : pairs) raw_sq += p.raw_m * p.raw_m;
-  std::printf("slam_drift_test: %zu pairs; corrected RMSE %.3f m (end %.3f m), raw RMSE %.3f m (end %.3f m)\n",
-              pairs.size(), corrected_rmse, corrected_end, std::sqrt(raw_sq / static_cast<double>(pairs.size())),
-              raw_end);
+  std::printf(
+      "slam_drift_test: %zu pairs; corrected RMSE %.3f m (end %.3f m), raw RMSE %.3f m (end %.3f m)\n",
+      pairs.size(), corrected_rmse, corrected_end, std::sqrt(raw_sq / static_cast<double>(pairs.size())),
+      raw_end);
   EXPECT_GT(raw_end, 0.25) << "test setup: the raw odometry did not drift enough to tell";
   EXPECT_LT(corrected_rmse, 0.15);
   EXPECT_LT(corrected_end, raw_end / 2);
