@@ -175,7 +175,8 @@ TEST(SlamDriftTest, DriftingRobotOnAKnownMapStaysCloseToTheTruth) {
   auto world = sim::builtin_world("office");
   ASSERT_TRUE(world) << world.message();
   const std::string prior_yaml = group.dir() + "/office.yaml";
-  ASSERT_TRUE(write_ros_map(prior_yaml, render_prior(*world, 0.05)));
+  const Status written = write_ros_map(prior_yaml, render_prior(*world, 0.05));
+  ASSERT_TRUE(written) << written.message();
   auto files = make_test_writer(**participant, dds::kMapFileRequest);
   Inbox<MapReply> replies;
   auto reply_reader = make_inbox_reader(**participant, dds::kMapReply, replies);
