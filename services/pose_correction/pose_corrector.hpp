@@ -147,6 +147,9 @@ class PoseCorrector {
     bool fixed = false;
   };
 
+  // A correction moving a robot this far (by a keyframe or an optimisation) is logged as a warning.
+  static constexpr double kJumpWarning_m = 0.3;
+
   uint32_t robot_index(std::string_view robot);
   void finalise(Keyframe&& keyframe, const GridView& grid, std::vector<KeyframeCorrection>& out);
   // Old keyframes (another robot's, or older than old_age_s) near `centre`, nearest first.
