@@ -38,6 +38,7 @@ class CorrectionStage {
   // Robots whose correction changed since the last call.
   void take_changed(std::vector<correction::RobotCorrection>& out);
   bool enabled() const { return enabled_; }
+  bool knows(std::string_view robot) const { return corrector_.knows(robot); }
   const correction::CorrectorStats& stats() const { return corrector_.stats(); }
 
  private:

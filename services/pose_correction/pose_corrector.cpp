@@ -326,12 +326,11 @@ Status PoseCorrector::set_initial_pose(std::string_view robot, const Pose& map_p
     ++stats_.rejected_inputs;
     return Error{"initial pose is not finite"};
   }
-  const auto it = robot_ids_.find(std::string(robot));
-  if (it == robot_ids_.end() || !robots_[it->second].builder.has_last()) {
+  if (!knows(robot)) {
     ++stats_.rejected_inputs;
     return Error{"unknown robot '" + std::string(robot) + "': no observation from it yet"};
   }
-  Robot& rb = robots_[it->second];
+  Robot& rb = robots_[robot_ids_.at(std::string(robot))];
   const Pose odom = rb.builder.last_odom();
   Pose correction;
   if (rb.has_heading) {
@@ -365,6 +364,11 @@ void PoseCorrector::restore(std::span<const KeyframeCorrection> keyframes) {
     if (rb.state.keyframes > 0) mark_changed(rb, CorrectionSource::Restored);
   }
   rebuild_index();
+}
+
+bool PoseCorrector::knows(std::string_view robot) const {
+  const auto it = robot_ids_.find(std::string(robot));
+  return it != robot_ids_.end() && robots_[it->second].builder.has_last();
 }
 
 Pose PoseCorrector::correction(std::string_view robot) const {

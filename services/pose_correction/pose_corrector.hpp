@@ -117,6 +117,8 @@ class PoseCorrector {
 
   // The robot's current correction; identity for an unknown robot.
   Pose correction(std::string_view robot) const;
+  // Whether the robot has sent an observation (an initial pose needs one to anchor to).
+  bool knows(std::string_view robot) const;
   // Robots whose correction changed since the last call.
   void take_changed(std::vector<RobotCorrection>& out);
   const CorrectorStats& stats() const { return stats_; }

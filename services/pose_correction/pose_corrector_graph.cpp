@@ -13,7 +13,7 @@ namespace slam::correction {
 
 namespace {
 
-constexpr double kMovedEpsilon_m = 0.001;    // smaller keyframe moves are not reported
+constexpr double kMovedEpsilon_m = 0.001;  // smaller keyframe moves are not reported
 constexpr double kClosureLossScale = 3.0;  // Cauchy scale (sigmas) of tie and closure edges
 
 }  // namespace
