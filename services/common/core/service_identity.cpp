@@ -2,6 +2,8 @@
 
 #include <unistd.h>
 
+#include "common/core/clock.hpp"
+
 namespace slam {
 
 ServiceIdentity ServiceIdentity::of(std::string service) {
@@ -36,6 +38,24 @@ PeriodicTask::PeriodicTask(std::chrono::milliseconds period, std::function<void(
 PeriodicTask::~PeriodicTask() {
   stop_ = true;
   if (thread_.joinable()) thread_.join();
+}
+
+HeartbeatLoop::HeartbeatLoop(std::string service, const Counters& counters, std::chrono::milliseconds period,
+                             Write write)
+    : identity_(ServiceIdentity::of(std::move(service))), counters_(counters), write_(std::move(write)) {
+  publish();
+  ticker_ = std::make_unique<PeriodicTask>(period, [this] { publish(); });
+}
+
+void HeartbeatLoop::set_state(uint32_t state) {
+  state_ = state;
+  publish();
+}
+
+void HeartbeatLoop::publish() {
+  std::lock_guard lock(publish_mutex_);
+  const auto counters = counters_.snapshot();
+  write_(HeartbeatContent{identity_, now_ns(), identity_.uptime_s(), state_.load(), counters});
 }
 
 }  // namespace slam

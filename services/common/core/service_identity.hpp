@@ -5,8 +5,14 @@
 #include <chrono>
 #include <cstdint>
 #include <functional>
+#include <memory>
+#include <mutex>
 #include <string>
 #include <thread>
+#include <utility>
+#include <vector>
+
+#include "common/core/counters.hpp"
 
 namespace slam {
 
@@ -32,6 +38,39 @@ class PeriodicTask {
  private:
   std::atomic<bool> stop_{false};
   std::thread thread_;
+};
+
+// One heartbeat's content, before a DDS vendor turns it into its Heartbeat sample.
+struct HeartbeatContent {
+  const ServiceIdentity& identity;
+  int64_t stamp_ns;
+  double uptime_s;
+  uint32_t state;  // the IDL ServiceState value
+  const std::vector<std::pair<std::string, int64_t>>& counters;
+};
+
+// The vendor-independent half of a heartbeat publisher: identity, state, counters and the thread.
+// `write` runs at construction (state STARTING), every `period`, and on each state change, never
+// twice at once, so the vendor side may reuse one sample buffer.
+class HeartbeatLoop {
+ public:
+  using Write = std::function<void(const HeartbeatContent&)>;
+  HeartbeatLoop(std::string service, const Counters& counters, std::chrono::milliseconds period, Write write);
+  HeartbeatLoop(const HeartbeatLoop&) = delete;
+  HeartbeatLoop& operator=(const HeartbeatLoop&) = delete;
+
+  void set_state(uint32_t state);
+  const ServiceIdentity& identity() const { return identity_; }
+
+ private:
+  void publish();
+
+  ServiceIdentity identity_;
+  const Counters& counters_;
+  Write write_;
+  std::atomic<uint32_t> state_{0};  // SERVICE_STARTING in both vendors' generated enums
+  std::mutex publish_mutex_;
+  std::unique_ptr<PeriodicTask> ticker_;  // last: stops first
 };
 
 }  // namespace slam

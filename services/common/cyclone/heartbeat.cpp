@@ -1,10 +1,9 @@
-// Heartbeat sample assembly and the publishing thread; identity fields match the Fast DDS
-// publisher's (instance id "host:pid") so the viewer treats every service alike.
+// Turns the vendor-independent heartbeat (common/core/service_identity.hpp) into Cyclone's sample;
+// identity fields match the Fast DDS publisher's so the viewer treats every service alike.
 #include "common/cyclone/heartbeat.hpp"
 
 #include <spdlog/spdlog.h>
 
-#include "common/core/clock.hpp"
 #include "common/core/topics.hpp"
 #include "common/cyclone/dds.hpp"
 
@@ -18,38 +17,25 @@ Result<std::unique_ptr<HeartbeatPublisher>> HeartbeatPublisher::start(dds_entity
   if (!writer) return writer.error();
   std::unique_ptr<HeartbeatPublisher> hb(new HeartbeatPublisher());
   hb->writer_ = *writer;
-  hb->counters_ = &counters;
-  hb->identity_ = ServiceIdentity::of(std::move(service));
-  hb->publish();
-  hb->ticker_ = std::make_unique<PeriodicTask>(period, [p = hb.get()] { p->publish(); });
+  hb->loop_ = std::make_unique<HeartbeatLoop>(std::move(service), counters, period,
+                                              [p = hb.get()](const HeartbeatContent& c) { p->write(c); });
   return hb;
 }
 
-HeartbeatPublisher::~HeartbeatPublisher() {
-  ticker_.reset();
-}
-
-void HeartbeatPublisher::set_state(slam_ServiceState state) {
-  state_ = state;
-  publish();
-}
-
-void HeartbeatPublisher::publish() {
-  std::lock_guard lock(publish_mutex_);
-  const auto counters = counters_->snapshot();
-  counter_samples_.resize(counters.size());
-  for (size_t i = 0; i < counters.size(); ++i) {
-    cyclone::copy_bounded(counters[i].first, counter_samples_[i].name, sizeof counter_samples_[i].name);
-    counter_samples_[i].value = counters[i].second;
+void HeartbeatPublisher::write(const HeartbeatContent& content) {
+  counter_samples_.resize(content.counters.size());
+  for (size_t i = 0; i < content.counters.size(); ++i) {
+    copy_bounded(content.counters[i].first, counter_samples_[i].name, sizeof counter_samples_[i].name);
+    counter_samples_[i].value = content.counters[i].second;
   }
   slam_Heartbeat sample{};
-  cyclone::copy_bounded(identity_.service, sample.service, sizeof sample.service);
-  cyclone::copy_bounded(identity_.instance_id, sample.instance_id, sizeof sample.instance_id);
-  sample.pid = identity_.pid;
-  cyclone::copy_bounded(identity_.host, sample.host, sizeof sample.host);
-  sample.stamp_ns = now_ns();
-  sample.uptime_s = identity_.uptime_s();
-  sample.state = state_.load();
+  copy_bounded(content.identity.service, sample.service, sizeof sample.service);
+  copy_bounded(content.identity.instance_id, sample.instance_id, sizeof sample.instance_id);
+  sample.pid = content.identity.pid;
+  copy_bounded(content.identity.host, sample.host, sizeof sample.host);
+  sample.stamp_ns = content.stamp_ns;
+  sample.uptime_s = content.uptime_s;
+  sample.state = static_cast<slam_ServiceState>(content.state);
   sample.counters = {static_cast<uint32_t>(counter_samples_.size()),
                      static_cast<uint32_t>(counter_samples_.size()), counter_samples_.data(), false};
   const dds_return_t rc = dds_write(writer_, &sample);

@@ -5,10 +5,8 @@
 #include <dds/dds.h>
 #include <slam/cyclone/system.h>
 
-#include <atomic>
 #include <chrono>
 #include <memory>
-#include <mutex>
 #include <string>
 #include <vector>
 
@@ -24,24 +22,19 @@ class HeartbeatPublisher {
   static Result<std::unique_ptr<HeartbeatPublisher>> start(
       dds_entity_t participant, std::string service, const Counters& counters,
       std::chrono::milliseconds period = std::chrono::seconds(1));
-  ~HeartbeatPublisher();
   HeartbeatPublisher(const HeartbeatPublisher&) = delete;
   HeartbeatPublisher& operator=(const HeartbeatPublisher&) = delete;
 
   // RUNNING after activation, STOPPING during shutdown; published at once.
-  void set_state(slam_ServiceState state);
+  void set_state(slam_ServiceState state) { loop_->set_state(state); }
 
  private:
   HeartbeatPublisher() = default;
-  void publish();
+  void write(const HeartbeatContent& content);
 
-  dds_entity_t writer_ = 0;  // child of the participant
-  const Counters* counters_ = nullptr;
-  ServiceIdentity identity_;
-  std::atomic<slam_ServiceState> state_{slam_SERVICE_STARTING};
-  std::mutex publish_mutex_;
-  std::vector<slam_Counter> counter_samples_;
-  std::unique_ptr<PeriodicTask> ticker_;  // last: stops first
+  dds_entity_t writer_ = 0;                    // child of the participant
+  std::vector<slam_Counter> counter_samples_;  // reused: the loop never writes twice at once
+  std::unique_ptr<HeartbeatLoop> loop_;        // last: stops first
 };
 
 }  // namespace slam::cyclone

@@ -1,7 +1,5 @@
 #include "common/fastdds/heartbeat.hpp"
 
-#include "common/core/clock.hpp"
-
 namespace slam {
 
 Result<std::unique_ptr<HeartbeatPublisher>> HeartbeatPublisher::start(dds::Participant& participant,
@@ -12,34 +10,22 @@ Result<std::unique_ptr<HeartbeatPublisher>> HeartbeatPublisher::start(dds::Parti
   if (!writer) return writer.error();
   std::unique_ptr<HeartbeatPublisher> hb(new HeartbeatPublisher());
   hb->writer_ = std::move(*writer);
-  hb->counters_ = &counters;
-  hb->identity_ = ServiceIdentity::of(std::move(service));
-  hb->publish();
-  hb->ticker_ = std::make_unique<PeriodicTask>(period, [p = hb.get()] { p->publish(); });
+  hb->loop_ = std::make_unique<HeartbeatLoop>(std::move(service), counters, period,
+                                              [p = hb.get()](const HeartbeatContent& c) { p->write(c); });
   return hb;
 }
 
-HeartbeatPublisher::~HeartbeatPublisher() {
-  ticker_.reset();
-}
-
-void HeartbeatPublisher::set_state(ServiceState state) {
-  state_ = state;
-  publish();
-}
-
-void HeartbeatPublisher::publish() {
-  std::lock_guard lock(publish_mutex_);
-  sample_.service(identity_.service);
-  sample_.instance_id(identity_.instance_id);
-  sample_.pid(identity_.pid);
-  sample_.host(identity_.host);
-  sample_.stamp_ns(now_ns());
-  sample_.uptime_s(identity_.uptime_s());
-  sample_.state(state_.load());
+void HeartbeatPublisher::write(const HeartbeatContent& content) {
+  sample_.service(content.identity.service);
+  sample_.instance_id(content.identity.instance_id);
+  sample_.pid(content.identity.pid);
+  sample_.host(content.identity.host);
+  sample_.stamp_ns(content.stamp_ns);
+  sample_.uptime_s(content.uptime_s);
+  sample_.state(static_cast<ServiceState>(content.state));
   auto& out = sample_.counters();
   out.clear();
-  for (const auto& [name, value] : counters_->snapshot()) {
+  for (const auto& [name, value] : content.counters) {
     Counter c;
     c.name(name);
     c.value(value);
