@@ -13,7 +13,8 @@ void CorrectionSchedule::begin_pass(size_t backlog, int64_t now_ns) {
     wide_tokens_ += static_cast<double>(now_ns - last_refill_ns_) * 1e-9 * options_.wide_per_s;
   }
   wide_tokens_ = std::min(wide_tokens_, std::max(1.0, options_.wide_per_s));
-  if (last_refill_ns_ == std::numeric_limits<int64_t>::min() || now_ns > last_refill_ns_) last_refill_ns_ = now_ns;
+  if (last_refill_ns_ == std::numeric_limits<int64_t>::min() || now_ns > last_refill_ns_)
+    last_refill_ns_ = now_ns;
 }
 
 bool CorrectionSchedule::allow_tie(RobotState& robot) {
@@ -31,8 +32,8 @@ bool CorrectionSchedule::allow_wide(RobotState& robot, int64_t stamp_ns) {
     return true;
   }
   const auto interval_ns = static_cast<int64_t>(options_.wide_interval_s * 1e9);
-  const bool robot_due =
-      robot.last_wide_ns == std::numeric_limits<int64_t>::min() || stamp_ns - robot.last_wide_ns >= interval_ns;
+  const bool robot_due = robot.last_wide_ns == std::numeric_limits<int64_t>::min() ||
+                         stamp_ns - robot.last_wide_ns >= interval_ns;
   if (!robot_due || wide_tokens_ < 1.0) return false;
   wide_tokens_ -= 1.0;
   robot.last_wide_ns = stamp_ns;

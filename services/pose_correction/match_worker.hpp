@@ -29,19 +29,19 @@ namespace slam::correction {
 struct MatchJob {
   // Filled on the loop thread.
   Keyframe keyframe;
-  uint32_t generation = 0;     // the robot's generation (a reset drops jobs of earlier ones)
-  Pose prepared_correction;    // the robot's map_from_odom when the job was prepared
-  Pose predicted;              // keyframe origin in the map
+  uint32_t generation = 0;           // the robot's generation (a reset drops jobs of earlier ones)
+  Pose prepared_correction;          // the robot's map_from_odom when the job was prepared
+  Pose predicted;                    // keyframe origin in the map
   std::optional<uint32_t> previous;  // slot of the robot's previous keyframe (same segment)
   Pose odom_relative;
   Eigen::Matrix3d odom_cov = Eigen::Matrix3d::Zero();
-  bool track = false;         // match against the live grid's window
+  bool track = false;  // match against the live grid's window
   GridGeometry track_geometry;
   std::vector<uint8_t> track_cells;
-  bool tie = false;           // match against the old keyframes around it
-  bool wide_needed = false;   // the robot's chain is loose: the tie must search the wide window
+  bool tie = false;          // match against the old keyframes around it
+  bool wide_needed = false;  // the robot's chain is loose: the tie must search the wide window
   bool wide_permitted = false;
-  uint32_t anchor = 0;        // slot of the nearest old keyframe
+  uint32_t anchor = 0;  // slot of the nearest old keyframe
   size_t neighbours = 0;
   GridGeometry tie_geometry;
   std::vector<uint8_t> tie_cells;

@@ -84,7 +84,7 @@ TEST(PoseCorrectorSchedule, ABacklogBeyondTheCapIsPlacedByOdometryAndCounted) {
   std::vector<KeyframeCorrection> finalised;
   corrector.process(map.view(), 9 * kStepNs, finalised);
   EXPECT_EQ(corrector.stats().placed_by_odometry, 5);  // the oldest five, beyond the cap
-  EXPECT_EQ(finalised.size(), 7u);                      // ...and the budget's two
+  EXPECT_EQ(finalised.size(), 7u);                     // ...and the budget's two
   EXPECT_EQ(corrector.stats().backlog, 3);
   EXPECT_EQ(corrector.stats().keyframes, 7);
 }
@@ -140,7 +140,8 @@ TEST(PoseCorrectorSchedule, OnTheWorkerEveryKeyframeIsFinalisedInOrderPerRobot) 
     for (uint64_t id : drive(corrector, robot_name(r), 0, 40, r)) ids.insert(id);
   }
   const int64_t later = 40 * kStepNs + 10'000'000'000LL;  // long silence: open keyframes close
-  for (int pass = 0; pass < 100000 && (finalised.size() < ids.size() || corrector.stats().backlog > 0); ++pass) {
+  for (int pass = 0; pass < 100000 && (finalised.size() < ids.size() || corrector.stats().backlog > 0);
+       ++pass) {
     corrector.process(map.view(), later, finalised);
     std::this_thread::yield();
   }
@@ -181,7 +182,8 @@ TEST(PoseCorrectorSchedule, AResetRobotLeavesThePoseGraphAndTheKeyframeIndex) {
     SCOPED_TRACE(reset ? "reset" : "no reset");
     if (reset) {
       EXPECT_EQ(corrector.stats().ties_tried, 0);
-      EXPECT_EQ(corrector.graph_keyframes(), static_cast<size_t>(corrector.stats().keyframes) - first_keyframes);
+      EXPECT_EQ(corrector.graph_keyframes(),
+                static_cast<size_t>(corrector.stats().keyframes) - first_keyframes);
       EXPECT_EQ(corrector.stats().robots_reset, 1);
     } else {
       EXPECT_GT(corrector.stats().ties_tried, 0);
