@@ -242,15 +242,18 @@ namespace {
 // alignment, so a match against the copy is the match against the grid).
 GridGeometry copy_window(const GridView& grid, Vec2 centre, double half_extent, std::vector<uint8_t>& cells) {
   const GridGeometry& g = grid.geometry;
-  const Cell lo = g.clamped_cell_at({centre.x - half_extent, centre.y - half_extent});
-  const Cell hi = g.clamped_cell_at({centre.x + half_extent, centre.y + half_extent});
   GridGeometry window;
   window.resolution = g.resolution;
+  if (g.cells() == 0 || grid.classes.size() < g.cells()) {  // an empty view stays empty
+    cells.clear();
+    return window;
+  }
+  const Cell lo = g.clamped_cell_at({centre.x - half_extent, centre.y - half_extent});
+  const Cell hi = g.clamped_cell_at({centre.x + half_extent, centre.y + half_extent});
   window.origin = g.corner(lo);
-  window.width = g.width > 0 ? hi.x - lo.x + 1 : 0;
-  window.height = g.height > 0 ? hi.y - lo.y + 1 : 0;
+  window.width = hi.x - lo.x + 1;
+  window.height = hi.y - lo.y + 1;
   cells.resize(window.cells());
-  if (grid.classes.size() < g.cells()) window.width = window.height = 0;  // an empty view stays empty
   for (int32_t row = 0; row < window.height; ++row) {
     const size_t from = g.index({lo.x, lo.y + row});
     std::copy_n(grid.classes.begin() + static_cast<std::ptrdiff_t>(from), window.width,
