@@ -104,6 +104,23 @@ Status CorrectionStage::set_initial_pose(const Mapper& mapper, std::string_view 
   return corrector_.set_initial_pose(robot, map_pose);
 }
 
+size_t CorrectionStage::reset_robot(std::string_view robot) {
+  if (!enabled_) return 0;
+  for (auto it = held_.begin(); it != held_.end();) {
+    if (!it->second.empty() && it->second.front().robot_id == robot) {
+      for (Held& h : it->second) {
+        if (spare_.size() < kMaxSpare) spare_.push_back(std::move(h));
+      }
+      it = held_.erase(it);
+    } else {
+      ++it;
+    }
+  }
+  const size_t removed = corrector_.reset_robot(robot);
+  spdlog::info("pose correction: robot {} reset, {} keyframes left the pose graph", robot, removed);
+  return removed;
+}
+
 void CorrectionStage::take_changed(std::vector<correction::RobotCorrection>& out) {
   corrector_.take_changed(out);
 }

@@ -6,7 +6,8 @@
 // already holds its own points would only confirm its predicted pose.
 // After a pose-graph optimisation the moved keyframes are stored and the grid is re-rendered.
 // With SLAM off, observations pass straight through with the identity (today's behaviour).
-// Plain C++; the mapper's loop thread calls everything.
+// Plain C++; the mapper's loop thread calls everything (the corrector may match on its own worker:
+// a keyframe's observations then reach the grid at a later step()).
 #include <cstdint>
 #include <string>
 #include <string_view>
@@ -35,6 +36,10 @@ class CorrectionStage {
 
   // An operator's initial pose; errors: unknown robot, not finite, outside the map, SLAM off.
   Status set_initial_pose(const Mapper& mapper, std::string_view robot, const Pose& map_pose);
+  // An operator's robot reset: its keyframes leave the pose graph and index, and its observations
+  // still waiting for a keyframe are dropped (the store forgets the robot's older ones). Returns
+  // how many keyframes left the graph.
+  size_t reset_robot(std::string_view robot);
   // Robots whose correction changed since the last call.
   void take_changed(std::vector<correction::RobotCorrection>& out);
   bool enabled() const { return enabled_; }

@@ -62,6 +62,7 @@ Status MapperNode::configure() {
   mapper_ = std::move(*mapper);
   correction::CorrectorOptions slam_options;
   slam_options.old_age_s = options_.slam_old_age_s;
+  slam_options.match_threads = 1;  // the map loop keeps integrating while keyframes are matched
   corrections_ = std::make_unique<CorrectionStage>(options_.slam_enabled(), slam_options);
   SLAM_TRY(corrections_->restore(*mapper_));
   update_periodic_counters();
@@ -128,7 +129,11 @@ void MapperNode::run_once() {
   publish_outcomes();
   for (const slam::RobotObservation& o : batch_.observations) integrate(o);
   corrections_->step(*mapper_, now_ns(), monotonic_ns());
-  for (MapCommand& c : batch_.commands) mapper_->submit(std::move(c));
+  for (MapCommand& c : batch_.commands) {
+    if (const auto* edit = std::get_if<EditRequest>(&c); edit && edit->kind == EditKind::ResetRobot)
+      corrections_->reset_robot(edit->robot_id);
+    mapper_->submit(std::move(c));
+  }
   for (const slam::InitialPose& p : batch_.initial_poses) handle_initial_pose(p);
   publish_outcomes();
   publish_corrections();
@@ -248,6 +253,12 @@ void MapperNode::update_periodic_counters() {
   counters_.get("slam_optimisations").store(st.optimisations, std::memory_order_relaxed);
   counters_.get("slam_segments").store(st.segments, std::memory_order_relaxed);
   counters_.get("slam_rejected_inputs").store(st.rejected_inputs, std::memory_order_relaxed);
+  counters_.get("slam_ties_tried").store(st.ties_tried, std::memory_order_relaxed);
+  counters_.get("slam_ties_skipped").store(st.ties_skipped, std::memory_order_relaxed);
+  counters_.get("slam_wide_skipped").store(st.wide_skipped, std::memory_order_relaxed);
+  counters_.get("slam_placed_by_odometry").store(st.placed_by_odometry, std::memory_order_relaxed);
+  counters_.get("slam_backlog").store(st.backlog, std::memory_order_relaxed);
+  counters_.get("slam_load").store(st.load, std::memory_order_relaxed);
 
   if (observation_reader_)
     metrics_.observations_lost.store(observation_reader_->samples_lost(), std::memory_order_relaxed);

@@ -5,6 +5,7 @@
 #include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
+#include <unordered_set>
 #include <utility>
 
 #include "pose_correction/graph_optimizer.hpp"
@@ -46,9 +47,10 @@ Eigen::Matrix3d fused_covariance(const Eigen::Matrix3d& ca, const Eigen::Matrix3
 }
 
 constexpr size_t kMaxNeighbours = 40;
-constexpr double kPointReach_m = 4.5;   // sensor range plus margin: local grids cover it
-constexpr double kTiedSigma_m = 0.05;   // chain uncertainty above which a wide search is needed
-constexpr double kStartSigma_m = 0.05;  // a robot's first keyframe: its start pose is trusted
+constexpr double kPointReach_m = 4.5;    // sensor range plus margin: local grids cover it
+constexpr double kWindowMargin_m = 0.3;  // beyond a keyframe's farthest point: the matcher's field blur
+constexpr double kTiedSigma_m = 0.05;    // chain uncertainty above which a wide search is needed
+constexpr double kStartSigma_m = 0.05;   // a robot's first keyframe: its start pose is trusted
 constexpr double kStartSigma_rad = 0.02;
 constexpr double kSegmentSigma_m = 2.0;  // after an odometry jump the pose is barely known
 constexpr double kSegmentSigma_rad = 0.5;
@@ -60,7 +62,15 @@ constexpr double kClosureMaxSigma_rad = 0.035;
 }  // namespace
 
 PoseCorrector::PoseCorrector(const CorrectorOptions& options)
-    : options_(options), matcher_(options.matcher), optimizer_(std::make_unique<GraphOptimizer>()) {}
+    : options_(options),
+      matcher_(options.matcher),
+      optimizer_(std::make_unique<GraphOptimizer>()),
+      schedule_(options.schedule) {
+  if (options.match_threads > 0) {
+    worker_ = std::make_unique<MatchWorker>(
+        options.matcher, [this](ScanMatcher& matcher, MatchJob& job) { match_keyframe(matcher, job); });
+  }
+}
 
 PoseCorrector::~PoseCorrector() = default;
 
@@ -68,11 +78,7 @@ uint32_t PoseCorrector::robot_index(std::string_view robot) {
   const std::string key(robot);
   if (auto it = robot_ids_.find(key); it != robot_ids_.end()) return it->second;
   const auto index = static_cast<uint32_t>(robots_.size());
-  Robot robot_state{key,          KeyframeBuilder(options_.keyframe),
-                    {},           Eigen::Matrix3d::Zero(),
-                    std::nullopt, std::nullopt,
-                    std::nullopt, false,
-                    false};
+  Robot robot_state(key, options_.keyframe);
   robot_state.state.robot = key;
   robots_.push_back(std::move(robot_state));
   robot_ids_.emplace(key, index);
@@ -103,12 +109,81 @@ Result<uint64_t> PoseCorrector::add(std::string_view robot, int64_t stamp_ns, co
 }
 
 void PoseCorrector::process(const GridView& grid, int64_t now_ns, std::vector<KeyframeCorrection>& out) {
+  land(out);
   for (Robot& rb : robots_) {
     if (rb.builder.stale(now_ns)) closed_.push_back(rb.builder.take());
   }
-  for (Keyframe& keyframe : closed_) finalise(std::move(keyframe), grid, out);
-  closed_.clear();
+  schedule_.begin_pass(closed_.size() + in_flight_, now_ns);
+  stats_.load = static_cast<int64_t>(schedule_.load());
+  size_t overflow = schedule_.overflow(closed_.size());
+  int budget = schedule_.pass_budget();
+  // In order; a keyframe whose robot has one in matching waits (its prediction needs that result),
+  // and so does everything after the budget. The oldest ones past the backlog cap go by odometry.
+  size_t kept = 0;
+  for (size_t i = 0; i < closed_.size(); ++i) {
+    Keyframe& keyframe = closed_[i];
+    const bool waits = robots_[keyframe.robot].matching || (overflow == 0 && budget == 0);
+    if (waits) {
+      if (kept != i) closed_[kept] = std::move(keyframe);
+      ++kept;
+      continue;
+    }
+    const bool match = overflow == 0;
+    if (match) {
+      --budget;
+    } else {
+      --overflow;
+    }
+    start(std::move(keyframe), grid, match, out);
+  }
+  closed_.resize(kept);
+  stats_.backlog = static_cast<int64_t>(closed_.size() + in_flight_);
   if (closure_since_optimise_ || tied_since_optimise_ >= options_.optimise_every) start_optimisation();
+}
+
+std::unique_ptr<MatchJob> PoseCorrector::take_job() {
+  if (spare_jobs_.empty()) return std::make_unique<MatchJob>();
+  auto job = std::move(spare_jobs_.back());
+  spare_jobs_.pop_back();
+  return job;
+}
+
+void PoseCorrector::recycle(std::unique_ptr<MatchJob> job) {
+  // Its buffers keep their capacity: the next keyframes allocate nothing for their grids.
+  job->keyframe.points.clear();
+  spare_jobs_.push_back(std::move(job));
+}
+
+void PoseCorrector::start(Keyframe&& keyframe, const GridView& grid, bool match,
+                          std::vector<KeyframeCorrection>& out) {
+  auto job = take_job();
+  prepare(std::move(keyframe), grid, match, *job);
+  if (!match) {
+    ++stats_.placed_by_odometry;
+  } else if (worker_) {
+    robots_[job->keyframe.robot].matching = true;
+    ++in_flight_;
+    worker_->submit(std::move(job));
+    return;
+  } else {
+    match_keyframe(matcher_, *job);
+  }
+  apply(*job, out);
+  recycle(std::move(job));
+}
+
+void PoseCorrector::land(std::vector<KeyframeCorrection>& out) {
+  if (!worker_) return;
+  landed_.clear();
+  worker_->take_done(landed_);
+  for (auto& job : landed_) {
+    --in_flight_;
+    Robot& rb = robots_[job->keyframe.robot];
+    rb.matching = false;
+    if (job->generation == rb.generation) apply(*job, out);  // else the robot was reset meanwhile
+    recycle(std::move(job));
+  }
+  landed_.clear();
 }
 
 Eigen::Matrix3d PoseCorrector::odometry_covariance(const Pose& relative) const {
@@ -134,20 +209,20 @@ void PoseCorrector::old_neighbours(uint32_t robot, int64_t stamp_ns, Vec2 centre
   if (out.size() > kMaxNeighbours) out.resize(kMaxNeighbours);
 }
 
-GridView PoseCorrector::draw_local_grid(std::span<const uint32_t> slots, Vec2 centre, double half_extent,
-                                        double resolution) {
+GridGeometry PoseCorrector::draw_local_grid(std::span<const uint32_t> slots, Vec2 centre, double half_extent,
+                                            double resolution, std::vector<uint8_t>& cells) const {
   GridGeometry g;
   g.resolution = resolution;
   g.width = g.height = static_cast<int32_t>(std::ceil(2.0 * half_extent / resolution));
   g.origin = {centre.x - half_extent, centre.y - half_extent};
-  local_cells_.assign(g.cells(), 0);
+  cells.assign(g.cells(), 0);
   for (uint32_t slot : slots) {
     const Node& n = nodes_[slot];
     for (const Vec2& p : n.points) {
-      if (const auto c = g.cell_at(n.estimate.transform(p))) local_cells_[g.index(*c)] = 2;  // occupied
+      if (const auto c = g.cell_at(n.estimate.transform(p))) cells[g.index(*c)] = 2;  // occupied
     }
   }
-  return GridView{g, local_cells_};
+  return g;
 }
 
 void PoseCorrector::add_edge(EdgeKind kind, uint32_t from, uint32_t to, const Pose& measurement,
@@ -161,61 +236,169 @@ void PoseCorrector::add_edge(EdgeKind kind, uint32_t from, uint32_t to, const Po
   edges_.push_back(e);
 }
 
-void PoseCorrector::finalise(Keyframe&& keyframe, const GridView& grid,
-                             std::vector<KeyframeCorrection>& out) {
-  Robot& rb = robots_[keyframe.robot];
-  ++stats_.keyframes;
-  const Pose predicted = rb.state.map_from_odom.compose(keyframe.odom);
+namespace {
 
-  std::optional<uint32_t> previous;
-  if (rb.last_node && nodes_[*rb.last_node].segment == keyframe.segment) previous = rb.last_node;
-  Pose odom_relative;
-  Eigen::Matrix3d odom_cov = diagonal(kSegmentSigma_m, kSegmentSigma_m, kSegmentSigma_rad);
-  if (previous) {
-    odom_relative = nodes_[*previous].odom.inverse().compose(keyframe.odom);
-    odom_cov = odometry_covariance(odom_relative);
-    const double d = norm(odom_relative.position());
-    rb.chain_cov += odom_cov;
+// Copies the cells of `grid` within `half_extent` of `centre` (whole cells, the grid's own
+// alignment, so a match against the copy is the match against the grid).
+GridGeometry copy_window(const GridView& grid, Vec2 centre, double half_extent, std::vector<uint8_t>& cells) {
+  const GridGeometry& g = grid.geometry;
+  GridGeometry window;
+  window.resolution = g.resolution;
+  if (g.cells() == 0 || grid.classes.size() < g.cells()) {  // an empty view stays empty
+    cells.clear();
+    return window;
+  }
+  const Cell lo = g.clamped_cell_at({centre.x - half_extent, centre.y - half_extent});
+  const Cell hi = g.clamped_cell_at({centre.x + half_extent, centre.y + half_extent});
+  window.origin = g.corner(lo);
+  window.width = hi.x - lo.x + 1;
+  window.height = hi.y - lo.y + 1;
+  cells.resize(window.cells());
+  for (int32_t row = 0; row < window.height; ++row) {
+    const size_t from = g.index({lo.x, lo.y + row});
+    std::copy_n(grid.classes.begin() + static_cast<std::ptrdiff_t>(from), window.width,
+                cells.begin() + static_cast<std::ptrdiff_t>(window.index({0, row})));
+  }
+  return window;
+}
+
+}  // namespace
+
+void PoseCorrector::prepare(Keyframe&& keyframe, const GridView& grid, bool match, MatchJob& job) {
+  Robot& rb = robots_[keyframe.robot];
+  job.generation = rb.generation;
+  job.prepared_correction = rb.state.map_from_odom;
+  job.predicted = rb.state.map_from_odom.compose(keyframe.odom);
+
+  job.previous.reset();
+  if (rb.last_node && nodes_[*rb.last_node].segment == keyframe.segment) job.previous = rb.last_node;
+  job.odom_relative = Pose{};
+  job.odom_cov = diagonal(kSegmentSigma_m, kSegmentSigma_m, kSegmentSigma_rad);
+  if (job.previous) {
+    job.odom_relative = nodes_[*job.previous].odom.inverse().compose(keyframe.odom);
+    job.odom_cov = odometry_covariance(job.odom_relative);
+    const double d = norm(job.odom_relative.position());
+    rb.chain_cov += job.odom_cov;
     rb.chain_cov(0, 0) += rb.chain_cov(2, 2) * d * d;  // heading uncertainty swings the position
     rb.chain_cov(1, 1) += rb.chain_cov(2, 2) * d * d;
   } else {
-    rb.chain_cov = odom_cov;
+    rb.chain_cov = job.odom_cov;
   }
 
-  // 1. Track: the keyframe against the whole grid, near the prediction.
-  Pose estimate = predicted;
-  Eigen::Matrix3d cov = rb.chain_cov;
-  CorrectionSource source = rb.state.source;
-  const auto narrow = matcher_.match(grid, keyframe.points, predicted, options_.track_window);
-  if (narrow) {
+  job.track = match;
+  job.tie = false;
+  job.wide_needed = job.wide_permitted = false;
+  if (match) {
+    // The window the tracking match can read: the farthest point, the search window and the
+    // likelihood field's blur around it.
+    double reach = 0.0;
+    for (const Vec2& p : keyframe.points) reach = std::max(reach, norm(p));
+    const double half = reach + options_.track_window.linear_m + kWindowMargin_m;
+    job.track_geometry = copy_window(grid, job.predicted.position(), half, job.track_cells);
+
+    // The tie to the old map, planned here where the pose graph lives (around the prediction: the
+    // narrow match moves the keyframe by at most the tracking window, which the grid covers).
+    old_neighbours(keyframe.robot, keyframe.first_stamp_ns, job.predicted.position(), neighbours_);
+    if (!rb.operator_pose && static_cast<int>(neighbours_.size()) >= options_.closure_min_keyframes) {
+      if (schedule_.allow_tie(rb.schedule)) {
+        const double chain_sigma = std::sqrt(std::max(rb.chain_cov(0, 0), rb.chain_cov(1, 1)));
+        job.wide_needed = chain_sigma > kTiedSigma_m;
+        // Normal load: a wide search whenever tracking fails too; loaded: only the ones the
+        // schedule grants, taken only when certainly needed.
+        job.wide_permitted = schedule_.load() == Load::Normal ||
+                             (job.wide_needed && schedule_.allow_wide(rb.schedule, keyframe.first_stamp_ns));
+        if (job.wide_needed && !job.wide_permitted) {
+          ++stats_.wide_skipped;
+        } else {
+          job.tie = true;
+          job.anchor = neighbours_.front();
+          job.neighbours = neighbours_.size();
+          const double window =
+              job.wide_permitted ? options_.closure_window.linear_m : options_.track_window.linear_m;
+          job.tie_geometry = draw_local_grid(neighbours_, job.predicted.position(),
+                                             kPointReach_m + window + options_.track_window.linear_m,
+                                             grid.geometry.resolution, job.tie_cells);
+        }
+      } else {
+        ++stats_.ties_skipped;
+      }
+    }
+  }
+  job.keyframe = std::move(keyframe);
+}
+
+void PoseCorrector::match_keyframe(ScanMatcher& matcher, MatchJob& job) const {
+  job.narrow.reset();
+  job.tie_match.reset();
+  job.wide = job.wide_skipped = false;
+  job.estimate = job.predicted;
+  job.cov = Eigen::Matrix3d::Zero();
+  if (!job.track) return;
+  // 1. Track: the keyframe against the grid, near the prediction.
+  const auto& points = job.keyframe.points;
+  if (auto narrow = matcher.match(GridView{job.track_geometry, job.track_cells}, points, job.predicted,
+                                  options_.track_window)) {
     // Fused with the odometry prediction by their covariances (a Kalman update): a sparse
     // keyframe's match is noisier than half a metre of odometry, and taking it as is would
     // random-walk the pose where the map is only the robot's own recent trail.
-    cov = with_floor(narrow->covariance, 0.005, 0.002);
-    estimate = fuse(predicted, odom_cov, narrow->pose, cov);
+    job.cov = with_floor(narrow->covariance, 0.005, 0.002);
+    job.estimate = fuse(job.predicted, job.odom_cov, narrow->pose, job.cov);
+    job.narrow = *narrow;
+  }
+  if (!job.tie) return;
+  // 2. Tie to the old map: against old keyframes only; a wide search (a loop closure) when the
+  // robot has not been tied for a while or tracking failed.
+  const bool wide = !job.narrow || job.wide_needed;
+  if (wide && !job.wide_permitted) {
+    job.wide_skipped = true;
+    return;
+  }
+  job.wide = wide;
+  if (auto tie = matcher.match(GridView{job.tie_geometry, job.tie_cells}, points, job.estimate,
+                               wide ? options_.closure_window : options_.track_window)) {
+    job.tie_match = *tie;
+  }
+}
+
+void PoseCorrector::apply(MatchJob& job, std::vector<KeyframeCorrection>& out) {
+  Keyframe& keyframe = job.keyframe;
+  Robot& rb = robots_[keyframe.robot];
+  ++stats_.keyframes;
+  // An optimisation that landed while the keyframe was matched moved the robot's correction: move
+  // what was matched with it.
+  const Pose moved = rb.state.map_from_odom.compose(job.prepared_correction.inverse());
+  auto carry = [&](Pose& p) { p = moved.compose(p); };
+  carry(job.predicted);
+  carry(job.estimate);
+  if (job.narrow) carry(job.narrow->pose);
+  if (job.tie_match) carry(job.tie_match->pose);
+  const std::optional<uint32_t> previous = job.previous;
+  const Pose odom_relative = job.odom_relative;
+  const Eigen::Matrix3d odom_cov = job.odom_cov;
+
+  Pose estimate = job.estimate;
+  Eigen::Matrix3d cov = job.narrow ? job.cov : rb.chain_cov;
+  CorrectionSource source = rb.state.source;
+  const auto& narrow = job.narrow;
+  if (narrow) {
     source = CorrectionSource::Match;
     ++stats_.matched;
   } else {
     ++stats_.unmatched;
   }
-  const bool tracked = narrow.is_ok();
+  const bool tracked = narrow.has_value();
 
-  // 2. Tie to the old map: against old keyframes only; a wide search (a loop closure) when the
-  // robot has not been tied for a while or tracking failed.
   std::optional<uint32_t> anchor;
   Pose anchored_estimate;
   Eigen::Matrix3d anchored_cov;
   bool closure = false;
   const bool operator_set = rb.operator_pose.has_value();
-  old_neighbours(keyframe.robot, keyframe.first_stamp_ns, estimate.position(), neighbours_);
-  if (!operator_set && static_cast<int>(neighbours_.size()) >= options_.closure_min_keyframes) {
-    const double chain_sigma = std::sqrt(std::max(rb.chain_cov(0, 0), rb.chain_cov(1, 1)));
-    const bool wide = !tracked || chain_sigma > kTiedSigma_m;
-    const SearchWindow window = wide ? options_.closure_window : options_.track_window;
-    const GridView local = draw_local_grid(neighbours_, estimate.position(), kPointReach_m + window.linear_m,
-                                           grid.geometry.resolution);
+  if (job.wide_skipped) ++stats_.wide_skipped;
+  if (job.tie && !job.wide_skipped && !operator_set && !nodes_[job.anchor].removed) {
+    const bool wide = job.wide;
+    ++stats_.ties_tried;
     if (wide) ++stats_.closures_tried;
-    const auto tie = matcher_.match(local, keyframe.points, estimate, window);
+    const auto& tie = job.tie_match;
     if (tie && tie->score >= options_.closure_min_score) {
       const Eigen::Matrix3d tie_cov = with_floor(tie->covariance, 0.02, 0.01);
       const ConsistencyCheck check;
@@ -225,7 +408,7 @@ void PoseCorrector::finalise(Keyframe&& keyframe, const GridView& grid,
                             tie->covariance(1, 1) <= kClosureMaxSigma_m * kClosureMaxSigma_m &&
                             tie->covariance(2, 2) <= kClosureMaxSigma_rad * kClosureMaxSigma_rad;
       if (!wide || (distinct && check.accepts(estimate, tie->pose, rb.chain_cov + tie_cov))) {
-        anchor = neighbours_.front();
+        anchor = job.anchor;
         anchored_estimate = tie->pose;
         anchored_cov = tie_cov;
         if (wide) {
@@ -235,7 +418,7 @@ void PoseCorrector::finalise(Keyframe&& keyframe, const GridView& grid,
           spdlog::info(
               "loop closure: robot {} keyframe {} moved {:.3f} m, {:.2f} deg against {} old keyframes",
               rb.name, keyframe.id, distance(tie->pose.position(), estimate.position()),
-              wrap_angle(tie->pose.theta - estimate.theta) * 57.29578, neighbours_.size());
+              wrap_angle(tie->pose.theta - estimate.theta) * 57.29578, job.neighbours);
         }
       } else {
         ++stats_.closures_rejected;
@@ -364,6 +547,38 @@ void PoseCorrector::restore(std::span<const KeyframeCorrection> keyframes) {
     if (rb.state.keyframes > 0) mark_changed(rb, CorrectionSource::Restored);
   }
   rebuild_index();
+}
+
+size_t PoseCorrector::reset_robot(std::string_view robot) {
+  const auto it = robot_ids_.find(std::string(robot));
+  if (it == robot_ids_.end()) return 0;
+  const uint32_t r = it->second;
+  Robot& rb = robots_[r];
+  std::unordered_set<uint64_t> ids;
+  for (Node& n : nodes_) {
+    if (n.robot != r || n.removed) continue;
+    ids.insert(n.id);
+    n.removed = true;
+    n.points = {};  // also keeps it out of every local grid
+    ++removed_nodes_;
+  }
+  std::erase_if(edges_, [&](const GraphEdge& e) { return ids.contains(e.from) || ids.contains(e.to); });
+  std::erase_if(closed_, [&](const Keyframe& k) { return k.robot == r; });
+  std::erase_if(pending_moved_, [&](const KeyframeCorrection& k) { return ids.contains(k.id); });
+  if (rb.builder.open()) (void)rb.builder.take();
+  rb.builder.start_segment();
+  ++rb.generation;  // its keyframe on the worker, if any, is dropped when it lands
+  rb.last_node.reset();
+  rb.last_tied.reset();
+  rb.operator_pose.reset();
+  rb.chain_cov = Eigen::Matrix3d::Zero();
+  rb.schedule = {};
+  rb.state.keyframes = 0;
+  rb.state.loop_closures = 0;
+  ++epoch_;  // a running optimisation still holds its keyframes: its result is stale
+  rebuild_index();
+  ++stats_.robots_reset;
+  return ids.size();
 }
 
 bool PoseCorrector::knows(std::string_view robot) const {

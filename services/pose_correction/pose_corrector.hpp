@@ -2,7 +2,8 @@
 // The SLAM core's front door: one per mapper. Keeps, per robot, the correction map <- odom that
 // turns what the robot reports (its own drifting odometry frame) into the map frame.
 //
-// Flow, driven by the mapper's loop thread (not thread-safe; the optimiser has its own thread):
+// Flow, driven by the mapper's loop thread (not thread-safe; the optimiser has its own thread, and
+// with match_threads = 1 the matching runs on a MatchWorker, see match_worker.hpp):
 //  1. add() each raw observation: it joins its robot's open keyframe (KeyframeBuilder). The mapper
 //     holds the observation, unrendered, until that keyframe is finalised: matching a keyframe
 //     against a map that already holds its own points would only confirm the prediction.
@@ -12,7 +13,10 @@
 //     made long ago (by itself or another robot) but the narrow match fails, tries a loop closure:
 //     a wide-window match against a grid drawn from those old keyframes only, accepted only when
 //     it agrees with the odometry uncertainty accumulated since the robot was last tied to the old
-//     map (ConsistencyCheck). Finalised keyframes come back with their correction.
+//     map (ConsistencyCheck). Finalised keyframes come back with their correction. How much of the
+//     work around tracking (ties, wide searches) runs depends on the backlog (CorrectionSchedule);
+//     each pass starts at most a budget of keyframes. With a worker, a keyframe's result lands at a
+//     later process(); a robot has at most one keyframe in matching, so its keyframes stay in order.
 //  3. Accepted closures (and every so many tied keyframes) start a background optimisation; when
 //     it lands, take_optimised() hands over every keyframe whose correction moved, so the mapper
 //     re-renders the grid from its store and persists them.
@@ -24,13 +28,16 @@
 #include <string>
 #include <string_view>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include "common/core/geometry.hpp"
 #include "common/core/result.hpp"
+#include "pose_correction/correction_schedule.hpp"
 #include "pose_correction/grid_view.hpp"
 #include "pose_correction/keyframe_builder.hpp"
 #include "pose_correction/keyframe_index.hpp"
+#include "pose_correction/match_worker.hpp"
 #include "pose_correction/pose_graph.hpp"
 #include "pose_correction/scan_matcher.hpp"
 
@@ -53,6 +60,8 @@ struct CorrectorOptions {
   double odom_sigma_rad_per_m = 0.02;     // heading noise per metre travelled (edge and chain)
   int optimise_every = 40;                // keyframes tied to the old map between optimisations
   double rerender_shift_m = 0.02;         // keyframe moves smaller than this are not re-rendered
+  ScheduleOptions schedule;
+  int match_threads = 0;  // 0: match inside process() (deterministic: tests, offline); 1: on a worker
 };
 
 // A keyframe whose correction is final (for now: a later optimisation may move it again).
@@ -86,6 +95,14 @@ struct CorrectorStats {
   int64_t failed_optimisations = 0;
   int64_t segments = 0;         // odometry jumps that started a new segment
   int64_t rejected_inputs = 0;  // non-finite observations, bad initial poses
+  // Scheduling under load (CorrectionSchedule).
+  int64_t ties_tried = 0;          // keyframes matched against old keyframes (narrow or wide)
+  int64_t ties_skipped = 0;        // near old map, but the load allowed no tie
+  int64_t wide_skipped = 0;        // a wide search was needed but rate-limited
+  int64_t placed_by_odometry = 0;  // backlog overflow: finalised without any matching
+  int64_t backlog = 0;             // keyframes closed and not yet finalised (now)
+  int64_t load = 0;                // the schedule's load now: 0 normal, 1 loaded, 2 shedding
+  int64_t robots_reset = 0;
 };
 
 class PoseCorrector {
@@ -100,8 +117,10 @@ class PoseCorrector {
   Result<uint64_t> add(std::string_view robot, int64_t stamp_ns, const Pose& odom_pose, bool has_heading,
                        std::span<const Vec2> hits);
 
-  // Closes keyframes of robots silent since max_span, matches every closed keyframe against
-  // `grid` and appends the finalised ones to `out` (in order).
+  // Closes keyframes of robots silent since max_span, applies the matches that landed, starts
+  // matching closed keyframes against `grid` (up to the pass budget) and appends the finalised ones
+  // to `out` (in order per robot). Inline (match_threads 0) a keyframe closed before the call is
+  // finalised by it unless the budget ran out.
   void process(const GridView& grid, int64_t now_ns, std::vector<KeyframeCorrection>& out);
 
   // When a background optimisation has landed: appends the keyframes whose correction moved to
@@ -115,6 +134,14 @@ class PoseCorrector {
   // After a restart: keyframes as stored (their corrections become each robot's current one).
   void restore(std::span<const KeyframeCorrection> keyframes);
 
+  // An operator's robot reset (its observations are deleted): its keyframes leave the pose graph,
+  // the keyframe index and matching; its open and waiting keyframes are dropped. Its current
+  // correction stays (the robot still is where it was believed to be); its next keyframe starts a
+  // new chain. Returns how many finalised keyframes were removed; an unknown robot: 0.
+  size_t reset_robot(std::string_view robot);
+  // Keyframes in the pose graph (removed ones not counted).
+  size_t graph_keyframes() const { return nodes_.size() - removed_nodes_; }
+
   // The robot's current correction; identity for an unknown robot.
   Pose correction(std::string_view robot) const;
   // Whether the robot has sent an observation (an initial pose needs one to anchor to).
@@ -127,6 +154,7 @@ class PoseCorrector {
 
  private:
   struct Robot {
+    Robot(std::string robot, const KeyframeOptions& options) : name(std::move(robot)), builder(options) {}
     std::string name;
     KeyframeBuilder builder;
     RobotCorrection state;
@@ -136,6 +164,9 @@ class PoseCorrector {
     std::optional<Pose> operator_pose;  // correction set by an operator, for its next keyframe
     bool has_heading = false;           // of its latest observation
     bool changed = false;
+    CorrectionSchedule::RobotState schedule;
+    uint32_t generation = 0;  // bumped by a reset: its keyframes in matching are dropped
+    bool matching = false;    // a keyframe of it is on the worker
   };
   // One pose-graph node per finalised keyframe.
   struct Node {
@@ -147,18 +178,29 @@ class PoseCorrector {
     Pose estimate;             // map pose of the keyframe origin
     std::vector<Vec2> points;  // keyframe frame; empty for restored keyframes
     bool fixed = false;
+    bool removed = false;  // its robot was reset: kept as a tombstone so slots stay valid
   };
 
   // A correction moving a robot this far (by a keyframe or an optimisation) is logged as a warning.
   static constexpr double kJumpWarning_m = 0.3;
 
   uint32_t robot_index(std::string_view robot);
-  void finalise(Keyframe&& keyframe, const GridView& grid, std::vector<KeyframeCorrection>& out);
+  // A closed keyframe: prepared on the loop thread, matched (inline or on the worker), applied on
+  // the loop thread. match = false: placed by odometry alone.
+  void start(Keyframe&& keyframe, const GridView& grid, bool match, std::vector<KeyframeCorrection>& out);
+  void prepare(Keyframe&& keyframe, const GridView& grid, bool match, MatchJob& job);
+  // The matching itself: reads and writes only `job` (and the options), so it may run on the worker.
+  void match_keyframe(ScanMatcher& matcher, MatchJob& job) const;
+  void apply(MatchJob& job, std::vector<KeyframeCorrection>& out);
+  // Applies the jobs the worker finished.
+  void land(std::vector<KeyframeCorrection>& out);
+  std::unique_ptr<MatchJob> take_job();
+  void recycle(std::unique_ptr<MatchJob> job);
   // Old keyframes (another robot's, or older than old_age_s) near `centre`, nearest first.
   void old_neighbours(uint32_t robot, int64_t stamp_ns, Vec2 centre, std::vector<uint32_t>& out);
-  // Draws the points of `slots` (at their current estimates) into local_ around `centre`.
-  GridView draw_local_grid(std::span<const uint32_t> slots, Vec2 centre, double half_extent,
-                           double resolution);
+  // Draws the points of `slots` (at their current estimates) into `cells` around `centre`.
+  GridGeometry draw_local_grid(std::span<const uint32_t> slots, Vec2 centre, double half_extent,
+                               double resolution, std::vector<uint8_t>& cells) const;
   Eigen::Matrix3d odometry_covariance(const Pose& relative) const;
   void add_edge(EdgeKind kind, uint32_t from, uint32_t to, const Pose& measurement,
                 const Eigen::Matrix3d& cov);
@@ -188,9 +230,14 @@ class PoseCorrector {
   std::vector<Pose> submitted_estimates_;  // node estimates when the running optimisation started
   size_t submitted_nodes_ = 0;
   CorrectorStats stats_;
+  size_t removed_nodes_ = 0;
+  CorrectionSchedule schedule_;
+  std::unique_ptr<MatchWorker> worker_;  // null: inline matching
+  size_t in_flight_ = 0;                 // jobs on the worker
   // Reused buffers.
   std::vector<uint32_t> neighbours_;
-  std::vector<uint8_t> local_cells_;
+  std::vector<std::unique_ptr<MatchJob>> spare_jobs_;
+  std::vector<std::unique_ptr<MatchJob>> landed_;
 };
 
 }  // namespace slam::correction

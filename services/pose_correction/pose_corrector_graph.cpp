@@ -28,7 +28,8 @@ void PoseCorrector::bend_chain(uint32_t robot, uint32_t segment, const Pose& fro
   std::vector<uint32_t>& chain = neighbours_;
   chain.clear();
   for (uint32_t slot = first; slot < nodes_.size(); ++slot) {
-    if (nodes_[slot].robot == robot && nodes_[slot].segment == segment) chain.push_back(slot);
+    const Node& n = nodes_[slot];
+    if (n.robot == robot && n.segment == segment && !n.removed) chain.push_back(slot);
   }
   const Vec2 centre = from.position();
   const Vec2 shift = to.position() - from.position();
@@ -50,6 +51,7 @@ void PoseCorrector::start_optimisation() {
   PoseGraph graph;
   bool any_fixed = false;
   for (const Node& n : nodes_) {
+    if (n.removed) continue;
     (void)graph.add_node(n.id, n.estimate, n.fixed);
     any_fixed = any_fixed || n.fixed;
   }
@@ -58,7 +60,10 @@ void PoseCorrector::start_optimisation() {
     any_prior = any_prior || e.kind == EdgeKind::Prior;
     (void)graph.add_edge(e);
   }
-  if (!any_prior && !nodes_.empty()) (void)graph.set_fixed(nodes_.front().id, true);
+  if (!any_prior) {
+    const auto live = std::find_if(nodes_.begin(), nodes_.end(), [](const Node& n) { return !n.removed; });
+    if (live != nodes_.end()) (void)graph.set_fixed(live->id, true);
+  }
   submitted_estimates_.clear();
   for (const Node& n : nodes_) submitted_estimates_.push_back(n.estimate);
   submitted_nodes_ = nodes_.size();
@@ -98,7 +103,7 @@ double PoseCorrector::take_optimised(std::vector<KeyframeCorrection>& moved) {
   for (size_t i = 0; i < submitted_nodes_; ++i) {
     Node& n = nodes_[i];
     const auto it = optimised.find(n.id);
-    if (it == optimised.end()) continue;
+    if (it == optimised.end() || n.removed) continue;
     const Pose before = submitted_estimates_[i];
     robot_delta[n.robot] = it->second.compose(before.inverse());
     const Pose current = n.estimate;
@@ -111,7 +116,7 @@ double PoseCorrector::take_optimised(std::vector<KeyframeCorrection>& moved) {
   }
   for (size_t i = submitted_nodes_; i < nodes_.size(); ++i) {
     Node& n = nodes_[i];
-    if (!robot_delta[n.robot]) continue;
+    if (!robot_delta[n.robot] || n.removed) continue;
     const Pose current = n.estimate;
     n.estimate = robot_delta[n.robot]->compose(n.estimate);
     const double shift = distance(current.position(), n.estimate.position());
@@ -135,7 +140,9 @@ double PoseCorrector::take_optimised(std::vector<KeyframeCorrection>& moved) {
 
 void PoseCorrector::rebuild_index() {
   index_.clear();
-  for (uint32_t slot = 0; slot < nodes_.size(); ++slot) index_.insert(slot, nodes_[slot].estimate.position());
+  for (uint32_t slot = 0; slot < nodes_.size(); ++slot) {
+    if (!nodes_[slot].removed) index_.insert(slot, nodes_[slot].estimate.position());
+  }
 }
 
 }  // namespace slam::correction

@@ -239,3 +239,26 @@ TEST_F(CorrectionStageTest, RestoreAfterReopeningGivesEveryRobotItsCorrection) {
 
 }  // namespace
 }  // namespace slam::mapper
+
+namespace slam::mapper {
+namespace {
+
+TEST_F(CorrectionStageTest, ARobotResetDropsItsWaitingObservationsAndItsKeyframes) {
+  auto mapper = make_mapper();
+  ASSERT_TRUE(mapper);
+  CorrectionStage stage(true, corrector_);
+  drive(stage, *mapper, "r1", 0, 12);  // one keyframe closed, the next one open
+  step(stage, *mapper, 12);
+  ASSERT_GE(stage.stats().keyframes, 1);
+  const Vec2 open_wall{-1.5 + kStepM * 11 + 0.03 + 0.3, kWallY};  // seen only by the open keyframe
+  ASSERT_FALSE(touched(*mapper, open_wall));
+
+  EXPECT_EQ(stage.reset_robot("r1"), static_cast<size_t>(stage.stats().keyframes));
+  EXPECT_EQ(stage.reset_robot("ghost"), 0u);
+  step(stage, *mapper, 12 + 60);  // long after: the dropped keyframe would have gone stale
+  EXPECT_FALSE(touched(*mapper, open_wall)) << "an observation held before the reset reached the grid";
+  EXPECT_EQ(stage.stats().robots_reset, 1);
+}
+
+}  // namespace
+}  // namespace slam::mapper

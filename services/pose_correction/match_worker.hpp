@@ -1,0 +1,83 @@
+#pragma once
+// The matching around one keyframe, as a unit of work that can leave the mapper's loop thread, and
+// the thread that runs such units.
+//
+// Threading: a MatchJob carries copies of everything its matching reads (the keyframe's points, a
+// window of the live grid around the prediction, the local grid of old keyframes), made on the loop
+// thread before submit(). The worker reads and writes only the job until it hands it back, so
+// neither the mapper's grid (which the loop keeps writing) nor the pose graph is ever shared: copies
+// rather than a lock, because a window is small (a 10 x 10 m box at 5 cm: 40 kB, microseconds to
+// copy) while a lock on the grid would stall integration for a whole match. The queues are locked
+// only to move job pointers.
+#include <Eigen/Core>
+#include <condition_variable>
+#include <cstdint>
+#include <deque>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <thread>
+#include <vector>
+
+#include "common/core/geometry.hpp"
+#include "pose_correction/keyframe_builder.hpp"
+#include "pose_correction/scan_matcher.hpp"
+
+namespace slam::correction {
+
+struct MatchJob {
+  // Filled on the loop thread.
+  Keyframe keyframe;
+  uint32_t generation = 0;           // the robot's generation (a reset drops jobs of earlier ones)
+  Pose prepared_correction;          // the robot's map_from_odom when the job was prepared
+  Pose predicted;                    // keyframe origin in the map
+  std::optional<uint32_t> previous;  // slot of the robot's previous keyframe (same segment)
+  Pose odom_relative;
+  Eigen::Matrix3d odom_cov = Eigen::Matrix3d::Zero();
+  bool track = false;  // match against the live grid's window
+  GridGeometry track_geometry;
+  std::vector<uint8_t> track_cells;
+  bool tie = false;          // match against the old keyframes around it
+  bool wide_needed = false;  // the robot's chain is loose: the tie must search the wide window
+  bool wide_permitted = false;
+  uint32_t anchor = 0;  // slot of the nearest old keyframe
+  size_t neighbours = 0;
+  GridGeometry tie_geometry;
+  std::vector<uint8_t> tie_cells;
+  // Filled by the matching.
+  std::optional<MatchResult> narrow;
+  Pose estimate;  // the prediction, fused with the narrow match when there is one
+  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+  bool wide = false;          // the tie searched the wide window
+  bool wide_skipped = false;  // a wide search was needed but not permitted
+  std::optional<MatchResult> tie_match;
+};
+
+// One thread running jobs in submission order with its own ScanMatcher.
+class MatchWorker {
+ public:
+  using Work = std::function<void(ScanMatcher&, MatchJob&)>;
+  MatchWorker(const MatcherOptions& options, Work work);
+  ~MatchWorker();  // finishes the running job, drops the waiting ones
+  MatchWorker(const MatchWorker&) = delete;
+  MatchWorker& operator=(const MatchWorker&) = delete;
+
+  void submit(std::unique_ptr<MatchJob> job);
+  // Appends the finished jobs, in submission order.
+  void take_done(std::vector<std::unique_ptr<MatchJob>>& out);
+
+ private:
+  void run();
+
+  ScanMatcher matcher_;
+  Work work_;
+  std::mutex mutex_;
+  std::condition_variable wake_;
+  std::deque<std::unique_ptr<MatchJob>> waiting_;
+  std::vector<std::unique_ptr<MatchJob>> done_;
+  bool stop_ = false;
+  std::thread thread_;  // last: starts once everything it uses exists
+};
+
+}  // namespace slam::correction
