@@ -54,8 +54,6 @@ constexpr double kSegmentSigma_m = 2.0;  // after an odometry jump the pose is b
 constexpr double kSegmentSigma_rad = 0.5;
 constexpr double kOperatorSigma_m = 0.02;
 constexpr double kOperatorSigma_rad = 0.01;
-constexpr double kClosureMaxSigma_m = 0.05;  // a closure match more spread than this is ambiguous
-constexpr double kClosureMaxSigma_rad = 0.035;
 
 }  // namespace
 
@@ -219,12 +217,8 @@ void PoseCorrector::finalise(Keyframe&& keyframe, const GridView& grid,
     if (tie && tie->score >= options_.closure_min_score) {
       const Eigen::Matrix3d tie_cov = with_floor(tie->covariance, 0.02, 0.01);
       const ConsistencyCheck check;
-      // A closure must be unambiguous (one clear peak: a corridor or a row of identical rooms
-      // spreads the candidates) and agree with the uncertainty accumulated since the last tie.
-      const bool distinct = tie->covariance(0, 0) <= kClosureMaxSigma_m * kClosureMaxSigma_m &&
-                            tie->covariance(1, 1) <= kClosureMaxSigma_m * kClosureMaxSigma_m &&
-                            tie->covariance(2, 2) <= kClosureMaxSigma_rad * kClosureMaxSigma_rad;
-      if (!wide || (distinct && check.accepts(estimate, tie->pose, rb.chain_cov + tie_cov))) {
+      // A closure must be unambiguous and agree with the uncertainty accumulated since the last tie.
+      if (!wide || (DistinctMatch{}.accepts(*tie) && check.accepts(estimate, tie->pose, rb.chain_cov + tie_cov))) {
         anchor = neighbours_.front();
         anchored_estimate = tie->pose;
         anchored_cov = tie_cov;
