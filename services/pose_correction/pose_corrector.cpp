@@ -41,6 +41,23 @@ Pose fuse(const Pose& a, const Eigen::Matrix3d& ca, const Pose& b, const Eigen::
   return {a.x + step.x(), a.y + step.y(), wrap_angle(a.theta + step.z())};
 }
 
+// The tracking update: like fuse(), but a match that agrees with the odometry prediction within
+// kTrackDeadBandSigmas of their combined uncertainty moves nothing, and a farther one only by the
+// part beyond it. A sparse keyframe's match carries a little noise of its own; taken at face value
+// every keyframe, it random-walks a robot whose odometry is right (drift 0 became worse than none).
+Pose track_update(const Pose& predicted, const Eigen::Matrix3d& odom_cov, const Pose& matched,
+                  const Eigen::Matrix3d& match_cov) {
+  constexpr double kTrackDeadBandSigmas = 0.5;
+  const Eigen::Vector3d delta(matched.x - predicted.x, matched.y - predicted.y,
+                              wrap_angle(matched.theta - predicted.theta));
+  const double mahalanobis = std::sqrt(delta.dot((odom_cov + match_cov).inverse() * delta));
+  if (!(mahalanobis > kTrackDeadBandSigmas)) return predicted;
+  const Eigen::Vector3d beyond = delta * (1.0 - kTrackDeadBandSigmas / mahalanobis);
+  const Pose shrunk{predicted.x + beyond.x(), predicted.y + beyond.y(),
+                    wrap_angle(predicted.theta + beyond.z())};
+  return fuse(predicted, odom_cov, shrunk, match_cov);
+}
+
 Eigen::Matrix3d fused_covariance(const Eigen::Matrix3d& ca, const Eigen::Matrix3d& cb) {
   return (ca.inverse() + cb.inverse()).inverse();
 }
@@ -190,7 +207,7 @@ void PoseCorrector::finalise(Keyframe&& keyframe, const GridView& grid,
     // keyframe's match is noisier than half a metre of odometry, and taking it as is would
     // random-walk the pose where the map is only the robot's own recent trail.
     cov = with_floor(narrow->covariance, 0.005, 0.002);
-    estimate = fuse(predicted, odom_cov, narrow->pose, cov);
+    estimate = track_update(predicted, odom_cov, narrow->pose, cov);
     source = CorrectionSource::Match;
     ++stats_.matched;
   } else {
@@ -218,7 +235,8 @@ void PoseCorrector::finalise(Keyframe&& keyframe, const GridView& grid,
       const Eigen::Matrix3d tie_cov = with_floor(tie->covariance, 0.02, 0.01);
       const ConsistencyCheck check;
       // A closure must be unambiguous and agree with the uncertainty accumulated since the last tie.
-      if (!wide || (DistinctMatch{}.accepts(*tie) && check.accepts(estimate, tie->pose, rb.chain_cov + tie_cov))) {
+      if (!wide ||
+          (DistinctMatch{}.accepts(*tie) && check.accepts(estimate, tie->pose, rb.chain_cov + tie_cov))) {
         anchor = neighbours_.front();
         anchored_estimate = tie->pose;
         anchored_cov = tie_cov;

@@ -4,7 +4,6 @@
 #include <ceres/cubic_interpolation.h>
 
 #include <Eigen/Eigenvalues>
-
 #include <algorithm>
 #include <cmath>
 #include <limits>

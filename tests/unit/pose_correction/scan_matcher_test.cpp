@@ -228,7 +228,8 @@ TEST(ScanMatcher, TwoEqualPeaksAreAmbiguousAndNotDistinct) {
   const auto points = keyframe_points(periodic, sensor, truth, {0.02, 0.0, 0.0}, 10, rng);
   const ClassGrid grid = ClassGrid::rasterise(periodic, geometry_over({-11.0, -1.0}, {11.0, 3.0}));
   ScanMatcher matcher;
-  const auto r = matcher.match({grid.geometry, grid.classes}, points, offset(truth, 0.05, 0.0, 0.0), {1.0, 0.3});
+  const auto r =
+      matcher.match({grid.geometry, grid.classes}, points, offset(truth, 0.05, 0.0, 0.0), {1.0, 0.3});
   ASSERT_TRUE(r) << r.message();
   EXPECT_GT(r->ambiguity, 0.9);
   EXPECT_FALSE(DistinctMatch{}.accepts(*r));
