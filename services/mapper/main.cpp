@@ -31,5 +31,5 @@ int main(int argc, char** argv) {
     slam::report_error("slam-mapper", claim.message());
     return slam::kExitFailure;
   }
-  return slam::run_service<MapperNode>("mapper", options, [&claim] { claim->reset(); });
+  return slam::run_service<MapperNode>("mapper", options, [&claim] { (*claim).reset(); });
 }

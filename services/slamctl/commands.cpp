@@ -402,7 +402,7 @@ int cmd_sim(Session& s, SimCommandKind kind, uint32_t count, const std::string& 
   const auto reply = request(s, dds::kSimControl, c, dds::kSimReply, "simulator");
   if (!reply) return kExitFailure;
   if (!reply->ok()) return fail(reply->message().to_string());
-  std::printf("%s\n", reply->message().empty() ? "ok" : reply->message().c_str());
+  std::printf("%s\n", reply->message().size() == 0 ? "ok" : reply->message().c_str());
   return 0;
 }
 

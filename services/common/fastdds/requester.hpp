@@ -4,6 +4,7 @@
 // its reply arrives or the deadline passes (core/request_retry.hpp). Nothing waits for a match:
 // a copy sent before the responder or this reader was discovered is simply sent again, and the
 // responder answers a repeat from its ReplyCache without executing it twice.
+#include <algorithm>
 #include <condition_variable>
 #include <functional>
 #include <map>
