@@ -17,9 +17,9 @@
 #include <string_view>
 #include <vector>
 
-#include "common/core/reply_cache.hpp"
 #include "common/core/counters.hpp"
 #include "common/core/log.hpp"
+#include "common/core/reply_cache.hpp"
 #include "common/core/result.hpp"
 #include "common/fastdds/fast_topics.hpp"
 #include "common/mqtt/mqtt_connection.hpp"

@@ -13,8 +13,8 @@
 #include <vector>
 
 #include "common/core/counters.hpp"
-#include "common/core/reply_cache.hpp"
 #include "common/core/log.hpp"
+#include "common/core/reply_cache.hpp"
 #include "common/core/result.hpp"
 #include "common/fastdds/fast_topics.hpp"
 #include "planner/fleet.hpp"

@@ -83,8 +83,8 @@ std::optional<Rep> request(Session& s, const dds::Topic<Req, ReqP>& req_topic, c
   }
   auto reply = (*requester)->call(**writer, req);
   if (!reply)
-    fail(std::string("no reply from ") + served_by + " on DDS domain " + std::to_string(s.domain()) + " within " +
-         std::to_string(s.timeout().count()) + " ms (is it running?)");
+    fail(std::string("no reply from ") + served_by + " on DDS domain " + std::to_string(s.domain()) +
+         " within " + std::to_string(s.timeout().count()) + " ms (is it running?)");
   return reply;
 }
 

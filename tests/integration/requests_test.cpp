@@ -64,8 +64,8 @@ class RequestsTest : public ::testing::Test {
 
 TEST_F(RequestsTest, RequestSentBeforeTheMapperExistsIsAnsweredAndExecutedOnce) {
   // slamctl first: its first copy of the edit has no reader anywhere and is lost.
-  group.start("slamctl",
-              {bin_path("slamctl"), "--domain", std::to_string(domain.id()), "--timeout", "60", "obstruct", "3", "3"});
+  group.start("slamctl", {bin_path("slamctl"), "--domain", std::to_string(domain.id()), "--timeout", "60",
+                          "obstruct", "3", "3"});
   start_mapper();
   ASSERT_EQ(group.wait_exit("slamctl", 90s), 0) << group.log("slamctl");
   EXPECT_NE(group.log("slamctl").find("obstructed the cell"), std::string::npos) << group.log("slamctl");

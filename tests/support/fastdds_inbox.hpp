@@ -29,7 +29,8 @@ std::unique_ptr<dds::Reader<T>> make_inbox_reader(dds::Participant& p, const dds
 
 // A requester on `reply_topic` giving up after `timeout`.
 template <class Rep, class P>
-std::unique_ptr<dds::Requester<Rep>> make_test_requester(dds::Participant& p, const dds::Topic<Rep, P>& reply_topic,
+std::unique_ptr<dds::Requester<Rep>> make_test_requester(dds::Participant& p,
+                                                         const dds::Topic<Rep, P>& reply_topic,
                                                          std::chrono::milliseconds timeout) {
   RetryPolicy policy;
   policy.timeout = timeout;

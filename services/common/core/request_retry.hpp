@@ -35,7 +35,9 @@ class RetrySchedule {
   using Clock = std::chrono::steady_clock;
 
   RetrySchedule(const RetryPolicy& policy, Clock::time_point start)
-      : next_(start), interval_(policy.first_interval), max_interval_(policy.max_interval),
+      : next_(start),
+        interval_(policy.first_interval),
+        max_interval_(policy.max_interval),
         deadline_(start + policy.timeout) {}
 
   // True when a copy is due at `now` (and not past the deadline); the schedule then moves to the

@@ -49,9 +49,8 @@ class Requester {
   static Result<std::unique_ptr<Requester>> create(Participant& participant, const Topic<Rep, P>& reply_topic,
                                                    RetryPolicy policy = {}, Listener listener = {}) {
     std::unique_ptr<Requester> r(new Requester(policy, std::move(listener)));
-    auto reader = make_reader(participant, reply_topic, [p = r.get()](const Rep& reply, const auto&) {
-      p->on_reply(reply);
-    });
+    auto reader = make_reader(participant, reply_topic,
+                              [p = r.get()](const Rep& reply, const auto&) { p->on_reply(reply); });
     if (!reader) return reader.error();
     r->reader_ = std::move(*reader);
     r->thread_ = std::thread([p = r.get()] { p->resend_loop(); });
@@ -80,8 +79,8 @@ class Requester {
     schedule.due(RetrySchedule::Clock::now());  // the first copy goes out below
     {
       std::lock_guard lock(mutex_);
-      pending_.emplace(id, Pending{[&writer, request] { return writer.write(request); }, schedule,
-                                   std::move(done)});
+      pending_.emplace(
+          id, Pending{[&writer, request] { return writer.write(request); }, schedule, std::move(done)});
     }
     writer.write(request);
     wake_.notify_all();

@@ -26,7 +26,8 @@ Status make_intake_requester(dds::Participant& p, const dds::Topic<T, PubSubT>& 
                              std::atomic<int64_t>& received, std::unique_ptr<dds::Requester<T>>& out) {
   // Retried until the request trackers would call it unanswered.
   RetryPolicy policy;
-  policy.timeout = std::chrono::duration_cast<std::chrono::milliseconds>(std::chrono::nanoseconds(kReplyTimeoutNs));
+  policy.timeout =
+      std::chrono::duration_cast<std::chrono::milliseconds>(std::chrono::nanoseconds(kReplyTimeoutNs));
   auto r = dds::Requester<T>::create(p, topic, policy, [&intake, &received](const T& reply) {
     intake.push(from_idl(reply));
     bump(received);

@@ -2,7 +2,8 @@
 // The viewer's DDS edge: one reader per topic it shows (each converts the sample and pushes it
 // into the Intake on the listener thread; nothing else), one writer per command it sends, a
 // Requester per reply topic (requests are resent under their id until answered; every reply also
-// goes into the Intake), and its heartbeat. configure() undoes itself on failure by returning nothing half-built.
+// goes into the Intake), and its heartbeat. configure() undoes itself on failure by returning nothing
+// half-built.
 #include <atomic>
 #include <memory>
 
