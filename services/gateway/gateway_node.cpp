@@ -40,6 +40,7 @@ GatewayNode::Metrics::Metrics(Counters& c)
       corrections_rejected(c.get("corrections_rejected")),
       mqtt_requests(c.get("mqtt_requests")),
       mqtt_requests_failed(c.get("mqtt_requests_failed")),
+      mqtt_requests_repeated(c.get("mqtt_requests_repeated")),
       publish_failures(c.get("publish_failures")),
       traffic_dropped(c.get("traffic_dropped")),
       reconnects(c.get("reconnects")),

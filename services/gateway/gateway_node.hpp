@@ -19,6 +19,7 @@
 
 #include "common/core/counters.hpp"
 #include "common/core/log.hpp"
+#include "common/core/reply_cache.hpp"
 #include "common/core/result.hpp"
 #include "common/fastdds/fast_topics.hpp"
 #include "common/mqtt/mqtt_connection.hpp"
@@ -68,6 +69,7 @@ class GatewayNode {
     std::atomic<int64_t>& corrections_rejected;
     std::atomic<int64_t>& mqtt_requests;
     std::atomic<int64_t>& mqtt_requests_failed;
+    std::atomic<int64_t>& mqtt_requests_repeated;  // retries answered from the cache, not run again
     std::atomic<int64_t>& publish_failures;
     std::atomic<int64_t>& traffic_dropped;
     std::atomic<int64_t>& reconnects;
@@ -138,6 +140,7 @@ class GatewayNode {
   std::unique_ptr<dds::Writer<slam::RobotOdometry>> odometry_writer_;
   std::unique_ptr<dds::Writer<slam::MqttSubscriptions>> subscriptions_writer_;
   std::unique_ptr<dds::Writer<slam::MqttReply>> reply_writer_;
+  ReplyCache<Status> replies_sent_;
   std::unique_ptr<TrafficPublisher> traffic_publisher_;
   std::unique_ptr<mqtt::Connection> mqtt_;
   std::unique_ptr<dds::Reader<slam::PoseCorrection>> correction_reader_;

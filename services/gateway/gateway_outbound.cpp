@@ -91,6 +91,12 @@ void GatewayNode::on_waypoint(const slam::WaypointCommand& command) {
 }
 
 void GatewayNode::on_request(const slam::MqttRequest& request) {
+  // A requester's retry: published or subscribed once, answered again from the cache.
+  if (auto verdict = replies_sent_.admit(request.request_id()); verdict.admission != Admission::Execute) {
+    bump(metrics_.mqtt_requests_repeated);
+    if (verdict.reply) reply(request.request_id(), *verdict.reply);
+    return;
+  }
   bump(metrics_.mqtt_requests);
   const std::string topic = protocol::escape_for_log(text_of(request.topic()), 256);
   const Status result = execute(request);
@@ -105,6 +111,7 @@ void GatewayNode::on_request(const slam::MqttRequest& request) {
 }
 
 void GatewayNode::reply(std::uint64_t request_id, const Status& result) {
+  replies_sent_.complete(request_id, result);
   slam::MqttReply sample;
   sample.request_id(request_id);
   sample.ok(static_cast<bool>(result));

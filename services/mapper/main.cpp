@@ -3,6 +3,7 @@
 #include <iostream>
 
 #include "common/fastdds/run_service.hpp"
+#include "mapper/domain_claim.hpp"
 #include "mapper/mapper_node.hpp"
 #include "mapper/mapper_offline.hpp"
 #include "mapper/mapper_options.hpp"
@@ -24,5 +25,11 @@ int main(int argc, char** argv) {
     std::cout << *done << "\n";
     return slam::kExitOk;
   }
-  return slam::run_service<MapperNode>("mapper", options);
+  // One mapper per domain (sole_mapper.hpp): decided before the store is opened.
+  auto claim = DomainClaim::take(options.service.domain);
+  if (!claim) {
+    slam::report_error("slam-mapper", claim.message());
+    return slam::kExitFailure;
+  }
+  return slam::run_service<MapperNode>("mapper", options, [&claim] { (*claim).reset(); });
 }

@@ -25,7 +25,9 @@ MapperNode::Metrics::Metrics(Counters& c)
       snapshots(c.get("snapshots")),
       store_bytes(c.get("store_bytes")),
       write_failures(c.get("write_failures")),
-      observations_lost(c.get("observations_lost")) {}
+      observations_lost(c.get("observations_lost")),
+      requests_executed(c.get("requests_executed")),
+      requests_repeated(c.get("requests_repeated")) {}
 
 MapperNode::MapperNode(const MapperOptions& options, Counters& counters)
     : options_(options),
@@ -130,11 +132,13 @@ void MapperNode::run_once() {
   for (const slam::RobotObservation& o : batch_.observations) integrate(o);
   corrections_->step(*mapper_, now_ns(), monotonic_ns());
   for (MapCommand& c : batch_.commands) {
+    if (!admit(std::visit([](const auto& r) { return r.request_id; }, c))) continue;
     if (const auto* edit = std::get_if<EditRequest>(&c); edit && edit->kind == EditKind::ResetRobot)
       corrections_->reset_robot(edit->robot_id);
     mapper_->submit(std::move(c));
   }
-  for (const slam::InitialPose& p : batch_.initial_poses) handle_initial_pose(p);
+  for (const slam::InitialPose& p : batch_.initial_poses)
+    if (admit(p.request_id())) handle_initial_pose(p);
   publish_outcomes();
   publish_corrections();
 
@@ -169,6 +173,22 @@ void MapperNode::handle_initial_pose(const slam::InitialPose& request) {
     reply.message = s.message();
     bump(counters_.get("initial_poses_rejected"));
   }
+  send_reply(reply);
+}
+
+bool MapperNode::admit(uint64_t id) {
+  const auto verdict = replies_sent_.admit(id);
+  if (verdict.admission == Admission::Execute) {
+    bump(metrics_.requests_executed);
+    return true;
+  }
+  bump(metrics_.requests_repeated);
+  if (verdict.reply && !reply_writer_->write(to_reply(*verdict.reply))) bump(metrics_.write_failures);
+  return false;
+}
+
+void MapperNode::send_reply(const RequestReply& reply) {
+  replies_sent_.complete(reply.request_id, reply);
   if (!reply_writer_->write(to_reply(reply))) bump(metrics_.write_failures);
 }
 
@@ -184,8 +204,7 @@ void MapperNode::publish_corrections() {
 
 void MapperNode::publish_outcomes() {
   if (mapper_->take_swapped()) publish_snapshot(true);
-  for (const RequestReply& r : mapper_->take_replies())
-    if (!reply_writer_->write(to_reply(r))) bump(metrics_.write_failures);
+  for (const RequestReply& r : mapper_->take_replies()) send_reply(r);
 }
 
 void MapperNode::tick() {

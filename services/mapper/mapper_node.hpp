@@ -11,6 +11,7 @@
 
 #include "common/core/counters.hpp"
 #include "common/core/log.hpp"
+#include "common/core/reply_cache.hpp"
 #include "common/core/result.hpp"
 #include "common/fastdds/fast_topics.hpp"
 #include "mapper/correction_stage.hpp"
@@ -45,6 +46,8 @@ class MapperNode {
     std::atomic<int64_t>& store_bytes;
     std::atomic<int64_t>& write_failures;
     std::atomic<int64_t>& observations_lost;  // DDS SAMPLE_LOST on the observation reader
+    std::atomic<int64_t>& requests_executed;  // requests (edits, files, layouts, poses) run
+    std::atomic<int64_t>& requests_repeated;  // repeats answered from the cache or dropped
   };
 
   MapperNode(const MapperOptions& options, Counters& counters);
@@ -52,6 +55,10 @@ class MapperNode {
 
   void integrate(const slam::RobotObservation& sample);
   void handle_initial_pose(const slam::InitialPose& request);
+  // Whether request `id` is new and must run; a repeat (a requester's retry) is answered from the
+  // reply cache, or dropped while the first copy still runs (its reply is on the way).
+  bool admit(uint64_t id);
+  void send_reply(const RequestReply& reply);
   // The corrections that changed since the last call.
   void publish_corrections();
   void tick();
@@ -73,6 +80,7 @@ class MapperNode {
   // Loop state: touched by the loop thread only.
   std::unique_ptr<Mapper> mapper_;
   std::unique_ptr<CorrectionStage> corrections_;
+  ReplyCache<RequestReply> replies_sent_;
   std::vector<correction::RobotCorrection> changed_corrections_;
   slam::PoseCorrection correction_sample_;
   int snapshot_readers_ = 0;  // matched snapshot readers at the last tick

@@ -24,6 +24,7 @@ std::string counter_name(PlanStatus status) {
 
 PlannerNode::Metrics::Metrics(Counters& c)
     : path_requests(c.get("path_requests")),
+      path_requests_repeated(c.get("path_requests_repeated")),
       replies{},
       goals_accepted(c.get("goals_accepted")),
       goals_rejected(c.get("goals_rejected")),
@@ -305,6 +306,13 @@ void PlannerNode::submit_requests(const std::vector<slam::PathRequest>& requests
     handed_revision_ = grid_.revision();
   }
   for (const slam::PathRequest& r : requests) {
+    // A requester's retry: planned once, answered again from the cache (or by the running job).
+    const auto verdict = replies_sent_.admit(r.request_id());
+    if (verdict.admission != Admission::Execute) {
+      bump(metrics_.path_requests_repeated);
+      if (verdict.reply && !reply_writer_->write(*verdict.reply)) bump(metrics_.write_failures);
+      continue;
+    }
     bump(metrics_.path_requests);
     workers_->submit(to_job(r));
   }
@@ -359,6 +367,7 @@ void PlannerNode::stream_waypoints(int64_t now_ns) {
 void PlannerNode::reply(const PathJob& job, const PlanResult& result) {
   slam::PathReply out;
   fill_reply(job, result, out);
+  replies_sent_.complete(job.request_id, out);
   if (!reply_writer_->write(out)) bump(metrics_.write_failures);
   bump(*metrics_.replies[static_cast<size_t>(result.status)]);
   if (result.ok()) {

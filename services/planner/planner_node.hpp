@@ -14,6 +14,7 @@
 
 #include "common/core/counters.hpp"
 #include "common/core/log.hpp"
+#include "common/core/reply_cache.hpp"
 #include "common/core/result.hpp"
 #include "common/fastdds/fast_topics.hpp"
 #include "planner/fleet.hpp"
@@ -42,6 +43,7 @@ class PlannerNode {
   struct Metrics {
     explicit Metrics(Counters& c);
     std::atomic<int64_t>& path_requests;
+    std::atomic<int64_t>& path_requests_repeated;  // retries answered from the cache or dropped
     std::array<std::atomic<int64_t>*, 7> replies;  // by PlanStatus
     std::atomic<int64_t>& goals_accepted;
     std::atomic<int64_t>& goals_rejected;
@@ -106,6 +108,7 @@ class PlannerNode {
   // writers and the participant go.
   std::unique_ptr<dds::Participant> participant_;
   std::unique_ptr<dds::Writer<slam::PathReply>> reply_writer_;
+  ReplyCache<slam::PathReply> replies_sent_;  // written by the request workers, read by the loop
   std::unique_ptr<dds::Writer<slam::WaypointCommand>> waypoint_writer_;
   std::unique_ptr<dds::Writer<slam::RobotPath>> path_writer_;
   std::unique_ptr<RequestWorkers> workers_;

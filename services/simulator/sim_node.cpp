@@ -32,6 +32,7 @@ SimNode::SimNode(const SimOptions& options, Simulation sim, Counters& counters)
       loop_overruns_(counters.get("loop_overruns")),
       controls_applied_(counters.get("controls_applied")),
       controls_rejected_(counters.get("controls_rejected")),
+      controls_repeated_(counters.get("controls_repeated")),
       waypoints_rejected_(counters.get("waypoints_rejected")),
       waypoints_outside_world_(counters.get("waypoints_outside_world")),
       waypoints_unknown_robot_(counters.get("waypoints_unknown_robot")),
@@ -82,6 +83,7 @@ void SimNode::add_robots(const std::vector<std::string>& ids) {
 }
 
 void SimNode::reply(uint64_t command_id, const Status& result) {
+  replies_sent_.complete(command_id, result);
   if (auto s = dds_->publish_reply(command_id, result); !s) {
     bump(dds_write_failures_);
     warn("reply", s.message());
@@ -98,6 +100,13 @@ void SimNode::apply_controls() {
     reply(u.command_id, Error{u.error});
   }
   for (const ControlCommand& c : controls_) {
+    // A requester's retry: applied once (commands run here one by one, so the first copy has its
+    // reply by the time a repeat is looked at).
+    if (auto verdict = replies_sent_.admit(c.command_id); verdict.admission != Admission::Execute) {
+      bump(controls_repeated_);
+      if (verdict.reply) reply(c.command_id, *verdict.reply);
+      continue;
+    }
     auto outcome = apply_control(sim_, c);
     if (!outcome) {
       bump(controls_rejected_);

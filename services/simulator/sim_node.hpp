@@ -9,6 +9,7 @@
 
 #include "common/core/counters.hpp"
 #include "common/core/log.hpp"
+#include "common/core/reply_cache.hpp"
 #include "common/core/result.hpp"
 #include "common/cyclone/heartbeat.hpp"
 #include "simulator/robot_link.hpp"
@@ -47,6 +48,7 @@ class SimNode {
   std::atomic<int64_t>& loop_overruns_;
   std::atomic<int64_t>& controls_applied_;
   std::atomic<int64_t>& controls_rejected_;
+  std::atomic<int64_t>& controls_repeated_;  // retries answered from the cache, not applied again
   std::atomic<int64_t>& waypoints_rejected_;
   std::atomic<int64_t>& waypoints_outside_world_;
   std::atomic<int64_t>& waypoints_unknown_robot_;
@@ -57,6 +59,7 @@ class SimNode {
   std::unique_ptr<cyclone::HeartbeatPublisher> heartbeat_;
   std::unique_ptr<RobotLinks> links_;
 
+  ReplyCache<Status> replies_sent_;
   std::vector<ControlCommand> controls_;
   std::vector<UnreadableControl> unreadable_controls_;
   std::vector<WaypointOrder> orders_;

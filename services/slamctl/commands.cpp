@@ -15,6 +15,7 @@
 #include "common/core/geometry.hpp"
 #include "common/core/service_options.hpp"
 #include "common/core/shutdown.hpp"
+#include "common/fastdds/requester.hpp"
 #include "slamctl/format.hpp"
 
 namespace slam::ctl {
@@ -62,39 +63,28 @@ int send(Session& s, const dds::Topic<T, P>& topic, const T& sample, const char*
   return 0;
 }
 
-// Sends a request and waits for the reply with the same request_id.
+// Sends a request and waits for the reply with the same request id, sending it again on the retry
+// schedule until then (the responder answers a repeat without executing it twice): no wait for a
+// match first, so a responder that starts after slamctl still answers within the timeout.
 template <class Req, class ReqP, class Rep, class RepP>
 std::optional<Rep> request(Session& s, const dds::Topic<Req, ReqP>& req_topic, const Req& req,
                            const dds::Topic<Rep, RepP>& rep_topic, const char* served_by) {
-  std::mutex mutex;
-  std::optional<Rep> reply;
-  auto reader = dds::make_reader(s.participant(), rep_topic, [&](const Rep& r, const auto&) {
-    if (r.request_id() != req.request_id()) return;
-    std::lock_guard lock(mutex);
-    reply = r;
-  });
-  if (!reader) {
-    fail(reader.message());
+  auto writer = dds::make_writer(s.participant(), req_topic);
+  if (!writer) {
+    fail(writer.message());
     return std::nullopt;
   }
-  // The replier's writer must know this reader before it answers, or the reply goes nowhere.
-  if (!(*reader)->wait_for_writers(s.timeout())) {
-    fail(std::string("no ") + served_by + " on DDS domain " + std::to_string(s.domain()) +
-         " (is it running?)");
+  RetryPolicy policy;
+  policy.timeout = s.timeout();
+  auto requester = dds::Requester<Rep>::create(s.participant(), rep_topic, policy);
+  if (!requester) {
+    fail(requester.message());
     return std::nullopt;
   }
-  if (send(s, req_topic, req, served_by) != 0) return std::nullopt;
-  if (!wait_until(
-          [&] {
-            std::lock_guard lock(mutex);
-            return reply.has_value();
-          },
-          s.timeout())) {
-    fail(std::string("no reply from ") + served_by + " within " + std::to_string(s.timeout().count()) +
-         " ms");
-    return std::nullopt;
-  }
-  std::lock_guard lock(mutex);
+  auto reply = (*requester)->call(**writer, req);
+  if (!reply)
+    fail(std::string("no reply from ") + served_by + " on DDS domain " + std::to_string(s.domain()) +
+         " within " + std::to_string(s.timeout().count()) + " ms (is it running?)");
   return reply;
 }
 
@@ -103,7 +93,7 @@ std::optional<Rep> request(Session& s, const dds::Topic<Req, ReqP>& req_topic, c
 template <class Req, class ReqP>
 int map_request(Session& s, const dds::Topic<Req, ReqP>& req_topic, const Req& req) {
   const auto reply = request(s, req_topic, req, dds::kMapReply, "mapper");
-  if (!reply) return 1;
+  if (!reply) return kExitFailure;
   if (reply->result() != MAP_OK)
     return fail(map_result_name(reply->result()) + ": " + reply->message().to_string());
   std::printf("%s\n", reply->message().c_str());
@@ -163,9 +153,8 @@ int echo(Session& s, const dds::Topic<T, P>& topic, int count) {
 
 }  // namespace
 
-uint64_t Session::next_request_id() {
-  return (static_cast<uint64_t>(getpid()) << 32) ^ (static_cast<uint64_t>(now_ns()) & 0xffff0000ULL) ^
-         ++sequence_;
+uint64_t Session::next_goal_id() {
+  return goal_ids_.next();
 }
 
 namespace {
@@ -241,7 +230,7 @@ int cmd_goal(Session& s, const GoalArgs& a) {
                        " X Y");
   NavGoal goal;
   goal.robot_id(a.robot == "all" ? "*" : a.robot);
-  goal.goal_id(s.next_request_id());
+  goal.goal_id(s.next_goal_id());
   goal.mode(*mode);
   goal.target(a.xy.size() == 2 ? point(a.xy[0], a.xy[1]) : point(0, 0));
   goal.square_size(a.square_size);
@@ -269,14 +258,13 @@ struct PathArgs {
 
 int cmd_path(Session& s, const PathArgs& a) {
   PathRequest req;
-  req.request_id(s.next_request_id());
   req.client_id("slamctl:" + std::to_string(getpid()));
   req.start(point(a.ends[0], a.ends[1]));
   req.goal(point(a.ends[2], a.ends[3]));
   req.algorithm(a.algorithm);
   req.time_budget_s(a.budget_s);
   const auto reply = request(s, dds::kPathRequest, req, dds::kPathReply, "planner");
-  if (!reply) return 1;
+  if (!reply) return kExitFailure;
   std::printf("%s", format_path_reply(*reply).c_str());
   return reply->status() == PLAN_OK ? 0 : 1;
 }
@@ -291,7 +279,6 @@ Handler add_path(CLI::App& cli) {
 
 int cmd_map_file(Session& s, MapFileAction action, const std::string& yaml_path) {
   MapFileRequest req;
-  req.request_id(s.next_request_id());
   req.action(action);
   req.yaml_path(yaml_path);
   return map_request(s, dds::kMapFileRequest, req);
@@ -319,14 +306,13 @@ struct GridArgs {
 
 int cmd_grid(Session& s, const GridArgs& a) {
   GridConfig c;
-  c.request_id(s.next_request_id());
   c.resolution(a.resolution);
   c.width_m(a.width);
   c.height_m(a.height);
   c.origin(a.origin.size() == 2 ? point(a.origin[0], a.origin[1]) : point(0, 0));
   c.inflation_radius(a.inflation);
   c.legacy_mode(a.legacy);
-  return send(s, dds::kGridConfig, c, "mapper");
+  return map_request(s, dds::kGridConfig, c);
 }
 
 Handler add_grid(CLI::App& cli) {
@@ -342,11 +328,10 @@ Handler add_grid(CLI::App& cli) {
 
 int cmd_map_edit(Session& s, MapEditKind kind, const Point2& point, const std::string& robot) {
   MapEdit edit;
-  edit.request_id(s.next_request_id());
   edit.kind(kind);
   edit.point(point);
   edit.robot_id(robot);
-  return send(s, dds::kMapEdit, edit, "mapper");
+  return map_request(s, dds::kMapEdit, edit);
 }
 
 // obstruct and unobstruct: one cell, x y.
@@ -378,7 +363,6 @@ struct PoseArgs {
 
 int cmd_pose(Session& s, const PoseArgs& a) {
   InitialPose req;
-  req.request_id(s.next_request_id());
   req.robot_id(a.robot);
   req.pose().x(a.x);
   req.pose().y(a.y);
@@ -411,12 +395,15 @@ Handler add_pose(CLI::App& cli) {
 
 int cmd_sim(Session& s, SimCommandKind kind, uint32_t count, const std::string& robot) {
   SimControl c;
-  c.command_id(s.next_request_id());
   c.kind(kind);
   c.count(count);
   c.robot_id(robot);
   c.speed_factor(1.0);
-  return send(s, dds::kSimControl, c, "simulator");
+  const auto reply = request(s, dds::kSimControl, c, dds::kSimReply, "simulator");
+  if (!reply) return kExitFailure;
+  if (!reply->ok()) return fail(reply->message().to_string());
+  std::printf("%s\n", reply->message().size() == 0 ? "ok" : reply->message().c_str());
+  return 0;
 }
 
 struct SimArgs {

@@ -10,6 +10,7 @@
 #include <string_view>
 #include <vector>
 
+#include "common/core/request_retry.hpp"
 #include "common/fastdds/fast_topics.hpp"
 
 namespace slam::ctl {
@@ -21,13 +22,13 @@ class Session {
   dds::Participant& participant() { return *participant_; }
   std::chrono::milliseconds timeout() const { return timeout_; }
   int domain() const { return participant_->domain_id(); }
-  // A request id unlikely to collide with another client's.
-  uint64_t next_request_id();
+  // A goal id no other client uses (request ids are stamped by the Requester).
+  uint64_t next_goal_id();
 
  private:
   std::unique_ptr<dds::Participant> participant_;
   std::chrono::milliseconds timeout_;
-  uint64_t sequence_ = 0;
+  RequestIdSource goal_ids_;
 };
 
 // Runs a parsed subcommand; returns the exit code.

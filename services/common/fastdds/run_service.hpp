@@ -3,6 +3,7 @@
 // handling, the heartbeat and the loop, with the same exit codes and error lines everywhere.
 #include <spdlog/spdlog.h>
 
+#include <functional>
 #include <string>
 #include <string_view>
 
@@ -19,8 +20,10 @@ namespace slam {
 // line "slam-SERVICE: error: ..." when the node or its heartbeat cannot start.
 // Node needs: static Result<std::unique_ptr<Node>> create(const Options&, Counters&);
 //             dds::Participant& participant(); void run_once();
+// `created` runs once the node exists, just before its heartbeat starts (the mapper hands over
+// the heartbeat of its domain claim there).
 template <class Node, class Options>
-int run_service(std::string_view service, const Options& options) {
+int run_service(std::string_view service, const Options& options, const std::function<void()>& created = {}) {
   install_shutdown_handlers();
   Counters counters;
   auto node = Node::create(options, counters);
@@ -28,6 +31,7 @@ int run_service(std::string_view service, const Options& options) {
     report_error(program_name(service), node.message());
     return kExitFailure;
   }
+  if (created) created();
   auto heartbeat = HeartbeatPublisher::start((*node)->participant(), std::string(service), counters);
   if (!heartbeat) {
     report_error(program_name(service), "heartbeat: " + heartbeat.message());

@@ -1,7 +1,7 @@
 // The viewer's readers, writers and heartbeat (see viewer_node.hpp).
 #include "viewer/dds/viewer_node.hpp"
 
-#include "common/core/clock.hpp"
+#include "viewer/core/request_tracker.hpp"
 #include "viewer/dds/node_convert.hpp"
 
 namespace slam::viewer {
@@ -16,6 +16,23 @@ Status make_intake_reader(dds::Participant& p, const dds::Topic<T, PubSubT>& top
     bump(received);
   });
   if (!r) return Error{std::string("reader for ") + topic.info.name + ": " + r.message()};
+  out = std::move(*r);
+  return {};
+}
+
+// A requester on `topic` whose every reply (also to other viewers' requests) goes into the intake.
+template <class T, class PubSubT>
+Status make_intake_requester(dds::Participant& p, const dds::Topic<T, PubSubT>& topic, Intake& intake,
+                             std::atomic<int64_t>& received, std::unique_ptr<dds::Requester<T>>& out) {
+  // Retried until the request trackers would call it unanswered.
+  RetryPolicy policy;
+  policy.timeout =
+      std::chrono::duration_cast<std::chrono::milliseconds>(std::chrono::nanoseconds(kReplyTimeoutNs));
+  auto r = dds::Requester<T>::create(p, topic, policy, [&intake, &received](const T& reply) {
+    intake.push(from_idl(reply));
+    bump(received);
+  });
+  if (!r) return Error{std::string("requester on ") + topic.info.name + ": " + r.message()};
   out = std::move(*r);
   return {};
 }
@@ -35,8 +52,7 @@ ViewerNode::ViewerNode(Intake& intake, Counters& counters)
     : intake_(intake),
       received_(counters.get("samples_received")),
       sent_(counters.get("commands_sent")),
-      send_failed_(counters.get("commands_failed")),
-      next_id_(static_cast<uint64_t>(now_ns())) {}
+      send_failed_(counters.get("commands_failed")) {}
 
 ViewerNode::~ViewerNode() = default;
 
@@ -61,7 +77,10 @@ Status ViewerNode::create_writers() {
         make_writer_into(p, dds::kMqttRequest, mqtt_writer_),
         make_writer_into(p, dds::kSimControl, sim_writer_),
         make_writer_into(p, dds::kMapFileRequest, file_writer_),
-        make_writer_into(p, dds::kInitialPose, initial_pose_writer_)})
+        make_writer_into(p, dds::kInitialPose, initial_pose_writer_),
+        make_intake_requester(p, dds::kMapReply, intake_, received_, map_requester_),
+        make_intake_requester(p, dds::kMqttReply, intake_, received_, mqtt_requester_),
+        make_intake_requester(p, dds::kSimReply, intake_, received_, sim_requester_)})
     if (!s) return s;
   return {};
 }
@@ -80,17 +99,15 @@ Status ViewerNode::create_readers() {
                    make_intake_reader(p, dds::kMqttTraffic, in, rx, traffic_reader_),
                    make_intake_reader(p, dds::kMqttSubscriptions, in, rx, subscriptions_reader_),
                    make_intake_reader(p, dds::kSimWorld, in, rx, world_reader_),
-                   make_intake_reader(p, dds::kSimGroundTruth, in, rx, truth_reader_),
-                   make_intake_reader(p, dds::kMapReply, in, rx, reply_reader_),
-                   make_intake_reader(p, dds::kMqttReply, in, rx, mqtt_reply_reader_),
-                   make_intake_reader(p, dds::kSimReply, in, rx, sim_reply_reader_)})
+                   make_intake_reader(p, dds::kSimGroundTruth, in, rx, truth_reader_)})
     if (!s) return s;
   return {};
 }
 
-template <class W, class S>
-uint64_t ViewerNode::write(W& writer, const S& sample, uint64_t id) {
-  if (!writer.write(sample)) {
+uint64_t ViewerNode::send(const GoalCommand& c) {
+  // A goal is state (kept for late joiners while this viewer runs), not a request: written once.
+  const uint64_t id = goal_ids_.next();
+  if (!goal_writer_->write(to_idl(c, id))) {
     bump(send_failed_);
     return 0;
   }
@@ -98,34 +115,29 @@ uint64_t ViewerNode::write(W& writer, const S& sample, uint64_t id) {
   return id;
 }
 
-uint64_t ViewerNode::send(const GoalCommand& c) {
-  const uint64_t id = ++next_id_;
-  return write(*goal_writer_, to_idl(c, id), id);
-}
-uint64_t ViewerNode::send(const MapEditCommand& c) {
-  const uint64_t id = ++next_id_;
-  return write(*edit_writer_, to_idl(c, id), id);
-}
-uint64_t ViewerNode::send(const GridConfigCommand& c) {
-  const uint64_t id = ++next_id_;
-  return write(*config_writer_, to_idl(c, id), id);
-}
-uint64_t ViewerNode::send(const MqttRequestCommand& c) {
-  const uint64_t id = ++next_id_;
-  return write(*mqtt_writer_, to_idl(c, id), id);
-}
-uint64_t ViewerNode::send(const SimCommand& c) {
-  const uint64_t id = ++next_id_;
-  return write(*sim_writer_, to_idl(c, id), id);
-}
-uint64_t ViewerNode::send(const MapFileCommand& c) {
-  const uint64_t id = ++next_id_;
-  return write(*file_writer_, to_idl(c, id), id);
+template <class Rep, class Req>
+uint64_t ViewerNode::request(dds::Requester<Rep>& requester, dds::Writer<Req>& writer, const Req& sample) {
+  bump(sent_);
+  return requester.send(writer, sample);
 }
 
+uint64_t ViewerNode::send(const MapEditCommand& c) {
+  return request(*map_requester_, *edit_writer_, to_idl(c, 0));
+}
+uint64_t ViewerNode::send(const GridConfigCommand& c) {
+  return request(*map_requester_, *config_writer_, to_idl(c, 0));
+}
+uint64_t ViewerNode::send(const MqttRequestCommand& c) {
+  return request(*mqtt_requester_, *mqtt_writer_, to_idl(c, 0));
+}
+uint64_t ViewerNode::send(const SimCommand& c) {
+  return request(*sim_requester_, *sim_writer_, to_idl(c, 0));
+}
+uint64_t ViewerNode::send(const MapFileCommand& c) {
+  return request(*map_requester_, *file_writer_, to_idl(c, 0));
+}
 uint64_t ViewerNode::send(const InitialPoseCommand& c) {
-  const uint64_t id = ++next_id_;
-  return write(*initial_pose_writer_, to_idl(c, id), id);
+  return request(*map_requester_, *initial_pose_writer_, to_idl(c, 0));
 }
 
 }  // namespace slam::viewer

@@ -1,13 +1,16 @@
 #pragma once
 // The viewer's DDS edge: one reader per topic it shows (each converts the sample and pushes it
-// into the Intake on the listener thread; nothing else), one writer per command it sends, and
-// its heartbeat. configure() undoes itself on failure by returning nothing half-built.
+// into the Intake on the listener thread; nothing else), one writer per command it sends, a
+// Requester per reply topic (requests are resent under their id until answered; every reply also
+// goes into the Intake), and its heartbeat. configure() undoes itself on failure by returning nothing
+// half-built.
 #include <atomic>
 #include <memory>
 
 #include "common/core/counters.hpp"
 #include "common/fastdds/fast_topics.hpp"
 #include "common/fastdds/heartbeat.hpp"
+#include "common/fastdds/requester.hpp"
 #include "viewer/core/commands.hpp"
 #include "viewer/core/intake.hpp"
 
@@ -33,14 +36,15 @@ class ViewerNode final : public CommandSink {
   ViewerNode(Intake& intake, Counters& counters);
   Status create_readers();
   Status create_writers();
-  template <class W, class S>
-  uint64_t write(W& writer, const S& sample, uint64_t id);
+  // Sends `sample` under a fresh id through `requester` (retried until answered); returns the id.
+  template <class Rep, class Req>
+  uint64_t request(dds::Requester<Rep>& requester, dds::Writer<Req>& writer, const Req& sample);
 
   Intake& intake_;
   std::atomic<int64_t>& received_;
   std::atomic<int64_t>& sent_;
   std::atomic<int64_t>& send_failed_;
-  uint64_t next_id_;  // request ids: start from the clock so restarts never reuse one
+  RequestIdSource goal_ids_;
 
   // Declaration order = construction order; members are destroyed in reverse (readers first).
   std::unique_ptr<dds::Participant> participant_;
@@ -52,6 +56,10 @@ class ViewerNode final : public CommandSink {
   std::unique_ptr<dds::Writer<SimControl>> sim_writer_;
   std::unique_ptr<dds::Writer<MapFileRequest>> file_writer_;
   std::unique_ptr<dds::Writer<InitialPose>> initial_pose_writer_;
+  // After the writers they resend through, so they stop first.
+  std::unique_ptr<dds::Requester<MapReply>> map_requester_;
+  std::unique_ptr<dds::Requester<MqttReply>> mqtt_requester_;
+  std::unique_ptr<dds::Requester<SimReply>> sim_requester_;
   std::unique_ptr<dds::Reader<GridSnapshot>> snapshot_reader_;
   std::unique_ptr<dds::Reader<GridPatch>> patch_reader_;
   std::unique_ptr<dds::Reader<RobotObservation>> observation_reader_;
@@ -63,9 +71,6 @@ class ViewerNode final : public CommandSink {
   std::unique_ptr<dds::Reader<MqttSubscriptions>> subscriptions_reader_;
   std::unique_ptr<dds::Reader<SimWorld>> world_reader_;
   std::unique_ptr<dds::Reader<SimGroundTruth>> truth_reader_;
-  std::unique_ptr<dds::Reader<MapReply>> reply_reader_;
-  std::unique_ptr<dds::Reader<MqttReply>> mqtt_reply_reader_;
-  std::unique_ptr<dds::Reader<SimReply>> sim_reply_reader_;
 };
 
 }  // namespace slam::viewer
