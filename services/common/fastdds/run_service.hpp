@@ -19,6 +19,17 @@ namespace slam {
 // line "slam-SERVICE: error: ..." when the node or its heartbeat cannot start.
 // Node needs: static Result<std::unique_ptr<Node>> create(const Options&, Counters&);
 //             dds::Participant& participant(); void run_once();
+// and may set its heartbeat period with `static constexpr std::chrono::milliseconds kHeartbeatPeriod`
+// (1 s otherwise).
+template <class Node>
+constexpr std::chrono::milliseconds heartbeat_period() {
+  if constexpr (requires { Node::kHeartbeatPeriod; }) {
+    return Node::kHeartbeatPeriod;
+  } else {
+    return std::chrono::seconds(1);
+  }
+}
+
 template <class Node, class Options>
 int run_service(std::string_view service, const Options& options) {
   install_shutdown_handlers();
@@ -28,7 +39,8 @@ int run_service(std::string_view service, const Options& options) {
     report_error(program_name(service), node.message());
     return kExitFailure;
   }
-  auto heartbeat = HeartbeatPublisher::start((*node)->participant(), std::string(service), counters);
+  auto heartbeat = HeartbeatPublisher::start((*node)->participant(), std::string(service), counters,
+                                             heartbeat_period<Node>());
   if (!heartbeat) {
     report_error(program_name(service), "heartbeat: " + heartbeat.message());
     return kExitFailure;
