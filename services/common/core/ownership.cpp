@@ -55,7 +55,9 @@ bool Ownership::left(std::string_view instance) {
 }
 
 std::size_t Ownership::expire(std::int64_t now_mono_ns, std::vector<std::string>* gone) {
-  const auto silent = [&](const Peer& p) { return now_mono_ns - p.last_heard_mono_ns > config_.peer_timeout_ns; };
+  const auto silent = [&](const Peer& p) {
+    return now_mono_ns - p.last_heard_mono_ns > config_.peer_timeout_ns;
+  };
   std::size_t count = 0;
   for (const Peer& p : peers_) {
     if (!silent(p)) continue;

@@ -47,7 +47,9 @@ class Ownership {
   const std::string& owner_of(std::string_view key, std::int64_t now_mono_ns) const;
   // True when this instance is warmed up and the owner of `key`.
   bool owns(std::string_view key, std::int64_t now_mono_ns) const;
-  bool warmed_up(std::int64_t now_mono_ns) const { return now_mono_ns - started_mono_ns_ >= config_.warmup_ns; }
+  bool warmed_up(std::int64_t now_mono_ns) const {
+    return now_mono_ns - started_mono_ns_ >= config_.warmup_ns;
+  }
 
   const std::string& self() const { return self_; }
   // Live instances, self included, sorted.
