@@ -46,8 +46,9 @@ class RobotPublishers {
  public:
   RobotPublishers(int port, int robots) {
     for (int i = 0; i < robots; ++i) {
-      const std::string command = "mosquitto_pub -h 127.0.0.1 -p " + std::to_string(port) + " -q 1 -i share-pub-" +
-                                  std::to_string(i) + " -t v2/robot/" + robot_id(i) + "/pose -l";
+      const std::string command = "mosquitto_pub -h 127.0.0.1 -p " + std::to_string(port) +
+                                  " -q 1 -i share-pub-" + std::to_string(i) + " -t v2/robot/" + robot_id(i) +
+                                  "/pose -l";
       pipes_.push_back(::popen(command.c_str(), "w"));
     }
   }
@@ -91,12 +92,13 @@ class GatewayShareTest : public ::testing::Test {
           std::lock_guard lock(mutex);
           ++observations[{std::string(o.robot_id().c_str()), marker_of(o)}];
         }));
-    heartbeat_reader = std::move(*dds::make_reader(*participant, dds::kHeartbeat, [this](const Heartbeat& h, const auto&) {
-      if (h.service() != std::string("gateway")) return;
-      std::lock_guard lock(mutex);
-      auto& counters = gateway_counters[std::string(h.instance_id().c_str())];
-      for (const auto& c : h.counters()) counters[std::string(c.name().c_str())] = c.value();
-    }));
+    heartbeat_reader =
+        std::move(*dds::make_reader(*participant, dds::kHeartbeat, [this](const Heartbeat& h, const auto&) {
+          if (h.service() != std::string("gateway")) return;
+          std::lock_guard lock(mutex);
+          auto& counters = gateway_counters[std::string(h.instance_id().c_str())];
+          for (const auto& c : h.counters()) counters[std::string(c.name().c_str())] = c.value();
+        }));
     waypoint_writer = testkit::make_test_writer(*participant, dds::kWaypointCommand);
     for (const char* name : {"gw-a", "gw-b"}) {
       group.start(name, {bin_path("slam-gateway"), "--domain", std::to_string(domain.id()), "--broker",
@@ -262,7 +264,8 @@ TEST_F(GatewayShareTest, EachMessageAndWaypointOnceAndTheSurvivorTakesOverAfterA
   ASSERT_TRUE(wait_until(
       [&] {
         size_t n = 0;
-        for (const auto& [key, copies] : waypoints_received()) n += key.second >= first_after_takeover ? 1 : 0;
+        for (const auto& [key, copies] : waypoints_received())
+          n += key.second >= first_after_takeover ? 1 : 0;
         return n == kRobots * (seq - first_after_takeover + 1);
       },
       10s));
@@ -283,9 +286,10 @@ TEST_F(GatewayShareTest, EachMessageAndWaypointOnceAndTheSurvivorTakesOverAfterA
       lost += copies == 0 ? 1 : 0;
     }
   }
-  std::printf("[ figures ] takeover after kill -9: %.2f s (all %d robots served again); robot messages "
-              "published during the kill phase: %lld, lost: %lld\n",
-              takeover_s, kRobots, static_cast<long long>(published), static_cast<long long>(lost));
+  std::printf(
+      "[ figures ] takeover after kill -9: %.2f s (all %d robots served again); robot messages "
+      "published during the kill phase: %lld, lost: %lld\n",
+      takeover_s, kRobots, static_cast<long long>(published), static_cast<long long>(lost));
   RecordProperty("takeover_s", std::to_string(takeover_s));
   RecordProperty("messages_lost_in_kill", std::to_string(lost));
 }
