@@ -8,12 +8,25 @@
 #include <utility>
 
 #include "common/core/clock.hpp"
+#include "common/core/service_identity.hpp"
 #include "gateway/gateway_msgs.hpp"
 #include "protocol/text_check.hpp"
 
 namespace slam::gateway {
 
 namespace {
+
+std::int64_t to_ns(double seconds) {
+  return static_cast<std::int64_t>(seconds * 1e9);
+}
+
+// Without sharing, no warm-up: a lone gateway sends waypoints from its start.
+OwnershipConfig ownership_config(const GatewayOptions& o) {
+  const std::int64_t timeout = to_ns(o.peer_timeout_s);
+  // Longer than a heartbeat period past the timeout: by then every live peer has heard this
+  // gateway's heartbeats (discovery included) and dropped the robots it takes.
+  return {timeout, o.share ? timeout + to_ns(2.0 * kGatewayHeartbeatPeriodS) : 0};
+}
 
 std::string default_client_id() {
   char host[256] = {};
@@ -44,7 +57,11 @@ GatewayNode::Metrics::Metrics(Counters& c)
       publish_failures(c.get("publish_failures")),
       traffic_dropped(c.get("traffic_dropped")),
       reconnects(c.get("reconnects")),
-      write_failures(c.get("write_failures")) {
+      write_failures(c.get("write_failures")),
+      commands_not_owned(c.get("commands_not_owned")),
+      robots_owned(c.get("robots_owned")),
+      gateways_live(c.get("gateways_live")),
+      robot_protocols_refused(c.get("robot_protocols_refused")) {
   for (protocol::RejectReason r : protocol::kAllRejectReasons) {
     rejected[static_cast<size_t>(r)] = &c.get(std::string(protocol::reason_counter(r)));
   }
@@ -58,7 +75,10 @@ GatewayNode::GatewayNode(const GatewayOptions& options, Counters& counters)
       registry_(RegistryConfig{static_cast<int64_t>(options.offline_after_s * 1e9), options.max_robots}),
       corrections_(options.max_robots),
       decoder_(options.limits),
-      encoder_(options.limits) {}
+      encoder_(options.limits),
+      // The instance id this process's heartbeats carry (host:pid), so peers and self agree.
+      ownership_(ServiceIdentity::of("gateway").instance_id, monotonic_ns(), ownership_config(options)),
+      protocols_(options.max_robots) {}
 
 Result<std::unique_ptr<GatewayNode>> GatewayNode::create(const GatewayOptions& options, Counters& counters) {
   std::unique_ptr<GatewayNode> node(new GatewayNode(options, counters));
@@ -92,6 +112,7 @@ Status GatewayNode::configure() {
 
   mqtt::ConnectionOptions connection = options_.mqtt;
   if (connection.client_id.empty()) connection.client_id = default_client_id();
+  connection.subscriptions = subscribed_filters(options_);
   const std::string client_id = connection.client_id;
   mqtt::Callbacks callbacks;
   callbacks.message = [this](std::string_view topic, std::span<const std::uint8_t> payload) {
@@ -102,7 +123,17 @@ Status GatewayNode::configure() {
   mqtt_ = std::move(*mqtt);
 
   // Readers last: their callbacks publish through the MQTT client (or, for corrections, wake the
-  // loop, and waypoints need them).
+  // loop, and waypoints need them). Heartbeats and states before waypoints, which need both.
+  if (options_.share) {
+    auto heartbeats = dds::make_reader(*participant_, dds::kHeartbeat,
+                                       [this](const slam::Heartbeat& h, const auto&) { on_heartbeat(h); });
+    if (!heartbeats) return heartbeats.error();
+    heartbeat_reader_ = std::move(*heartbeats);
+  }
+  auto robot_states = dds::make_reader(*participant_, dds::kRobotState,
+                                       [this](const slam::RobotState& s, const auto&) { on_robot_state(s); });
+  if (!robot_states) return robot_states.error();
+  state_reader_ = std::move(*robot_states);
   auto corrections =
       dds::make_reader(*participant_, dds::kPoseCorrection,
                        [this](const slam::PoseCorrection& c, const auto&) { on_correction(c); });
@@ -120,6 +151,11 @@ Status GatewayNode::configure() {
   spdlog::info("gateway ready on domain {}: broker {} as '{}', QoS {}, {} session, {} filter(s)",
                options_.service.domain, options_.mqtt.broker, client_id, options_.mqtt.qos,
                options_.mqtt.persistent_session ? "persistent" : "clean", options_.mqtt.subscriptions.size());
+  if (options_.share) {
+    spdlog::info("gateway '{}' shares the robots in group '{}'; it sends waypoints after a {:.1f} s warm-up",
+                 ownership_.self(), options_.share_group,
+                 static_cast<double>(ownership_config(options_).warmup_ns) * 1e-9);
+  }
   return Status::ok();
 }
 
@@ -143,6 +179,7 @@ void GatewayNode::run_once() {
                  options_.offline_after_s);
   }
   mqtt_->poll(std::chrono::steady_clock::now());
+  update_ownership(now.mono_ns);
   publish_states();
   metrics_.robots_online.store(static_cast<int64_t>(online), std::memory_order_relaxed);
   metrics_.reconnects.store(static_cast<int64_t>(mqtt_->reconnects()), std::memory_order_relaxed);
@@ -208,6 +245,87 @@ void GatewayNode::publish_subscriptions() {
   } else {
     bump(metrics_.write_failures);
   }
+}
+
+void GatewayNode::on_heartbeat(const slam::Heartbeat& heartbeat) {
+  if (text_of(heartbeat.service()) != "gateway") return;
+  const std::string_view instance = text_of(heartbeat.instance_id());
+  std::lock_guard lock(ownership_mutex_);
+  if (heartbeat.state() == SERVICE_STOPPING) {
+    // It stopped sending before saying so (on_waypoint checks shutdown_requested()).
+    ownership_.left(instance);
+  } else {
+    ownership_.heard(instance, monotonic_ns());
+  }
+}
+
+void GatewayNode::on_robot_state(const slam::RobotState& state) {
+  const LearntProtocol report{state.protocol() == slam::PROTOCOL_V1 ? Protocol::V1 : Protocol::V2,
+                              state.last_seen_ns()};
+  bool stored = false;
+  {
+    std::lock_guard lock(protocols_mutex_);
+    stored = protocols_.learn(text_of(state.robot_id()), report);
+  }
+  if (!stored) bump(metrics_.robot_protocols_refused);
+}
+
+std::optional<Protocol> GatewayNode::protocol_of(std::string_view id) {
+  std::optional<LearntProtocol> local;
+  {
+    std::lock_guard lock(registry_mutex_);
+    if (const RobotRecord* r = registry_.find(id)) local = LearntProtocol{r->protocol, r->last_seen_ns};
+  }
+  std::optional<LearntProtocol> reported;
+  {
+    std::lock_guard lock(protocols_mutex_);
+    reported = protocols_.find(id);
+  }
+  const auto chosen = fresher(local, reported);
+  if (!chosen) return std::nullopt;
+  return chosen->protocol;
+}
+
+void GatewayNode::update_ownership(std::int64_t now_mono_ns) {
+  std::uint64_t version = 0;
+  std::vector<std::string> live;
+  gone_.clear();
+  {
+    std::lock_guard lock(ownership_mutex_);
+    ownership_.expire(now_mono_ns, &gone_);
+    version = ownership_.version();
+    if (version != ownership_version_) live = ownership_.live();
+  }
+  for (const std::string& id : gone_) {
+    spdlog::warn("gateway '{}' silent for {} s: its robots move to the others", protocol::escape_for_log(id),
+                 options_.peer_timeout_s);
+  }
+  const bool changed = version != ownership_version_;
+  if (changed) {
+    ownership_version_ = version;
+    std::string ids;
+    for (const std::string& id : live) {
+      if (!ids.empty()) ids += ", ";
+      ids += protocol::escape_for_log(id);
+    }
+    if (options_.share) spdlog::info("gateways sharing the robots: {} ({})", live.size(), ids);
+    metrics_.gateways_live.store(static_cast<int64_t>(live.size()), std::memory_order_relaxed);
+  }
+  // Robots owned, among every robot any gateway reported: a gauge, refreshed once a second.
+  if (!changed && now_mono_ns < next_owned_count_ns_) return;
+  next_owned_count_ns_ = now_mono_ns + 1'000'000'000;
+  std::vector<std::string> ids;
+  {
+    std::lock_guard lock(protocols_mutex_);
+    ids.reserve(protocols_.size());
+    protocols_.for_each_id([&](const std::string& id) { ids.push_back(id); });
+  }
+  int64_t owned = 0;
+  {
+    std::lock_guard lock(ownership_mutex_);
+    for (const std::string& id : ids) owned += ownership_.owns(id, now_mono_ns) ? 1 : 0;
+  }
+  metrics_.robots_owned.store(owned, std::memory_order_relaxed);
 }
 
 void GatewayNode::warn(const std::string& key, const std::string& line) {

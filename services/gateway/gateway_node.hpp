@@ -4,7 +4,9 @@
 // odometry frame, and the viewer's MQTT requests, published to the broker from the reader
 // threads), and a loop that turns robot presence, poses (in the map frame, the raw odometry
 // beside) and subscriptions into state samples. The MQTT traffic log goes through a bounded queue to its own
-// worker.
+// worker. Several gateways share the robots: each robot message reaches one of them (MQTT shared
+// subscriptions) and each robot's waypoints are sent by its owner only (Ownership over the gateways'
+// heartbeats); the protocol a robot speaks is learnt from every gateway's RobotStates.
 #include <array>
 #include <atomic>
 #include <chrono>
@@ -12,6 +14,7 @@
 #include <cstdint>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -19,6 +22,7 @@
 
 #include "common/core/counters.hpp"
 #include "common/core/log.hpp"
+#include "common/core/ownership.hpp"
 #include "common/core/reply_cache.hpp"
 #include "common/core/result.hpp"
 #include "common/fastdds/fast_topics.hpp"
@@ -27,6 +31,7 @@
 #include "gateway/frame_correction.hpp"
 #include "gateway/gateway_options.hpp"
 #include "gateway/inbound_decoder.hpp"
+#include "gateway/robot_protocols.hpp"
 #include "gateway/robot_registry.hpp"
 #include "gateway/traffic_publisher.hpp"
 #include "gateway/traffic_queue.hpp"
@@ -43,6 +48,10 @@ class GatewayNode {
   GatewayNode& operator=(const GatewayNode&) = delete;
 
   dds::Participant& participant() { return *participant_; }
+
+  // Faster than the 1 s default: a dead gateway's robots move after options.peer_timeout_s.
+  static constexpr std::chrono::milliseconds kHeartbeatPeriod{
+      static_cast<std::int64_t>(kGatewayHeartbeatPeriodS * 1000.0)};
 
   // One loop pass: waits up to the state period (less when a robot appears, changes presence or gets
   // a new correction, or an MQTT reconnection attempt is due), starts a due attempt, marks silent
@@ -74,6 +83,10 @@ class GatewayNode {
     std::atomic<int64_t>& traffic_dropped;
     std::atomic<int64_t>& reconnects;
     std::atomic<int64_t>& write_failures;
+    std::atomic<int64_t>& commands_not_owned;
+    std::atomic<int64_t>& robots_owned;
+    std::atomic<int64_t>& gateways_live;
+    std::atomic<int64_t>& robot_protocols_refused;
   };
 
   GatewayNode(const GatewayOptions& options, Counters& counters);
@@ -87,6 +100,10 @@ class GatewayNode {
   void on_correction(const slam::PoseCorrection& sample);
   void on_waypoint(const slam::WaypointCommand& command);
   void on_request(const slam::MqttRequest& request);
+  void on_heartbeat(const slam::Heartbeat& heartbeat);
+  void on_robot_state(const slam::RobotState& state);
+  // The protocol to answer robot `id` in: the fresher of this gateway's registry and the RobotStates.
+  std::optional<Protocol> protocol_of(std::string_view id);
   Status execute(const slam::MqttRequest& request);
   void reply(std::uint64_t request_id, const Status& result);
   // Any thread: publishes, counts, logs the traffic.
@@ -95,6 +112,8 @@ class GatewayNode {
 
   void publish_states();
   void publish_subscriptions();
+  // Loop: drops silent gateways, logs changes of the live set and counts the robots owned.
+  void update_ownership(std::int64_t now_mono_ns);
 
   GatewayOptions options_;
   std::chrono::milliseconds period_;
@@ -125,7 +144,18 @@ class GatewayNode {
   CommandMessages commands_;
   std::vector<protocol::Point> remaining_;
 
+  // Heartbeat reader thread, waypoint reader thread and loop.
+  std::mutex ownership_mutex_;
+  Ownership ownership_;
+
+  // RobotState reader thread writes; waypoint reader thread and loop read.
+  std::mutex protocols_mutex_;
+  RobotProtocols protocols_;
+
   // Loop thread.
+  std::uint64_t ownership_version_ = ~std::uint64_t{0};  // none logged yet
+  std::int64_t next_owned_count_ns_ = 0;
+  std::vector<std::string> gone_;
   std::vector<RobotRecord> changed_;
   std::vector<std::string> went_offline_;
   slam::RobotState state_;
@@ -146,6 +176,8 @@ class GatewayNode {
   std::unique_ptr<dds::Reader<slam::PoseCorrection>> correction_reader_;
   std::unique_ptr<dds::Reader<slam::WaypointCommand>> waypoint_reader_;
   std::unique_ptr<dds::Reader<slam::MqttRequest>> request_reader_;
+  std::unique_ptr<dds::Reader<slam::Heartbeat>> heartbeat_reader_;
+  std::unique_ptr<dds::Reader<slam::RobotState>> state_reader_;
 };
 
 }  // namespace slam::gateway

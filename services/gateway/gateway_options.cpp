@@ -57,6 +57,22 @@ void add_gateway_options(CLI::App& app, GatewayOptions& o) {
       ->capture_default_str();
   app.add_option("--traffic-rate", o.traffic_rate, "MQTT traffic records per second published at most")
       ->capture_default_str();
+
+  app.add_option("--share-group", o.share_group,
+                 "MQTT shared-subscription group of the gateways that share the robots")
+      ->capture_default_str();
+  app.add_flag("--no-share{false}", o.share,
+               "a lone gateway: plain subscriptions, sends every robot's waypoints from the start");
+  app.add_option("--peer-timeout-s", o.peer_timeout_s,
+                 "a gateway unheard this long (s) is gone and its robots move to the others")
+      ->capture_default_str();
+}
+
+std::vector<std::string> subscribed_filters(const GatewayOptions& o) {
+  if (!o.share) return o.mqtt.subscriptions;
+  std::vector<std::string> shared;
+  for (const std::string& f : o.mqtt.subscriptions) shared.push_back(mqtt::shared_filter(o.share_group, f));
+  return shared;
 }
 
 Status validate(const GatewayOptions& o) {
@@ -73,6 +89,15 @@ Status validate(const GatewayOptions& o) {
   if (o.traffic_queue == 0 || o.traffic_queue > 1'000'000)
     return Error{"traffic-queue must be between 1 and 1000000"};
   if (!std::isfinite(o.traffic_rate) || o.traffic_rate < 0.0) return Error{"traffic-rate must be 0 or more"};
+  if (o.share) {
+    if (auto s = mqtt::validate_share_group(o.share_group); !s) return s;
+    for (const std::string& filter : subscribed_filters(o)) {
+      if (auto s = validate_filter(filter); !s) return Error{"share-group: " + s.message()};
+    }
+  }
+  // Several heartbeats long, or one late heartbeat would hand a live gateway's robots to another.
+  if (auto s = check_seconds("peer-timeout-s", o.peer_timeout_s, 2.0 * kGatewayHeartbeatPeriodS, 60.0); !s)
+    return s;
   return Status::ok();
 }
 

@@ -34,7 +34,20 @@ struct GatewayOptions {
   std::size_t max_robots = 10'000;
   std::size_t traffic_queue = 1024;  // MqttTraffic records waiting for the worker
   double traffic_rate = 2000.0;      // MqttTraffic records per second at most
+  // Several gateways share the robots: the filters are subscribed as $share/<share_group>/<filter>
+  // (each robot message reaches one gateway) and each robot's waypoints are sent by its owner only,
+  // chosen from the gateways heard within peer_timeout_s (common/core/ownership.hpp). share false
+  // (--no-share): a lone gateway with plain subscriptions that owns every robot from its start.
+  bool share = true;
+  std::string share_group = "slam-gateways";
+  double peer_timeout_s = 1.5;
 };
+
+// Gateway heartbeats go out this often: peer_timeout_s must span a few of them.
+inline constexpr double kGatewayHeartbeatPeriodS = 0.5;
+
+// The filters the MQTT connection subscribes: mqtt.subscriptions, shared when `share` is on.
+std::vector<std::string> subscribed_filters(const GatewayOptions& options);
 
 // Adds the common flags and every gateway flag to `app`, bound to `options`.
 void add_gateway_options(CLI::App& app, GatewayOptions& options);

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "common/core/clock.hpp"
+#include "common/core/shutdown.hpp"
 #include "gateway/gateway_msgs.hpp"
 #include "gateway/gateway_node.hpp"
 #include "gateway/topic_filter.hpp"
@@ -47,11 +48,16 @@ Status GatewayNode::publish_mqtt(const std::string& topic, std::span<const std::
 void GatewayNode::on_waypoint(const slam::WaypointCommand& command) {
   bump(metrics_.commands);
   const std::string_view id = text_of(command.robot_id());
-  std::optional<Protocol> protocol;
   {
-    std::lock_guard lock(registry_mutex_);
-    protocol = registry_.protocol_of(id);
+    // Every gateway receives every command; only the robot's owner sends it. A stopping gateway
+    // sends nothing more: its STOPPING heartbeat hands its robots to the others at once.
+    std::lock_guard lock(ownership_mutex_);
+    if (shutdown_requested() || !ownership_.owns(id, monotonic_ns())) {
+      bump(metrics_.commands_not_owned);
+      return;
+    }
   }
+  const std::optional<Protocol> protocol = protocol_of(id);
   const std::string shown = protocol::escape_for_log(id);
   if (!protocol) {
     bump(metrics_.commands_unknown_robot);

@@ -48,7 +48,8 @@ class GatewayFramesTest : public ::testing::Test {
     waypoint_writer = make_test_writer(*participant, dds::kWaypointCommand);
 
     group.start("gateway", {bin_path("slam-gateway"), "--domain", std::to_string(domain.id()), "--broker",
-                            "tcp://127.0.0.1:" + std::to_string(port), "--log-level", "debug"});
+                            "tcp://127.0.0.1:" + std::to_string(port), "--log-level", "debug",
+                            "--no-share"});  // a lone gateway: waypoints go out from its start
     ASSERT_TRUE(subscriptions.wait_for([](const MqttSubscriptions& s) { return s.connected(); }, 20s))
         << group.log("gateway");
     ASSERT_TRUE(wait_until(

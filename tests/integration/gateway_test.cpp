@@ -129,7 +129,8 @@ class GatewayTest : public ::testing::Test {
                                   "--reconnect-max-s",
                                   "1",
                                   "--log-level",
-                                  "debug"};
+                                  "debug",
+                                  "--no-share"};  // a lone gateway: waypoints go out from its start
     argv.insert(argv.end(), extra.begin(), extra.end());
     group.start("gateway", argv);
     ASSERT_TRUE(wait_until([&] { return probe.connected(); }, 20s))

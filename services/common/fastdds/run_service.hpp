@@ -21,7 +21,17 @@ namespace slam {
 // Node needs: static Result<std::unique_ptr<Node>> create(const Options&, Counters&);
 //             dds::Participant& participant(); void run_once();
 // `created` runs once the node exists, just before its heartbeat starts (the mapper hands over
-// the heartbeat of its domain claim there).
+// the heartbeat of its domain claim there). Node may set its heartbeat period with `static constexpr std::chrono::milliseconds kHeartbeatPeriod`
+// (1 s otherwise).
+template <class Node>
+constexpr std::chrono::milliseconds heartbeat_period() {
+  if constexpr (requires { Node::kHeartbeatPeriod; }) {
+    return Node::kHeartbeatPeriod;
+  } else {
+    return std::chrono::seconds(1);
+  }
+}
+
 template <class Node, class Options>
 int run_service(std::string_view service, const Options& options, const std::function<void()>& created = {}) {
   install_shutdown_handlers();
@@ -32,7 +42,8 @@ int run_service(std::string_view service, const Options& options, const std::fun
     return kExitFailure;
   }
   if (created) created();
-  auto heartbeat = HeartbeatPublisher::start((*node)->participant(), std::string(service), counters);
+  auto heartbeat = HeartbeatPublisher::start((*node)->participant(), std::string(service), counters,
+                                             heartbeat_period<Node>());
   if (!heartbeat) {
     report_error(program_name(service), "heartbeat: " + heartbeat.message());
     return kExitFailure;

@@ -27,6 +27,22 @@ bool uses_tls(const std::string& broker) {
   return starts_with(broker, "ssl://") || starts_with(broker, "mqtts://");
 }
 
+std::string shared_filter(std::string_view group, std::string_view filter) {
+  std::string shared = "$share/";
+  shared += group;
+  shared += '/';
+  shared += filter;
+  return shared;
+}
+
+Status validate_share_group(std::string_view group) {
+  if (group.empty()) return Error{"share-group is empty"};
+  if (group.find_first_of("/+#") != std::string_view::npos) {
+    return Error{"share-group '" + std::string(group) + "' must not contain '/', '+' or '#'"};
+  }
+  return Status::ok();
+}
+
 Status validate(const ConnectionOptions& m) {
   const bool tls = uses_tls(m.broker);
   const bool known_scheme = tls || starts_with(m.broker, "tcp://") || starts_with(m.broker, "mqtt://");

@@ -3,6 +3,7 @@
 // names the bad key the way the services' flags do ("keepalive-s must be ...").
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "common/core/result.hpp"
@@ -44,5 +45,13 @@ Status validate(const ConnectionOptions& options);
 
 // True for ssl:// and mqtts:// broker URLs.
 bool uses_tls(const std::string& broker);
+
+// A shared subscription (MQTT 5 §4.8.2, also served to 3.1.1 clients by mosquitto 2 and the common
+// clustered brokers): "$share/<group>/<filter>". The broker hands each matching message to one member
+// of the group, round-robin in mosquitto, and delivers it under its real topic (paho-mqtt-c passes
+// that topic to the message callback as it is; it does no filter matching of its own).
+std::string shared_filter(std::string_view group, std::string_view filter);
+// Ok, or why `group` cannot name a share group: empty, or containing '/', '+' or '#'.
+Status validate_share_group(std::string_view group);
 
 }  // namespace slam::mqtt

@@ -85,6 +85,44 @@ TEST(GatewayOptions, BadValuesNameTheKey) {
   EXPECT_NE(with([](auto& o) { o.traffic_queue = 0; }).find("traffic-queue"), std::string::npos);
 }
 
+GatewayOptions parsed(std::vector<std::string> args) {
+  CLI::App app;
+  GatewayOptions o;
+  add_gateway_options(app, o);
+  args.insert(args.begin(), "slam-gateway");
+  std::vector<char*> argv;
+  for (auto& a : args) argv.push_back(a.data());
+  app.parse(static_cast<int>(argv.size()), argv.data());
+  return o;
+}
+
+TEST(GatewayOptions, SharesTheRobotTopicsByDefault) {
+  const GatewayOptions o;
+  EXPECT_TRUE(o.share);
+  EXPECT_EQ(subscribed_filters(o), (std::vector<std::string>{"$share/slam-gateways/v1/robot/+/adv",
+                                                             "$share/slam-gateways/v2/robot/+/+"}));
+  const auto grouped = parsed({"--share-group", "east", "--peer-timeout-s", "2.5"});
+  EXPECT_EQ(subscribed_filters(grouped).front(), "$share/east/v1/robot/+/adv");
+  EXPECT_DOUBLE_EQ(grouped.peer_timeout_s, 2.5);
+}
+
+TEST(GatewayOptions, NoShareSubscribesThePlainFilters) {
+  const auto o = parsed({"--no-share"});
+  EXPECT_FALSE(o.share);
+  EXPECT_EQ(subscribed_filters(o), o.mqtt.subscriptions);
+}
+
+TEST(GatewayOptions, BadSharingValuesNameTheKey) {
+  GatewayOptions o;
+  o.share_group = "a/b";
+  EXPECT_NE(error_of(o).find("share-group"), std::string::npos);
+  o.share = false;  // not used without sharing
+  EXPECT_EQ(error_of(o), "");
+  GatewayOptions hasty;
+  hasty.peer_timeout_s = 0.5;  // a single heartbeat period
+  EXPECT_NE(error_of(hasty).find("peer-timeout-s"), std::string::npos);
+}
+
 TEST(TopicFilter, WildcardsOnlyAsWholeLevelsAndHashLast) {
   EXPECT_TRUE(validate_filter("v1/robot/+/adv"));
   EXPECT_TRUE(validate_filter("v2/robot/+/+"));

@@ -60,5 +60,17 @@ TEST(MqttConnectionOptions, RecognisesTlsBrokers) {
   EXPECT_FALSE(uses_tls("mqtt://h:1883"));
 }
 
+TEST(MqttSharedSubscription, PrefixesTheFilterWithTheGroup) {
+  EXPECT_EQ(shared_filter("slam-gateways", "v2/robot/+/+"), "$share/slam-gateways/v2/robot/+/+");
+}
+
+TEST(MqttSharedSubscription, RefusesAGroupThatIsNotOneLevel) {
+  EXPECT_TRUE(validate_share_group("slam-gateways"));
+  EXPECT_FALSE(validate_share_group(""));
+  EXPECT_FALSE(validate_share_group("a/b"));
+  EXPECT_FALSE(validate_share_group("a+"));
+  EXPECT_FALSE(validate_share_group("#"));
+}
+
 }  // namespace
 }  // namespace slam::mqtt
