@@ -21,8 +21,8 @@ namespace slam {
 // Node needs: static Result<std::unique_ptr<Node>> create(const Options&, Counters&);
 //             dds::Participant& participant(); void run_once();
 // `created` runs once the node exists, just before its heartbeat starts (the mapper hands over
-// the heartbeat of its domain claim there). Node may set its heartbeat period with `static constexpr std::chrono::milliseconds kHeartbeatPeriod`
-// (1 s otherwise).
+// the heartbeat of its domain claim there). Node may set its heartbeat period with `static constexpr
+// std::chrono::milliseconds kHeartbeatPeriod` (1 s otherwise).
 template <class Node>
 constexpr std::chrono::milliseconds heartbeat_period() {
   if constexpr (requires { Node::kHeartbeatPeriod; }) {
