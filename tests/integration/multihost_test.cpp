@@ -72,8 +72,17 @@ class Hosts {
   // env both exec: the pid is the program's, and the parent-death signal stays set).
   std::vector<std::string> on(char host, const std::vector<std::string>& env,
                               const std::vector<std::string>& argv) const {
-    std::vector<std::string> out{"ip", "netns", "exec", name(host), "env", "-u", "ROS_DISCOVERY_SERVER",
-                                 "-u", "FASTRTPS_DEFAULT_PROFILES_FILE", "-u", "CYCLONEDDS_URI"};
+    std::vector<std::string> out{"ip",
+                                 "netns",
+                                 "exec",
+                                 name(host),
+                                 "env",
+                                 "-u",
+                                 "ROS_DISCOVERY_SERVER",
+                                 "-u",
+                                 "FASTRTPS_DEFAULT_PROFILES_FILE",
+                                 "-u",
+                                 "CYCLONEDDS_URI"};
     out.insert(out.end(), env.begin(), env.end());
     out.insert(out.end(), argv.begin(), argv.end());
     return out;
@@ -132,7 +141,8 @@ std::vector<ServiceStatus> parse_status(const std::string& out) {
 
 class Fleet {
  public:
-  Fleet(const Hosts& hosts, ProcessGroup& group, int domain) : hosts_(hosts), group_(group), domain_(domain) {}
+  Fleet(const Hosts& hosts, ProcessGroup& group, int domain)
+      : hosts_(hosts), group_(group), domain_(domain) {}
 
   // The environment of a discovery-server client.
   std::vector<std::string> client_env() const {
@@ -211,8 +221,8 @@ TEST(Multihost, FleetExploresAcrossHostsAndSurvivesDiscoveryServerAndServiceRest
   // Host C: the simulator with the committed unicast profile (its peer: this host's tools).
   group.start("simulator",
               hosts.on('c', {"CYCLONEDDS_URI=file://" SLAM_SOURCE_DIR "/compose/dds/cyclonedds-unicast.xml"},
-                       {bin_path("slam-simulator"), "--domain", domain, "--broker", broker, "--world", "office",
-                        "--robots", std::to_string(kRobots), "--seed", "7"}));
+                       {bin_path("slam-simulator"), "--domain", domain, "--broker", broker, "--world",
+                        "office", "--robots", std::to_string(kRobots), "--seed", "7"}));
 
   const auto all_services = [](const std::vector<ServiceStatus>& s) {
     return find(s, "gateway") && find(s, "mapper") && find(s, "planner");
@@ -255,11 +265,11 @@ TEST(Multihost, FleetExploresAcrossHostsAndSurvivesDiscoveryServerAndServiceRest
   // A headless viewer on host C gets the map from B and the robots' points from A.
   if (::access("/usr/bin/xvfb-run", X_OK) == 0) {
     const std::string png = group.dir() + "/viewer.png";
-    group.start("viewer", hosts.on('c', fleet.client_env(),
-                                   {"xvfb-run", "-a", "-s", "-screen 0 640x480x24", bin_path("slam-viewer"),
-                                    "--domain", domain, "--width", "640", "--height", "480", "--screenshot",
-                                    png, "--frames", "5", "--wait-map", "--wait-robots",
-                                    std::to_string(kRobots)}));
+    group.start("viewer",
+                hosts.on('c', fleet.client_env(),
+                         {"xvfb-run", "-a", "-s", "-screen 0 640x480x24", bin_path("slam-viewer"), "--domain",
+                          domain, "--width", "640", "--height", "480", "--screenshot", png, "--frames", "5",
+                          "--wait-map", "--wait-robots", std::to_string(kRobots)}));
     EXPECT_EQ(group.wait_exit("viewer", 120s), 0) << "the viewer never showed the map and every robot";
     EXPECT_TRUE(std::filesystem::exists(png));
   } else {
