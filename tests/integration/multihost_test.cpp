@@ -318,10 +318,16 @@ TEST(Multihost, FleetExploresAcrossHostsAndSurvivesDiscoveryServerAndServiceRest
       },
       180s))
       << "the restarted mapper and planner on host B do not map and plan";
-  const auto after = fleet.status(false);
-  const auto sim = find(after, "simulator");
-  ASSERT_TRUE(sim);
-  const int64_t received_restart = sim->counter("waypoints_received");
+  int64_t received_restart = -1;
+  ASSERT_TRUE(fleet.wait_status(
+      false,
+      [&](const auto& s) {
+        const auto now = find(s, "simulator");
+        received_restart = now ? now->counter("waypoints_received") : -1;
+        return received_restart >= 0;
+      },
+      60s))
+      << "slamctl on host C lost the simulator";
   EXPECT_TRUE(fleet.wait_status(
       false,
       [&](const auto& s) {
