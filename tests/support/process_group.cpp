@@ -183,17 +183,20 @@ pid_t ProcessGroup::start(const std::string& name, const std::vector<std::string
   return pid;
 }
 
-void ProcessGroup::write_mosquitto_config(const std::string& name, int port) {
-  std::ofstream conf(dir_ + "/" + name + ".conf");
+std::string ProcessGroup::write_mosquitto_config(const std::string& name, int port,
+                                                 const std::string& address) {
+  const std::string path = dir_ + "/" + name + ".conf";
+  std::ofstream conf(path);
   // Started as root, mosquitto would switch to user "mosquitto"; a credential change clears the
   // parent-death signal, and the broker would outlive a crashed test. "root" means no switch.
   if (::geteuid() == 0) conf << "user root\n";
-  conf << "listener " << port << " 127.0.0.1\n"
+  conf << "listener " << port << " " << address << "\n"
        << "allow_anonymous true\n"
        << "persistence false\n"
        << "log_dest stderr\n"
        << "max_queued_messages 100000\n"
        << "sys_interval 1\n";  // $SYS counters once a second (bench_pipeline reads the broker's drops)
+  return path;
 }
 
 int ProcessGroup::start_mosquitto(const std::string& name) {
@@ -203,8 +206,7 @@ int ProcessGroup::start_mosquitto(const std::string& name) {
 }
 
 void ProcessGroup::restart_mosquitto(const std::string& name, int port) {
-  write_mosquitto_config(name, port);
-  start(name, {"mosquitto", "-c", dir_ + "/" + name + ".conf"});
+  start(name, {"mosquitto", "-c", write_mosquitto_config(name, port)});
   if (!wait_port_open(port, 5s))
     throw std::runtime_error("mosquitto did not open port " + std::to_string(port));
 }

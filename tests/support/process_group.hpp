@@ -62,6 +62,10 @@ class ProcessGroup {
   int start_mosquitto(const std::string& name = "mosquitto");
   // Same config and port as an earlier start_mosquitto (for broker-restart tests).
   void restart_mosquitto(const std::string& name, int port);
+  // Writes the config start_mosquitto uses, listening on `address`, and returns its path: for a
+  // broker started some other way (e.g. in a network namespace).
+  std::string write_mosquitto_config(const std::string& name, int port,
+                                     const std::string& address = "127.0.0.1");
 
   bool running(const std::string& name);
   // Sends `sig` to the process's whole group and, for SIGKILL/SIGTERM, waits for it to exit.
@@ -80,7 +84,6 @@ class ProcessGroup {
     int status = 0;
   };
   bool reap(Child& c, bool block);
-  void write_mosquitto_config(const std::string& name, int port);
 
   std::string dir_;
   std::map<std::string, Child> children_;
