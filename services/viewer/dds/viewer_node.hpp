@@ -53,7 +53,7 @@ class ViewerNode final : public CommandSink {
   std::unique_ptr<dds::Writer<MapFileRequest>> file_writer_;
   std::unique_ptr<dds::Writer<InitialPose>> initial_pose_writer_;
   std::unique_ptr<dds::Reader<GridSnapshot>> snapshot_reader_;
-  std::unique_ptr<dds::Reader<GridPatch>> patch_reader_;
+  std::unique_ptr<dds::Reader<GridTiles>> patch_reader_;
   std::unique_ptr<dds::Reader<RobotObservation>> observation_reader_;
   std::unique_ptr<dds::Reader<RobotState>> state_reader_;
   std::unique_ptr<dds::Reader<RobotPath>> path_reader_;
