@@ -47,7 +47,8 @@ double OccupancyGrid::cell_y(double y) const {
 }
 
 void OccupancyGrid::mark_dirty(size_t i) {
-  dirty_.mark(static_cast<int32_t>(i % static_cast<size_t>(width_)), static_cast<int32_t>(i / static_cast<size_t>(width_)));
+  dirty_.mark(static_cast<int32_t>(i % static_cast<size_t>(width_)),
+              static_cast<int32_t>(i / static_cast<size_t>(width_)));
 }
 
 // Every class change goes through here: it keeps the inflation layer and the dirty tiles in step.

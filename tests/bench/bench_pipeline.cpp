@@ -71,6 +71,7 @@ struct WindowEdge {
   std::map<std::string, double> cpu_s;            // by process, plus "bench" (this process)
   MachineCpu machine;
   uint64_t patch_bytes = 0;     // GridTiles bytes (CDR) this process received so far
+  uint64_t patch_cells = 0;     // cells in those tiles (the raw size, before run-length coding)
   int64_t broker_dropped = -1;  // mosquitto's dropped count so far (-1: not reported yet)
 };
 
@@ -79,6 +80,7 @@ WindowEdge sample_edge(const PipelineRig& rig, const ProbeSet& probes,
   WindowEdge e;
   e.broker_dropped = broker_dropped(broker_sys);
   e.patch_bytes = probes.patch_bytes();
+  e.patch_cells = probes.patch_cells();
   e.monotonic_ns = monotonic_ns();
   for (const char* service : {"gateway", "mapper", "planner", "simulator"})
     e.counters[service] = rig.latest(service);
@@ -191,6 +193,7 @@ void report(benchmark::State& state, const PipelineSettings& settings, WindowEdg
   c["planner_patches_applied_per_s"] = rate("planner", "patches_applied");
   c["planner_patches_skipped"] = delta("planner", "patches_skipped");
   c["patch_mb_per_s"] = static_cast<double>(end.patch_bytes - start.patch_bytes) / 1e6 / window_s;
+  c["patch_cells_mb_per_s"] = static_cast<double>(end.patch_cells - start.patch_cells) / 1e6 / window_s;
   c["drain_s"] = drained.seconds;
   c["drain_settled"] = drained.settled ? 1.0 : 0.0;
   c["lost_to_gateway"] = drained.gateway_gap - before.gateway_gap;
@@ -221,7 +224,7 @@ void report(benchmark::State& state, const PipelineSettings& settings, WindowEdg
       "  queues: mapper backlog %.0f -> %.0f observations; dropped: mapper %.0f, simulator %.0f, "
       "broker %.0f; lost by DDS before the mapper %.0f; simulator loop overruns %.0f\n"
       "  after pausing the fleet: %s %.1f s; %s: %.0f at the gateway, %.0f at the mapper\n"
-      "  map stream: %.1f patches/s, %.1f MB/s of patches to each reader\n"
+      "  map stream: %.1f patches/s, %.2f MB/s of patches to each reader (%.2f MB/s of tile cells uncoded)\n"
       "  delay robot message -> patch: p50 %.0f ms, p99 %.0f ms, max %.0f ms (%zu of %zu probes seen)\n"
       "  CPU %% of one core: mosquitto %.0f, gateway %.0f, mapper %.0f, planner %.0f, simulator %.0f, "
       "bench %.0f; other processes %.0f; machine %.0f %% busy\n",
@@ -231,9 +234,10 @@ void report(benchmark::State& state, const PipelineSettings& settings, WindowEdg
       v("mapper_dds_lost"), v("sim_loop_overruns"),
       drained.settled ? "queues drained in" : "still draining after", drained.seconds,
       drained.settled ? "never arrived" : "not arrived yet", v("lost_to_gateway"), v("lost_to_mapper"),
-      v("mapper_patches_per_s"), v("patch_mb_per_s"), probe.p50_ms, probe.p99_ms, probe.max_ms, probe.seen,
-      probe.sent, v("cpu_mosquitto_pct"), v("cpu_gateway_pct"), v("cpu_mapper_pct"), v("cpu_planner_pct"),
-      v("cpu_simulator_pct"), v("cpu_bench_pct"), v("cpu_others_pct"), v("cpu_machine_busy_pct"));
+      v("mapper_patches_per_s"), v("patch_mb_per_s"), v("patch_cells_mb_per_s"), probe.p50_ms, probe.p99_ms,
+      probe.max_ms, probe.seen, probe.sent, v("cpu_mosquitto_pct"), v("cpu_gateway_pct"), v("cpu_mapper_pct"),
+      v("cpu_planner_pct"), v("cpu_simulator_pct"), v("cpu_bench_pct"), v("cpu_others_pct"),
+      v("cpu_machine_busy_pct"));
 }
 
 void BM_Pipeline(benchmark::State& state) {

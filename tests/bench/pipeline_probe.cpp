@@ -78,7 +78,10 @@ void ProbeSet::on_patch(const GridTiles& p) {
   if (!apply_tiles(view, cells_, static_cast<int32_t>(layout_->width), static_cast<int32_t>(layout_->height),
                    &changed_))
     return;
-  for (const CellBox& box : changed_) check_box(box, now);
+  for (const CellBox& box : changed_) {
+    patch_cells_.fetch_add(box.cells());
+    check_box(box, now);
+  }
 }
 
 void ProbeSet::check_box(const CellBox& box, int64_t now) {

@@ -48,6 +48,8 @@ class ProbeSet {
   // Patches received and their serialized bytes (CDR payload), for the bandwidth the map stream costs.
   uint64_t patches() const { return patches_.load(); }
   uint64_t patch_bytes() const { return patch_bytes_.load(); }
+  // Cells in the patches' tiles: what raw tiles would cost, to weigh the run-length coding.
+  uint64_t patch_cells() const { return patch_cells_.load(); }
 
  private:
   struct Probe {
@@ -77,6 +79,7 @@ class ProbeSet {
   std::vector<CellBox> changed_;  // the tiles of the patch being applied
   std::atomic<uint64_t> patches_{0};
   std::atomic<uint64_t> patch_bytes_{0};
+  std::atomic<uint64_t> patch_cells_{0};
 };
 
 }  // namespace slam::bench

@@ -69,7 +69,8 @@ std::optional<Map> assemble(const std::vector<GridSnapshot>& snapshots,
   for (const auto& [version, p] : later) {
     if (version != m.version + 1) break;
     const TilePatchView view{p->tile_side(), p->encoding(), p->tiles(), p->data()};
-    if (!apply_tiles(view, m.cells, static_cast<int32_t>(m.info.width()), static_cast<int32_t>(m.info.height())))
+    if (!apply_tiles(view, m.cells, static_cast<int32_t>(m.info.width()),
+                     static_cast<int32_t>(m.info.height())))
       break;
     m.version = version;
   }

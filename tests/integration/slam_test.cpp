@@ -22,8 +22,8 @@
 #include <thread>
 #include <vector>
 
-#include "common/core/grid_tiles.hpp"
 #include "common/core/geometry.hpp"
+#include "common/core/grid_tiles.hpp"
 #include "common/fastdds/fast_topics.hpp"
 #include "fastdds_inbox.hpp"
 #include "process_group.hpp"
@@ -141,7 +141,8 @@ std::optional<std::vector<uint8_t>> assemble(const std::vector<GridSnapshot>& sn
   for (const auto& [v, p] : later) {
     if (v != version + 1) break;
     const TilePatchView view{p->tile_side(), p->encoding(), p->tiles(), p->data()};
-    if (!apply_tiles(view, cells, static_cast<int32_t>(s.info().width()), static_cast<int32_t>(s.info().height())))
+    if (!apply_tiles(view, cells, static_cast<int32_t>(s.info().width()),
+                     static_cast<int32_t>(s.info().height())))
       break;
     version = v;
   }

@@ -10,11 +10,13 @@ namespace {
 constexpr size_t kMaxRun = 256;  // a run length is stored as one octet, minus one
 
 // Appends the tile's cells, row-major, to `out`.
-void append_tile(std::span<const uint8_t> cells, const TileLayout& layout, uint32_t tile, std::vector<uint8_t>& out) {
+void append_tile(std::span<const uint8_t> cells, const TileLayout& layout, uint32_t tile,
+                 std::vector<uint8_t>& out) {
   const CellBox box = layout.box(tile);
   for (int32_t y = box.y0; y < box.y0 + box.height; ++y) {
-    const auto row = cells.begin() + static_cast<std::ptrdiff_t>(static_cast<size_t>(y) * static_cast<size_t>(layout.width) +
-                                                                 static_cast<size_t>(box.x0));
+    const auto row = cells.begin() +
+                     static_cast<std::ptrdiff_t>(static_cast<size_t>(y) * static_cast<size_t>(layout.width) +
+                                                 static_cast<size_t>(box.x0));
     out.insert(out.end(), row, row + box.width);
   }
 }
@@ -96,8 +98,8 @@ Status apply_tiles(const TilePatchView& patch, std::span<uint8_t> cells, int32_t
   for (size_t i = 0; i < patch.tiles.size(); ++i) {
     const uint32_t tile = patch.tiles[i];
     if (tile >= count)
-      return Error{"tile patch: tile " + std::to_string(tile) + " is outside the grid's " + std::to_string(count) +
-                   " tiles"};
+      return Error{"tile patch: tile " + std::to_string(tile) + " is outside the grid's " +
+                   std::to_string(count) + " tiles"};
     if (i > 0 && tile <= patch.tiles[i - 1])
       return Error{"tile patch: tiles are not in ascending order at " + std::to_string(i)};
     total += layout.box(tile).cells();

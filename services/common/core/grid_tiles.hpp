@@ -30,7 +30,8 @@ struct TileLayout {
   int32_t tiles_y() const { return (height + side - 1) / side; }
   uint32_t count() const { return static_cast<uint32_t>(tiles_x()) * static_cast<uint32_t>(tiles_y()); }
   uint32_t tile_of(int32_t x, int32_t y) const {
-    return static_cast<uint32_t>(y / side) * static_cast<uint32_t>(tiles_x()) + static_cast<uint32_t>(x / side);
+    return static_cast<uint32_t>(y / side) * static_cast<uint32_t>(tiles_x()) +
+           static_cast<uint32_t>(x / side);
   }
   // The tile's cells, clipped to the grid.
   CellBox box(uint32_t tile) const;

@@ -1,8 +1,8 @@
 #pragma once
 // The viewer's copy of the mapper's grid: snapshots replace it, tile patches update it in order
-// (same layout, version == last + 1), and the box around the changed tiles is remembered so the GPU texture is
-// updated with that box only. The box of known cells is kept too, so the view can fit the part of
-// the grid that has been mapped rather than its whole (mostly unknown) extent.
+// (same layout, version == last + 1), and the box around the changed tiles is remembered so the GPU texture
+// is updated with that box only. The box of known cells is kept too, so the view can fit the part of the grid
+// that has been mapped rather than its whole (mostly unknown) extent.
 #include <cstdint>
 #include <optional>
 #include <vector>

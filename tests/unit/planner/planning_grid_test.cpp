@@ -39,10 +39,10 @@ TEST(PlanningGrid, AppliesPatchesInOrderOnly) {
   EXPECT_EQ(g.at({0, 0}), kCellUnknown);
   EXPECT_EQ(changed, (std::vector<CellBox>{{2, 2, 2, 1}}));
   EXPECT_GT(g.revision(), rev);
-  EXPECT_FALSE(g.apply_patch(1, 3, patch(tile3, cells), changed));                      // gap
-  EXPECT_FALSE(g.apply_patch(2, 2, patch(tile3, cells), changed));                      // layout
-  EXPECT_FALSE(g.apply_patch(1, 2, patch(std::vector<uint32_t>{4}, cells), changed));   // outside
-  EXPECT_FALSE(g.apply_patch(1, 2, patch(tile3, std::vector<uint8_t>{1}), changed));    // size
+  EXPECT_FALSE(g.apply_patch(1, 3, patch(tile3, cells), changed));                     // gap
+  EXPECT_FALSE(g.apply_patch(2, 2, patch(tile3, cells), changed));                     // layout
+  EXPECT_FALSE(g.apply_patch(1, 2, patch(std::vector<uint32_t>{4}, cells), changed));  // outside
+  EXPECT_FALSE(g.apply_patch(1, 2, patch(tile3, std::vector<uint8_t>{1}), changed));   // size
   EXPECT_EQ(g.version(), 1u);
   EXPECT_TRUE(g.apply_patch(1, 2, patch(tile3, cells), changed));
   EXPECT_EQ(g.version(), 2u);

@@ -141,8 +141,8 @@ TEST(GridMirror, StreamWithALostPatchEqualsTheSourceAfterTheNextSnapshot) {
     }
     encode_tiles(source, dirty, encoded);
     dirty.clear();
-    return GridPatchData{3, version, kGridTileSide, static_cast<uint8_t>(encoded.encoding), encoded.tiles,
-                         encoded.data};
+    return GridPatchData{
+        3, version, kGridTileSide, static_cast<uint8_t>(encoded.encoding), encoded.tiles, encoded.data};
   };
   const auto source_snapshot = [&](uint64_t version) {
     GridSnapshotData s = snapshot(3, version, kW, kH);
