@@ -1,5 +1,4 @@
-// The grid's operator-facing side: manual obstructions, map priors, trinary export and the dirty box
-// the DDS edge turns into patches.
+// The grid's operator-facing side: manual obstructions, map priors and trinary export.
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -128,25 +127,6 @@ MapImage OccupancyGrid::to_map_image() const {
     map.cells[i] = (cls & kCellObstructed) ? kMapOccupied : static_cast<uint8_t>(cls & kCellStateMask);
   }
   return map;
-}
-
-std::optional<CellBox> OccupancyGrid::take_dirty() {
-  if (!dirty_) return std::nullopt;
-  dirty_ = false;
-  return CellBox{dirty_x0_, dirty_y0_, dirty_x1_ - dirty_x0_ + 1, dirty_y1_ - dirty_y0_ + 1};
-}
-
-void OccupancyGrid::copy_box(const CellBox& box, std::vector<uint8_t>& out) const {
-  const int32_t x0 = std::clamp(box.x0, 0, width_);
-  const int32_t y0 = std::clamp(box.y0, 0, height_);
-  const int32_t x1 = std::clamp(box.x0 + box.width, x0, width_);
-  const int32_t y1 = std::clamp(box.y0 + box.height, y0, height_);
-  out.resize(static_cast<size_t>(x1 - x0) * static_cast<size_t>(y1 - y0));
-  auto dst = out.begin();
-  for (int32_t y = y0; y < y1; ++y) {
-    const auto src = classes_.begin() + static_cast<ptrdiff_t>(index(x0, y));
-    dst = std::copy(src, src + (x1 - x0), dst);
-  }
 }
 
 }  // namespace slam::mapper

@@ -120,7 +120,7 @@ Status Mapper::open() {
   if (!count) return count.error();
   metrics_.store_observations.store(*count);
   seen_layout_ = grid_->layout_version();
-  (void)grid_->take_dirty();
+  grid_->clear_dirty();
   return Status::ok();
 }
 
@@ -194,7 +194,7 @@ PublishStamp Mapper::prepare_snapshot(bool new_version) {
     seen_layout_ = grid_->layout_version();
     ++layout_id_;
   }
-  (void)grid_->take_dirty();  // a snapshot carries every change
+  grid_->clear_dirty();  // a snapshot carries every change
   if (new_version) ++version_;
   return {layout_id_, version_};
 }

@@ -136,12 +136,14 @@ class Mapper {
   // Replies due since the last call, in order.
   std::vector<RequestReply> take_replies();
 
-  // Publication. At a patch tick: nullopt when nothing changed, else the box of changes; when
-  // needs_snapshot() the layout changed and a patch cannot describe it.
+  // Publication. At a patch tick the grid's dirty tiles are the changes; when needs_snapshot() the
+  // layout changed and a patch cannot describe it.
   bool needs_snapshot() const { return grid_->layout_version() != seen_layout_; }
-  std::optional<CellBox> take_dirty() { return grid_->take_dirty(); }
   PublishStamp next_patch() const { return {layout_id_, version_ + 1}; }
-  void patch_sent() { ++version_; }
+  void patch_sent() {
+    grid_->clear_dirty();
+    ++version_;
+  }
   // Numbers a snapshot and takes every change into it; `new_version` when it replaces changes no
   // patch carried (after a rebuild, a grown grid or a failed patch).
   PublishStamp prepare_snapshot(bool new_version);

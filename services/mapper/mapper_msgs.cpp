@@ -87,16 +87,16 @@ void fill_snapshot(const OccupancyGrid& grid, uint32_t layout_id, uint64_t versi
   out->cells().assign(classes.begin(), classes.end());
 }
 
-void fill_patch(const OccupancyGrid& grid, const CellBox& box, uint32_t layout_id, uint64_t version,
-                int64_t stamp_ns, slam::GridPatch* out) {
+void fill_patch(const OccupancyGrid& grid, uint32_t layout_id, uint64_t version, int64_t stamp_ns,
+                EncodedTiles& encoded, slam::GridTiles* out) {
+  encode_tiles(grid.classes(), grid.dirty_tiles(), encoded);
   out->layout_id(layout_id);
   out->version(version);
   out->stamp_ns(stamp_ns);
-  out->x0(static_cast<uint32_t>(box.x0));
-  out->y0(static_cast<uint32_t>(box.y0));
-  out->width(static_cast<uint32_t>(box.width));
-  out->height(static_cast<uint32_t>(box.height));
-  grid.copy_box(box, out->cells());
+  out->tile_side(static_cast<uint16_t>(grid.dirty_tiles().layout().side));
+  out->encoding(static_cast<uint8_t>(encoded.encoding));
+  out->tiles().assign(encoded.tiles.begin(), encoded.tiles.end());
+  out->data().assign(encoded.data.begin(), encoded.data.end());
 }
 
 void fill_correction(const correction::RobotCorrection& in, int64_t stamp_ns, slam::PoseCorrection* out) {

@@ -33,7 +33,8 @@ void fill_correction(const correction::RobotCorrection& in, int64_t stamp_ns, sl
 
 void fill_snapshot(const OccupancyGrid& grid, uint32_t layout_id, uint64_t version, int64_t stamp_ns,
                    slam::GridSnapshot* out);
-void fill_patch(const OccupancyGrid& grid, const CellBox& box, uint32_t layout_id, uint64_t version,
-                int64_t stamp_ns, slam::GridPatch* out);
+// The grid's dirty tiles as a patch; `encoded` is the caller's reused buffer.
+void fill_patch(const OccupancyGrid& grid, uint32_t layout_id, uint64_t version, int64_t stamp_ns,
+                EncodedTiles& encoded, slam::GridTiles* out);
 
 }  // namespace slam::mapper

@@ -75,7 +75,7 @@ Status MapperNode::configure() {
   auto snapshots = dds::make_writer(*participant_, dds::kGridSnapshot);
   if (!snapshots) return snapshots.error();
   snapshot_writer_ = std::move(*snapshots);
-  auto patches = dds::make_writer(*participant_, dds::kGridPatch);
+  auto patches = dds::make_writer(*participant_, dds::kGridTiles);
   if (!patches) return patches.error();
   patch_writer_ = std::move(*patches);
   auto replies = dds::make_writer(*participant_, dds::kMapReply);
@@ -227,10 +227,9 @@ void MapperNode::publish_changes() {
     publish_snapshot(true);
     return;
   }
-  const auto box = mapper_->take_dirty();
-  if (!box) return;
+  if (!mapper_->grid().dirty_tiles().any()) return;
   const PublishStamp stamp = mapper_->next_patch();
-  fill_patch(mapper_->grid(), *box, stamp.layout_id, stamp.version, now_ns(), &patch_);
+  fill_patch(mapper_->grid(), stamp.layout_id, stamp.version, now_ns(), encoded_, &patch_);
   if (!patch_writer_->write(patch_)) {
     // Receivers would see a gap: a snapshot with the changes resynchronises them.
     bump(metrics_.write_failures);
@@ -239,7 +238,7 @@ void MapperNode::publish_changes() {
   }
   mapper_->patch_sent();
   bump(metrics_.patches);
-  bump(metrics_.cells_changed, int64_t{box->width} * box->height);
+  bump(metrics_.cells_changed, static_cast<int64_t>(encoded_.cells()));
 }
 
 void MapperNode::publish_snapshot(bool new_version) {

@@ -91,12 +91,13 @@ class MapperNode {
   std::vector<Vec2> misses_;
   MapperBatch batch_;
   slam::GridSnapshot snapshot_;
-  slam::GridPatch patch_;
+  slam::GridTiles patch_;
+  EncodedTiles encoded_;  // the patch being built, reused
 
   // Destroyed bottom-up: readers stop first, then writers, then the participant.
   std::unique_ptr<dds::Participant> participant_;
   std::unique_ptr<dds::Writer<slam::GridSnapshot>> snapshot_writer_;
-  std::unique_ptr<dds::Writer<slam::GridPatch>> patch_writer_;
+  std::unique_ptr<dds::Writer<slam::GridTiles>> patch_writer_;
   std::unique_ptr<dds::Writer<slam::MapReply>> reply_writer_;
   std::unique_ptr<dds::Writer<slam::PoseCorrection>> correction_writer_;
   std::unique_ptr<dds::Reader<slam::RobotObservation>> observation_reader_;

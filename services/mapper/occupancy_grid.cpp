@@ -31,6 +31,7 @@ OccupancyGrid::OccupancyGrid(const GridConfig& config)
   classes_.assign(n, kCellUnknown);
   inflation_.configure(config.inflation_radius, config.resolution);
   inflation_.reset(width_, height_);
+  dirty_.reset({width_, height_, kGridTileSide});
 }
 
 Result<OccupancyGrid> OccupancyGrid::create(const GridConfig& config) {
@@ -46,21 +47,11 @@ double OccupancyGrid::cell_y(double y) const {
 }
 
 void OccupancyGrid::mark_dirty(size_t i) {
-  const auto x = static_cast<int32_t>(i % static_cast<size_t>(width_));
-  const auto y = static_cast<int32_t>(i / static_cast<size_t>(width_));
-  if (!dirty_) {
-    dirty_ = true;
-    dirty_x0_ = dirty_x1_ = x;
-    dirty_y0_ = dirty_y1_ = y;
-    return;
-  }
-  dirty_x0_ = std::min(dirty_x0_, x);
-  dirty_x1_ = std::max(dirty_x1_, x);
-  dirty_y0_ = std::min(dirty_y0_, y);
-  dirty_y1_ = std::max(dirty_y1_, y);
+  dirty_.mark(static_cast<int32_t>(i % static_cast<size_t>(width_)),
+              static_cast<int32_t>(i / static_cast<size_t>(width_)));
 }
 
-// Every class change goes through here: it keeps the inflation layer and the dirty box in step.
+// Every class change goes through here: it keeps the inflation layer and the dirty tiles in step.
 void OccupancyGrid::set_class(size_t i, uint8_t cls) {
   const uint8_t old = classes_[i];
   if (old == cls) return;
@@ -149,10 +140,8 @@ void OccupancyGrid::grow(int64_t bx0, int64_t by0, int64_t bx1, int64_t by1) {
                    static_cast<int32_t>(i / static_cast<size_t>(width_)),
                    [this](size_t j) { classes_[j] = static_cast<uint8_t>(classes_[j] | kCellInflated); });
   }
-  dirty_ = true;
-  dirty_x0_ = dirty_y0_ = 0;
-  dirty_x1_ = width_ - 1;
-  dirty_y1_ = height_ - 1;
+  dirty_.reset({width_, height_, kGridTileSide});
+  dirty_.mark_all();
 }
 
 Result<IntegrateStats> OccupancyGrid::integrate(const ObservationView& obs) {

@@ -1,7 +1,7 @@
 #pragma once
 // The mapper's occupancy grid: clamped int16 log-odds in a flat array, the class octet of every cell
 // as map.idl defines it (kept current so snapshots and patches are plain copies), an incremental
-// inflation layer, manual obstructions, growth and dirty-box tracking. Plain C++, not thread-safe:
+// inflation layer, manual obstructions, growth and dirty-tile tracking. Plain C++, not thread-safe:
 // the service serialises calls.
 #include <cstdint>
 #include <optional>
@@ -10,6 +10,7 @@
 
 #include "common/core/cell_class.hpp"
 #include "common/core/geometry.hpp"
+#include "common/core/grid_tiles.hpp"
 #include "common/core/map_io.hpp"
 #include "common/core/result.hpp"
 #include "mapper/grid_config.hpp"
@@ -60,11 +61,9 @@ class OccupancyGrid {
   // Trinary export (obstructed cells count as occupied; inflation is not exported).
   MapImage to_map_image() const;
 
-  // Changed class octets since the last call, as one bounding box; nullopt when nothing changed.
-  // After growth the box is the whole grid.
-  std::optional<CellBox> take_dirty();
-  // Copies the class octets of `box` row-major into `out` (resized; a buffer the caller reuses).
-  void copy_box(const CellBox& box, std::vector<uint8_t>& out) const;
+  // Tiles whose class octets changed since the last clear_dirty() (every tile after growth).
+  const DirtyTiles& dirty_tiles() const { return dirty_; }
+  void clear_dirty() { dirty_.clear(); }
 
   const GridConfig& config() const { return config_; }
   int32_t width() const { return width_; }
@@ -133,8 +132,7 @@ class OccupancyGrid {
   InflationLayer inflation_;
   std::vector<Vec2> obstructions_;
 
-  bool dirty_ = false;
-  int32_t dirty_x0_ = 0, dirty_y0_ = 0, dirty_x1_ = 0, dirty_y1_ = 0;  // inclusive
+  DirtyTiles dirty_;
 };
 
 }  // namespace slam::mapper

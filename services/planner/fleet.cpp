@@ -78,9 +78,9 @@ const Goal* Fleet::pending_goal(const std::string& robot_id) const {
   return it == pending_.end() ? nullptr : &it->second.goal;
 }
 
-void Fleet::grid_changed(const PlanningGrid& grid, std::optional<CellBox> box) {
-  if (box) {
-    frontiers_.update(grid, *box);
+void Fleet::grid_changed(const PlanningGrid& grid, std::optional<std::span<const CellBox>> changed) {
+  if (changed) {
+    for (const CellBox& box : *changed) frontiers_.update(grid, box);
   } else {
     frontiers_.rebuild(grid);
   }

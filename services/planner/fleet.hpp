@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <map>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -53,8 +54,8 @@ class Fleet {
   Result<size_t> set_goal(const std::string& robot_id, const Goal& goal);
   // The goal kept for a robot not seen yet, if any.
   const Goal* pending_goal(const std::string& robot_id) const;
-  // After a snapshot (box empty) or a patch (its box): refresh frontiers, check paths.
-  void grid_changed(const PlanningGrid& grid, std::optional<CellBox> box);
+  // After a snapshot (no boxes) or a patch (its changed tiles): refresh frontiers, check paths.
+  void grid_changed(const PlanningGrid& grid, std::optional<std::span<const CellBox>> changed);
   // Plans what needs planning and assigns frontiers; call after observations and grid changes.
   void tick(const PlanningGrid& grid, int64_t now_ns);
   // Waypoint commands due at now_ns (see GoalTracker::should_send).

@@ -21,7 +21,7 @@ void PlannerIntake::push_snapshot(const slam::GridSnapshot& sample) {
   pending_.patches_dropped = false;
 }
 
-void PlannerIntake::push_patch(const slam::GridPatch& sample) {
+void PlannerIntake::push_patch(const slam::GridTiles& sample) {
   std::lock_guard lock(mutex_);
   if (pending_.patches_dropped) return;
   if (pending_.patches.size() >= kMaxQueuedPatches) {

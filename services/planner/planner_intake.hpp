@@ -26,7 +26,7 @@ struct ReceivedGoal {
 
 struct IntakeBatch {
   std::optional<slam::GridSnapshot> snapshot;  // the latest one, applied before `patches`
-  std::vector<slam::GridPatch> patches;        // in arrival order
+  std::vector<slam::GridTiles> patches;        // in arrival order
   bool patches_dropped = false;                // the queue overflowed: wait for the next snapshot
   std::vector<slam::RobotState> states;        // the latest per robot
   std::vector<ReceivedGoal> goals;             // in arrival order
@@ -42,7 +42,7 @@ class PlannerIntake {
   static constexpr size_t kMaxQueuedPatches = 10000;
 
   void push_snapshot(const slam::GridSnapshot& sample);
-  void push_patch(const slam::GridPatch& sample);
+  void push_patch(const slam::GridTiles& sample);
   void push_state(const slam::RobotState& sample);
   void push_goal(const slam::NavGoal& sample, int64_t sent_ns);
   void push_request(const slam::PathRequest& sample);

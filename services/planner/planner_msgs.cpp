@@ -30,17 +30,9 @@ Status apply_snapshot(slam::GridSnapshot& snapshot, PlanningGrid& grid) {
   return grid.reset(geometry, snapshot.layout_id(), snapshot.version(), std::move(snapshot.cells()));
 }
 
-Result<CellBox> apply_patch(const slam::GridPatch& patch, PlanningGrid& grid) {
-  constexpr auto kMax = static_cast<uint32_t>(INT32_MAX);
-  if (patch.x0() > kMax || patch.y0() > kMax || patch.width() > kMax || patch.height() > kMax) {
-    return Error{"grid patch box exceeds the grid"};
-  }
-  const CellBox box{static_cast<int32_t>(patch.x0()), static_cast<int32_t>(patch.y0()),
-                    static_cast<int32_t>(patch.width()), static_cast<int32_t>(patch.height())};
-  if (auto s = grid.apply_patch(patch.layout_id(), patch.version(), box, patch.cells()); !s) {
-    return s.error();
-  }
-  return box;
+Status apply_patch(const slam::GridTiles& patch, PlanningGrid& grid, std::vector<CellBox>& changed) {
+  const TilePatchView view{patch.tile_side(), patch.encoding(), patch.tiles(), patch.data()};
+  return grid.apply_patch(patch.layout_id(), patch.version(), view, changed);
 }
 
 Result<GoalCommand> to_goal(const slam::NavGoal& sample) {

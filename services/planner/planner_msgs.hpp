@@ -25,8 +25,8 @@ void to_points(const std::vector<Vec2>& in, std::vector<slam::Point2>& out);
 
 // Replaces `grid` with the snapshot; its cells are moved out of `snapshot`.
 Status apply_snapshot(slam::GridSnapshot& snapshot, PlanningGrid& grid);
-// Applies the patch when it follows the grid's version; returns the changed box.
-Result<CellBox> apply_patch(const slam::GridPatch& patch, PlanningGrid& grid);
+// Applies the patch when it follows the grid's version; `changed` gets the changed tiles' boxes.
+Status apply_patch(const slam::GridTiles& patch, PlanningGrid& grid, std::vector<CellBox>& changed);
 
 struct GoalCommand {
   std::string robot_id;  // one robot or kAllRobots

@@ -91,8 +91,8 @@ Status PlannerNode::configure() {
                        [this](const slam::GridSnapshot& s, const auto&) { intake_.push_snapshot(s); });
   if (!snapshots) return snapshots.error();
   snapshot_reader_ = std::move(*snapshots);
-  auto patches = dds::make_reader(*participant_, dds::kGridPatch,
-                                  [this](const slam::GridPatch& p, const auto&) { intake_.push_patch(p); });
+  auto patches = dds::make_reader(*participant_, dds::kGridTiles,
+                                  [this](const slam::GridTiles& p, const auto&) { intake_.push_patch(p); });
   if (!patches) return patches.error();
   patch_reader_ = std::move(*patches);
   auto states = dds::make_reader(*participant_, dds::kRobotState,
@@ -184,22 +184,22 @@ void PlannerNode::apply_grid(IntakeBatch& batch) {
     awaiting_snapshot_ = true;
     warn("patch", "grid patches arrived faster than the loop applies them; waiting for the next snapshot");
   }
-  for (const slam::GridPatch& patch : batch.patches) {
+  for (const slam::GridTiles& patch : batch.patches) {
     if (grid_.empty() || awaiting_snapshot_) {
       bump(metrics_.patches_skipped);
       continue;
     }
     // Already contained in the snapshot that overtook it.
     if (patch.layout_id() == grid_.layout_id() && patch.version() <= grid_.version()) continue;
-    auto box = apply_patch(patch, grid_);
-    if (!box) {
+    changed_tiles_.clear();
+    if (auto s = apply_patch(patch, grid_, changed_tiles_); !s) {
       bump(metrics_.patches_skipped);
       awaiting_snapshot_ = true;
-      warn("patch", box.message() + "; waiting for the next snapshot");
+      warn("patch", s.message() + "; waiting for the next snapshot");
       continue;
     }
     bump(metrics_.patches_applied);
-    fleet_.grid_changed(grid_, *box);
+    fleet_.grid_changed(grid_, changed_tiles_);
   }
 }
 

@@ -91,6 +91,7 @@ class PlannerNode {
 
   // Loop state: touched by the loop thread only.
   PlanningGrid grid_;
+  std::vector<CellBox> changed_tiles_;  // the patch being applied, reused
   Fleet fleet_;
   GoalStore goal_store_;
   bool awaiting_snapshot_ = false;
@@ -113,7 +114,7 @@ class PlannerNode {
   std::unique_ptr<dds::Writer<slam::RobotPath>> path_writer_;
   std::unique_ptr<RequestWorkers> workers_;
   std::unique_ptr<dds::Reader<slam::GridSnapshot>> snapshot_reader_;
-  std::unique_ptr<dds::Reader<slam::GridPatch>> patch_reader_;
+  std::unique_ptr<dds::Reader<slam::GridTiles>> patch_reader_;
   std::unique_ptr<dds::Reader<slam::RobotState>> state_reader_;
   std::unique_ptr<dds::Reader<slam::NavGoal>> goal_reader_;
   std::unique_ptr<dds::Reader<slam::PathRequest>> request_reader_;

@@ -40,8 +40,8 @@ Status PlanningGrid::reset(const GridGeometry& geometry, uint32_t layout_id, uin
   return Status::ok();
 }
 
-Status PlanningGrid::apply_patch(uint32_t layout_id, uint64_t version, const CellBox& box,
-                                 std::span<const uint8_t> cells) {
+Status PlanningGrid::apply_patch(uint32_t layout_id, uint64_t version, const TilePatchView& patch,
+                                 std::vector<CellBox>& changed) {
   if (empty()) return Error{"grid patch before any snapshot"};
   if (layout_id != layout_id_) {
     return Error{"grid patch for layout " + std::to_string(layout_id) + ", grid has layout " +
@@ -51,19 +51,7 @@ Status PlanningGrid::apply_patch(uint32_t layout_id, uint64_t version, const Cel
     return Error{"grid patch version " + std::to_string(version) + " does not follow " +
                  std::to_string(version_)};
   }
-  if (box.x0 < 0 || box.y0 < 0 || box.width < 0 || box.height < 0 ||
-      int64_t{box.x0} + box.width > geometry_.width || int64_t{box.y0} + box.height > geometry_.height) {
-    return Error{"grid patch box exceeds the grid"};
-  }
-  if (cells.size() != box.cells()) {
-    return Error{"grid patch has " + std::to_string(cells.size()) + " cells, box holds " +
-                 std::to_string(box.cells())};
-  }
-  for (int32_t row = 0; row < box.height; ++row) {
-    const uint8_t* src = cells.data() + static_cast<size_t>(row) * static_cast<size_t>(box.width);
-    uint8_t* dst = cells_.data() + geometry_.index(Cell{box.x0, box.y0 + row});
-    std::copy(src, src + box.width, dst);
-  }
+  if (auto s = apply_tiles(patch, cells_, geometry_.width, geometry_.height, &changed); !s) return s;
   version_ = version;
   ++revision_;
   return Status::ok();

@@ -1,5 +1,5 @@
 #pragma once
-// The planner's copy of the mapper's class grid (GridSnapshot + GridPatch in map.idl), with the
+// The planner's copy of the mapper's class grid (GridSnapshot + GridTiles in map.idl), with the
 // cell tests every planner shares: one octet per cell, row-major, row 0 the lowest y.
 #include <cstdint>
 #include <optional>
@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "common/core/cell_class.hpp"
+#include "common/core/grid_tiles.hpp"
 #include "common/core/result.hpp"
 #include "planner/plan_types.hpp"
 
@@ -27,10 +28,11 @@ class PlanningGrid {
   // Replaces the whole grid (a snapshot). Rejects empty or inconsistent layouts.
   Status reset(const GridGeometry& geometry, uint32_t layout_id, uint64_t version,
                std::vector<uint8_t> cells);
-  // Applies a patch: new octets for `box`, row-major. Only in order (version == last + 1) and for
-  // the same layout; otherwise the caller waits for the next snapshot.
-  Status apply_patch(uint32_t layout_id, uint64_t version, const CellBox& box,
-                     std::span<const uint8_t> cells);
+  // Applies a tile patch and appends the changed tiles' boxes to `changed`. Only in order
+  // (version == last + 1) and for the same layout; otherwise the caller waits for the next
+  // snapshot. A rejected patch changes nothing.
+  Status apply_patch(uint32_t layout_id, uint64_t version, const TilePatchView& patch,
+                     std::vector<CellBox>& changed);
 
   bool empty() const { return cells_.empty(); }
   const GridGeometry& geometry() const { return geometry_; }

@@ -434,7 +434,7 @@ int cmd_echo(Session& s, const std::string& topic, int count) {
   if (topic == topics::kPoseCorrection.name) return echo(s, dds::kPoseCorrection, count);
   if (topic == topics::kInitialPose.name) return echo(s, dds::kInitialPose, count);
   if (topic == topics::kGridSnapshot.name) return echo(s, dds::kGridSnapshot, count);
-  if (topic == topics::kGridPatch.name) return echo(s, dds::kGridPatch, count);
+  if (topic == topics::kGridTiles.name) return echo(s, dds::kGridTiles, count);
   if (topic == topics::kRobotPath.name) return echo(s, dds::kRobotPath, count);
   if (topic == topics::kWaypointCommand.name) return echo(s, dds::kWaypointCommand, count);
   if (topic == topics::kNavGoal.name) return echo(s, dds::kNavGoal, count);

@@ -190,9 +190,10 @@ std::string describe(const GridSnapshot& s) {
              s.info().resolution(), s.info().origin().x(), s.info().origin().y(),
              s.info().inflation_radius());
 }
-std::string describe(const GridPatch& s) {
-  return fmt("patch layout %u version %llu box (%u, %u) %ux%u", s.layout_id(),
-             static_cast<unsigned long long>(s.version()), s.x0(), s.y0(), s.width(), s.height());
+std::string describe(const GridTiles& s) {
+  return fmt("patch layout %u version %llu %zu tiles of %u cells, %zu octets %s", s.layout_id(),
+             static_cast<unsigned long long>(s.version()), s.tiles().size(), s.tile_side(), s.data().size(),
+             s.encoding() == 0 ? "raw" : (s.encoding() == 1 ? "run-length" : "unknown encoding"));
 }
 std::string describe(const RobotPath& s) {
   return fmt("path %s goal %llu %s/%s target %s waypoint %u of %zu %s", s.robot_id().c_str(),

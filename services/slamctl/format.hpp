@@ -35,7 +35,7 @@ std::string describe(const RobotOdometry& s);
 std::string describe(const PoseCorrection& s);
 std::string describe(const InitialPose& s);
 std::string describe(const GridSnapshot& s);
-std::string describe(const GridPatch& s);
+std::string describe(const GridTiles& s);
 std::string describe(const RobotPath& s);
 std::string describe(const WaypointCommand& s);
 std::string describe(const NavGoal& s);

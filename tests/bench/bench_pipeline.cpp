@@ -9,7 +9,7 @@
 //     paused, how long the queues take to drain and how many messages never arrive,
 //   - CPU per process (/proc/<pid>/stat over the window) and of the whole machine,
 //   - the robot-to-map delay: probe messages from one extra robot (pipeline_probe.hpp), timed from
-//     publish to the first GridPatch showing the probe's cell occupied; p50/p99 over the window.
+//     publish to the first GridTiles patch showing the probe's cell occupied; p50/p99 over the window.
 // It starts mosquitto (free port) and every service (leased DDS domain) itself and stops them.
 // Run: build/bin/bench_pipeline --benchmark_format=json
 //   SLAM_BENCH_PIPELINE_SECONDS=N (window, default 30), SLAM_BENCH_PIPELINE_ROBOTS=N (default 1000)
@@ -70,7 +70,8 @@ struct WindowEdge {
   std::map<std::string, CounterSample> counters;  // by service
   std::map<std::string, double> cpu_s;            // by process, plus "bench" (this process)
   MachineCpu machine;
-  uint64_t patch_bytes = 0;     // GridPatch cell bytes this process received so far
+  uint64_t patch_bytes = 0;     // GridTiles bytes (CDR) this process received so far
+  uint64_t patch_cells = 0;     // cells in those tiles (the raw size, before run-length coding)
   int64_t broker_dropped = -1;  // mosquitto's dropped count so far (-1: not reported yet)
 };
 
@@ -79,6 +80,7 @@ WindowEdge sample_edge(const PipelineRig& rig, const ProbeSet& probes,
   WindowEdge e;
   e.broker_dropped = broker_dropped(broker_sys);
   e.patch_bytes = probes.patch_bytes();
+  e.patch_cells = probes.patch_cells();
   e.monotonic_ns = monotonic_ns();
   for (const char* service : {"gateway", "mapper", "planner", "simulator"})
     e.counters[service] = rig.latest(service);
@@ -191,6 +193,7 @@ void report(benchmark::State& state, const PipelineSettings& settings, WindowEdg
   c["planner_patches_applied_per_s"] = rate("planner", "patches_applied");
   c["planner_patches_skipped"] = delta("planner", "patches_skipped");
   c["patch_mb_per_s"] = static_cast<double>(end.patch_bytes - start.patch_bytes) / 1e6 / window_s;
+  c["patch_cells_mb_per_s"] = static_cast<double>(end.patch_cells - start.patch_cells) / 1e6 / window_s;
   c["drain_s"] = drained.seconds;
   c["drain_settled"] = drained.settled ? 1.0 : 0.0;
   c["lost_to_gateway"] = drained.gateway_gap - before.gateway_gap;
@@ -221,8 +224,8 @@ void report(benchmark::State& state, const PipelineSettings& settings, WindowEdg
       "  queues: mapper backlog %.0f -> %.0f observations; dropped: mapper %.0f, simulator %.0f, "
       "broker %.0f; lost by DDS before the mapper %.0f; simulator loop overruns %.0f\n"
       "  after pausing the fleet: %s %.1f s; %s: %.0f at the gateway, %.0f at the mapper\n"
-      "  map stream: %.1f patches/s, %.1f MB/s of patch cells to each reader\n"
-      "  delay robot message -> GridPatch: p50 %.0f ms, p99 %.0f ms, max %.0f ms (%zu of %zu probes seen)\n"
+      "  map stream: %.1f patches/s, %.2f MB/s of patches to each reader (%.2f MB/s of tile cells uncoded)\n"
+      "  delay robot message -> patch: p50 %.0f ms, p99 %.0f ms, max %.0f ms (%zu of %zu probes seen)\n"
       "  CPU %% of one core: mosquitto %.0f, gateway %.0f, mapper %.0f, planner %.0f, simulator %.0f, "
       "bench %.0f; other processes %.0f; machine %.0f %% busy\n",
       settings.robots, window_s, sent, gateway_in, v("gateway_over_sim"), mapper_obs,
@@ -231,9 +234,10 @@ void report(benchmark::State& state, const PipelineSettings& settings, WindowEdg
       v("mapper_dds_lost"), v("sim_loop_overruns"),
       drained.settled ? "queues drained in" : "still draining after", drained.seconds,
       drained.settled ? "never arrived" : "not arrived yet", v("lost_to_gateway"), v("lost_to_mapper"),
-      v("mapper_patches_per_s"), v("patch_mb_per_s"), probe.p50_ms, probe.p99_ms, probe.max_ms, probe.seen,
-      probe.sent, v("cpu_mosquitto_pct"), v("cpu_gateway_pct"), v("cpu_mapper_pct"), v("cpu_planner_pct"),
-      v("cpu_simulator_pct"), v("cpu_bench_pct"), v("cpu_others_pct"), v("cpu_machine_busy_pct"));
+      v("mapper_patches_per_s"), v("patch_mb_per_s"), v("patch_cells_mb_per_s"), probe.p50_ms, probe.p99_ms,
+      probe.max_ms, probe.seen, probe.sent, v("cpu_mosquitto_pct"), v("cpu_gateway_pct"), v("cpu_mapper_pct"),
+      v("cpu_planner_pct"), v("cpu_simulator_pct"), v("cpu_bench_pct"), v("cpu_others_pct"),
+      v("cpu_machine_busy_pct"));
 }
 
 void BM_Pipeline(benchmark::State& state) {
@@ -245,8 +249,8 @@ void BM_Pipeline(benchmark::State& state) {
   // Declared after `probes`, so the readers that call into it are destroyed first.
   auto snapshots = dds::make_reader((*rig)->participant(), dds::kGridSnapshot,
                                     [&](const GridSnapshot& s, const auto&) { probes.on_snapshot(s); });
-  auto patches = dds::make_reader((*rig)->participant(), dds::kGridPatch,
-                                  [&](const GridPatch& p, const auto&) { probes.on_patch(p); });
+  auto patches = dds::make_reader((*rig)->participant(), dds::kGridTiles,
+                                  [&](const GridTiles& p, const auto&) { probes.on_patch(p); });
   if (!snapshots) return fail(state, snapshots.message());
   if (!patches) return fail(state, patches.message());
   auto probe_client = connect_client((*rig)->broker_port(), "bench-pipeline-probe");

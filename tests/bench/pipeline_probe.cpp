@@ -6,6 +6,7 @@
 #include <cstdlib>
 
 #include "common/core/clock.hpp"
+#include "common/core/grid_tiles.hpp"
 #include "protocol/v1_codec.hpp"
 
 namespace slam::bench {
@@ -61,30 +62,38 @@ void ProbeSet::on_snapshot(const GridSnapshot& s) {
   std::lock_guard lock(mutex_);
   layout_ = Layout{s.layout_id(),         s.info().width(),      s.info().height(),
                    s.info().origin().x(), s.info().origin().y(), s.info().resolution()};
-  if (s.cells().size() == static_cast<size_t>(s.info().width()) * s.info().height())
-    check_box(0, 0, s.info().width(), s.info().height(), s.cells().data(), now);
+  cells_ = s.cells();
+  if (cells_.size() == static_cast<size_t>(s.info().width()) * s.info().height())
+    check_box({0, 0, static_cast<int32_t>(s.info().width()), static_cast<int32_t>(s.info().height())}, now);
 }
 
-void ProbeSet::on_patch(const GridPatch& p) {
+void ProbeSet::on_patch(const GridTiles& p) {
   const int64_t now = monotonic_ns();
   patches_.fetch_add(1);
-  patch_bytes_.fetch_add(p.cells().size());
+  patch_bytes_.fetch_add(GridTiles::getCdrSerializedSize(p));
   std::lock_guard lock(mutex_);
   if (!layout_ || p.layout_id() != layout_->id) return;  // from before the snapshot we know
-  if (p.cells().size() != static_cast<size_t>(p.width()) * p.height()) return;
-  check_box(p.x0(), p.y0(), p.width(), p.height(), p.cells().data(), now);
+  changed_.clear();
+  const TilePatchView view{p.tile_side(), p.encoding(), p.tiles(), p.data()};
+  if (!apply_tiles(view, cells_, static_cast<int32_t>(layout_->width), static_cast<int32_t>(layout_->height),
+                   &changed_))
+    return;
+  for (const CellBox& box : changed_) {
+    patch_cells_.fetch_add(box.cells());
+    check_box(box, now);
+  }
 }
 
-void ProbeSet::check_box(uint32_t x0, uint32_t y0, uint32_t width, uint32_t height, const uint8_t* cells,
-                         int64_t now) {
+void ProbeSet::check_box(const CellBox& box, int64_t now) {
   for (Probe& p : probes_) {
     if (p.sent_ns == 0 || p.delay_ns >= 0) continue;
     const double fx = std::floor((p.x - layout_->origin_x) / layout_->resolution);
     const double fy = std::floor((p.y - layout_->origin_y) / layout_->resolution);
-    if (fx < x0 || fy < y0 || fx >= static_cast<double>(x0) + width || fy >= static_cast<double>(y0) + height)
+    if (fx < box.x0 || fy < box.y0 || fx >= static_cast<double>(box.x0) + box.width ||
+        fy >= static_cast<double>(box.y0) + box.height)
       continue;
-    const size_t i = (static_cast<size_t>(fy) - y0) * width + (static_cast<size_t>(fx) - x0);
-    if ((cells[i] & CELL_STATE_MASK) == CELL_OCCUPIED) p.delay_ns = now - p.sent_ns;
+    const size_t i = static_cast<size_t>(fy) * layout_->width + static_cast<size_t>(fx);
+    if ((cells_[i] & CELL_STATE_MASK) == CELL_OCCUPIED) p.delay_ns = now - p.sent_ns;
   }
 }
 

@@ -2,7 +2,7 @@
 // The robot-to-map delay probe of bench_pipeline. Each probe is one v1 message from an extra robot
 // ("probe") whose single obstacle point lies in a fresh cell below the world's bottom wall, where
 // no simulated robot can see, so one hit turns that cell from unknown to occupied. The delay is
-// the time from publishing the message to the first GridPatch (or GridSnapshot) showing the cell
+// the time from publishing the message to the first GridTiles patch (or GridSnapshot) showing the cell
 // occupied. Probes sit in columns 7 cells apart and rows 15 apart, so no probe's ray crosses
 // another probe's cell before that probe is sent.
 #include <atomic>
@@ -12,6 +12,7 @@
 #include <optional>
 #include <vector>
 
+#include "common/core/geometry.hpp"
 #include "common/fastdds/fast_topics.hpp"
 #include "pipeline_rig.hpp"
 
@@ -29,9 +30,9 @@ class ProbeSet {
   // Records the monotonic time probe k was handed to MQTT; call right before publishing.
   void mark_sent(size_t k, int64_t monotonic_ns);
 
-  // DDS listener callbacks: a snapshot sets the layout patches are read against.
+  // DDS listener callbacks: a snapshot sets the layout and the cells patches apply to.
   void on_snapshot(const GridSnapshot& snapshot);
-  void on_patch(const GridPatch& patch);
+  void on_patch(const GridTiles& patch);
 
   // Percentiles over every probe sent; one not seen yet counts with its age at `now` (a lower
   // bound), so lost or late probes raise the percentiles instead of vanishing from them.
@@ -44,9 +45,11 @@ class ProbeSet {
   };
   Summary summary(int64_t now_monotonic_ns) const;
 
-  // Patches received and their cell bytes, for the bandwidth the map stream costs.
+  // Patches received and their serialized bytes (CDR payload), for the bandwidth the map stream costs.
   uint64_t patches() const { return patches_.load(); }
   uint64_t patch_bytes() const { return patch_bytes_.load(); }
+  // Cells in the patches' tiles: what raw tiles would cost, to weigh the run-length coding.
+  uint64_t patch_cells() const { return patch_cells_.load(); }
 
  private:
   struct Probe {
@@ -65,16 +68,18 @@ class ProbeSet {
     double resolution = 0.0;
   };
 
-  // Marks every sent, unseen probe whose cell is occupied in the box; `cells` is row-major over it.
-  void check_box(uint32_t x0, uint32_t y0, uint32_t width, uint32_t height, const uint8_t* cells,
-                 int64_t now);
+  // Marks every sent, unseen probe whose cell lies in `box` and is occupied in cells_.
+  void check_box(const CellBox& box, int64_t now);
 
   GridLayout grid_;
   mutable std::mutex mutex_;
   std::vector<Probe> probes_;
   std::optional<Layout> layout_;
+  std::vector<uint8_t> cells_;    // the grid as patches leave it
+  std::vector<CellBox> changed_;  // the tiles of the patch being applied
   std::atomic<uint64_t> patches_{0};
   std::atomic<uint64_t> patch_bytes_{0};
+  std::atomic<uint64_t> patch_cells_{0};
 };
 
 }  // namespace slam::bench

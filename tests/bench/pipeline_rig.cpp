@@ -9,6 +9,8 @@
 #include <fstream>
 #include <iterator>
 #include <sstream>
+#include <string>
+#include <string_view>
 #include <thread>
 
 namespace slam::bench {
@@ -40,6 +42,11 @@ Result<PipelineSettings> pipeline_settings_from_env() {
   SLAM_TRY(env_number("SLAM_BENCH_PIPELINE_ROBOTS", 1, 5000, robots));
   if (auto st = env_number("SLAM_BENCH_PIPELINE_SECONDS", 2, 3600, s.seconds); !st) return st.error();
   s.robots = static_cast<int>(robots);
+  if (const char* slam = std::getenv("SLAM_BENCH_PIPELINE_SLAM")) {
+    if (std::string_view(slam) != "on" && std::string_view(slam) != "off")
+      return Error{fmt::format("SLAM_BENCH_PIPELINE_SLAM='{}': must be on or off", slam)};
+    s.slam = std::string_view(slam) == "on";
+  }
   return s;
 }
 
@@ -122,11 +129,12 @@ Status PipelineRig::launch(const PipelineSettings& s) {
   const GridLayout& g = s.grid;
   group_.start("gateway", {testkit::bin_path("slam-gateway"), "--domain", domain, "--broker", broker,
                            "--log-level", "warn"});
-  group_.start("mapper", {testkit::bin_path("slam-mapper"), "--domain", domain, "--store",
-                          group_.dir() + "/map.db", "--grid-resolution", fmt::format("{}", g.resolution),
-                          "--grid-origin-x", fmt::format("{}", g.origin_x), "--grid-origin-y",
-                          fmt::format("{}", g.origin_y), "--grid-width-m", fmt::format("{}", g.side_m),
-                          "--grid-height-m", fmt::format("{}", g.side_m), "--log-level", "warn"});
+  group_.start("mapper",
+               {testkit::bin_path("slam-mapper"), "--domain", domain, "--store", group_.dir() + "/map.db",
+                "--grid-resolution", fmt::format("{}", g.resolution), "--grid-origin-x",
+                fmt::format("{}", g.origin_x), "--grid-origin-y", fmt::format("{}", g.origin_y),
+                "--grid-width-m", fmt::format("{}", g.side_m), "--grid-height-m", fmt::format("{}", g.side_m),
+                "--slam", s.slam ? "on" : "off", "--log-level", "warn"});
   group_.start("planner", {testkit::bin_path("slam-planner"), "--domain", domain, "--log-level", "warn",
                            "--goal-store", group_.dir() + "/goals.json"});
   group_.start("simulator", {testkit::bin_path("slam-simulator"),

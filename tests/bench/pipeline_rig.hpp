@@ -30,6 +30,7 @@ struct GridLayout {
 struct PipelineSettings {
   int robots = 1000;           // SLAM_BENCH_PIPELINE_ROBOTS
   double seconds = 30.0;       // SLAM_BENCH_PIPELINE_SECONDS: the measured window
+  bool slam = true;            // SLAM_BENCH_PIPELINE_SLAM=off: the mapper runs with --slam off
   double warmup_s = 5.0;       // after every robot reports, before the window
   int beams = 9;               // 9 obstacle points + the position = 10 v1 pairs per message
   double max_range_m = 12.0;   // longer than a room's diagonal: nearly every beam hits a wall

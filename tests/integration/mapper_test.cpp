@@ -1,6 +1,6 @@
 // slam-mapper as a black box: this test plays the gateway (RobotObservation) and the operator
 // (GridConfig, MapEdit, MapFileRequest) on a DDS domain of its own, rebuilds the map from the
-// mapper's GridSnapshot + GridPatch samples, and checks it cell by cell. The store lives in the
+// mapper's GridSnapshot + GridTiles samples, and checks it cell by cell. The store lives in the
 // process group's directory, so kill -9 and restart use the same file. Generous timeouts: CI
 // machines are loaded.
 #include <gtest/gtest.h>
@@ -18,6 +18,7 @@
 #include <thread>
 #include <vector>
 
+#include "common/core/grid_tiles.hpp"
 #include "common/core/map_io.hpp"
 #include "common/fastdds/fast_topics.hpp"
 #include "fastdds_inbox.hpp"
@@ -58,19 +59,19 @@ struct Map {
 };
 
 std::optional<Map> assemble(const std::vector<GridSnapshot>& snapshots,
-                            const std::vector<GridPatch>& patches) {
+                            const std::vector<GridTiles>& patches) {
   if (snapshots.empty()) return std::nullopt;
   const GridSnapshot& s = snapshots.back();
   Map m{s.layout_id(), s.version(), s.info(), s.cells()};
-  std::map<uint64_t, const GridPatch*> later;
-  for (const GridPatch& p : patches)
+  std::map<uint64_t, const GridTiles*> later;
+  for (const GridTiles& p : patches)
     if (p.layout_id() == m.layout_id && p.version() > m.version) later[p.version()] = &p;
   for (const auto& [version, p] : later) {
     if (version != m.version + 1) break;
-    for (uint32_t row = 0; row < p->height(); ++row)
-      for (uint32_t col = 0; col < p->width(); ++col)
-        m.cells[size_t{p->y0() + row} * m.info.width() + p->x0() + col] =
-            p->cells()[size_t{row} * p->width() + col];
+    const TilePatchView view{p->tile_side(), p->encoding(), p->tiles(), p->data()};
+    if (!apply_tiles(view, m.cells, static_cast<int32_t>(m.info.width()),
+                     static_cast<int32_t>(m.info.height())))
+      break;
     m.version = version;
   }
   return m;
@@ -107,7 +108,7 @@ class MapperTest : public ::testing::Test {
     edits_ = testkit::make_test_writer(*participant_, dds::kMapEdit);
     files_ = testkit::make_test_writer(*participant_, dds::kMapFileRequest);
     snapshot_reader_ = testkit::make_inbox_reader(*participant_, dds::kGridSnapshot, snapshots_);
-    patch_reader_ = testkit::make_inbox_reader(*participant_, dds::kGridPatch, patches_);
+    patch_reader_ = testkit::make_inbox_reader(*participant_, dds::kGridTiles, patches_);
     reply_reader_ = testkit::make_inbox_reader(*participant_, dds::kMapReply, replies_);
     heartbeat_reader_ = testkit::make_inbox_reader(*participant_, dds::kHeartbeat, heartbeats_);
   }
@@ -224,11 +225,11 @@ class MapperTest : public ::testing::Test {
   std::unique_ptr<dds::Writer<MapEdit>> edits_;
   std::unique_ptr<dds::Writer<MapFileRequest>> files_;
   Inbox<GridSnapshot> snapshots_;
-  Inbox<GridPatch> patches_;
+  Inbox<GridTiles> patches_;
   Inbox<MapReply> replies_;
   Inbox<Heartbeat> heartbeats_;
   std::unique_ptr<dds::Reader<GridSnapshot>> snapshot_reader_;
-  std::unique_ptr<dds::Reader<GridPatch>> patch_reader_;
+  std::unique_ptr<dds::Reader<GridTiles>> patch_reader_;
   std::unique_ptr<dds::Reader<MapReply>> reply_reader_;
   std::unique_ptr<dds::Reader<Heartbeat>> heartbeat_reader_;
 };

@@ -1,4 +1,4 @@
-// slam-planner as a black box: this test plays the mapper (GridSnapshot, GridPatch), the gateway
+// slam-planner as a black box: this test plays the mapper (GridSnapshot, GridTiles), the gateway
 // (RobotState) and the operator (NavGoal, PathRequest) on a DDS domain of its own, and checks the
 // planner's PathReply, WaypointCommand and RobotPath samples. Generous timeouts: CI machines are loaded.
 #include <gtest/gtest.h>
@@ -13,6 +13,7 @@
 #include <thread>
 #include <vector>
 
+#include "common/core/grid_tiles.hpp"
 #include "common/fastdds/fast_topics.hpp"
 #include "fastdds_inbox.hpp"
 #include "process_group.hpp"
@@ -98,7 +99,7 @@ class PlannerTest : public ::testing::Test {
     ASSERT_TRUE(p) << p.message();
     participant_ = std::move(*p);
     snapshots_ = testkit::make_test_writer(*participant_, dds::kGridSnapshot);
-    patches_ = testkit::make_test_writer(*participant_, dds::kGridPatch);
+    patches_ = testkit::make_test_writer(*participant_, dds::kGridTiles);
     states_ = testkit::make_test_writer(*participant_, dds::kRobotState);
     goals_ = testkit::make_test_writer(*participant_, dds::kNavGoal);
     requests_ = testkit::make_test_writer(*participant_, dds::kPathRequest);
@@ -192,7 +193,7 @@ class PlannerTest : public ::testing::Test {
   testkit::ProcessGroup group_;
   std::unique_ptr<dds::Participant> participant_;
   std::unique_ptr<dds::Writer<GridSnapshot>> snapshots_;
-  std::unique_ptr<dds::Writer<GridPatch>> patches_;
+  std::unique_ptr<dds::Writer<GridTiles>> patches_;
   std::unique_ptr<dds::Writer<RobotState>> states_;
   std::unique_ptr<dds::Writer<NavGoal>> goals_;
   std::unique_ptr<dds::Writer<PathRequest>> requests_;
@@ -296,14 +297,21 @@ TEST_F(PlannerTest, StreamsWaypointsInOrderAndReplansWhenAPatchBlocksThePath) {
 
   // The mapper closes gap A: the planner must re-plan through gap B.
   map.fill(49, 20, 50, 25, kOccupied);
-  GridPatch patch;
+  DirtyTiles dirty;
+  dirty.reset({static_cast<int32_t>(map.width), static_cast<int32_t>(map.height), kGridTileSide});
+  for (int32_t y = 20; y <= 25; ++y) {
+    dirty.mark(49, y);
+    dirty.mark(50, y);
+  }
+  EncodedTiles encoded;
+  encode_tiles(map.cells, dirty, encoded);
+  GridTiles patch;
   patch.layout_id(1);
   patch.version(6);
-  patch.x0(49);
-  patch.y0(20);
-  patch.width(2);
-  patch.height(6);
-  patch.cells(std::vector<uint8_t>(12, kOccupied));
+  patch.tile_side(static_cast<uint16_t>(kGridTileSide));
+  patch.encoding(static_cast<uint8_t>(encoded.encoding));
+  patch.tiles(encoded.tiles);
+  patch.data(encoded.data);
   patches_->write(patch);
   const auto via_gap_b = [&] {
     const auto p = last_path("r1", 2);

@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "common/core/geometry.hpp"
+#include "common/core/grid_tiles.hpp"
 #include "common/fastdds/fast_topics.hpp"
 #include "fastdds_inbox.hpp"
 #include "process_group.hpp"
@@ -129,20 +130,20 @@ RobotObservation drifting_observation(const std::string& robot, int k) {
 // The grid as a receiver sees it: the latest snapshot plus the consecutive patches after it.
 
 std::optional<std::vector<uint8_t>> assemble(const std::vector<GridSnapshot>& snapshots,
-                                             const std::vector<GridPatch>& patches) {
+                                             const std::vector<GridTiles>& patches) {
   if (snapshots.empty()) return std::nullopt;
   const GridSnapshot& s = snapshots.back();
   std::vector<uint8_t> cells = s.cells();
   uint64_t version = s.version();
-  std::map<uint64_t, const GridPatch*> later;
-  for (const GridPatch& p : patches)
+  std::map<uint64_t, const GridTiles*> later;
+  for (const GridTiles& p : patches)
     if (p.layout_id() == s.layout_id() && p.version() > version) later[p.version()] = &p;
   for (const auto& [v, p] : later) {
     if (v != version + 1) break;
-    for (uint32_t row = 0; row < p->height(); ++row)
-      for (uint32_t col = 0; col < p->width(); ++col)
-        cells[size_t{p->y0() + row} * s.info().width() + p->x0() + col] =
-            p->cells()[size_t{row} * p->width() + col];
+    const TilePatchView view{p->tile_side(), p->encoding(), p->tiles(), p->data()};
+    if (!apply_tiles(view, cells, static_cast<int32_t>(s.info().width()),
+                     static_cast<int32_t>(s.info().height())))
+      break;
     version = v;
   }
   return cells;
@@ -158,7 +159,7 @@ class SlamMapperTest : public ::testing::Test {
     observations_ = make_test_writer(*participant_, dds::kRobotObservation);
     correction_reader_ = make_inbox_reader(*participant_, dds::kPoseCorrection, corrections_);
     snapshot_reader_ = make_inbox_reader(*participant_, dds::kGridSnapshot, snapshots_);
-    patch_reader_ = make_inbox_reader(*participant_, dds::kGridPatch, patches_);
+    patch_reader_ = make_inbox_reader(*participant_, dds::kGridTiles, patches_);
   }
   void TearDown() override {
     if (HasFailure()) std::cerr << "--- slam-mapper log ---\n" << group_.log("mapper");
@@ -232,10 +233,10 @@ class SlamMapperTest : public ::testing::Test {
   std::unique_ptr<dds::Writer<RobotObservation>> observations_;
   Inbox<PoseCorrection> corrections_;
   Inbox<GridSnapshot> snapshots_;
-  Inbox<GridPatch> patches_;
+  Inbox<GridTiles> patches_;
   std::unique_ptr<dds::Reader<PoseCorrection>> correction_reader_;
   std::unique_ptr<dds::Reader<GridSnapshot>> snapshot_reader_;
-  std::unique_ptr<dds::Reader<GridPatch>> patch_reader_;
+  std::unique_ptr<dds::Reader<GridTiles>> patch_reader_;
 };
 
 TEST_F(SlamMapperTest, KillNineKeepsTheCorrectionsAndTheMap) {

@@ -17,6 +17,7 @@
 #include <thread>
 #include <vector>
 
+#include "common/core/grid_tiles.hpp"
 #include "common/fastdds/fast_topics.hpp"
 #include "inbox.hpp"
 #include "mqtt_test_client.hpp"
@@ -148,17 +149,17 @@ struct Map {
   uint8_t state(Vec p) const { return static_cast<uint8_t>(at(p) & CELL_STATE_MASK); }
 };
 
-inline Map assemble(const GridSnapshot& s, const std::vector<GridPatch>& patches) {
+inline Map assemble(const GridSnapshot& s, const std::vector<GridTiles>& patches) {
   Map m{s.layout_id(), s.version(), s.info(), s.cells()};
-  std::map<uint64_t, const GridPatch*> later;
-  for (const GridPatch& p : patches)
+  std::map<uint64_t, const GridTiles*> later;
+  for (const GridTiles& p : patches)
     if (p.layout_id() == m.layout_id && p.version() > m.version) later[p.version()] = &p;
   for (const auto& [version, p] : later) {
     if (version != m.version + 1) break;
-    for (uint32_t row = 0; row < p->height(); ++row)
-      for (uint32_t col = 0; col < p->width(); ++col)
-        m.cells[size_t{p->y0() + row} * m.info.width() + p->x0() + col] =
-            p->cells()[size_t{row} * p->width() + col];
+    const TilePatchView view{p->tile_side(), p->encoding(), p->tiles(), p->data()};
+    if (!apply_tiles(view, m.cells, static_cast<int32_t>(m.info.width()),
+                     static_cast<int32_t>(m.info.height())))
+      break;
     m.version = version;
   }
   return m;
@@ -181,7 +182,7 @@ class Probe {
           snapshots_.push_back(s);
         }));
     patch_reader_ =
-        take(dds::make_reader(*participant_, dds::kGridPatch, [this](const GridPatch& p, const auto&) {
+        take(dds::make_reader(*participant_, dds::kGridTiles, [this](const GridTiles& p, const auto&) {
           std::lock_guard lock(mutex_);
           patches_.push_back(p);
         }));
@@ -263,11 +264,11 @@ class Probe {
   std::map<std::string, std::vector<Clock::time_point>> observed_;
   std::map<std::string, Heartbeat> heartbeats_;
   std::vector<GridSnapshot> snapshots_;
-  std::vector<GridPatch> patches_;
+  std::vector<GridTiles> patches_;
   uint64_t goal_id_ = 100;
   std::unique_ptr<dds::Participant> participant_;
   std::unique_ptr<dds::Reader<GridSnapshot>> snapshot_reader_;
-  std::unique_ptr<dds::Reader<GridPatch>> patch_reader_;
+  std::unique_ptr<dds::Reader<GridTiles>> patch_reader_;
   std::unique_ptr<dds::Reader<RobotObservation>> observation_reader_;
   std::unique_ptr<dds::Reader<Heartbeat>> heartbeat_reader_;
   std::unique_ptr<dds::Writer<NavGoal>> goals_;

@@ -1,5 +1,5 @@
 #pragma once
-// The cell class octet of GridSnapshot.cells / GridPatch.cells (map.idl CELL_*), for the cores that
+// The cell class octet of GridSnapshot.cells / GridTiles.data (map.idl CELL_*), for the cores that
 // must not include generated DDS headers (mapper, planner, viewer). One definition for all of them.
 #include <cstdint>
 

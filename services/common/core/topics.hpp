@@ -35,7 +35,7 @@ inline constexpr TopicInfo kRobotOdometry{"slam/robot/odometry", kStateQos};
 inline constexpr TopicInfo kPoseCorrection{"slam/robot/correction", kStateQos};
 inline constexpr TopicInfo kInitialPose{"slam/robot/initial_pose", kCommandQos};
 inline constexpr TopicInfo kGridSnapshot{"slam/map/snapshot", kStateQos};
-inline constexpr TopicInfo kGridPatch{"slam/map/patch", kStreamQos};
+inline constexpr TopicInfo kGridTiles{"slam/map/patch", kStreamQos};
 inline constexpr TopicInfo kGridConfig{"slam/map/config", kStateQos};
 inline constexpr TopicInfo kMapEdit{"slam/map/edit", kCommandQos};
 inline constexpr TopicInfo kMapFileRequest{"slam/map/file_request", kCommandQos};

@@ -18,7 +18,7 @@ inline const Topic<RobotOdometry, RobotOdometryPubSubType> kRobotOdometry{topics
 inline const Topic<PoseCorrection, PoseCorrectionPubSubType> kPoseCorrection{topics::kPoseCorrection};
 inline const Topic<InitialPose, InitialPosePubSubType> kInitialPose{topics::kInitialPose};
 inline const Topic<GridSnapshot, GridSnapshotPubSubType> kGridSnapshot{topics::kGridSnapshot};
-inline const Topic<GridPatch, GridPatchPubSubType> kGridPatch{topics::kGridPatch};
+inline const Topic<GridTiles, GridTilesPubSubType> kGridTiles{topics::kGridTiles};
 inline const Topic<GridConfig, GridConfigPubSubType> kGridConfig{topics::kGridConfig};
 inline const Topic<MapEdit, MapEditPubSubType> kMapEdit{topics::kMapEdit};
 inline const Topic<MapFileRequest, MapFileRequestPubSubType> kMapFileRequest{topics::kMapFileRequest};

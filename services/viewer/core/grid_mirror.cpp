@@ -6,6 +6,7 @@
 #include <string>
 #include <utility>
 
+#include "common/core/grid_tiles.hpp"
 #include "viewer/core/cell_colors.hpp"
 
 namespace slam::viewer {
@@ -58,18 +59,14 @@ PatchResult GridMirror::apply_patch(const GridPatchData& p) {
     waiting_ = true;
     return PatchResult::Gap;
   }
-  if (uint64_t{p.x0} + p.width > info_.width || uint64_t{p.y0} + p.height > info_.height ||
-      p.cells.size() != uint64_t{p.width} * p.height)
-    return PatchResult::Invalid;
-  for (uint32_t row = 0; row < p.height; ++row)
-    std::copy_n(p.cells.begin() + static_cast<std::ptrdiff_t>(size_t{row} * p.width), p.width,
-                cells_.begin() + static_cast<std::ptrdiff_t>((size_t{p.y0} + row) * info_.width + p.x0));
+  changed_.clear();
+  const TilePatchView view{p.tile_side, p.encoding, p.tiles, p.data};
+  if (!apply_tiles(view, cells_, geometry_.width, geometry_.height, &changed_)) return PatchResult::Invalid;
   version_ = p.version;
-  // Inside the grid (checked above), so every field fits the signed box.
-  const CellBox box{static_cast<int32_t>(p.x0), static_cast<int32_t>(p.y0), static_cast<int32_t>(p.width),
-                    static_cast<int32_t>(p.height)};
-  dirty_.unite(box);
-  include_known(box);
+  for (const CellBox& box : changed_) {
+    dirty_.unite(box);
+    include_known(box);
+  }
   return PatchResult::Applied;
 }
 

@@ -1,8 +1,8 @@
 #pragma once
-// The viewer's copy of the mapper's grid: snapshots replace it, patches update it in order
-// (same layout, version == last + 1), and the changed box is remembered so the GPU texture is
-// updated with that box only. The box of known cells is kept too, so the view can fit the part of
-// the grid that has been mapped rather than its whole (mostly unknown) extent.
+// The viewer's copy of the mapper's grid: snapshots replace it, tile patches update it in order
+// (same layout, version == last + 1), and the box around the changed tiles is remembered so the GPU texture
+// is updated with that box only. The box of known cells is kept too, so the view can fit the part of the grid
+// that has been mapped rather than its whole (mostly unknown) extent.
 #include <cstdint>
 #include <optional>
 #include <vector>
@@ -18,7 +18,7 @@ enum class PatchResult {
   Gap,          // a version was missed: wait for the next snapshot
   WrongLayout,  // the grid was re-laid out: wait for the next snapshot
   NoGrid,       // no snapshot yet
-  Invalid       // box outside the grid or cell count mismatch
+  Invalid       // tiles outside the grid or data that does not match them (nothing applied)
 };
 
 class GridMirror {
@@ -56,6 +56,7 @@ class GridMirror {
   std::vector<uint8_t> cells_;
   CellBox dirty_;
   CellBox known_;
+  std::vector<CellBox> changed_;  // the patch being applied, reused
 
   void include_known(const CellBox& area);
 };

@@ -35,11 +35,14 @@ struct GridSnapshotData {
   std::vector<uint8_t> cells;
 };
 
+// A GridTiles patch (map.idl; decoded by common/core/grid_tiles.hpp).
 struct GridPatchData {
   uint32_t layout_id = 0;
   uint64_t version = 0;
-  uint32_t x0 = 0, y0 = 0, width = 0, height = 0;
-  std::vector<uint8_t> cells;
+  uint32_t tile_side = 0;
+  uint8_t encoding = 0;
+  std::vector<uint32_t> tiles;
+  std::vector<uint8_t> data;
 };
 
 // RAW: in the robot's odometry frame (its PoseCorrection maps it into the map frame).

@@ -29,8 +29,8 @@ GridSnapshotData from_idl(const slam::GridSnapshot& s) {
   return d;
 }
 
-GridPatchData from_idl(const slam::GridPatch& p) {
-  return {p.layout_id(), p.version(), p.x0(), p.y0(), p.width(), p.height(), p.cells()};
+GridPatchData from_idl(const slam::GridTiles& p) {
+  return {p.layout_id(), p.version(), p.tile_side(), p.encoding(), p.tiles(), p.data()};
 }
 
 ObservationData from_idl(const slam::RobotObservation& o) {

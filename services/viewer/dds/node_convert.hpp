@@ -8,7 +8,7 @@
 namespace slam::viewer {
 
 GridSnapshotData from_idl(const slam::GridSnapshot& s);
-GridPatchData from_idl(const slam::GridPatch& p);
+GridPatchData from_idl(const slam::GridTiles& p);
 ObservationData from_idl(const slam::RobotObservation& o);
 RobotStateData from_idl(const slam::RobotState& s);
 RobotPathData from_idl(const slam::RobotPath& p);

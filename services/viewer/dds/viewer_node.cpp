@@ -90,7 +90,7 @@ Status ViewerNode::create_readers() {
   auto& in = intake_;
   auto& rx = received_;
   for (Status s : {make_intake_reader(p, dds::kGridSnapshot, in, rx, snapshot_reader_),
-                   make_intake_reader(p, dds::kGridPatch, in, rx, patch_reader_),
+                   make_intake_reader(p, dds::kGridTiles, in, rx, patch_reader_),
                    make_intake_reader(p, dds::kRobotObservation, in, rx, observation_reader_),
                    make_intake_reader(p, dds::kRobotState, in, rx, state_reader_),
                    make_intake_reader(p, dds::kRobotPath, in, rx, path_reader_),

@@ -61,7 +61,7 @@ class ViewerNode final : public CommandSink {
   std::unique_ptr<dds::Requester<MqttReply>> mqtt_requester_;
   std::unique_ptr<dds::Requester<SimReply>> sim_requester_;
   std::unique_ptr<dds::Reader<GridSnapshot>> snapshot_reader_;
-  std::unique_ptr<dds::Reader<GridPatch>> patch_reader_;
+  std::unique_ptr<dds::Reader<GridTiles>> patch_reader_;
   std::unique_ptr<dds::Reader<RobotObservation>> observation_reader_;
   std::unique_ptr<dds::Reader<RobotState>> state_reader_;
   std::unique_ptr<dds::Reader<RobotPath>> path_reader_;

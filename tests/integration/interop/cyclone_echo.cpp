@@ -32,7 +32,7 @@ const EchoTopic kTopics[] = {
     {&slam_PoseCorrection_desc, slam::topics::kPoseCorrection},
     {&slam_InitialPose_desc, slam::topics::kInitialPose},
     {&slam_GridSnapshot_desc, slam::topics::kGridSnapshot},
-    {&slam_GridPatch_desc, slam::topics::kGridPatch},
+    {&slam_GridTiles_desc, slam::topics::kGridTiles},
     {&slam_GridConfig_desc, slam::topics::kGridConfig},
     {&slam_MapEdit_desc, slam::topics::kMapEdit},
     {&slam_MapFileRequest_desc, slam::topics::kMapFileRequest},

@@ -85,7 +85,7 @@ const std::vector<Case>& cases() {
       make_case("PoseCorrection", dds::kPoseCorrection, &sample_pose_correction),
       make_case("InitialPose", dds::kInitialPose, &sample_initial_pose),
       make_case("GridSnapshot", dds::kGridSnapshot, &sample_grid_snapshot),
-      make_case("GridPatch", dds::kGridPatch, &sample_grid_patch),
+      make_case("GridTiles", dds::kGridTiles, &sample_grid_tiles),
       make_case("GridConfig", dds::kGridConfig, &sample_grid_config),
       make_case("MapEdit", dds::kMapEdit, &sample_map_edit),
       make_case("MapFileRequest", dds::kMapFileRequest, &sample_map_file_request),

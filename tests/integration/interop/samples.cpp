@@ -111,16 +111,15 @@ GridSnapshot sample_grid_snapshot() {
   return s;
 }
 
-GridPatch sample_grid_patch() {
-  GridPatch s;
+GridTiles sample_grid_tiles() {
+  GridTiles s;
   s.layout_id(7);
   s.version(100);
   s.stamp_ns(43);
-  s.x0(10);
-  s.y0(20);
-  s.width(33);
-  s.height(17);
-  s.cells(bytes(33 * 17));
+  s.tile_side(32);
+  s.encoding(1);
+  s.tiles({3, 17, 4000000000u});
+  s.data(bytes(301));
   return s;
 }
 

@@ -11,7 +11,7 @@ RobotOdometry sample_robot_odometry();
 PoseCorrection sample_pose_correction();
 InitialPose sample_initial_pose();
 GridSnapshot sample_grid_snapshot();
-GridPatch sample_grid_patch();
+GridTiles sample_grid_tiles();
 GridConfig sample_grid_config();
 MapEdit sample_map_edit();
 MapFileRequest sample_map_file_request();

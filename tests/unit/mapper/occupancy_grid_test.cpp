@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <limits>
+#include <random>
 #include <vector>
 
 namespace slam::mapper {
@@ -189,10 +190,10 @@ TEST(OccupancyGrid, GrowsInChunksAndKeepsContents) {
   c = g.cell_at({12.5, 2.5});
   ASSERT_TRUE(c);
   EXPECT_EQ(state(g, c->x, c->y), kCellOccupied);
-  const auto dirty = g.take_dirty();
-  ASSERT_TRUE(dirty.has_value());
-  EXPECT_EQ(dirty->width, g.width());
-  EXPECT_EQ(dirty->height, g.height());
+  const DirtyTiles& dirty = g.dirty_tiles();
+  EXPECT_EQ(dirty.layout().width, g.width());
+  EXPECT_EQ(dirty.layout().height, g.height());
+  for (uint32_t t = 0; t < dirty.layout().count(); ++t) EXPECT_TRUE(dirty.marked(t)) << t;
 }
 
 TEST(OccupancyGrid, GrowthStopsAtMaxExtentAndClipsRays) {
@@ -227,7 +228,7 @@ TEST(OccupancyGrid, LegacyModeMarksPointsAndClearsNothing) {
 TEST(OccupancyGrid, BadInputLeavesGridUntouched) {
   OccupancyGrid g = make();
   ASSERT_TRUE(shoot(g, {0.5, 0.5}, {{5.5, 0.5}}).is_ok());
-  (void)g.take_dirty();
+  g.clear_dirty();
   const std::vector<uint8_t> before(g.classes().begin(), g.classes().end());
   const double nan = std::numeric_limits<double>::quiet_NaN();
   const double inf = std::numeric_limits<double>::infinity();
@@ -240,7 +241,7 @@ TEST(OccupancyGrid, BadInputLeavesGridUntouched) {
   ASSERT_FALSE(far.is_ok());
   EXPECT_NE(far.message().find("max_range_m"), std::string::npos) << far.message();
   EXPECT_EQ(std::vector<uint8_t>(g.classes().begin(), g.classes().end()), before);
-  EXPECT_FALSE(g.take_dirty().has_value());
+  EXPECT_FALSE(g.dirty_tiles().any());
   EXPECT_EQ(g.width(), 10);
 }
 
@@ -276,24 +277,52 @@ TEST(OccupancyGrid, InvalidConfigIsRejectedWithTheKey) {
   expect_bad(c, "log_odds.free_threshold");
 }
 
-TEST(OccupancyGrid, DirtyBoxCoversChangesAndCopiesBytes) {
+TEST(OccupancyGrid, DirtyTilesCoverChangesAndEncodeTheirCells) {
   OccupancyGrid g = make();
-  EXPECT_FALSE(g.take_dirty().has_value());
+  EXPECT_FALSE(g.dirty_tiles().any());
   ASSERT_TRUE(shoot(g, {1.5, 2.5}, {{4.5, 2.5}}).is_ok());
-  const auto box = g.take_dirty();
-  ASSERT_TRUE(box.has_value());
-  EXPECT_EQ(box->x0, 1);
-  EXPECT_EQ(box->y0, 2);
-  EXPECT_EQ(box->width, 4);
-  EXPECT_EQ(box->height, 1);
-  std::vector<uint8_t> bytes;
-  g.copy_box(*box, bytes);
+  ASSERT_TRUE(g.dirty_tiles().any());
+  EncodedTiles encoded;
+  encode_tiles(g.classes(), g.dirty_tiles(), encoded);
+  EXPECT_EQ(encoded.tiles, (std::vector<uint32_t>{0}));
+  // Decoded over an all-unknown grid, the patch gives the grid's cells back.
+  std::vector<uint8_t> mirror(g.classes().size(), kCellUnknown);
+  const TilePatchView view{static_cast<uint32_t>(kGridTileSide), static_cast<uint8_t>(encoded.encoding),
+                           encoded.tiles, encoded.data};
+  ASSERT_TRUE(apply_tiles(view, mirror, g.width(), g.height()));
+  EXPECT_EQ(mirror, std::vector<uint8_t>(g.classes().begin(), g.classes().end()));
   // Radius 0: an occupied cell inflates only itself.
-  EXPECT_EQ(bytes, (std::vector<uint8_t>{kCellFree, kCellFree, kCellFree, kCellOccupied | kCellInflated}));
-  EXPECT_FALSE(g.take_dirty().has_value());
+  EXPECT_EQ(g.cell_class(4, 2), kCellOccupied | kCellInflated);
+  g.clear_dirty();
+  EXPECT_FALSE(g.dirty_tiles().any());
   // Re-observing the same thing changes log-odds but no class: nothing to publish.
   ASSERT_TRUE(shoot(g, {1.5, 2.5}, {{4.5, 2.5}}).is_ok());
-  EXPECT_FALSE(g.take_dirty().has_value());
+  EXPECT_FALSE(g.dirty_tiles().any());
+}
+
+// Every class change, inflation included, marks its tile: a mirror fed only the encoded dirty
+// tiles after each observation equals the grid cell for cell (a 70 x 45 grid: clipped edge tiles).
+TEST(OccupancyGrid, DirtyTilesCarryEveryChangeToAMirror) {
+  GridConfig c = small_config();
+  c.resolution = 0.1;
+  c.width_m = 7.0;
+  c.height_m = 4.5;
+  c.inflation_radius = 0.3;
+  c.max_extent_m = 7.0;
+  OccupancyGrid g = make(c);
+  std::vector<uint8_t> mirror(g.classes().begin(), g.classes().end());
+  EncodedTiles encoded;
+  std::mt19937 rng(2);
+  std::uniform_real_distribution<double> x(0.05, 6.95), y(0.05, 4.45);
+  for (int step = 0; step < 100; ++step) {
+    ASSERT_TRUE(shoot(g, {x(rng), y(rng)}, {{x(rng), y(rng)}, {x(rng), y(rng)}}, {{x(rng), y(rng)}}).is_ok());
+    encode_tiles(g.classes(), g.dirty_tiles(), encoded);
+    g.clear_dirty();
+    const TilePatchView view{static_cast<uint32_t>(kGridTileSide), static_cast<uint8_t>(encoded.encoding),
+                             encoded.tiles, encoded.data};
+    ASSERT_TRUE(apply_tiles(view, mirror, g.width(), g.height()));
+    ASSERT_EQ(mirror, std::vector<uint8_t>(g.classes().begin(), g.classes().end())) << "step " << step;
+  }
 }
 
 TEST(OccupancyGrid, PriorImportAndExport) {

@@ -140,7 +140,6 @@ class World {
     const int32_t x1 = std::min(truth_.width() - 1, c.x + r);
     const int32_t y1 = std::min(truth_.height() - 1, c.y + r);
     CellBox box{x0, y0, x1 - x0 + 1, y1 - y0 + 1};
-    std::vector<uint8_t> cells;
     for (int32_t y = y0; y <= y1; ++y) {
       for (int32_t x = x0; x <= x1; ++x) {
         const Cell q{x, y};
@@ -152,10 +151,9 @@ class World {
           return seen;
         });
         if (seen && std::hypot(q.x - c.x, q.y - c.y) <= r) v = truth_.at(q);
-        cells.push_back(v);
+        map_.set(q, v);
       }
     }
-    EXPECT_TRUE(map_.apply_patch(1, map_.version() + 1, box, cells));
     return box;
   }
   const PlanningGrid& map() const { return map_; }
@@ -197,7 +195,8 @@ TEST(Fleet, ExploresTheWholeWorldAndComesHome) {
       const double d = distance(p, *wp);
       const double s = std::min(1.0, d) / std::max(d, 1e-9);
       p = Vec2{p.x + (wp->x - p.x) * s, p.y + (wp->y - p.y) * s};
-      fleet.grid_changed(world.map(), world.sense(p));
+      const CellBox sensed = world.sense(p);
+      fleet.grid_changed(world.map(), std::span<const CellBox>(&sensed, 1));
       fleet.observe(id, p);
     }
     done = fleet.tracker("r1")->status() == GoalStatus::Reached &&

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <limits>
+#include <random>
 
 #include "grid_builder.hpp"
 
@@ -25,19 +26,62 @@ TEST(PlanningGrid, RejectsBadSnapshots) {
 TEST(PlanningGrid, AppliesPatchesInOrderOnly) {
   PlanningGrid g = test::uniform_grid(4, 3, kCellUnknown);
   const uint64_t rev = g.revision();
-  const std::vector<uint8_t> box{kCellFree, kCellOccupied, kCellFree, kCellFree};
-  ASSERT_TRUE(g.apply_patch(1, 1, CellBox{1, 1, 2, 2}, box));
-  EXPECT_EQ(g.at({1, 1}), kCellFree);
-  EXPECT_EQ(g.at({2, 1}), kCellOccupied);
-  EXPECT_EQ(g.at({1, 2}), kCellFree);
+  // 2 x 2 tiles on a 4 x 3 grid: tile 3 is the clipped top-right one, cells (2..3, 2).
+  const std::vector<uint32_t> tile3{3};
+  const std::vector<uint8_t> cells{kCellFree, kCellOccupied};
+  const auto patch = [](std::span<const uint32_t> tiles, std::span<const uint8_t> data) {
+    return TilePatchView{2, static_cast<uint8_t>(TileEncoding::Raw), tiles, data};
+  };
+  std::vector<CellBox> changed;
+  ASSERT_TRUE(g.apply_patch(1, 1, patch(tile3, cells), changed));
+  EXPECT_EQ(g.at({2, 2}), kCellFree);
+  EXPECT_EQ(g.at({3, 2}), kCellOccupied);
   EXPECT_EQ(g.at({0, 0}), kCellUnknown);
+  EXPECT_EQ(changed, (std::vector<CellBox>{{2, 2, 2, 1}}));
   EXPECT_GT(g.revision(), rev);
-  EXPECT_FALSE(g.apply_patch(1, 3, CellBox{0, 0, 1, 1}, std::vector<uint8_t>{1}));     // gap
-  EXPECT_FALSE(g.apply_patch(2, 2, CellBox{0, 0, 1, 1}, std::vector<uint8_t>{1}));     // layout
-  EXPECT_FALSE(g.apply_patch(1, 2, CellBox{3, 0, 2, 1}, std::vector<uint8_t>{1, 1}));  // outside
-  EXPECT_FALSE(g.apply_patch(1, 2, CellBox{0, 0, 2, 1}, std::vector<uint8_t>{1}));     // size
-  EXPECT_TRUE(g.apply_patch(1, 2, CellBox{0, 0, 1, 1}, std::vector<uint8_t>{kCellFree}));
+  EXPECT_FALSE(g.apply_patch(1, 3, patch(tile3, cells), changed));                     // gap
+  EXPECT_FALSE(g.apply_patch(2, 2, patch(tile3, cells), changed));                     // layout
+  EXPECT_FALSE(g.apply_patch(1, 2, patch(std::vector<uint32_t>{4}, cells), changed));  // outside
+  EXPECT_FALSE(g.apply_patch(1, 2, patch(tile3, std::vector<uint8_t>{1}), changed));   // size
+  EXPECT_EQ(g.version(), 1u);
+  EXPECT_TRUE(g.apply_patch(1, 2, patch(tile3, cells), changed));
   EXPECT_EQ(g.version(), 2u);
+}
+
+// The mapper's side played with the shared codec: a 70 x 45 grid (edge tiles clipped) changes at
+// random, one patch per period; patch 4 is lost. The grid refuses the gap and equals the source
+// cell for cell after the next snapshot and the patches that follow it.
+TEST(PlanningGrid, StreamWithALostPatchEqualsTheSourceAfterTheNextSnapshot) {
+  constexpr int32_t kW = 70, kH = 45;
+  const GridGeometry geometry{{0.0, 0.0}, 0.1, kW, kH};
+  std::vector<uint8_t> source(size_t{kW} * kH, kCellUnknown);
+  DirtyTiles dirty;
+  dirty.reset({kW, kH, kGridTileSide});
+  EncodedTiles encoded;
+  std::mt19937 rng(5);
+  const auto next_patch = [&] {
+    for (int k = 0; k < 40; ++k) {
+      const int32_t x = static_cast<int32_t>(rng() % kW), y = static_cast<int32_t>(rng() % kH);
+      source[static_cast<size_t>(y * kW + x)] = static_cast<uint8_t>(1 + rng() % 2);
+      dirty.mark(x, y);
+    }
+    encode_tiles(source, dirty, encoded);
+    dirty.clear();
+    return TilePatchView{kGridTileSide, static_cast<uint8_t>(encoded.encoding), encoded.tiles, encoded.data};
+  };
+  PlanningGrid g;
+  ASSERT_TRUE(g.reset(geometry, 3, 0, source));
+  std::vector<CellBox> changed;
+  for (uint64_t v = 1; v <= 3; ++v) ASSERT_TRUE(g.apply_patch(3, v, next_patch(), changed));
+  EXPECT_EQ(g.cells(), source);
+  (void)next_patch();  // version 4, lost
+  const Status gap = g.apply_patch(3, 5, next_patch(), changed);
+  ASSERT_FALSE(gap);
+  EXPECT_NE(gap.message().find("does not follow 3"), std::string::npos) << gap.message();
+  (void)next_patch();  // version 6, skipped while waiting for the snapshot
+  ASSERT_TRUE(g.reset(geometry, 3, 6, source));
+  for (uint64_t v = 7; v <= 9; ++v) ASSERT_TRUE(g.apply_patch(3, v, next_patch(), changed));
+  EXPECT_EQ(g.cells(), source);
 }
 
 TEST(PlanningGrid, ConvertsCoordinates) {

@@ -1,8 +1,13 @@
 // Snapshot and patch application: in-order patches update the cells and the dirty box; stale,
-// gapped, mis-laid-out and malformed patches do not.
+// gapped, mis-laid-out and malformed patches do not; a stream with a lost patch ends equal to its
+// source once the next snapshot arrives.
 #include "viewer/core/grid_mirror.hpp"
 
 #include <gtest/gtest.h>
+
+#include <random>
+
+#include "common/core/grid_tiles.hpp"
 
 namespace slam::viewer {
 namespace {
@@ -16,9 +21,14 @@ GridSnapshotData snapshot(uint32_t layout, uint64_t version, uint32_t w = 4, uin
   return s;
 }
 
+// Every cell of the box set to v, in tiles of one cell on a grid 4 cells wide.
 GridPatchData patch(uint32_t layout, uint64_t version, uint32_t x0, uint32_t y0, uint32_t w, uint32_t h,
                     uint8_t v) {
-  return {layout, version, x0, y0, w, h, std::vector<uint8_t>(size_t{w} * h, v)};
+  GridPatchData p{layout, version, 1, static_cast<uint8_t>(TileEncoding::Raw), {}, {}};
+  for (uint32_t y = y0; y < y0 + h; ++y)
+    for (uint32_t x = x0; x < x0 + w; ++x) p.tiles.push_back(y * 4 + x);
+  p.data.assign(p.tiles.size(), v);
+  return p;
 }
 
 TEST(GridMirror, SnapshotReplacesAndMarksEverythingDirty) {
@@ -99,14 +109,58 @@ TEST(GridMirror, StaleGapAndLayoutChangesAreNotApplied) {
   EXPECT_EQ(m.apply_patch(patch(7, 22, 0, 0, 1, 1, 2)), PatchResult::Gap);
 }
 
-TEST(GridMirror, PatchOutsideGridIsInvalid) {
+TEST(GridMirror, MalformedPatchIsInvalidAndChangesNothing) {
   GridMirror m;
   ASSERT_TRUE(m.apply_snapshot(snapshot(7, 10)));
-  EXPECT_EQ(m.apply_patch(patch(7, 11, 3, 0, 2, 1, 2)), PatchResult::Invalid);
+  auto outside = patch(7, 11, 3, 2, 1, 1, 2);
+  outside.tiles = {11, 12};  // 12 cells: tile 12 lies past the grid
+  outside.data = {2, 2};
+  EXPECT_EQ(m.apply_patch(outside), PatchResult::Invalid);
   auto short_cells = patch(7, 11, 0, 0, 2, 2, 2);
-  short_cells.cells.pop_back();
+  short_cells.data.pop_back();
   EXPECT_EQ(m.apply_patch(short_cells), PatchResult::Invalid);
   EXPECT_EQ(m.version(), 10u);
+  EXPECT_EQ(m.cells(), std::vector<uint8_t>(12, 0));
+}
+
+// The mapper's side played with the shared codec: a 70 x 45 grid (edge tiles clipped) changes at
+// random, one patch per period; patch 4 is lost. The mirror stops at the gap, waits, and equals
+// the source cell for cell after the next snapshot and the patches that follow it.
+TEST(GridMirror, StreamWithALostPatchEqualsTheSourceAfterTheNextSnapshot) {
+  constexpr int32_t kW = 70, kH = 45;
+  std::vector<uint8_t> source(size_t{kW} * kH, 0);
+  DirtyTiles dirty;
+  dirty.reset({kW, kH, kGridTileSide});
+  EncodedTiles encoded;
+  std::mt19937 rng(11);
+  const auto next_patch = [&](uint64_t version) {
+    for (int k = 0; k < 40; ++k) {
+      const int32_t x = static_cast<int32_t>(rng() % kW), y = static_cast<int32_t>(rng() % kH);
+      source[static_cast<size_t>(y * kW + x)] = static_cast<uint8_t>(1 + rng() % 2);
+      dirty.mark(x, y);
+    }
+    encode_tiles(source, dirty, encoded);
+    dirty.clear();
+    return GridPatchData{
+        3, version, kGridTileSide, static_cast<uint8_t>(encoded.encoding), encoded.tiles, encoded.data};
+  };
+  const auto source_snapshot = [&](uint64_t version) {
+    GridSnapshotData s = snapshot(3, version, kW, kH);
+    s.cells = source;
+    return s;
+  };
+  GridMirror m;
+  ASSERT_TRUE(m.apply_snapshot(source_snapshot(0)));
+  for (uint64_t v = 1; v <= 3; ++v) ASSERT_EQ(m.apply_patch(next_patch(v)), PatchResult::Applied);
+  EXPECT_EQ(m.cells(), source);
+  (void)next_patch(4);  // lost
+  EXPECT_EQ(m.apply_patch(next_patch(5)), PatchResult::Gap);
+  EXPECT_EQ(m.apply_patch(next_patch(6)), PatchResult::Gap);
+  EXPECT_TRUE(m.waiting_for_snapshot());
+  EXPECT_NE(m.cells(), source);
+  ASSERT_TRUE(m.apply_snapshot(source_snapshot(6)));
+  for (uint64_t v = 7; v <= 9; ++v) ASSERT_EQ(m.apply_patch(next_patch(v)), PatchResult::Applied);
+  EXPECT_EQ(m.cells(), source);
 }
 
 }  // namespace

@@ -21,9 +21,9 @@ TEST(Intake, DrainHandsOverOnce) {
 
 TEST(Intake, SnapshotDropsEarlierPatches) {
   Intake in;
-  in.push(GridPatchData{1, 5, 0, 0, 1, 1, {1}});
+  in.push(GridPatchData{1, 5, 1, 0, {0}, {1}});
   in.push(GridSnapshotData{1, 6, {}, {}});
-  in.push(GridPatchData{1, 7, 0, 0, 1, 1, {1}});
+  in.push(GridPatchData{1, 7, 1, 0, {0}, {1}});
   IntakeBatch b;
   in.drain(b);
   ASSERT_TRUE(b.snapshot);
