@@ -110,10 +110,10 @@ Status PlannerNode::configure() {
                                        [this](const slam::Heartbeat& h, const auto&) { on_heartbeat(h); });
     if (!heartbeats) return heartbeats.error();
     heartbeat_reader_ = std::move(*heartbeats);
-    auto paths = dds::make_reader(*participant_, dds::kRobotPath,
-                                  [this](const slam::RobotPath& p, const auto&) { on_path(p); });
-    if (!paths) return paths.error();
-    path_reader_ = std::move(*paths);
+    auto reports = dds::make_reader(*participant_, dds::kRobotPath,
+                                    [this](const slam::RobotPath& p, const auto&) { on_path(p); });
+    if (!reports) return reports.error();
+    path_reader_ = std::move(*reports);
   }
   auto snapshots =
       dds::make_reader(*participant_, dds::kGridSnapshot,
