@@ -57,9 +57,9 @@ class PlannerShareTest : public ::testing::Test {
  protected:
   void SetUp() override {
     for (const char* name : {"planner-a", "planner-b"}) {
-      group.start(name, {bin_path("slam-planner"), "--domain", std::to_string(domain.id()),
-                         "--goals-resend-period-s", "0.2", "--goal-store",
-                         group.dir() + "/goals-" + name + ".json"});
+      group.start(
+          name, {bin_path("slam-planner"), "--domain", std::to_string(domain.id()), "--goals-resend-period-s",
+                 "0.2", "--goal-store", group.dir() + "/goals-" + name + ".json"});
     }
     participant = std::move(*dds::Participant::create(domain.id(), "planner-share-test"));
     snapshots = testkit::make_test_writer(*participant, dds::kGridSnapshot);
@@ -67,19 +67,20 @@ class PlannerShareTest : public ::testing::Test {
     goals = testkit::make_test_writer(*participant, dds::kNavGoal);
     requests = testkit::make_test_writer(*participant, dds::kPathRequest);
     waypoint_reader = std::move(*dds::make_reader(
-        *participant, dds::kWaypointCommand, [this](const WaypointCommand& c, const dds::fdds::SampleInfo& info) {
+        *participant, dds::kWaypointCommand,
+        [this](const WaypointCommand& c, const dds::fdds::SampleInfo& info) {
           std::ostringstream writer;
           writer << info.sample_identity.writer_guid();
           std::lock_guard lock(mutex);
           commands.push_back({c.robot_id().to_string(), writer.str(), c.waypoint(), Clock::now()});
         }));
-    reply_reader = std::move(*dds::make_reader(
-        *participant, dds::kPathReply, [this](const PathReply& r, const dds::fdds::SampleInfo& info) {
-          std::ostringstream writer;
-          writer << info.sample_identity.writer_guid();
-          std::lock_guard lock(mutex);
-          reply_writers[r.request_id()].insert(writer.str());
-        }));
+    reply_reader = std::move(*dds::make_reader(*participant, dds::kPathReply,
+                                               [this](const PathReply& r, const dds::fdds::SampleInfo& info) {
+                                                 std::ostringstream writer;
+                                                 writer << info.sample_identity.writer_guid();
+                                                 std::lock_guard lock(mutex);
+                                                 reply_writers[r.request_id()].insert(writer.str());
+                                               }));
     heartbeat_reader =
         std::move(*dds::make_reader(*participant, dds::kHeartbeat, [this](const Heartbeat& h, const auto&) {
           if (h.service() != std::string("planner")) return;
@@ -151,7 +152,8 @@ class PlannerShareTest : public ::testing::Test {
 
   // Every robot got commands in [from, to), and within each period each robot's came from one
   // writer; its waypoint is its own goal's target. Returns the writer of each robot.
-  std::map<std::string, std::string> expect_one_planner_per_robot(Clock::time_point from, Clock::time_point to) {
+  std::map<std::string, std::string> expect_one_planner_per_robot(Clock::time_point from,
+                                                                  Clock::time_point to) {
     std::map<std::pair<std::string, int64_t>, std::set<std::string>> writers;  // (robot, period)
     std::map<std::string, std::string> last_writer;
     for (const Command& c : commands_since(from)) {
