@@ -11,6 +11,8 @@ BROKER=""
 PORT=1883
 WORLD=office
 ROBOTS=3
+GATEWAYS=1
+PLANNERS=1
 MODE=explore
 HEADLESS=0
 SIM=1
@@ -28,6 +30,9 @@ usage: scripts/run.sh [options]      (or BIN=build/bin compose/launch.sh [option
                        (also the default when \$DISPLAY is not set)
   --world NAME|FILE    simulated world (built-in: ${BUILT_IN_WORLDS// /, }; or a world file) [$WORLD]
   --robots N           simulated robots (0..5000)                                   [$ROBOTS]
+  --gateways N         gateways sharing the robots (1..8)                           [$GATEWAYS]
+  --planners N         planners sharing the goals and path requests (1..8), each
+                       with its own goal file in --data                             [$PLANNERS]
   --mode explore|idle  explore: send every robot exploring at start; idle: wait for goals
                        (goals kept in --data from an earlier run resume either way)  [$MODE]
   --no-sim             real robots only
@@ -59,11 +64,13 @@ while (($#)); do
     --headless) HEADLESS=1 ;;
     --no-sim) SIM=0 ;;
     --fresh) FRESH=1 ;;
-    --world | --robots | --mode | --domain | --broker | --port | --data | --logs | --snapshots | --snapshot-period)
+    --world | --robots | --gateways | --planners | --mode | --domain | --broker | --port | --data | --logs | --snapshots | --snapshot-period)
       need_value "$1" $#
       case "$1" in
         --world) WORLD=$2 ;;
         --robots) ROBOTS=$2 ;;
+        --gateways) GATEWAYS=$2 ;;
+        --planners) PLANNERS=$2 ;;
         --mode) MODE=$2 ;;
         --domain) DOMAIN=$2 ;;
         --broker) BROKER=$2 ;;
@@ -82,6 +89,8 @@ done
 
 case "$MODE" in explore | idle) ;; *) fail "--mode must be explore or idle, got '$MODE'" ;; esac
 is_uint "$ROBOTS" && ((10#$ROBOTS <= 5000)) || fail "--robots must be 0..5000, got '$ROBOTS'"
+is_uint "$GATEWAYS" && ((10#$GATEWAYS >= 1 && 10#$GATEWAYS <= 8)) || fail "--gateways must be 1..8, got '$GATEWAYS'"
+is_uint "$PLANNERS" && ((10#$PLANNERS >= 1 && 10#$PLANNERS <= 8)) || fail "--planners must be 1..8, got '$PLANNERS'"
 is_uint "$DOMAIN" && ((10#$DOMAIN <= 232)) || fail "--domain must be 0..232, got '$DOMAIN'"
 is_uint "$PORT" && ((10#$PORT >= 1 && 10#$PORT <= 65535)) || fail "--port must be 1..65535, got '$PORT'"
 [[ $SNAP_PERIOD =~ ^[0-9]+([.][0-9]+)?$ ]] || fail "--snapshot-period must be a number of seconds, got '$SNAP_PERIOD'"
@@ -100,8 +109,8 @@ if ((HEADLESS_VIEWER)); then
   snap_abs=$(cd "$SNAP_DIR" && pwd)
 fi
 if ((FRESH)); then
-  rm -f "$DATA"/map.db "$DATA"/map.db-* "$DATA/world" "$DATA/goals.json"
-  echo "run: --fresh: removed the map store and the planner's goals in $DATA"
+  rm -f "$DATA"/map.db "$DATA"/map.db-* "$DATA/world" "$DATA"/goals.json "$DATA"/goals-*.json
+  echo "run: --fresh: removed the map store and the planners' goals in $DATA"
 elif ((SIM)) && [ -f "$DATA/map.db" ] && [ -f "$DATA/world" ] && [ "$(cat "$DATA/world")" != "$WORLD" ]; then
   echo "run: note: the map store in $DATA was built in world '$(cat "$DATA/world")', now '$WORLD': the map mixes both (add --fresh to start empty)" >&2
 fi
@@ -171,9 +180,20 @@ if [ -z "$BROKER" ]; then
 fi
 
 common=(--domain "$DOMAIN")
-start gateway "$BIN/slam-gateway" "${common[@]}" --broker "$BROKER"
+instance_name() {  # instance_name SERVICE I N: "gateway" alone, "gateway-2" among several
+  if (($3 == 1)); then echo "$1"; else echo "$1-$2"; fi
+}
+for i in $(seq "$GATEWAYS"); do
+  start "$(instance_name gateway "$i" "$GATEWAYS")" "$BIN/slam-gateway" "${common[@]}" --broker "$BROKER"
+done
 start mapper "$BIN/slam-mapper" "${common[@]}" --store "$DATA/map.db"
-start planner "$BIN/slam-planner" "${common[@]}" --goal-store "$DATA/goals.json"
+# Each planner keeps its own goal file (every one follows every goal: docs/deployment.md).
+for i in $(seq "$PLANNERS"); do
+  name=$(instance_name planner "$i" "$PLANNERS")
+  goals="$DATA/goals.json"
+  ((PLANNERS == 1)) || goals="$DATA/goals-$i.json"
+  start "$name" "$BIN/slam-planner" "${common[@]}" --goal-store "$goals"
+done
 if ((SIM)); then
   start simulator "$BIN/slam-simulator" "${common[@]}" --broker "$BROKER" --world "$WORLD" --robots "$ROBOTS"
 fi

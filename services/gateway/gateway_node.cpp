@@ -59,6 +59,7 @@ GatewayNode::Metrics::Metrics(Counters& c)
       reconnects(c.get("reconnects")),
       write_failures(c.get("write_failures")),
       commands_not_owned(c.get("commands_not_owned")),
+      mqtt_requests_not_owned(c.get("mqtt_requests_not_owned")),
       robots_owned(c.get("robots_owned")),
       gateways_live(c.get("gateways_live")),
       robot_protocols_refused(c.get("robot_protocols_refused")) {

@@ -6,7 +6,8 @@
 // beside) and subscriptions into state samples. The MQTT traffic log goes through a bounded queue to its own
 // worker. Several gateways share the robots: each robot message reaches one of them (MQTT shared
 // subscriptions) and each robot's waypoints are sent by its owner only (Ownership over the gateways'
-// heartbeats); the protocol a robot speaks is learnt from every gateway's RobotStates.
+// heartbeats), each viewer MQTT request executed by the owner of its id only; the protocol a robot speaks is
+// learnt from every gateway's RobotStates.
 #include <array>
 #include <atomic>
 #include <chrono>
@@ -84,6 +85,7 @@ class GatewayNode {
     std::atomic<int64_t>& reconnects;
     std::atomic<int64_t>& write_failures;
     std::atomic<int64_t>& commands_not_owned;
+    std::atomic<int64_t>& mqtt_requests_not_owned;  // left to the gateway that owns them
     std::atomic<int64_t>& robots_owned;
     std::atomic<int64_t>& gateways_live;
     std::atomic<int64_t>& robot_protocols_refused;

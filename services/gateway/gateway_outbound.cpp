@@ -97,6 +97,15 @@ void GatewayNode::on_waypoint(const slam::WaypointCommand& command) {
 }
 
 void GatewayNode::on_request(const slam::MqttRequest& request) {
+  {
+    // Every gateway receives every request; only the owner of its id executes and answers it (a
+    // publish must reach the broker once). Unanswered during a takeover, the requester retries.
+    std::lock_guard lock(ownership_mutex_);
+    if (shutdown_requested() || !ownership_.owns(std::to_string(request.request_id()), monotonic_ns())) {
+      bump(metrics_.mqtt_requests_not_owned);
+      return;
+    }
+  }
   // A requester's retry: published or subscribed once, answered again from the cache.
   if (auto verdict = replies_sent_.admit(request.request_id()); verdict.admission != Admission::Execute) {
     bump(metrics_.mqtt_requests_repeated);

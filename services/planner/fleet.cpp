@@ -104,7 +104,7 @@ void Fleet::give_up(Vec2 target, int64_t now_ns) {
 void Fleet::plan_paths(const PlanningGrid& grid, int64_t now_ns) {
   for (auto& [id, robot] : robots_) {
     GoalTracker& t = robot.tracker;
-    if (!t.needs_plan()) continue;
+    if (!robot.owned || !t.needs_plan()) continue;
     // Home is where the robot once stood: inflation may cover it now, a cell beside it will do.
     const bool snap_goal = t.mode() == GoalMode::Home || t.homing();
     const PlanResult result =
@@ -131,6 +131,7 @@ double Fleet::way_to_go(const Robot& robot) const {
 
 void Fleet::release_frontiers(const PlanningGrid& grid, int64_t now_ns) {
   for (auto& [id, robot] : robots_) {
+    if (!robot.owned) continue;
     GoalTracker& t = robot.tracker;
     if (const auto reached = t.take_reached_frontier()) {
       const auto cell = grid.cell_at(*reached);
@@ -154,7 +155,7 @@ void Fleet::explore(const PlanningGrid& grid, int64_t now_ns) {
   std::vector<ExploringRobot> seekers;
   std::vector<std::string> ids;
   for (auto& [id, robot] : robots_) {
-    if (!robot.tracker.wants_frontier() || now_ns < robot.next_search_ns) continue;
+    if (!robot.owned || !robot.tracker.wants_frontier() || now_ns < robot.next_search_ns) continue;
     // Nothing observed around the robot yet (or it is walled in): no frontier is known to be
     // reachable from it, which says nothing about the frontiers. It waits for the map instead of
     // giving up. (Observed: a known passable cell nearby, whatever the exploration policy.)
@@ -183,6 +184,7 @@ void Fleet::explore(const PlanningGrid& grid, int64_t now_ns) {
         eligible_[c] = 0;
       }
     }
+    if (claimed_elsewhere(target)) eligible_[c] = 0;
   }
   const auto cost = [&](Vec2 from, Vec2 to) -> std::optional<double> {
     const PlanResult r = planner_.plan_for_robot(grid, from, to, config_.explore.unknown);
@@ -207,7 +209,7 @@ void Fleet::explore(const PlanningGrid& grid, int64_t now_ns) {
 
 void Fleet::settle_idle(const std::vector<std::string>& idle, bool frontiers_resting, int64_t now_ns) {
   if (idle.empty()) return;
-  bool others_exploring = false;
+  bool others_exploring = claimed_elsewhere(std::nullopt);
   for (const auto& [id, robot] : robots_) others_exploring = others_exploring || robot.tracker.has_frontier();
   const auto grace = static_cast<int64_t>(config_.explore.completion_grace_s * 1e9);
   bool completed = false;
@@ -225,6 +227,7 @@ void Fleet::settle_idle(const std::vector<std::string>& idle, bool frontiers_res
   if (!completed) return;
   bool still_exploring = false;
   for (const auto& [id, robot] : robots_) {
+    if (!robot.owned) continue;
     still_exploring = still_exploring || robot.tracker.has_frontier() || robot.tracker.wants_frontier();
   }
   if (!still_exploring) exploration_complete_ = true;
@@ -234,7 +237,7 @@ void Fleet::due_waypoints(int64_t now_ns, std::vector<DueWaypoint>& out) {
   out.clear();
   for (auto& [id, robot] : robots_) {
     GoalTracker& t = robot.tracker;
-    if (!t.should_send(now_ns)) continue;
+    if (!robot.owned || !t.should_send(now_ns)) continue;
     const auto wp = t.current_waypoint();
     if (!wp) continue;
     const auto rest = t.remaining();
@@ -245,11 +248,50 @@ void Fleet::due_waypoints(int64_t now_ns, std::vector<DueWaypoint>& out) {
 std::vector<std::string> Fleet::take_changed() {
   std::vector<std::string> out;
   for (auto& [id, robot] : robots_) {
-    if (robot.tracker.revision() == robot.published_revision) continue;
+    if (!robot.owned || robot.tracker.revision() == robot.published_revision) continue;
     robot.published_revision = robot.tracker.revision();
     out.push_back(id);
   }
   return out;
+}
+
+size_t Fleet::update_ownership(const std::function<bool(const std::string&)>& owns) {
+  size_t owned = 0;
+  for (auto& [id, robot] : robots_) {
+    const bool now_owned = owns(id);
+    owned += now_owned ? 1 : 0;
+    if (now_owned == robot.owned) continue;
+    robot.owned = now_owned;
+    if (now_owned) {
+      robot.tracker.take_over();
+      robot.idle_since_ns = -1;
+      robot.next_search_ns = 0;
+    } else {
+      robot.tracker.drop_frontier();
+    }
+  }
+  return owned;
+}
+
+bool Fleet::owns(const std::string& robot_id) const {
+  const auto it = robots_.find(robot_id);
+  return it != robots_.end() && it->second.owned;
+}
+
+void Fleet::claim(const std::string& robot_id, std::optional<Vec2> target) {
+  if (target) {
+    claims_[robot_id] = *target;
+  } else {
+    claims_.erase(robot_id);
+  }
+}
+
+bool Fleet::claimed_elsewhere(std::optional<Vec2> target) const {
+  for (const auto& [id, claimed] : claims_) {
+    if (owns(id)) continue;
+    if (!target || distance(claimed, *target) <= config_.explore.blacklist_radius_m) return true;
+  }
+  return false;
 }
 
 const GoalTracker* Fleet::tracker(const std::string& robot_id) const {

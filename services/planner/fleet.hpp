@@ -2,7 +2,13 @@
 // Every known robot's goal in one place: applies goals (one robot or "*" for all known robots),
 // plans and re-plans their paths, runs frontier exploration across them and says which waypoint
 // commands are due. Pure logic; the service feeds it observations, grids and the time.
+//
+// Several planners share the robots: each follows every robot's goal and position, but plans,
+// explores and sends waypoints only for the robots it owns (update_ownership), so a robot that
+// comes to it from a dead planner continues at once. The frontiers other planners' robots drive to
+// (claim) are never offered to its own robots.
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <optional>
 #include <span>
@@ -60,8 +66,18 @@ class Fleet {
   void tick(const PlanningGrid& grid, int64_t now_ns);
   // Waypoint commands due at now_ns (see GoalTracker::should_send).
   void due_waypoints(int64_t now_ns, std::vector<DueWaypoint>& out);
-  // Robots whose path or status changed since the last call: their RobotPath needs publishing.
+  // Robots owned here whose path or status changed since the last call (or that were just taken
+  // over): their RobotPath needs publishing.
   std::vector<std::string> take_changed();
+
+  // Asks `owns` about every known robot (each is owned until then). A robot taken over continues
+  // its goal from where it is (GoalTracker::take_over); one given up drops its frontier, which
+  // its new owner chooses. Returns how many robots are owned here.
+  size_t update_ownership(const std::function<bool(const std::string&)>& owns);
+  bool owns(const std::string& robot_id) const;
+  // The frontier robot_id drives to under another planner (nullopt: none). Claims of robots owned
+  // here are ignored: their own frontiers count.
+  void claim(const std::string& robot_id, std::optional<Vec2> target);
 
   const GoalTracker* tracker(const std::string& robot_id) const;
   std::optional<Vec2> home(const std::string& robot_id) const;
@@ -80,6 +96,7 @@ class Fleet {
     uint64_t published_revision = 0;
     int64_t idle_since_ns = -1;  // exploring without a frontier to go to since then; -1: not
     int64_t next_search_ns = 0;  // no frontier search for this robot before then
+    bool owned = true;           // planned, explored and streamed by this planner
   };
   struct KeptGoal {
     Goal goal;
@@ -99,6 +116,9 @@ class Fleet {
   // Robots that found nothing: they wait while others explore or a given-up frontier only rests,
   // then head home after the grace.
   void settle_idle(const std::vector<std::string>& idle, bool frontiers_resting, int64_t now_ns);
+  // True when a robot of another planner drives to a frontier within the blacklist radius of
+  // `target` (any at all when `target` is empty).
+  bool claimed_elsewhere(std::optional<Vec2> target) const;
 
   FleetConfig config_;
   PathPlanner planner_;
@@ -109,6 +129,7 @@ class Fleet {
   std::map<std::string, Robot> robots_;
   std::map<std::string, KeptGoal> pending_;
   std::map<std::string, Vec2> restored_homes_;
+  std::map<std::string, Vec2> claims_;  // frontiers of robots driven by other planners
   std::optional<KeptGoal> fleet_goal_;
   uint64_t goal_order_ = 0;
   bool exploration_complete_ = false;

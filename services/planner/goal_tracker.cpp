@@ -211,6 +211,13 @@ void GoalTracker::exploration_complete() {
   ++revision_;
 }
 
+void GoalTracker::take_over() {
+  // An exploring robot without a frontier asks for one instead (wants_frontier()).
+  if (status_ == GoalStatus::Active && plans_paths() && !wants_frontier()) plan_wanted_ = true;
+  sent_once_ = false;
+  ++revision_;
+}
+
 std::optional<Vec2> GoalTracker::current_waypoint() const {
   if (waypoints_.empty()) return std::nullopt;
   return current_ < waypoints_.size() ? waypoints_[current_] : waypoints_.back();

@@ -71,6 +71,10 @@ class GoalTracker {
   std::optional<Vec2> take_reached_frontier();
   // No frontier left for this robot: it drives home and the goal is reached there.
   void exploration_complete();
+  // The robot comes under this planner from another one (several planners share the robots): a
+  // path this tracker holds may be stale and the other planner's is unknown here, so a planned
+  // route is planned again from where the robot is, and the current waypoint goes out at once.
+  void take_over();
 
   // The waypoint to drive to now, if any.
   std::optional<Vec2> current_waypoint() const;

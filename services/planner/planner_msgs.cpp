@@ -93,4 +93,16 @@ void fill_path(const std::string& robot_id, const GoalTracker& tracker, slam::Ro
   out.reason(tracker.reason());
 }
 
+PathReport to_report(const slam::RobotPath& sample) {
+  PathReport out;
+  out.goal_id = sample.goal_id();
+  out.finished = sample.status() == slam::GOAL_STATUS_REACHED || sample.status() == slam::GOAL_STATUS_FAILED;
+  // A robot between frontiers has no waypoints; one homing is not told apart (its home is claimed).
+  if (sample.mode() == slam::GOAL_EXPLORE && sample.status() == slam::GOAL_STATUS_ACTIVE &&
+      !sample.waypoints().empty()) {
+    out.frontier = to_vec2(sample.target());
+  }
+  return out;
+}
+
 }  // namespace slam::planner

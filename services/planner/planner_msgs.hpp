@@ -7,6 +7,7 @@
 #include <slam/fastdds/nav.h>
 #include <slam/fastdds/robot.h>
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -47,5 +48,13 @@ slam::PlanStatus to_idl(PlanStatus status);
 
 // The robot's path as the viewer shows it.
 void fill_path(const std::string& robot_id, const GoalTracker& tracker, slam::RobotPath& out);
+
+// What a RobotPath (the owner planner's) tells the other planners about its robot.
+struct PathReport {
+  std::optional<Vec2> frontier;  // where an exploring robot drives (home too, when homing)
+  uint64_t goal_id = 0;
+  bool finished = false;  // the goal was reached or failed
+};
+PathReport to_report(const slam::RobotPath& sample);
 
 }  // namespace slam::planner

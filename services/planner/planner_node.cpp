@@ -8,7 +8,7 @@
 #include <utility>
 
 #include "common/core/clock.hpp"
-#include "planner/planner_msgs.hpp"
+#include "common/core/service_identity.hpp"
 
 namespace slam::planner {
 
@@ -18,6 +18,18 @@ std::string counter_name(PlanStatus status) {
   std::string name = "replies_";
   for (char c : to_string(status)) name += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   return name;
+}
+
+int64_t to_ns(double seconds) {
+  return static_cast<int64_t>(seconds * 1e9);
+}
+
+// Without sharing, no warm-up: a lone planner drives robots and answers requests from its start.
+OwnershipConfig ownership_config(const PlannerOptions& o) {
+  const int64_t timeout = to_ns(o.peer_timeout_s);
+  // Longer than a heartbeat period past the timeout: by then every live peer has heard this
+  // planner's heartbeats (discovery included) and dropped the robots it takes.
+  return {timeout, o.share ? timeout + to_ns(2.0 * kPlannerHeartbeatPeriodS) : 0};
 }
 
 }  // namespace
@@ -41,7 +53,10 @@ PlannerNode::Metrics::Metrics(Counters& c)
       snapshots_rejected(c.get("snapshots_rejected")),
       patches_applied(c.get("patches_applied")),
       patches_skipped(c.get("patches_skipped")),
-      write_failures(c.get("write_failures")) {
+      write_failures(c.get("write_failures")),
+      path_requests_not_owned(c.get("path_requests_not_owned")),
+      robots_owned(c.get("robots_owned")),
+      planners_live(c.get("planners_live")) {
   for (size_t i = 0; i < replies.size(); ++i) replies[i] = &c.get(counter_name(static_cast<PlanStatus>(i)));
 }
 
@@ -49,7 +64,10 @@ PlannerNode::PlannerNode(const PlannerOptions& options, Counters& counters)
     : options_(options),
       period_(std::max<int64_t>(1, static_cast<int64_t>(std::lround(1000.0 / options.loop_rate_hz)))),
       metrics_(counters),
-      fleet_(options.fleet) {}
+      fleet_(options.fleet),
+      seq_base_(static_cast<uint64_t>(now_ns() / 1'000'000)),
+      // The instance id this process's heartbeats carry (host:pid), so peers and self agree.
+      ownership_(ServiceIdentity::of("planner").instance_id, monotonic_ns(), ownership_config(options)) {}
 
 Result<std::unique_ptr<PlannerNode>> PlannerNode::create(const PlannerOptions& options, Counters& counters) {
   std::unique_ptr<PlannerNode> node(new PlannerNode(options, counters));
@@ -85,7 +103,18 @@ Status PlannerNode::configure() {
     return Error{std::string("cannot start the path request workers: ") + e.what()};
   }
 
-  // Readers last: from here on callbacks run, and everything they touch exists.
+  // Readers last: from here on callbacks run, and everything they touch exists. Heartbeats first:
+  // the request intake asks the ownership.
+  if (options_.share) {
+    auto heartbeats = dds::make_reader(*participant_, dds::kHeartbeat,
+                                       [this](const slam::Heartbeat& h, const auto&) { on_heartbeat(h); });
+    if (!heartbeats) return heartbeats.error();
+    heartbeat_reader_ = std::move(*heartbeats);
+    auto reports = dds::make_reader(*participant_, dds::kRobotPath,
+                                    [this](const slam::RobotPath& p, const auto&) { on_path(p); });
+    if (!reports) return reports.error();
+    path_reader_ = std::move(*reports);
+  }
   auto snapshots =
       dds::make_reader(*participant_, dds::kGridSnapshot,
                        [this](const slam::GridSnapshot& s, const auto&) { intake_.push_snapshot(s); });
@@ -112,6 +141,10 @@ Status PlannerNode::configure() {
   request_reader_ = std::move(*requests);
   spdlog::info("planner ready on domain {} ({} request worker(s), loop {} Hz)", options_.service.domain,
                options_.request_workers, options_.loop_rate_hz);
+  if (options_.share) {
+    spdlog::info("planner '{}' shares the robots and requests; it drives robots after a {:.1f} s warm-up",
+                 ownership_.self(), static_cast<double>(ownership_config(options_).warmup_ns) * 1e-9);
+  }
   return Status::ok();
 }
 
@@ -121,8 +154,10 @@ void PlannerNode::run_once() {
   apply_grid(batch_);
   apply_states(batch_.states);
   apply_goals(batch_.goals);
-  submit_requests(batch_.requests);
   const int64_t now = monotonic_ns();
+  update_ownership(now);
+  apply_reports();
+  submit_requests(batch_.requests);
   count_replans();
   fleet_.tick(grid_, now);
   publish_paths();
@@ -306,6 +341,14 @@ void PlannerNode::submit_requests(const std::vector<slam::PathRequest>& requests
     handed_revision_ = grid_.revision();
   }
   for (const slam::PathRequest& r : requests) {
+    {
+      // Every planner receives every request; only the owner of its id answers it.
+      std::lock_guard lock(ownership_mutex_);
+      if (!ownership_.owns(std::to_string(r.request_id()), monotonic_ns())) {
+        bump(metrics_.path_requests_not_owned);
+        continue;
+      }
+    }
     // A requester's retry: planned once, answered again from the cache (or by the running job).
     const auto verdict = replies_sent_.admit(r.request_id());
     if (verdict.admission != Admission::Execute) {
@@ -323,7 +366,7 @@ void PlannerNode::count_replans() {
   if (grid_.empty()) return;
   for (const std::string& id : robots_) {
     const GoalTracker* t = fleet_.tracker(id);
-    if (t != nullptr && t->needs_plan() && !t->waypoints().empty()) {
+    if (t != nullptr && fleet_.owns(id) && t->needs_plan() && !t->waypoints().empty()) {
       bump(metrics_.replans);
       spdlog::info("robot '{}': re-planning goal {} (path blocked or robot off its path)", id,
                    t->goal().goal_id);
@@ -357,10 +400,65 @@ void PlannerNode::stream_waypoints(int64_t now_ns) {
   fleet_.due_waypoints(now_ns, due_);
   for (const DueWaypoint& d : due_) {
     command_.robot_id(d.robot_id);
-    command_.seq(++waypoint_seq_[d.robot_id]);
+    command_.seq(++waypoint_seq_.try_emplace(d.robot_id, seq_base_).first->second);
     command_.waypoint(to_point(d.waypoint));
     to_points(d.remaining, command_.remaining());
     bump(waypoint_writer_->write(command_) ? metrics_.waypoints_sent : metrics_.write_failures);
+  }
+}
+
+void PlannerNode::on_heartbeat(const slam::Heartbeat& heartbeat) {
+  if (heartbeat.service().to_string() != "planner") return;
+  const std::string instance = heartbeat.instance_id().to_string();
+  std::lock_guard lock(ownership_mutex_);
+  if (heartbeat.state() == SERVICE_STOPPING) {
+    ownership_.left(instance);
+  } else {
+    ownership_.heard(instance, monotonic_ns());
+  }
+}
+
+void PlannerNode::on_path(const slam::RobotPath& sample) {
+  PathReport report = to_report(sample);
+  std::lock_guard lock(reports_mutex_);
+  reports_[sample.robot_id().to_string()] = std::move(report);
+}
+
+void PlannerNode::update_ownership(int64_t now_mono_ns) {
+  std::vector<std::string> live;
+  size_t owned = 0;
+  gone_.clear();
+  {
+    std::lock_guard lock(ownership_mutex_);
+    ownership_.expire(now_mono_ns, &gone_);
+    if (ownership_.version() != ownership_version_) {
+      ownership_version_ = ownership_.version();
+      live = ownership_.live();
+    }
+    owned = fleet_.update_ownership([&](const std::string& id) { return ownership_.owns(id, now_mono_ns); });
+  }
+  metrics_.robots_owned.store(static_cast<int64_t>(owned), std::memory_order_relaxed);
+  for (const std::string& id : gone_) {
+    spdlog::warn("planner '{}' silent for {} s: its robots move to the others", id, options_.peer_timeout_s);
+  }
+  if (live.empty()) return;
+  metrics_.planners_live.store(static_cast<int64_t>(live.size()), std::memory_order_relaxed);
+  std::string ids;
+  for (const std::string& id : live) ids += (ids.empty() ? "" : ", ") + id;
+  if (options_.share) spdlog::info("planners sharing the robots: {} ({})", live.size(), ids);
+}
+
+void PlannerNode::apply_reports() {
+  reports_taken_.clear();
+  {
+    std::lock_guard lock(reports_mutex_);
+    reports_taken_.swap(reports_);
+  }
+  for (const auto& [id, report] : reports_taken_) {
+    // This planner's own reports come back too: the fleet ignores claims of robots it owns.
+    fleet_.claim(id, report.frontier);
+    // Finished under another owner: not resumed from this planner's file after a restart.
+    if (report.finished && !fleet_.owns(id)) goal_store_.finish(id, report.goal_id);
   }
 }
 

@@ -2,24 +2,31 @@
 // slam-planner's DDS edge: reads grids, robot states, goals and path requests into a locked intake;
 // one loop pass drains it into the core (PlanningGrid, Fleet), then writes waypoint commands and
 // robot paths. Path requests go to RequestWorkers, which write their replies themselves.
+// Several planners share the work: each reads every goal, but drives only the robots it owns and
+// answers only the path requests it owns (Ownership over the planners' heartbeats); the other
+// planners' RobotPaths tell it which frontiers their robots drive to and which goals they finished.
 #include <array>
 #include <atomic>
 #include <chrono>
 #include <cstdint>
 #include <map>
 #include <memory>
+#include <mutex>
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
 
 #include "common/core/counters.hpp"
 #include "common/core/log.hpp"
+#include "common/core/ownership.hpp"
 #include "common/core/reply_cache.hpp"
 #include "common/core/result.hpp"
 #include "common/fastdds/fast_topics.hpp"
 #include "planner/fleet.hpp"
 #include "planner/goal_store.hpp"
 #include "planner/planner_intake.hpp"
+#include "planner/planner_msgs.hpp"
 #include "planner/planner_options.hpp"
 #include "planner/request_workers.hpp"
 
@@ -33,6 +40,10 @@ class PlannerNode {
   PlannerNode& operator=(const PlannerNode&) = delete;
 
   dds::Participant& participant() { return *participant_; }
+
+  // Faster than the 1 s default: a dead planner's robots move after options.peer_timeout_s.
+  static constexpr std::chrono::milliseconds kHeartbeatPeriod{
+      static_cast<std::int64_t>(kPlannerHeartbeatPeriodS * 1000.0)};
 
   // One loop pass: waits up to one loop period (less when a goal or request arrives), applies
   // what arrived, ticks the fleet, then writes robot paths and due waypoints.
@@ -61,6 +72,9 @@ class PlannerNode {
     std::atomic<int64_t>& patches_applied;
     std::atomic<int64_t>& patches_skipped;
     std::atomic<int64_t>& write_failures;
+    std::atomic<int64_t>& path_requests_not_owned;  // left to the planner that owns them
+    std::atomic<int64_t>& robots_owned;
+    std::atomic<int64_t>& planners_live;
   };
 
   PlannerNode(const PlannerOptions& options, Counters& counters);
@@ -80,6 +94,14 @@ class PlannerNode {
   void count_replans();
   void publish_paths();
   void stream_waypoints(int64_t now_ns);
+  // Heartbeat reader thread.
+  void on_heartbeat(const slam::Heartbeat& heartbeat);
+  // RobotPath reader thread: keeps the latest report per robot for the loop.
+  void on_path(const slam::RobotPath& sample);
+  // Loop: drops silent planners, logs changes of the live set, hands the robots owned to the fleet
+  // and the other planners' reports (claims, finished goals) to the fleet and the goal store.
+  void update_ownership(int64_t now_mono_ns);
+  void apply_reports();
   // Runs on worker threads.
   void reply(const PathJob& job, const PlanResult& result);
   void warn(const std::string& key, const std::string& line);
@@ -97,12 +119,26 @@ class PlannerNode {
   bool awaiting_snapshot_ = false;
   uint64_t handed_revision_ = 0;  // grid revision the request workers have
   std::set<std::string> robots_;
+  // Sequence numbers of a robot's commands start at the planner's start time in ms, so that a robot
+  // taken over from another planner sees them keep increasing.
+  uint64_t seq_base_ = 0;
   std::map<std::string, uint64_t> waypoint_seq_;
   std::map<std::string, GoalStatus> reported_status_;
   IntakeBatch batch_;
   std::vector<DueWaypoint> due_;
   slam::WaypointCommand command_;
   slam::RobotPath path_;
+  uint64_t ownership_version_ = ~uint64_t{0};  // none logged yet
+  std::vector<std::string> gone_;
+
+  // Heartbeat reader thread, request intake in the loop and the loop.
+  std::mutex ownership_mutex_;
+  Ownership ownership_;
+
+  // RobotPath reader thread writes, loop drains.
+  std::mutex reports_mutex_;
+  std::map<std::string, PathReport> reports_;
+  std::map<std::string, PathReport> reports_taken_;
 
   PlannerIntake intake_;
   // Destroyed bottom-up: readers stop first, then the workers answer what is queued, then the
@@ -118,6 +154,8 @@ class PlannerNode {
   std::unique_ptr<dds::Reader<slam::RobotState>> state_reader_;
   std::unique_ptr<dds::Reader<slam::NavGoal>> goal_reader_;
   std::unique_ptr<dds::Reader<slam::PathRequest>> request_reader_;
+  std::unique_ptr<dds::Reader<slam::Heartbeat>> heartbeat_reader_;
+  std::unique_ptr<dds::Reader<slam::RobotPath>> path_reader_;
 };
 
 }  // namespace slam::planner

@@ -87,6 +87,11 @@ void add_planner_options(CLI::App& app, PlannerOptions& o) {
   app.add_option("--goal-store", o.goal_store,
                  "file keeping goals and robot homes across restarts (JSON); empty: keep none")
       ->capture_default_str();
+  app.add_flag("--no-share{false}", o.share,
+               "a lone planner: owns every robot and request from its start (no warm-up, no peers)");
+  app.add_option("--peer-timeout-s", o.peer_timeout_s,
+                 "a planner unheard this long (s) is gone: its robots and requests move to the others")
+      ->capture_default_str();
 }
 
 Status validate(const PlannerOptions& o) {
@@ -98,6 +103,8 @@ Status validate(const PlannerOptions& o) {
     return Error{"request_workers must be between 1 and 16"};
   }
   if (o.request_queue == 0) return Error{"request_queue must be at least 1"};
+  if (auto s = check_seconds("peer_timeout_s", o.peer_timeout_s, 2.0 * kPlannerHeartbeatPeriodS, 60.0); !s)
+    return s;
   return Status::ok();
 }
 

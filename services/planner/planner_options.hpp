@@ -20,7 +20,15 @@ struct PlannerOptions {
   uint32_t request_workers = 1;  // threads answering PathRequests, each with its own planner
   uint32_t request_queue = 64;   // queued PathRequests beyond this are answered TIMEOUT at once
   std::string goal_store = "run/data/goals.json";  // goals and homes kept across restarts; "" = none
+  // Several planners share the robots: each robot's goal tracking and waypoints, and each path
+  // request, belong to one of the planners heard within peer_timeout_s (common/core/ownership.hpp).
+  // share false (--no-share): a lone planner that owns everything from its start, no warm-up.
+  bool share = true;
+  double peer_timeout_s = 1.5;
 };
+
+// Planner heartbeats go out this often: peer_timeout_s must span a few of them.
+inline constexpr double kPlannerHeartbeatPeriodS = 0.5;
 
 // Adds the common flags and every planner flag to `app`, bound to `options`.
 void add_planner_options(CLI::App& app, PlannerOptions& options);

@@ -129,6 +129,28 @@ TEST(ComposeTest, ServiceCommandsUseFlagsTheirProgramsOffer) {
                         << " the deployment file?";
 }
 
+// `docker-compose up --scale gateway=2 --scale planner=2`: replicas must not share a container
+// name or a published port, nor (on the host's network and host name) a process id, which makes
+// their instance ids and MQTT client ids.
+TEST(ComposeTest, GatewaysAndPlannersScale) {
+  const YAML::Node services = YAML::LoadFile(kComposeFile.string())["services"];
+  for (const char* name : {"gateway", "planner"}) {
+    const YAML::Node service = services[name];
+    ASSERT_TRUE(service) << "no service " << name;
+    EXPECT_FALSE(service["container_name"]) << name << " has a fixed container name";
+    EXPECT_FALSE(service["ports"]) << name << " publishes fixed ports";
+    // From the shared x-service block: yaml-cpp may leave the merge key (<<) unresolved.
+    const YAML::Node merged = service["<<"];
+    const YAML::Node pid = service["pid"] ? service["pid"] : merged ? merged["pid"] : YAML::Node();
+    ASSERT_TRUE(pid) << name << " replicas would all be pid 1 on the same host name";
+    EXPECT_EQ(pid.as<std::string>(), "host");
+    for (const auto& volume : service["volumes"]) {
+      EXPECT_NE(split_mount(volume.as<std::string>()).first.rfind("mapdata", 0), 0u)
+          << name << " replicas would share one data volume: " << volume.as<std::string>();
+    }
+  }
+}
+
 TEST(ComposeTest, MountedFilesExistOrHaveAnExample) {
   const YAML::Node services = YAML::LoadFile(kComposeFile.string())["services"];
   ASSERT_TRUE(services.IsMap());

@@ -73,8 +73,9 @@ class Operator {
 class GatewayRequestsTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    group.start("gateway", {bin_path("slam-gateway"), "--domain", std::to_string(domain.id()), "--broker",
-                            url, "--reconnect-max-s", "1"});
+    group.start("gateway",
+                {bin_path("slam-gateway"), "--domain", std::to_string(domain.id()), "--broker", url,
+                 "--reconnect-max-s", "1", "--no-share"});  // a lone gateway: requests run from its start
     ASSERT_TRUE(wait_until([&] { return op.ready(); }, 20s)) << group.log("gateway");
     ASSERT_EQ(client.connect(), 0);
   }

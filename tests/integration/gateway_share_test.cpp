@@ -1,8 +1,9 @@
 // Two slam-gateways sharing the robots behind one mosquitto: each robot message reaches DDS exactly
 // once (MQTT shared subscriptions), each waypoint command reaches its robot exactly once (one owner
 // gateway per robot), both gateways carry a share, and after `kill -9` of one the other takes its
-// robots. Takeover time and the robot messages lost in the kill are measured and printed, not
-// asserted (docs/services.md, the gateway section, holds the figures).
+// robots; a viewer's MQTT request is executed by one gateway only. Takeover time and the robot messages lost
+// in the kill are measured and printed, not asserted (docs/services.md, the gateway section, holds the
+// figures).
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <stdio.h>
@@ -22,6 +23,7 @@
 #include <vector>
 
 #include "common/fastdds/fast_topics.hpp"
+#include "common/fastdds/requester.hpp"
 #include "fastdds_inbox.hpp"
 #include "mqtt_test_client.hpp"
 #include "process_group.hpp"
@@ -292,6 +294,42 @@ TEST_F(GatewayShareTest, EachMessageAndWaypointOnceAndTheSurvivorTakesOverAfterA
       takeover_s, kRobots, static_cast<long long>(published), static_cast<long long>(lost));
   RecordProperty("takeover_s", std::to_string(takeover_s));
   RecordProperty("messages_lost_in_kill", std::to_string(lost));
+}
+
+TEST_F(GatewayShareTest, EachViewerMqttRequestIsExecutedByOneGateway) {
+  ASSERT_TRUE(wait_until([&] { return all_report("gateways_live", 2); }, 20s))
+      << group.log("gw-a") << group.log("gw-b");
+  testkit::MqttTestClient listener(port, "share-listener");
+  ASSERT_EQ(listener.connect(), 0);
+  ASSERT_TRUE(listener.subscribe("ops/share/#"));
+  auto request_writer = testkit::make_test_writer(*participant, dds::kMqttRequest);
+  // Retried until answered: a copy sent while the gateways warm up goes unanswered.
+  auto requester = dds::Requester<MqttReply>::create(*participant, dds::kMqttReply, {200ms, 1000ms, 20s});
+  ASSERT_TRUE(requester) << requester.message();
+  constexpr int kRequests = 12;
+  for (int i = 0; i < kRequests; ++i) {
+    MqttRequest r;
+    r.kind(MQTT_PUBLISH);
+    r.topic("ops/share/" + std::to_string(i));
+    r.payload({'x'});
+    r.qos(1);
+    const auto reply = (*requester)->call(*request_writer, r);
+    ASSERT_TRUE(reply) << "request " << i << " unanswered\n" << group.log("gw-a") << group.log("gw-b");
+    EXPECT_TRUE(reply->ok()) << reply->message();
+  }
+  std::this_thread::sleep_for(1s);  // a second copy would show up by now
+  std::map<std::string, int> copies;
+  for (const auto& m : listener.messages()) ++copies[m.topic];
+  EXPECT_EQ(copies.size(), static_cast<size_t>(kRequests));
+  for (const auto& [topic, n] : copies) EXPECT_EQ(n, 1) << topic;
+  // Executed once in all: each gateway counts only the requests it ran.
+  ASSERT_TRUE(wait_until(
+      [&] {
+        int64_t executed = 0;
+        for (const auto& [instance, n] : counter("mqtt_requests")) executed += std::max<int64_t>(n, 0);
+        return executed == kRequests;
+      },
+      5s));
 }
 
 }  // namespace

@@ -93,8 +93,8 @@ class PlannerTest : public ::testing::Test {
  protected:
   void SetUp() override {
     group_.start("planner", {testkit::bin_path("slam-planner"), "--domain", std::to_string(domain_.id()),
-                             "--goals-resend-period-s", "0.5", "--request-workers", "2", "--goal-store",
-                             group_.dir() + "/goals.json"});
+                             "--goals-resend-period-s", "0.5", "--request-workers", "2", "--no-share",
+                             "--goal-store", group_.dir() + "/goals.json"});
     auto p = dds::Participant::create(domain_.id(), "planner_test");
     ASSERT_TRUE(p) << p.message();
     participant_ = std::move(*p);

@@ -50,6 +50,17 @@ TEST(PlannerOptions, UnknownPolicyMustBeANamedOne) {
   EXPECT_NE(parse(o, {"--planner-unknown", "sometimes"}).find("--planner-unknown"), std::string::npos);
 }
 
+TEST(PlannerOptions, SharingIsOnUnlessALonePlannerIsAskedFor) {
+  PlannerOptions shared;
+  ASSERT_EQ(parse(shared, {"--peer-timeout-s", "3"}), "");
+  EXPECT_TRUE(shared.share);
+  EXPECT_DOUBLE_EQ(shared.peer_timeout_s, 3.0);
+  PlannerOptions lone;
+  ASSERT_EQ(parse(lone, {"--no-share"}), "");
+  EXPECT_FALSE(lone.share);
+  EXPECT_TRUE(validate(lone));
+}
+
 TEST(PlannerOptions, BadValuesNameTheirKey) {
   const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
       {{"--goals-reach-tolerance-m", "0"}, "reach_tolerance_m"},
@@ -60,6 +71,7 @@ TEST(PlannerOptions, BadValuesNameTheirKey) {
       {{"--loop-rate-hz", "0"}, "loop_rate_hz"},
       {{"--request-workers", "0"}, "request_workers"},
       {{"--request-queue", "0"}, "request_queue"},
+      {{"--peer-timeout-s", "0.5"}, "peer_timeout_s"},  // shorter than two heartbeats
   };
   for (const auto& [args, key] : cases) {
     PlannerOptions o;
