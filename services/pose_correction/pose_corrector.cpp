@@ -42,23 +42,6 @@ Pose fuse(const Pose& a, const Eigen::Matrix3d& ca, const Pose& b, const Eigen::
   return {a.x + step.x(), a.y + step.y(), wrap_angle(a.theta + step.z())};
 }
 
-// The tracking update: like fuse(), but a match that agrees with the odometry prediction within
-// kTrackDeadBandSigmas of their combined uncertainty moves nothing, and a farther one only by the
-// part beyond it. A sparse keyframe's match carries a little noise of its own; taken at face value
-// every keyframe, it random-walks a robot whose odometry is right (drift 0 became worse than none).
-Pose track_update(const Pose& predicted, const Eigen::Matrix3d& odom_cov, const Pose& matched,
-                  const Eigen::Matrix3d& match_cov) {
-  constexpr double kTrackDeadBandSigmas = 0.5;
-  const Eigen::Vector3d delta(matched.x - predicted.x, matched.y - predicted.y,
-                              wrap_angle(matched.theta - predicted.theta));
-  const double mahalanobis = std::sqrt(delta.dot((odom_cov + match_cov).inverse() * delta));
-  if (!(mahalanobis > kTrackDeadBandSigmas)) return predicted;
-  const Eigen::Vector3d beyond = delta * (1.0 - kTrackDeadBandSigmas / mahalanobis);
-  const Pose shrunk{predicted.x + beyond.x(), predicted.y + beyond.y(),
-                    wrap_angle(predicted.theta + beyond.z())};
-  return fuse(predicted, odom_cov, shrunk, match_cov);
-}
-
 Eigen::Matrix3d fused_covariance(const Eigen::Matrix3d& ca, const Eigen::Matrix3d& cb) {
   return (ca.inverse() + cb.inverse()).inverse();
 }
@@ -73,6 +56,8 @@ constexpr double kSegmentSigma_m = 2.0;  // after an odometry jump the pose is b
 constexpr double kSegmentSigma_rad = 0.5;
 constexpr double kOperatorSigma_m = 0.02;
 constexpr double kOperatorSigma_rad = 0.01;
+constexpr double kClosureMaxSigma_m = 0.05;  // a closure match more spread than this is ambiguous
+constexpr double kClosureMaxSigma_rad = 0.035;
 
 }  // namespace
 
@@ -357,7 +342,7 @@ void PoseCorrector::match_keyframe(ScanMatcher& matcher, MatchJob& job) const {
     // keyframe's match is noisier than half a metre of odometry, and taking it as is would
     // random-walk the pose where the map is only the robot's own recent trail.
     job.cov = with_floor(narrow->covariance, 0.005, 0.002);
-    job.estimate = track_update(job.predicted, job.odom_cov, narrow->pose, job.cov);
+    job.estimate = fuse(job.predicted, job.odom_cov, narrow->pose, job.cov);
     job.narrow = *narrow;
   }
   if (!job.tie) return;
@@ -417,9 +402,12 @@ void PoseCorrector::apply(MatchJob& job, std::vector<KeyframeCorrection>& out) {
     if (tie && tie->score >= options_.closure_min_score) {
       const Eigen::Matrix3d tie_cov = with_floor(tie->covariance, 0.02, 0.01);
       const ConsistencyCheck check;
-      // A closure must be unambiguous and agree with the uncertainty accumulated since the last tie.
-      if (!wide ||
-          (DistinctMatch{}.accepts(*tie) && check.accepts(estimate, tie->pose, rb.chain_cov + tie_cov))) {
+      // A closure must be unambiguous (one clear peak: a corridor or a row of identical rooms
+      // spreads the candidates) and agree with the uncertainty accumulated since the last tie.
+      const bool distinct = tie->covariance(0, 0) <= kClosureMaxSigma_m * kClosureMaxSigma_m &&
+                            tie->covariance(1, 1) <= kClosureMaxSigma_m * kClosureMaxSigma_m &&
+                            tie->covariance(2, 2) <= kClosureMaxSigma_rad * kClosureMaxSigma_rad;
+      if (!wide || (distinct && check.accepts(estimate, tie->pose, rb.chain_cov + tie_cov))) {
         anchor = job.anchor;
         anchored_estimate = tie->pose;
         anchored_cov = tie_cov;
