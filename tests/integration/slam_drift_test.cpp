@@ -275,13 +275,15 @@ TEST(SlamDriftTest, DriftingRobotOnAKnownMapStaysCloseToTheTruth) {
                 pairs[i].raw_m);
   double raw_sq = 0.0;
   for (const auto& p : pairs) raw_sq += p.raw_m * p.raw_m;
+  const double raw_rmse = std::sqrt(raw_sq / static_cast<double>(pairs.size()));
   std::printf(
       "slam_drift_test: %zu pairs; corrected RMSE %.3f m (end %.3f m), raw RMSE %.3f m (end %.3f m)\n",
-      pairs.size(), corrected_rmse, corrected_end, std::sqrt(raw_sq / static_cast<double>(pairs.size())),
-      raw_end);
-  EXPECT_GT(raw_end, 0.15) << "test setup: the raw odometry did not drift enough to tell";
+      pairs.size(), corrected_rmse, corrected_end, raw_rmse, raw_end);
+  // Over the whole run, not at its end: the raw error of a random walk may happen to come back
+  // near zero by the last samples, which says nothing about the correction.
+  EXPECT_GT(raw_rmse, 0.15) << "test setup: the raw odometry did not drift enough to tell";
   EXPECT_LT(corrected_rmse, 0.15);
-  EXPECT_LT(corrected_end, raw_end / 2);
+  EXPECT_LT(corrected_rmse, raw_rmse / 2);
   std::printf("slam_drift_test: %llu tour goals sent\n", static_cast<unsigned long long>(goal_id));
   if (::testing::Test::HasFailure()) dump_logs();
 }
