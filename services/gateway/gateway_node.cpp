@@ -252,12 +252,8 @@ void GatewayNode::on_heartbeat(const slam::Heartbeat& heartbeat) {
   if (text_of(heartbeat.service()) != "gateway") return;
   const std::string_view instance = text_of(heartbeat.instance_id());
   std::lock_guard lock(ownership_mutex_);
-  if (heartbeat.state() == SERVICE_STOPPING) {
-    // It stopped sending before saying so (on_waypoint checks shutdown_requested()).
-    ownership_.left(instance);
-  } else {
-    ownership_.heard(instance, monotonic_ns());
-  }
+  // A stopping gateway stopped sending before saying so (on_waypoint checks shutdown_requested()).
+  ownership_.observe(instance, heartbeat.state() == SERVICE_STOPPING, monotonic_ns());
 }
 
 void GatewayNode::on_robot_state(const slam::RobotState& state) {

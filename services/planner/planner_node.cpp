@@ -411,11 +411,7 @@ void PlannerNode::on_heartbeat(const slam::Heartbeat& heartbeat) {
   if (heartbeat.service().to_string() != "planner") return;
   const std::string instance = heartbeat.instance_id().to_string();
   std::lock_guard lock(ownership_mutex_);
-  if (heartbeat.state() == SERVICE_STOPPING) {
-    ownership_.left(instance);
-  } else {
-    ownership_.heard(instance, monotonic_ns());
-  }
+  ownership_.observe(instance, heartbeat.state() == SERVICE_STOPPING, monotonic_ns());
 }
 
 void PlannerNode::on_path(const slam::RobotPath& sample) {

@@ -38,6 +38,14 @@ class Ownership {
   bool heard(std::string_view instance, std::int64_t now_mono_ns);
   // A peer that said it is stopping leaves at once. True when it was live.
   bool left(std::string_view instance);
+  // A peer's heartbeat: one saying it is stopping leaves, any other is heard.
+  void observe(std::string_view instance, bool stopping, std::int64_t now_mono_ns) {
+    if (stopping) {
+      left(instance);
+    } else {
+      heard(instance, now_mono_ns);
+    }
+  }
   // Forgets peers silent for longer than peer_timeout; their ids go to `gone` (when given).
   // Returns how many left.
   std::size_t expire(std::int64_t now_mono_ns, std::vector<std::string>* gone = nullptr);

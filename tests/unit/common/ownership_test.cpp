@@ -138,6 +138,14 @@ TEST(Ownership, AStoppingPeerLeavesAtOnce) {
   for (const std::string& id : robot_ids(50)) EXPECT_TRUE(a.owns(id, kWarm)) << id;
 }
 
+TEST(Ownership, AHeartbeatIsHeardUnlessItSaysStopping) {
+  Ownership a = instance("gw-a:1", {});
+  a.observe("gw-b:2", false, kWarm);
+  EXPECT_EQ(a.live_count(), 2u);
+  a.observe("gw-b:2", true, kWarm);
+  EXPECT_EQ(a.live(), std::vector<std::string>{"gw-a:1"});
+}
+
 TEST(Ownership, TheOwnHeartbeatIsNotAPeer) {
   Ownership a("gw-a:1", 0, kConfig);
   EXPECT_FALSE(a.heard("gw-a:1", kWarm));
