@@ -3,6 +3,10 @@
 
 #include <spdlog/spdlog.h>
 
+#if defined(__SANITIZE_ADDRESS__)
+#include <sanitizer/lsan_interface.h>
+#endif
+
 #include "common/core/guarded_callback.hpp"
 #include "viewer/gl/display_loss.hpp"
 
@@ -37,6 +41,11 @@ Result<std::unique_ptr<GlWindow>> GlWindow::create(const std::string& title, int
 }
 
 GlWindow::~GlWindow() {
+#if defined(__SANITIZE_ADDRESS__)
+  // The leak check runs now, while the GL driver is still loaded: at exit glfwTerminate has unloaded
+  // it, its frames show as "<unknown module>" and scripts/sanitize.supp cannot name them.
+  __lsan_do_leak_check();
+#endif
   if (window_) glfwDestroyWindow(window_);
   glfwTerminate();
 }
