@@ -152,7 +152,8 @@ class Fleet {
   void start_discovery_server() {
     group_.start("discovery", hosts_.on('b', {},
                                         {"fast-discovery-server", "-i", "0", "-l", Hosts::address('b'), "-p",
-                                         std::to_string(kDiscoveryPort)}));
+                                         std::to_string(kDiscoveryPort), "-x",
+                                         SLAM_SOURCE_DIR "/compose/dds/fastdds-discovery-server.xml"}));
   }
   void start_host_b_services() {
     group_.start("mapper", hosts_.on('b', client_env(),
