@@ -5,9 +5,9 @@
 
 #include <cmath>
 #include <limits>
-#include <random>
 
 #include "grid_builder.hpp"
+#include "random_tile_source.hpp"
 
 namespace slam::planner {
 namespace {
@@ -54,34 +54,24 @@ TEST(PlanningGrid, AppliesPatchesInOrderOnly) {
 TEST(PlanningGrid, StreamWithALostPatchEqualsTheSourceAfterTheNextSnapshot) {
   constexpr int32_t kW = 70, kH = 45;
   const GridGeometry geometry{{0.0, 0.0}, 0.1, kW, kH};
-  std::vector<uint8_t> source(size_t{kW} * kH, kCellUnknown);
-  DirtyTiles dirty;
-  dirty.reset({kW, kH, kGridTileSide});
-  EncodedTiles encoded;
-  std::mt19937 rng(5);
+  testkit::RandomTileSource source(kW, kH, kCellUnknown, 5);
   const auto next_patch = [&] {
-    for (int k = 0; k < 40; ++k) {
-      const int32_t x = static_cast<int32_t>(rng() % kW), y = static_cast<int32_t>(rng() % kH);
-      source[static_cast<size_t>(y * kW + x)] = static_cast<uint8_t>(1 + rng() % 2);
-      dirty.mark(x, y);
-    }
-    encode_tiles(source, dirty, encoded);
-    dirty.clear();
+    const EncodedTiles& encoded = source.next_patch();
     return TilePatchView{kGridTileSide, static_cast<uint8_t>(encoded.encoding), encoded.tiles, encoded.data};
   };
   PlanningGrid g;
-  ASSERT_TRUE(g.reset(geometry, 3, 0, source));
+  ASSERT_TRUE(g.reset(geometry, 3, 0, source.cells()));
   std::vector<CellBox> changed;
   for (uint64_t v = 1; v <= 3; ++v) ASSERT_TRUE(g.apply_patch(3, v, next_patch(), changed));
-  EXPECT_EQ(g.cells(), source);
+  EXPECT_EQ(g.cells(), source.cells());
   (void)next_patch();  // version 4, lost
   const Status gap = g.apply_patch(3, 5, next_patch(), changed);
   ASSERT_FALSE(gap);
   EXPECT_NE(gap.message().find("does not follow 3"), std::string::npos) << gap.message();
   (void)next_patch();  // version 6, skipped while waiting for the snapshot
-  ASSERT_TRUE(g.reset(geometry, 3, 6, source));
+  ASSERT_TRUE(g.reset(geometry, 3, 6, source.cells()));
   for (uint64_t v = 7; v <= 9; ++v) ASSERT_TRUE(g.apply_patch(3, v, next_patch(), changed));
-  EXPECT_EQ(g.cells(), source);
+  EXPECT_EQ(g.cells(), source.cells());
 }
 
 TEST(PlanningGrid, ConvertsCoordinates) {

@@ -5,9 +5,8 @@
 
 #include <gtest/gtest.h>
 
-#include <random>
-
 #include "common/core/grid_tiles.hpp"
+#include "random_tile_source.hpp"
 
 namespace slam::viewer {
 namespace {
@@ -128,39 +127,29 @@ TEST(GridMirror, MalformedPatchIsInvalidAndChangesNothing) {
 // the source cell for cell after the next snapshot and the patches that follow it.
 TEST(GridMirror, StreamWithALostPatchEqualsTheSourceAfterTheNextSnapshot) {
   constexpr int32_t kW = 70, kH = 45;
-  std::vector<uint8_t> source(size_t{kW} * kH, 0);
-  DirtyTiles dirty;
-  dirty.reset({kW, kH, kGridTileSide});
-  EncodedTiles encoded;
-  std::mt19937 rng(11);
+  testkit::RandomTileSource source(kW, kH, 0, 11);
   const auto next_patch = [&](uint64_t version) {
-    for (int k = 0; k < 40; ++k) {
-      const int32_t x = static_cast<int32_t>(rng() % kW), y = static_cast<int32_t>(rng() % kH);
-      source[static_cast<size_t>(y * kW + x)] = static_cast<uint8_t>(1 + rng() % 2);
-      dirty.mark(x, y);
-    }
-    encode_tiles(source, dirty, encoded);
-    dirty.clear();
+    const EncodedTiles& encoded = source.next_patch();
     return GridPatchData{
         3, version, kGridTileSide, static_cast<uint8_t>(encoded.encoding), encoded.tiles, encoded.data};
   };
   const auto source_snapshot = [&](uint64_t version) {
     GridSnapshotData s = snapshot(3, version, kW, kH);
-    s.cells = source;
+    s.cells = source.cells();
     return s;
   };
   GridMirror m;
   ASSERT_TRUE(m.apply_snapshot(source_snapshot(0)));
   for (uint64_t v = 1; v <= 3; ++v) ASSERT_EQ(m.apply_patch(next_patch(v)), PatchResult::Applied);
-  EXPECT_EQ(m.cells(), source);
+  EXPECT_EQ(m.cells(), source.cells());
   (void)next_patch(4);  // lost
   EXPECT_EQ(m.apply_patch(next_patch(5)), PatchResult::Gap);
   EXPECT_EQ(m.apply_patch(next_patch(6)), PatchResult::Gap);
   EXPECT_TRUE(m.waiting_for_snapshot());
-  EXPECT_NE(m.cells(), source);
+  EXPECT_NE(m.cells(), source.cells());
   ASSERT_TRUE(m.apply_snapshot(source_snapshot(6)));
   for (uint64_t v = 7; v <= 9; ++v) ASSERT_EQ(m.apply_patch(next_patch(v)), PatchResult::Applied);
-  EXPECT_EQ(m.cells(), source);
+  EXPECT_EQ(m.cells(), source.cells());
 }
 
 }  // namespace
