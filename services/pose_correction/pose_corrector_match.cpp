@@ -1,0 +1,178 @@
+// The matching side of PoseCorrector: what each keyframe is matched against (a window of the grid
+// for tracking, a local grid drawn from old keyframes for the tie to the map), prepared on the map
+// thread, and the match itself, run on the match worker.
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+#include "pose_correction/gaussian_pose.hpp"
+#include "pose_correction/pose_corrector.hpp"
+
+namespace slam::correction {
+
+namespace {
+
+constexpr size_t kMaxNeighbours = 40;
+constexpr double kPointReach_m = 4.5;    // sensor range plus margin: local grids cover it
+constexpr double kWindowMargin_m = 0.3;  // beyond a keyframe's farthest point: the matcher's field blur
+constexpr double kTiedSigma_m = 0.05;    // chain uncertainty above which a wide search is needed
+
+}  // namespace
+
+void PoseCorrector::old_neighbours(uint32_t robot, int64_t stamp_ns, Vec2 centre,
+                                   std::vector<uint32_t>& out) {
+  out.clear();
+  index_.near(centre, options_.closure_radius_m, out);
+  const auto min_age_ns = static_cast<int64_t>(options_.old_age_s * 1e9);
+  std::erase_if(out, [&](uint32_t slot) {
+    const Node& n = nodes_[slot];
+    const bool old = n.robot != robot || stamp_ns - n.stamp_ns >= min_age_ns;
+    return !old || n.points.empty() || distance(n.estimate.position(), centre) > options_.closure_radius_m;
+  });
+  std::sort(out.begin(), out.end(), [&](uint32_t a, uint32_t b) {
+    return distance(nodes_[a].estimate.position(), centre) < distance(nodes_[b].estimate.position(), centre);
+  });
+  if (out.size() > kMaxNeighbours) out.resize(kMaxNeighbours);
+}
+
+GridGeometry PoseCorrector::draw_local_grid(std::span<const uint32_t> slots, Vec2 centre, double half_extent,
+                                            double resolution, std::vector<uint8_t>& cells) const {
+  GridGeometry g;
+  g.resolution = resolution;
+  g.width = g.height = static_cast<int32_t>(std::ceil(2.0 * half_extent / resolution));
+  g.origin = {centre.x - half_extent, centre.y - half_extent};
+  cells.assign(g.cells(), 0);
+  for (uint32_t slot : slots) {
+    const Node& n = nodes_[slot];
+    for (const Vec2& p : n.points) {
+      if (const auto c = g.cell_at(n.estimate.transform(p))) cells[g.index(*c)] = 2;  // occupied
+    }
+  }
+  return g;
+}
+
+namespace {
+
+// Copies the cells of `grid` within `half_extent` of `centre` (whole cells, the grid's own
+// alignment, so a match against the copy is the match against the grid).
+GridGeometry copy_window(const GridView& grid, Vec2 centre, double half_extent, std::vector<uint8_t>& cells) {
+  const GridGeometry& g = grid.geometry;
+  GridGeometry window;
+  window.resolution = g.resolution;
+  if (g.cells() == 0 || grid.classes.size() < g.cells()) {  // an empty view stays empty
+    cells.clear();
+    return window;
+  }
+  const Cell lo = g.clamped_cell_at({centre.x - half_extent, centre.y - half_extent});
+  const Cell hi = g.clamped_cell_at({centre.x + half_extent, centre.y + half_extent});
+  window.origin = g.corner(lo);
+  window.width = hi.x - lo.x + 1;
+  window.height = hi.y - lo.y + 1;
+  cells.resize(window.cells());
+  for (int32_t row = 0; row < window.height; ++row) {
+    const size_t from = g.index({lo.x, lo.y + row});
+    std::copy_n(grid.classes.begin() + static_cast<std::ptrdiff_t>(from), window.width,
+                cells.begin() + static_cast<std::ptrdiff_t>(window.index({0, row})));
+  }
+  return window;
+}
+
+}  // namespace
+
+void PoseCorrector::prepare(Keyframe&& keyframe, const GridView& grid, bool match, MatchJob& job) {
+  Robot& rb = robots_[keyframe.robot];
+  job.generation = rb.generation;
+  job.prepared_correction = rb.state.map_from_odom;
+  job.predicted = rb.state.map_from_odom.compose(keyframe.odom);
+
+  job.previous.reset();
+  if (rb.last_node && nodes_[*rb.last_node].segment == keyframe.segment) job.previous = rb.last_node;
+  job.odom_relative = Pose{};
+  job.odom_cov = diagonal(kSegmentSigma_m, kSegmentSigma_m, kSegmentSigma_rad);
+  if (job.previous) {
+    job.odom_relative = nodes_[*job.previous].odom.inverse().compose(keyframe.odom);
+    job.odom_cov = odometry_covariance(job.odom_relative);
+    const double d = norm(job.odom_relative.position());
+    rb.chain_cov += job.odom_cov;
+    rb.chain_cov(0, 0) += rb.chain_cov(2, 2) * d * d;  // heading uncertainty swings the position
+    rb.chain_cov(1, 1) += rb.chain_cov(2, 2) * d * d;
+  } else {
+    rb.chain_cov = job.odom_cov;
+  }
+
+  job.track = match;
+  job.tie = false;
+  job.wide_needed = job.wide_permitted = false;
+  if (match) {
+    // The window the tracking match can read: the farthest point, the search window and the
+    // likelihood field's blur around it.
+    double reach = 0.0;
+    for (const Vec2& p : keyframe.points) reach = std::max(reach, norm(p));
+    const double half = reach + options_.track_window.linear_m + kWindowMargin_m;
+    job.track_geometry = copy_window(grid, job.predicted.position(), half, job.track_cells);
+
+    // The tie to the old map, planned here where the pose graph lives (around the prediction: the
+    // narrow match moves the keyframe by at most the tracking window, which the grid covers).
+    old_neighbours(keyframe.robot, keyframe.first_stamp_ns, job.predicted.position(), neighbours_);
+    if (!rb.operator_pose && static_cast<int>(neighbours_.size()) >= options_.closure_min_keyframes) {
+      if (schedule_.allow_tie(rb.schedule)) {
+        const double chain_sigma = std::sqrt(std::max(rb.chain_cov(0, 0), rb.chain_cov(1, 1)));
+        job.wide_needed = chain_sigma > kTiedSigma_m;
+        // Normal load: a wide search whenever tracking fails too; loaded: only the ones the
+        // schedule grants, taken only when certainly needed.
+        job.wide_permitted = schedule_.load() == Load::Normal ||
+                             (job.wide_needed && schedule_.allow_wide(rb.schedule, keyframe.first_stamp_ns));
+        if (job.wide_needed && !job.wide_permitted) {
+          ++stats_.wide_skipped;
+        } else {
+          job.tie = true;
+          job.anchor = neighbours_.front();
+          job.neighbours = neighbours_.size();
+          const double window =
+              job.wide_permitted ? options_.closure_window.linear_m : options_.track_window.linear_m;
+          job.tie_geometry = draw_local_grid(neighbours_, job.predicted.position(),
+                                             kPointReach_m + window + options_.track_window.linear_m,
+                                             grid.geometry.resolution, job.tie_cells);
+        }
+      } else {
+        ++stats_.ties_skipped;
+      }
+    }
+  }
+  job.keyframe = std::move(keyframe);
+}
+
+void PoseCorrector::match_keyframe(ScanMatcher& matcher, MatchJob& job) const {
+  job.narrow.reset();
+  job.tie_match.reset();
+  job.wide = job.wide_skipped = false;
+  job.estimate = job.predicted;
+  job.cov = Eigen::Matrix3d::Zero();
+  if (!job.track) return;
+  // 1. Track: the keyframe against the grid, near the prediction.
+  const auto& points = job.keyframe.points;
+  if (auto narrow = matcher.match(GridView{job.track_geometry, job.track_cells}, points, job.predicted,
+                                  options_.track_window)) {
+    // Fused with the odometry prediction by their covariances (a Kalman update): a sparse
+    // keyframe's match is noisier than half a metre of odometry, and taking it as is would
+    // random-walk the pose where the map is only the robot's own recent trail.
+    job.cov = with_floor(narrow->covariance, 0.005, 0.002);
+    job.estimate = fuse(job.predicted, job.odom_cov, narrow->pose, job.cov);
+    job.narrow = *narrow;
+  }
+  if (!job.tie) return;
+  // 2. Tie to the old map: against old keyframes only; a wide search (a loop closure) when the
+  // robot has not been tied for a while or tracking failed.
+  const bool wide = !job.narrow || job.wide_needed;
+  if (wide && !job.wide_permitted) {
+    job.wide_skipped = true;
+    return;
+  }
+  job.wide = wide;
+  if (auto tie = matcher.match(GridView{job.tie_geometry, job.tie_cells}, points, job.estimate,
+                               wide ? options_.closure_window : options_.track_window)) {
+    job.tie_match = *tie;
+  }
+}
+
+}  // namespace slam::correction
