@@ -65,7 +65,6 @@ PlannerNode::PlannerNode(const PlannerOptions& options, Counters& counters)
       period_(std::max<int64_t>(1, static_cast<int64_t>(std::lround(1000.0 / options.loop_rate_hz)))),
       metrics_(counters),
       fleet_(options.fleet),
-      seq_base_(static_cast<uint64_t>(now_ns() / 1'000'000)),
       // The instance id this process's heartbeats carry (host:pid), so peers and self agree.
       ownership_(ServiceIdentity::of("planner").instance_id, monotonic_ns(), ownership_config(options)) {}
 
@@ -400,7 +399,11 @@ void PlannerNode::stream_waypoints(int64_t now_ns) {
   fleet_.due_waypoints(now_ns, due_);
   for (const DueWaypoint& d : due_) {
     command_.robot_id(d.robot_id);
-    command_.seq(++waypoint_seq_.try_emplace(d.robot_id, seq_base_).first->second);
+    // Ids follow the wall clock (ms) and grow per robot, so a planner taking a robot over continues
+    // above its previous owner's ids while the planners' clocks agree within the takeover time.
+    uint64_t& seq = waypoint_seq_[d.robot_id];
+    seq = std::max(seq + 1, static_cast<uint64_t>(slam::now_ns() / 1'000'000));
+    command_.seq(seq);
     command_.waypoint(to_point(d.waypoint));
     to_points(d.remaining, command_.remaining());
     bump(waypoint_writer_->write(command_) ? metrics_.waypoints_sent : metrics_.write_failures);

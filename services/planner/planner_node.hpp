@@ -119,9 +119,7 @@ class PlannerNode {
   bool awaiting_snapshot_ = false;
   uint64_t handed_revision_ = 0;  // grid revision the request workers have
   std::set<std::string> robots_;
-  // Sequence numbers of a robot's commands start at the planner's start time in ms, so that a robot
-  // taken over from another planner sees them keep increasing.
-  uint64_t seq_base_ = 0;
+  // The last command id sent to each robot (see stream_waypoints).
   std::map<std::string, uint64_t> waypoint_seq_;
   std::map<std::string, GoalStatus> reported_status_;
   IntakeBatch batch_;

@@ -6,7 +6,6 @@
 // figures).
 #include <gtest/gtest.h>
 #include <signal.h>
-#include <stdio.h>
 
 #include <algorithm>
 #include <atomic>
@@ -27,6 +26,7 @@
 #include "fastdds_inbox.hpp"
 #include "mqtt_test_client.hpp"
 #include "process_group.hpp"
+#include "robot_publishers.hpp"
 
 namespace slam {
 namespace {
@@ -42,42 +42,13 @@ std::string robot_id(int i) {
   return "share-" + std::to_string(i);
 }
 
-// The robots' side: one `mosquitto_pub -l` per robot, each line a v2 pose message at QoS 1. Pipelined,
-// unlike the synchronous test client, which waits for each acknowledgement (~100 ms on loopback).
-class RobotPublishers {
- public:
-  RobotPublishers(int port, int robots) {
-    for (int i = 0; i < robots; ++i) {
-      const std::string command = "mosquitto_pub -h 127.0.0.1 -p " + std::to_string(port) +
-                                  " -q 1 -i share-pub-" + std::to_string(i) + " -t v2/robot/" + robot_id(i) +
-                                  "/pose -l";
-      pipes_.push_back(::popen(command.c_str(), "w"));
-    }
-  }
-  ~RobotPublishers() { close(); }
-  bool ok() const {
-    return std::all_of(pipes_.begin(), pipes_.end(), [](FILE* f) { return f != nullptr; });
-  }
-  // One message from every robot carrying `marker`.
-  void publish_round(int64_t marker) {
-    char line[96];
-    std::snprintf(line, sizeof line, "{\"x\": %.2f, \"y\": 0.0, \"heading\": 0.0}\n",
-                  static_cast<double>(marker) / 100.0);
-    for (FILE* f : pipes_) {
-      std::fputs(line, f);
-      std::fflush(f);
-    }
-  }
-  // Ends input; each publisher sends what it has and exits.
-  void close() {
-    for (FILE* f : pipes_)
-      if (f) ::pclose(f);
-    pipes_.clear();
-  }
-
- private:
-  std::vector<FILE*> pipes_;
-};
+// One message from every robot carrying `marker`.
+void publish_round(testkit::RobotPublishers& publishers, int64_t marker) {
+  char line[96];
+  std::snprintf(line, sizeof line, "{\"x\": %.2f, \"y\": 0.0, \"heading\": 0.0}",
+                static_cast<double>(marker) / 100.0);
+  publishers.publish_all(line);
+}
 
 // A robot message is told apart by its pose: x = marker / 100 (exact enough to round back).
 int64_t marker_of(const RobotObservation& o) {
@@ -106,7 +77,9 @@ class GatewayShareTest : public ::testing::Test {
       group.start(name, {bin_path("slam-gateway"), "--domain", std::to_string(domain.id()), "--broker",
                          "tcp://127.0.0.1:" + std::to_string(port), "--log-level", "debug"});
     }
-    publishers = std::make_unique<RobotPublishers>(port, kRobots);
+    std::vector<std::string> topics;
+    for (int i = 0; i < kRobots; ++i) topics.push_back("v2/robot/" + robot_id(i) + "/pose");
+    publishers = std::make_unique<testkit::RobotPublishers>(port, topics, "share-pub");
     ASSERT_TRUE(publishers->ok());
     robots = std::make_unique<testkit::MqttTestClient>(port, "share-robots");
     ASSERT_EQ(robots->connect(), 0);
@@ -167,7 +140,7 @@ class GatewayShareTest : public ::testing::Test {
   std::unique_ptr<dds::Reader<RobotObservation>> observation_reader;
   std::unique_ptr<dds::Reader<Heartbeat>> heartbeat_reader;
   std::unique_ptr<dds::Writer<WaypointCommand>> waypoint_writer;
-  std::unique_ptr<RobotPublishers> publishers;
+  std::unique_ptr<testkit::RobotPublishers> publishers;
   std::unique_ptr<testkit::MqttTestClient> robots;  // receives the waypoints
 };
 
@@ -178,7 +151,7 @@ TEST_F(GatewayShareTest, EachMessageAndWaypointOnceAndTheSurvivorTakesOverAfterA
 
   // Robot messages: every one reaches DDS exactly once, and both gateways receive a share.
   int64_t marker = 0;
-  for (int round = 0; round < 20; ++round) publishers->publish_round(++marker);
+  for (int round = 0; round < 20; ++round) publish_round(*publishers, ++marker);
   const int64_t steady_markers = marker;
   ASSERT_TRUE(wait_until(
       [&] {
@@ -224,7 +197,7 @@ TEST_F(GatewayShareTest, EachMessageAndWaypointOnceAndTheSurvivorTakesOverAfterA
   std::thread load([&] {
     int64_t m = last_marker.load();
     while (publishing) {  // kRobots x 50 Hz
-      publishers->publish_round(++m);
+      publish_round(*publishers, ++m);
       last_marker = m;
       std::this_thread::sleep_for(20ms);
     }
