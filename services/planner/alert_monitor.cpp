@@ -83,10 +83,9 @@ std::map<std::string, AlertMonitor::Condition> AlertMonitor::conditions(int64_t 
     if (!r.online)
       out.emplace("offline/" + id, Condition{AlertKind::RobotOffline, id, "robot '" + id + "' is offline"});
     if (r.battery_low) {
-      out.emplace("battery/" + id,
-                  Condition{AlertKind::BatteryLow, id,
-                            "robot '" + id + "' battery " + percent(r.battery) + " (below " +
-                                percent(config_.battery_low) + "): sent home"});
+      out.emplace("battery/" + id, Condition{AlertKind::BatteryLow, id,
+                                             "robot '" + id + "' battery " + percent(r.battery) + " (below " +
+                                                 percent(config_.battery_low) + "): sent home"});
     }
   }
   for (const auto& [subject, s] : services_) {
@@ -123,7 +122,7 @@ std::vector<AlertChange> AlertMonitor::evaluate(int64_t now_mono_ns, int64_t now
   }
   for (const auto& [id, c] : wanted) {
     if (active_.contains(id) || !owns(ownership_key(c.kind, c.subject))) continue;
-    AlertChange a{AlertChange::Kind::Raised, id, c.kind, c.subject, c.message, now_wall_ns,
+    AlertChange a{AlertChange::Kind::Raised,      id, c.kind, c.subject, c.message, now_wall_ns,
                   c.kind == AlertKind::BatteryLow};
     active_.emplace(id, a);
     changes.push_back(std::move(a));

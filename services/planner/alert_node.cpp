@@ -46,6 +46,8 @@ void AlertNode::forget_robot(const std::string& robot_id) {
 }
 
 void AlertNode::tick(int64_t now_mono_ns, const std::function<bool(const std::string&)>& owns) {
+  if (now_mono_ns < next_evaluation_ns_) return;
+  next_evaluation_ns_ = now_mono_ns + kEvaluationPeriodNs;
   std::vector<AlertChange> changes;
   {
     std::lock_guard lock(mutex_);

@@ -37,7 +37,11 @@ class AlertNode {
   void publish(const AlertChange& change);
   void send_home(const std::string& robot_id);
 
+  // Facts change at human speed: the loop's 20 Hz would only repeat the same comparison.
+  static constexpr int64_t kEvaluationPeriodNs = 250'000'000;
+
   std::string self_;
+  int64_t next_evaluation_ns_ = 0;  // loop thread
   std::atomic<int64_t>& raised_;
   std::atomic<int64_t>& active_;
   std::atomic<int64_t>& sent_home_;

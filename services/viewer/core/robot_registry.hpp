@@ -57,6 +57,8 @@ class RobotRegistry {
   void ingest(RobotStateData&& s);
   void ingest(RobotPathData&& p);
   void ingest(PoseCorrectionData&& c);
+  // The operator forgot the robot: its view, settings and points go. False when it was not known.
+  bool forget(const std::string& id);
 
   // Settings given to robots seen from now on; apply_defaults_to_all() pushes them to every robot.
   RobotSettings& defaults() { return defaults_; }
