@@ -49,8 +49,11 @@ AlertMonitor::AlertMonitor(AlertConfig config) : config_(config) {}
 void AlertMonitor::robot(const std::string& robot_id, bool online, float battery) {
   RobotFacts& r = robots_[robot_id];
   r.online = online;
+  // A status without a battery (the last will, a v1 robot) says nothing about it: the last known
+  // level stands.
+  if (battery < 0.0f) return;
   r.battery = battery;
-  if (config_.battery_low <= 0.0 || battery < 0.0f) {
+  if (config_.battery_low <= 0.0) {
     r.battery_low = false;
   } else if (battery < config_.battery_low) {
     r.battery_low = true;

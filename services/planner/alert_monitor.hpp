@@ -53,7 +53,8 @@ class AlertMonitor {
  public:
   explicit AlertMonitor(AlertConfig config = {});
 
-  // The latest state of a robot: online or not, battery 0..1 (negative: unknown).
+  // The latest state of a robot: online or not, battery 0..1 (negative: unknown, the last known
+  // level stands).
   void robot(const std::string& robot_id, bool online, float battery);
   // A robot forgotten by the operator: its alerts clear at the next evaluate().
   void forget_robot(const std::string& robot_id);

@@ -121,8 +121,8 @@ TEST_F(OperatorTest, LowBatteryOfflineAndSilentServiceRaiseAlerts) {
                          group.dir() + "/map.db"});
   ASSERT_TRUE(wait_until([&] { return counter("mapper", "observations") >= 0; }, 20s)) << group.log("mapper");
   group.stop("mapper", 9);
-  const auto silent = alerts.wait_for(
-      [](const Alert& a) { return a.kind() == ALERT_SERVICE_SILENT && a.active(); }, 20s);
+  const auto silent =
+      alerts.wait_for([](const Alert& a) { return a.kind() == ALERT_SERVICE_SILENT && a.active(); }, 20s);
   ASSERT_TRUE(silent) << group.log("planner");
   EXPECT_EQ(silent->alert_id().to_string().rfind("silent/mapper/", 0), 0u) << silent->alert_id();
 
@@ -169,7 +169,9 @@ TEST_F(OperatorTest, ForgetMakesGatewayAndPlannerDropTheRobot) {
   ASSERT_EQ(forget.code, 0) << forget.output;
   EXPECT_NE(forget.output.find("robot r1 forgotten"), std::string::npos) << forget.output;
   EXPECT_TRUE(wait_until(
-      [&] { return counter("gateway", "robots_forgotten") == 1 && counter("planner", "robots_forgotten") == 1; },
+      [&] {
+        return counter("gateway", "robots_forgotten") == 1 && counter("planner", "robots_forgotten") == 1;
+      },
       20s));
 
   // Late joiners get neither its state (the gateway disposed it) nor its path (the planner did).

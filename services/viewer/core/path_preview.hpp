@@ -17,7 +17,9 @@ class PathPreview {
   void cancel();
   bool armed() const { return stage_ != Stage::Idle; }
   // The start click, while the goal click is awaited.
-  std::optional<Vec2> pending_start() const { return stage_ == Stage::Goal ? std::optional(start_) : std::nullopt; }
+  std::optional<Vec2> pending_start() const {
+    return stage_ == Stage::Goal ? std::optional(start_) : std::nullopt;
+  }
 
   // A click while armed: the start, then the goal (returned: the request to send; disarms).
   std::optional<PathPreviewCommand> click(Vec2 world);

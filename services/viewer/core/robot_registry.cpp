@@ -28,6 +28,7 @@ bool RobotRegistry::forget(const std::string& id) {
   index_.erase(it);
   for (auto& [other, position] : index_)
     if (position > at) --position;
+  ++removals_;
   return true;
 }
 

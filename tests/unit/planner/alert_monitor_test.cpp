@@ -60,11 +60,17 @@ TEST(AlertMonitor, LowBatterySendsHomeOnceWithHysteresis) {
   EXPECT_TRUE(run(m, 3).empty());
   m.robot("r1", true, 0.18f);
   EXPECT_TRUE(run(m, 4).empty()) << "no second trip home while the alert stands";
+  m.robot("r1", false, -1.0f);  // the last will carries no battery: still low
+  const auto offline = run(m, 5);
+  ASSERT_EQ(offline.size(), 1u);
+  EXPECT_EQ(offline[0].alert_id, "offline/r1");
   m.robot("r1", true, 0.26f);
-  const auto cleared = run(m, 5);
-  ASSERT_EQ(cleared.size(), 1u);
-  EXPECT_EQ(cleared[0].change, AlertChange::Kind::Cleared);
-  EXPECT_FALSE(cleared[0].send_home);
+  const auto cleared = run(m, 6);
+  ASSERT_EQ(cleared.size(), 2u) << "offline and battery";
+  for (const auto& change : cleared) {
+    EXPECT_EQ(change.change, AlertChange::Kind::Cleared) << change.alert_id;
+    EXPECT_FALSE(change.send_home) << change.alert_id;
+  }
 }
 
 TEST(AlertMonitor, UnknownBatteryAndZeroLevelRaiseNothing) {

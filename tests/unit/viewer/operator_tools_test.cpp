@@ -41,6 +41,7 @@ TEST(RobotRegistry, ForgetRemovesOneRobotAndKeepsTheOthersFindable) {
   for (const char* id : {"a", "b", "c"}) robots.get_or_add(id);
   EXPECT_TRUE(robots.forget("a"));
   EXPECT_FALSE(robots.forget("a"));
+  EXPECT_EQ(robots.removals(), 1u) << "positions moved: position-keyed data must be rebuilt";
   EXPECT_EQ(robots.size(), 2u);
   EXPECT_EQ(robots.find("a"), nullptr);
   ASSERT_NE(robots.find("b"), nullptr);
