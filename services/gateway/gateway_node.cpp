@@ -62,7 +62,8 @@ GatewayNode::Metrics::Metrics(Counters& c)
       mqtt_requests_not_owned(c.get("mqtt_requests_not_owned")),
       robots_owned(c.get("robots_owned")),
       gateways_live(c.get("gateways_live")),
-      robot_protocols_refused(c.get("robot_protocols_refused")) {
+      robot_protocols_refused(c.get("robot_protocols_refused")),
+      robots_forgotten(c.get("robots_forgotten")) {
   for (protocol::RejectReason r : protocol::kAllRejectReasons) {
     rejected[static_cast<size_t>(r)] = &c.get(std::string(protocol::reason_counter(r)));
   }
@@ -148,6 +149,10 @@ Status GatewayNode::configure() {
                                    [this](const slam::MqttRequest& r, const auto&) { on_request(r); });
   if (!requests) return requests.error();
   request_reader_ = std::move(*requests);
+  auto forgets = dds::make_reader(*participant_, dds::kForgetRobot,
+                                  [this](const slam::ForgetRobot& f, const auto&) { on_forget(f); });
+  if (!forgets) return forgets.error();
+  forget_reader_ = std::move(*forgets);
 
   spdlog::info("gateway ready on domain {}: broker {} as '{}', QoS {}, {} session, {} filter(s)",
                options_.service.domain, options_.mqtt.broker, client_id, options_.mqtt.qos,
@@ -165,12 +170,21 @@ void GatewayNode::run_once() {
   size_t online = 0;
   changed_.clear();
   went_offline_.clear();
+  forgotten_.clear();
   {
     std::unique_lock lock(registry_mutex_);
     const auto wake = std::min(std::chrono::steady_clock::now() + period_, mqtt_->next_attempt());
     loop_wake_.wait_until(lock, wake, [&] { return urgent_; });
     urgent_ = false;
     now = {now_ns(), monotonic_ns()};
+    // Before take_changed: a forgotten robot's state must not go out after its disposal.
+    for (const std::string& id : forget_) {
+      const RobotRecord* r = registry_.find(id);
+      if (r == nullptr) continue;
+      forgotten_.emplace_back(id, r->has_pose);
+      registry_.forget(id);
+    }
+    forget_.clear();
     registry_.expire(now, [&](const RobotRecord& r) { went_offline_.push_back(r.id); });
     registry_.take_changed([&](const RobotRecord& r) { changed_.push_back(r); });
     online = registry_.online();
@@ -181,6 +195,7 @@ void GatewayNode::run_once() {
   }
   mqtt_->poll(std::chrono::steady_clock::now());
   update_ownership(now.mono_ns);
+  dispose_forgotten();
   publish_states();
   metrics_.robots_online.store(static_cast<int64_t>(online), std::memory_order_relaxed);
   metrics_.reconnects.store(static_cast<int64_t>(mqtt_->reconnects()), std::memory_order_relaxed);
@@ -210,6 +225,33 @@ void GatewayNode::on_correction(const slam::PoseCorrection& sample) {
     if (known) urgent_ = true;
   }
   if (known) loop_wake_.notify_one();
+}
+
+void GatewayNode::on_forget(const slam::ForgetRobot& command) {
+  const std::string id = command.robot_id().to_string();
+  {
+    std::lock_guard lock(protocols_mutex_);
+    protocols_.forget(id);
+  }
+  {
+    std::lock_guard lock(registry_mutex_);
+    forget_.push_back(id);
+    urgent_ = true;
+  }
+  loop_wake_.notify_one();
+}
+
+void GatewayNode::dispose_forgotten() {
+  for (const auto& [id, had_pose] : forgotten_) {
+    slam::RobotState state;
+    state.robot_id(id);
+    if (!state_writer_->dispose(state)) bump(metrics_.write_failures);
+    slam::RobotOdometry odometry;
+    odometry.robot_id(id);
+    if (had_pose && !odometry_writer_->dispose(odometry)) bump(metrics_.write_failures);
+    bump(metrics_.robots_forgotten);
+    spdlog::info("robot '{}' forgotten by the operator", protocol::escape_for_log(id));
+  }
 }
 
 void GatewayNode::publish_states() {

@@ -89,6 +89,7 @@ class GatewayNode {
     std::atomic<int64_t>& robots_owned;
     std::atomic<int64_t>& gateways_live;
     std::atomic<int64_t>& robot_protocols_refused;
+    std::atomic<int64_t>& robots_forgotten;
   };
 
   GatewayNode(const GatewayOptions& options, Counters& counters);
@@ -104,6 +105,9 @@ class GatewayNode {
   void on_request(const slam::MqttRequest& request);
   void on_heartbeat(const slam::Heartbeat& heartbeat);
   void on_robot_state(const slam::RobotState& state);
+  void on_forget(const slam::ForgetRobot& command);
+  // Loop: disposes the forgotten robots' state instances (late joiners must not get them).
+  void dispose_forgotten();
   // The protocol to answer robot `id` in: the fresher of this gateway's registry and the RobotStates.
   std::optional<Protocol> protocol_of(std::string_view id);
   Status execute(const slam::MqttRequest& request);
@@ -128,6 +132,7 @@ class GatewayNode {
   std::condition_variable loop_wake_;
   bool urgent_ = false;
   RobotRegistry registry_;
+  std::vector<std::string> forget_;  // ForgetRobot commands not applied yet
 
   // Correction reader thread writes; waypoint reader thread and loop read. Never held with
   // registry_mutex_.
@@ -160,6 +165,7 @@ class GatewayNode {
   std::vector<std::string> gone_;
   std::vector<RobotRecord> changed_;
   std::vector<std::string> went_offline_;
+  std::vector<std::pair<std::string, bool>> forgotten_;  // robot id, had a pose (odometry written)
   slam::RobotState state_;
   slam::RobotOdometry odometry_;
   std::uint64_t published_version_ = 0;
@@ -180,6 +186,7 @@ class GatewayNode {
   std::unique_ptr<dds::Reader<slam::MqttRequest>> request_reader_;
   std::unique_ptr<dds::Reader<slam::Heartbeat>> heartbeat_reader_;
   std::unique_ptr<dds::Reader<slam::RobotState>> state_reader_;
+  std::unique_ptr<dds::Reader<slam::ForgetRobot>> forget_reader_;
 };
 
 }  // namespace slam::gateway

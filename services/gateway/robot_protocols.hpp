@@ -33,6 +33,10 @@ class RobotProtocols {
   // and max_robots are known already (memory stays bounded).
   bool learn(std::string_view id, LearntProtocol report);
   std::optional<LearntProtocol> find(std::string_view id) const;
+  // The operator forgot the robot.
+  void forget(std::string_view id) {
+    if (const auto it = robots_.find(id); it != robots_.end()) robots_.erase(it);
+  }
   std::size_t size() const { return robots_.size(); }
   void for_each_id(const std::function<void(const std::string&)>& fn) const;
 

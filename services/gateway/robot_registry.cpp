@@ -98,6 +98,14 @@ AcceptResult RobotRegistry::accept_status(std::string_view id, const protocol::D
   return result;
 }
 
+bool RobotRegistry::forget(std::string_view id) {
+  const auto it = robots_.find(id);
+  if (it == robots_.end()) return false;
+  if (it->second.presence == Presence::Online) --online_;
+  robots_.erase(it);
+  return true;
+}
+
 void RobotRegistry::count_rejected(std::string_view id) {
   RobotRecord* r = lookup(id);
   if (!r) return;

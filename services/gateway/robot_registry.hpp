@@ -86,6 +86,10 @@ class RobotRegistry {
   // Calls `fn` for every robot changed since the last call and clears the flags.
   void take_changed(const std::function<void(const RobotRecord&)>& fn);
 
+  // The operator forgot the robot: its record goes (a message from it later makes it new again).
+  // False when it was not known.
+  bool forget(std::string_view id);
+
   const RobotRecord* find(std::string_view id) const;
   std::optional<Protocol> protocol_of(std::string_view id) const;
   std::size_t size() const { return robots_.size(); }

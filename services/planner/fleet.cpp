@@ -46,6 +46,13 @@ void Fleet::restore_home(const std::string& robot_id, Vec2 home) {
   if (robots_.count(robot_id) == 0) restored_homes_[robot_id] = home;
 }
 
+void Fleet::forget(const std::string& robot_id) {
+  robots_.erase(robot_id);
+  pending_.erase(robot_id);
+  restored_homes_.erase(robot_id);
+  claims_.erase(robot_id);
+}
+
 Result<size_t> Fleet::set_goal(const std::string& robot_id, const Goal& goal) {
   SLAM_TRY(validate(goal));
   const uint64_t order = ++goal_order_;

@@ -52,6 +52,9 @@ class Fleet {
   // A home kept from an earlier run (GoalStore): the robot's home once it is seen, instead of its
   // first position.
   void restore_home(const std::string& robot_id, Vec2 home);
+  // The operator forgot the robot: its tracker, home, kept goal and claim go (a robot that reports
+  // again starts afresh, at its new first position).
+  void forget(const std::string& robot_id);
   // A goal for one robot, or for every robot with robot_id "*"; returns how many robots it
   // started for now. A goal for a robot not seen yet is kept until its first position (a
   // restarted planner reads goals before robot states). A "*" Explore or Stop goal stands: robots

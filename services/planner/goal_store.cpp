@@ -206,6 +206,10 @@ void GoalStore::finish(const std::string& robot_id, uint64_t goal_id) {
   fleet->second.finished = true;
 }
 
+void GoalStore::forget(const std::string& robot_id) {
+  if (record_.goals.erase(robot_id) + record_.homes.erase(robot_id) > 0) dirty_ = true;
+}
+
 void GoalStore::put_home(const std::string& robot_id, Vec2 home) {
   if (record_.homes.emplace(robot_id, home).second) dirty_ = true;
 }

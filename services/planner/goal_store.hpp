@@ -52,6 +52,8 @@ class GoalStore {
   // Marks robot_id's goal finished if it is still goal_id; the fleet-wide goal with that id too
   // once every robot that took it has finished it.
   void finish(const std::string& robot_id, uint64_t goal_id);
+  // The operator forgot the robot: its goal and home are dropped.
+  void forget(const std::string& robot_id);
   // Keeps a robot's home unless one is kept already.
   void put_home(const std::string& robot_id, Vec2 home);
 

@@ -64,6 +64,8 @@ PlannerNode::PlannerNode(const PlannerOptions& options, Counters& counters)
     : options_(options),
       period_(std::max<int64_t>(1, static_cast<int64_t>(std::lround(1000.0 / options.loop_rate_hz)))),
       metrics_(counters),
+      counters_(counters),
+      robots_forgotten_(counters.get("robots_forgotten")),
       fleet_(options.fleet),
       // The instance id this process's heartbeats carry (host:pid), so peers and self agree.
       ownership_(ServiceIdentity::of("planner").instance_id, monotonic_ns(), ownership_config(options)) {}
@@ -102,6 +104,10 @@ Status PlannerNode::configure() {
     return Error{std::string("cannot start the path request workers: ") + e.what()};
   }
 
+  auto alerts = AlertNode::create(*participant_, options_.alerts, ownership_.self(), counters_);
+  if (!alerts) return alerts.error();
+  alerts_ = std::move(*alerts);
+
   // Readers last: from here on callbacks run, and everything they touch exists. Heartbeats first:
   // the request intake asks the ownership.
   if (options_.share) {
@@ -138,6 +144,13 @@ Status PlannerNode::configure() {
                        [this](const slam::PathRequest& r, const auto&) { intake_.push_request(r); });
   if (!requests) return requests.error();
   request_reader_ = std::move(*requests);
+  auto forgets =
+      dds::make_reader(*participant_, dds::kForgetRobot, [this](const slam::ForgetRobot& f, const auto&) {
+        std::lock_guard lock(forget_mutex_);
+        forget_.push_back(f.robot_id().to_string());
+      });
+  if (!forgets) return forgets.error();
+  forget_reader_ = std::move(*forgets);
   spdlog::info("planner ready on domain {} ({} request worker(s), loop {} Hz)", options_.service.domain,
                options_.request_workers, options_.loop_rate_hz);
   if (options_.share) {
@@ -156,6 +169,11 @@ void PlannerNode::run_once() {
   const int64_t now = monotonic_ns();
   update_ownership(now);
   apply_reports();
+  apply_forgets();
+  alerts_->tick(now, [&](const std::string& key) {
+    std::lock_guard lock(ownership_mutex_);
+    return ownership_.owns(key, now);
+  });
   submit_requests(batch_.requests);
   count_replans();
   fleet_.tick(grid_, now);
@@ -458,6 +476,29 @@ void PlannerNode::apply_reports() {
     fleet_.claim(id, report.frontier);
     // Finished under another owner: not resumed from this planner's file after a restart.
     if (report.finished && !fleet_.owns(id)) goal_store_.finish(id, report.goal_id);
+  }
+}
+
+void PlannerNode::apply_forgets() {
+  forget_taken_.clear();
+  {
+    std::lock_guard lock(forget_mutex_);
+    forget_taken_.swap(forget_);
+  }
+  for (const std::string& id : forget_taken_) {
+    if (id.empty() || id == kAllRobots) continue;
+    const bool known = robots_.erase(id) > 0;
+    fleet_.forget(id);
+    goal_store_.forget(id);
+    waypoint_seq_.erase(id);
+    reported_status_.erase(id);
+    alerts_->forget_robot(id);
+    // Late joiners (viewers, slamctl robots) must not get the forgotten robot's last path.
+    slam::RobotPath key;
+    key.robot_id(id);
+    if (known && !path_writer_->dispose(key)) bump(metrics_.write_failures);
+    bump(robots_forgotten_);
+    spdlog::info("robot '{}' forgotten by the operator{}", id, known ? "" : " (not known here)");
   }
 }
 

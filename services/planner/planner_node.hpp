@@ -23,6 +23,7 @@
 #include "common/core/reply_cache.hpp"
 #include "common/core/result.hpp"
 #include "common/fastdds/fast_topics.hpp"
+#include "planner/alert_node.hpp"
 #include "planner/fleet.hpp"
 #include "planner/goal_store.hpp"
 #include "planner/planner_intake.hpp"
@@ -102,6 +103,8 @@ class PlannerNode {
   // and the other planners' reports (claims, finished goals) to the fleet and the goal store.
   void update_ownership(int64_t now_mono_ns);
   void apply_reports();
+  // The operator's ForgetRobot commands: fleet, goal store, paths and alerts drop each robot.
+  void apply_forgets();
   // Runs on worker threads.
   void reply(const PathJob& job, const PlanResult& result);
   void warn(const std::string& key, const std::string& line);
@@ -109,6 +112,8 @@ class PlannerNode {
   PlannerOptions options_;
   std::chrono::milliseconds period_;
   Metrics metrics_;
+  Counters& counters_;  // the alerts add theirs
+  std::atomic<int64_t>& robots_forgotten_;
   RateLimitedLog warnings_;
 
   // Loop state: touched by the loop thread only.
@@ -138,6 +143,11 @@ class PlannerNode {
   std::map<std::string, PathReport> reports_;
   std::map<std::string, PathReport> reports_taken_;
 
+  // ForgetRobot reader thread writes, loop drains.
+  std::mutex forget_mutex_;
+  std::vector<std::string> forget_;
+  std::vector<std::string> forget_taken_;
+
   PlannerIntake intake_;
   // Destroyed bottom-up: readers stop first, then the workers answer what is queued, then the
   // writers and the participant go.
@@ -154,6 +164,8 @@ class PlannerNode {
   std::unique_ptr<dds::Reader<slam::PathRequest>> request_reader_;
   std::unique_ptr<dds::Reader<slam::Heartbeat>> heartbeat_reader_;
   std::unique_ptr<dds::Reader<slam::RobotPath>> path_reader_;
+  std::unique_ptr<dds::Reader<slam::ForgetRobot>> forget_reader_;
+  std::unique_ptr<AlertNode> alerts_;
 };
 
 }  // namespace slam::planner

@@ -92,10 +92,25 @@ void add_planner_options(CLI::App& app, PlannerOptions& o) {
   app.add_option("--peer-timeout-s", o.peer_timeout_s,
                  "a planner unheard this long (s) is gone: its robots and requests move to the others")
       ->capture_default_str();
+
+  AlertConfig& alerts = o.alerts;
+  app.add_option("--alerts-battery-low", alerts.battery_low,
+                 "a robot reporting a battery below this fraction is alerted and sent home; 0: never")
+      ->capture_default_str();
+  app.add_option("--alerts-battery-clear-margin", alerts.battery_clear_margin,
+                 "the battery alert clears above the low level plus this fraction")
+      ->capture_default_str();
+  app.add_option("--alerts-service-silent-s", alerts.service_silent_s,
+                 "a service whose heartbeats stop this long (s) is alerted as silent")
+      ->capture_default_str();
+  app.add_option("--alerts-service-forget-s", alerts.service_forget_s,
+                 "a silent service is forgotten (its alert clears) after this long (s)")
+      ->capture_default_str();
 }
 
 Status validate(const PlannerOptions& o) {
   if (auto s = validate(o.fleet); !s) return s;
+  if (auto s = validate(o.alerts); !s) return s;
   if (!std::isfinite(o.loop_rate_hz) || o.loop_rate_hz < 1.0 || o.loop_rate_hz > 1000.0) {
     return Error{"loop_rate_hz must be between 1 and 1000"};
   }

@@ -9,6 +9,7 @@
 
 #include "common/core/result.hpp"
 #include "common/core/service_options.hpp"
+#include "planner/alert_monitor.hpp"
 #include "planner/fleet.hpp"
 
 namespace slam::planner {
@@ -25,6 +26,7 @@ struct PlannerOptions {
   // share false (--no-share): a lone planner that owns everything from its start, no warm-up.
   bool share = true;
   double peer_timeout_s = 1.5;
+  AlertConfig alerts;  // robot offline, battery low (sent home), service silent
 };
 
 // Planner heartbeats go out this often: peer_timeout_s must span a few of them.

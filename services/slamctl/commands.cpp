@@ -88,19 +88,20 @@ std::optional<Rep> request(Session& s, const dds::Topic<Req, ReqP>& req_topic, c
   return reply;
 }
 
-// Sends a request the mapper answers with a MapReply and prints the reply: 0 on MAP_OK, else one
-// error line and 1.
+// Sends a request the mapper answers with a MapReply and prints one line: the reply's text, or
+// `done` when the mapper said nothing more than ok. 0 on MAP_OK, else one error line and 1.
 template <class Req, class ReqP>
-int map_request(Session& s, const dds::Topic<Req, ReqP>& req_topic, const Req& req) {
+int map_request(Session& s, const dds::Topic<Req, ReqP>& req_topic, const Req& req, const std::string& done) {
   const auto reply = request(s, req_topic, req, dds::kMapReply, "mapper");
   if (!reply) return kExitFailure;
   if (reply->result() != MAP_OK)
     return fail(map_result_name(reply->result()) + ": " + reply->message().to_string());
-  std::printf("%s\n", reply->message().c_str());
+  std::printf("%s\n", reply->message().size() == 0 ? done.c_str() : reply->message().c_str());
   return 0;
 }
 
-// The latest sample per key of a state topic, collected on the reader's thread.
+// The latest sample per key of a state topic (and the first, for rates), collected on the
+// reader's thread.
 template <class T>
 class Latest {
  public:
@@ -108,7 +109,9 @@ class Latest {
   Latest(Session& s, const dds::Topic<T, P>& topic, Key key) {
     auto reader = dds::make_reader(s.participant(), topic, [this, key](const T& sample, const auto&) {
       std::lock_guard lock(mutex_);
-      latest_[key(sample)] = sample;
+      const std::string k = key(sample);
+      first_.try_emplace(k, sample);
+      latest_[k] = sample;
     });
     if (!reader) {
       fail(reader.message());
@@ -123,10 +126,16 @@ class Latest {
     std::lock_guard lock(mutex_);
     return std::move(latest_);
   }
+  // The first sample per key; call after take().
+  std::map<std::string, T> take_first() {
+    std::lock_guard lock(mutex_);
+    return std::move(first_);
+  }
 
  private:
   std::mutex mutex_;
   std::map<std::string, T> latest_;
+  std::map<std::string, T> first_;
   std::unique_ptr<dds::Reader<T>> reader_;
 };
 
@@ -162,22 +171,39 @@ namespace {
 // Each subcommand below: its handler, then `add_*`, which adds its arguments to its CLI11 subcommand and
 // returns the handler bound to them; the table at the end names them in --help order.
 
-int cmd_status(Session& s) {
+// --json on status, robots and alerts: the same facts as one JSON array, for scripts.
+struct ListArgs {
+  bool json = false;
+  bool verbose = false;  // status: every counter
+  bool all = false;      // alerts: cleared ones too
+};
+
+int cmd_status(Session& s, const ListArgs& a) {
   Latest<Heartbeat> beats(s, dds::kHeartbeat, [](const Heartbeat& h) {
     return h.service().to_string() + "/" + h.instance_id().to_string();
   });
   if (!beats.ok()) return 1;
-  // Heartbeats come once a second: listen a little longer than that.
+  // Heartbeats come once a second: listen long enough for two of each, for the rates.
   listen_after_match(s, beats, std::min<std::chrono::milliseconds>(s.timeout(), 2500ms));
-  const auto seen = beats.take();
-  if (seen.empty()) return fail("no service seen on DDS domain " + std::to_string(s.domain()));
+  const auto latest = beats.take();
+  const auto first = beats.take_first();
+  if (latest.empty()) return fail("no service seen on DDS domain " + std::to_string(s.domain()));
+  std::vector<ServiceSeen> services;
+  for (const auto& [key, hb] : latest) services.push_back(service_seen(first.at(key), hb));
   const int64_t now = now_ns();
-  for (const auto& [key, hb] : seen) std::printf("%s", format_heartbeat(hb, now).c_str());
+  if (a.json) {
+    std::printf("%s", services_json(services, now).c_str());
+    return 0;
+  }
+  for (const ServiceSeen& seen : services) std::printf("%s", format_service(seen, now, a.verbose).c_str());
   return 0;
 }
 
-Handler add_status(CLI::App&) {
-  return cmd_status;
+Handler add_status(CLI::App& cli) {
+  auto a = std::make_shared<ListArgs>();
+  cli.add_flag("--json", a->json, "one JSON array: every service with its counters and rates");
+  cli.add_flag("-v,--verbose", a->verbose, "every counter of every service, with its rate");
+  return [a](Session& s) { return cmd_status(s, *a); };
 }
 
 // The value for `key`, or nullptr.
@@ -187,7 +213,7 @@ const T* find_in(const std::map<std::string, T>& samples, const std::string& key
   return it == samples.end() ? nullptr : &it->second;
 }
 
-int cmd_robots(Session& s) {
+int cmd_robots(Session& s, const ListArgs& a) {
   Latest<RobotPath> paths(s, dds::kRobotPath, [](const RobotPath& p) { return p.robot_id().to_string(); });
   Latest<PoseCorrection> corrections(s, dds::kPoseCorrection,
                                      [](const PoseCorrection& c) { return c.robot_id().to_string(); });
@@ -202,13 +228,76 @@ int cmd_robots(Session& s) {
   const auto robots = states.take();
   if (robots.empty()) return fail("no robot known on DDS domain " + std::to_string(s.domain()));
   const int64_t now = now_ns();
+  if (a.json) {
+    std::vector<RobotSeen> seen;
+    for (const auto& [id, st] : robots) {
+      RobotSeen r{st, std::nullopt, std::nullopt};
+      if (const auto* c = find_in(correction_of, id)) r.correction = *c;
+      if (const auto* p = find_in(path_of, id)) r.path = *p;
+      seen.push_back(std::move(r));
+    }
+    std::printf("%s", robots_json(seen, now).c_str());
+    return 0;
+  }
   for (const auto& [id, st] : robots)
     std::printf("%s", format_robot(st, find_in(correction_of, id), find_in(path_of, id), now).c_str());
   return 0;
 }
 
-Handler add_robots(CLI::App&) {
-  return cmd_robots;
+Handler add_robots(CLI::App& cli) {
+  auto a = std::make_shared<ListArgs>();
+  cli.add_flag("--json", a->json, "one JSON array: every robot with its goal and correction");
+  return [a](Session& s) { return cmd_robots(s, *a); };
+}
+
+int cmd_alerts(Session& s, const ListArgs& a) {
+  Latest<Alert> alerts(s, dds::kAlert, [](const Alert& al) { return al.alert_id().to_string(); });
+  if (!alerts.ok()) return 1;
+  // The planners keep their alerts for late joiners: once one matched, they arrive at once.
+  if (!wait_until([&] { return alerts.matched(); }, s.timeout()))
+    return fail("no planner on DDS domain " + std::to_string(s.domain()) +
+                " (alerts come from the planners)");
+  wait_for_shutdown(std::min<std::chrono::milliseconds>(s.timeout(), 1000ms));
+  std::vector<Alert> shown;
+  for (auto& [id, alert] : alerts.take())
+    if (a.all || alert.active()) shown.push_back(std::move(alert));
+  const int64_t now = now_ns();
+  if (a.json) {
+    std::printf("%s", alerts_json(shown, now).c_str());
+    return 0;
+  }
+  if (shown.empty()) std::printf("no %salerts\n", a.all ? "" : "active ");
+  for (const Alert& alert : shown) std::printf("%s", format_alert(alert, now).c_str());
+  return 0;
+}
+
+Handler add_alerts(CLI::App& cli) {
+  auto a = std::make_shared<ListArgs>();
+  cli.add_flag("--json", a->json, "one JSON array of alerts");
+  cli.add_flag("--all", a->all, "cleared alerts too");
+  return [a](Session& s) { return cmd_alerts(s, *a); };
+}
+
+int cmd_forget(Session& s, const std::string& robot) {
+  ForgetRobot f;
+  f.request_id(s.next_goal_id());
+  f.robot_id(robot);
+  auto writer = dds::make_writer(s.participant(), dds::kForgetRobot);
+  if (!writer) return fail(writer.message());
+  if (!(*writer)->wait_for_readers(s.timeout()))
+    return fail("no gateway, planner or viewer on DDS domain " + std::to_string(s.domain()) +
+                " (is it running?)");
+  if (!(*writer)->write(f)) return fail("could not write to " + std::string(topics::kForgetRobot.name));
+  if (!(*writer)->wait_for_acknowledgments(s.timeout())) return fail("the services did not acknowledge");
+  std::printf("robot %s forgotten by %d service(s) (gateways, planners, viewers); its map data stays\n",
+              robot.c_str(), (*writer)->matched_readers());
+  return 0;
+}
+
+Handler add_forget(CLI::App& cli) {
+  auto robot = std::make_shared<std::string>();
+  cli.add_option("robot", *robot, "robot id")->required();
+  return [robot](Session& s) { return cmd_forget(s, *robot); };
 }
 
 struct GoalArgs {
@@ -281,7 +370,8 @@ int cmd_map_file(Session& s, MapFileAction action, const std::string& yaml_path)
   MapFileRequest req;
   req.action(action);
   req.yaml_path(yaml_path);
-  return map_request(s, dds::kMapFileRequest, req);
+  return map_request(s, dds::kMapFileRequest, req,
+                     (action == MAP_EXPORT ? "map saved to " : "map loaded from ") + yaml_path);
 }
 
 Handler add_map(CLI::App& cli) {
@@ -312,7 +402,10 @@ int cmd_grid(Session& s, const GridArgs& a) {
   c.origin(a.origin.size() == 2 ? point(a.origin[0], a.origin[1]) : point(0, 0));
   c.inflation_radius(a.inflation);
   c.legacy_mode(a.legacy);
-  return map_request(s, dds::kGridConfig, c);
+  char done[160];
+  std::snprintf(done, sizeof done, "grid set to %.3f m cells%s: the mapper rebuilt the map from its store",
+                a.resolution, a.legacy ? " (legacy)" : "");
+  return map_request(s, dds::kGridConfig, c, done);
 }
 
 Handler add_grid(CLI::App& cli) {
@@ -331,7 +424,19 @@ int cmd_map_edit(Session& s, MapEditKind kind, const Point2& point, const std::s
   edit.kind(kind);
   edit.point(point);
   edit.robot_id(robot);
-  return map_request(s, dds::kMapEdit, edit);
+  char done[160];
+  switch (kind) {
+    case EDIT_OBSTRUCT:
+      std::snprintf(done, sizeof done, "cell at (%.2f, %.2f) obstructed", point.x(), point.y());
+      break;
+    case EDIT_UNOBSTRUCT:
+      std::snprintf(done, sizeof done, "obstruction at (%.2f, %.2f) removed", point.x(), point.y());
+      break;
+    default:
+      std::snprintf(done, sizeof done, "observations of %s deleted, map rebuilt", robot.c_str());
+      break;
+  }
+  return map_request(s, dds::kMapEdit, edit, done);
 }
 
 // obstruct and unobstruct: one cell, x y.
@@ -367,7 +472,7 @@ int cmd_pose(Session& s, const PoseArgs& a) {
   req.pose().x(a.x);
   req.pose().y(a.y);
   req.pose().theta(wrap_angle(a.theta_deg * std::numbers::pi / 180.0));
-  return map_request(s, dds::kInitialPose, req);
+  return map_request(s, dds::kInitialPose, req, "initial pose of " + a.robot + " set");
 }
 
 // CLI11 reads "nan" and "inf" as doubles; a pose must be finite.
@@ -402,7 +507,26 @@ int cmd_sim(Session& s, SimCommandKind kind, uint32_t count, const std::string& 
   const auto reply = request(s, dds::kSimControl, c, dds::kSimReply, "simulator");
   if (!reply) return kExitFailure;
   if (!reply->ok()) return fail(reply->message().to_string());
-  std::printf("%s\n", reply->message().size() == 0 ? "ok" : reply->message().c_str());
+  std::string done;
+  switch (kind) {
+    case SIM_SPAWN:
+      done = "spawned " + std::to_string(count) + " simulated robot(s)";
+      break;
+    case SIM_REMOVE:
+      done = "removed simulated robot " + robot;
+      break;
+    case SIM_PAUSE:
+      done = "simulation paused";
+      break;
+    case SIM_RESUME:
+      done = "simulation resumed";
+      break;
+    default:
+      done = "simulator command done";
+      break;
+  }
+  if (reply->message().size() > 0) done += ": " + reply->message().to_string();
+  std::printf("%s\n", done.c_str());
   return 0;
 }
 
@@ -443,6 +567,8 @@ int cmd_echo(Session& s, const std::string& topic, int count) {
   if (topic == topics::kHeartbeat.name) return echo(s, dds::kHeartbeat, count);
   if (topic == topics::kMapReply.name) return echo(s, dds::kMapReply, count);
   if (topic == topics::kPathReply.name) return echo(s, dds::kPathReply, count);
+  if (topic == topics::kAlert.name) return echo(s, dds::kAlert, count);
+  if (topic == topics::kForgetRobot.name) return echo(s, dds::kForgetRobot, count);
   return fail("cannot echo '" + topic + "': see docs/topics.md for topic names");
 }
 
@@ -462,8 +588,10 @@ Handler add_echo(CLI::App& cli) {
 
 const std::vector<Subcommand>& subcommands() {
   static const std::vector<Subcommand> table{
-      {"status", "services seen, with their heartbeats and counters", add_status},
+      {"status", "one line per service: state, uptime, main rates, error counters", add_status},
       {"robots", "known robots: id, map-frame pose, last seen, goal mode, correction", add_robots},
+      {"alerts", "active alerts: robots offline, low batteries, silent services", add_alerts},
+      {"forget", "drop a robot from gateways, planners and viewers (its map data stays)", add_forget},
       {"goal", "set a robot's standing goal: goal ROBOT|all MODE [x y]", add_goal},
       {"path", "plan a path: path x0 y0 x1 y1", add_path},
       {"map", "save or load the map (ROS map_server YAML + PGM, on the mapper's disk)", add_map},

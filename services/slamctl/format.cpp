@@ -2,6 +2,8 @@
 
 #include <array>
 #include <cstdio>
+#include <functional>
+#include <nlohmann/json.hpp>
 #include <numbers>
 #include <utility>
 
@@ -121,15 +123,182 @@ double age_s(int64_t stamp_ns, int64_t now_ns) {
   return static_cast<double>(now_ns - stamp_ns) * 1e-9;
 }
 
-std::string format_heartbeat(const Heartbeat& hb, int64_t now_ns) {
-  static constexpr const char* kStates[] = {"starting", "running", "stopping"};
-  const auto state = static_cast<size_t>(hb.state());
-  std::string out = fmt("%-10s %-24s pid %-7u up %8.1f s  %-8s  seen %.1f s ago\n", hb.service().c_str(),
-                        hb.instance_id().c_str(), hb.pid(), hb.uptime_s(), state < 3 ? kStates[state] : "?",
-                        age_s(hb.stamp_ns(), now_ns));
-  for (const auto& c : hb.counters())
-    out += fmt("    %-32s %lld\n", c.name().c_str(), static_cast<long long>(c.value()));
+namespace {
+
+const char* state_name(ServiceState state) {
+  switch (state) {
+    case SERVICE_STARTING:
+      return "starting";
+    case SERVICE_RUNNING:
+      return "running";
+    case SERVICE_STOPPING:
+      return "stopping";
+  }
+  return "?";
+}
+
+// Rates are shown to one decimal, or as integers once large.
+std::string rate_text(double per_s) {
+  return per_s >= 100.0 ? fmt("%.0f/s", per_s) : fmt("%.1f/s", per_s);
+}
+
+}  // namespace
+
+ServiceSeen service_seen(const Heartbeat& first, const Heartbeat& latest) {
+  ServiceSeen out{latest, {}};
+  const double span_s = latest.uptime_s() - first.uptime_s();
+  if (span_s <= 0.0) return out;
+  for (const Counter& c : latest.counters()) {
+    for (const Counter& before : first.counters()) {
+      if (before.name() != c.name()) continue;
+      out.rates[c.name().to_string()] = static_cast<double>(c.value() - before.value()) / span_s;
+      break;
+    }
+  }
   return out;
+}
+
+const std::vector<std::string>& main_counters(std::string_view service) {
+  static const std::map<std::string, std::vector<std::string>, std::less<>> table{
+      {"gateway", {"messages_in", "observations", "commands_sent"}},
+      {"mapper", {"observations", "points", "patches"}},
+      {"planner", {"waypoints_sent", "paths_published", "path_requests"}},
+      {"simulator", {"steps", "reports_sent", "waypoints_received"}},
+      {"viewer", {"frames", "samples_received", "commands_sent"}},
+  };
+  static const std::vector<std::string> none;
+  const auto it = table.find(service);
+  return it == table.end() ? none : it->second;
+}
+
+bool is_error_counter(std::string_view name) {
+  for (std::string_view bad : {"fail", "reject", "refused", "dropped", "lost", "error", "overrun", "unknown"})
+    if (name.find(bad) != std::string_view::npos) return true;
+  return false;
+}
+
+std::string format_service(const ServiceSeen& s, int64_t now_ns, bool verbose) {
+  const Heartbeat& hb = s.latest;
+  std::string out =
+      fmt("%-10s %-24s %-8s up %8.1f s  seen %4.1f s ago", hb.service().c_str(), hb.instance_id().c_str(),
+          state_name(hb.state()), hb.uptime_s(), age_s(hb.stamp_ns(), now_ns));
+  for (const std::string& name : main_counters(hb.service().to_string())) {
+    const auto rate = s.rates.find(name);
+    if (rate != s.rates.end()) out += "  " + name + " " + rate_text(rate->second);
+  }
+  std::string errors;
+  for (const Counter& c : hb.counters())
+    if (c.value() != 0 && is_error_counter(c.name().to_string()))
+      errors += fmt(" %s %lld", c.name().c_str(), static_cast<long long>(c.value()));
+  if (!errors.empty()) out += "  errors:" + errors;
+  out += "\n";
+  if (!verbose) return out;
+  for (const Counter& c : hb.counters()) {
+    const auto rate = s.rates.find(c.name().to_string());
+    out += fmt("    %-32s %12lld", c.name().c_str(), static_cast<long long>(c.value()));
+    if (rate != s.rates.end()) out += "  " + rate_text(rate->second);
+    out += "\n";
+  }
+  return out;
+}
+
+std::string services_json(const std::vector<ServiceSeen>& services, int64_t now_ns) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const ServiceSeen& s : services) {
+    const Heartbeat& hb = s.latest;
+    nlohmann::json counters = nlohmann::json::object();
+    nlohmann::json errors = nlohmann::json::object();
+    for (const Counter& c : hb.counters()) {
+      counters[c.name().to_string()] = c.value();
+      if (c.value() != 0 && is_error_counter(c.name().to_string())) errors[c.name().to_string()] = c.value();
+    }
+    out.push_back({{"service", hb.service().to_string()},
+                   {"instance", hb.instance_id().to_string()},
+                   {"pid", hb.pid()},
+                   {"host", hb.host().to_string()},
+                   {"state", state_name(hb.state())},
+                   {"uptime_s", hb.uptime_s()},
+                   {"seen_s_ago", age_s(hb.stamp_ns(), now_ns)},
+                   {"rates", s.rates},
+                   {"errors", errors},
+                   {"counters", counters}});
+  }
+  return out.dump(2) + "\n";
+}
+
+std::string robots_json(const std::vector<RobotSeen>& robots, int64_t now_ns) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const RobotSeen& r : robots) {
+    const RobotState& s = r.state;
+    nlohmann::json robot{
+        {"id", s.robot_id().to_string()},
+        {"presence", s.presence() == PRESENCE_ONLINE ? "online" : "offline"},
+        {"protocol", s.protocol() == PROTOCOL_V1 ? "v1" : "v2"},
+        {"x", s.pose().x()},
+        {"y", s.pose().y()},
+        {"theta", s.has_heading() ? nlohmann::json(s.pose().theta()) : nlohmann::json(nullptr)},
+        {"battery", s.battery() < 0.0f ? nlohmann::json(nullptr) : nlohmann::json(s.battery())},
+        {"status", s.status().to_string()},
+        {"seen_s_ago", age_s(s.last_seen_ns(), now_ns)},
+        {"messages", s.messages()},
+        {"points", s.points()},
+        {"rejected", s.rejected()},
+        {"goal", nullptr},
+        {"correction", nullptr}};
+    if (r.path) {
+      robot["goal"] = {{"goal_id", r.path->goal_id()},
+                       {"mode", goal_mode_name(r.path->mode())},
+                       {"status", goal_status_name(r.path->status())},
+                       {"target", {r.path->target().x(), r.path->target().y()}},
+                       {"reason", r.path->reason().to_string()}};
+    }
+    if (r.correction) {
+      const Pose2& m = r.correction->map_from_odom();
+      robot["correction"] = {{"x", m.x()},
+                             {"y", m.y()},
+                             {"theta_deg", degrees(m.theta())},
+                             {"version", r.correction->version()},
+                             {"keyframes", r.correction->keyframes()},
+                             {"loop_closures", r.correction->loop_closures()},
+                             {"source", correction_source_name(r.correction->source())}};
+    }
+    out.push_back(std::move(robot));
+  }
+  return out.dump(2) + "\n";
+}
+
+std::string alert_kind_name(AlertKind kind) {
+  switch (kind) {
+    case ALERT_ROBOT_OFFLINE:
+      return "robot offline";
+    case ALERT_SERVICE_SILENT:
+      return "service silent";
+    case ALERT_BATTERY_LOW:
+      return "battery low";
+  }
+  return "kind " + std::to_string(static_cast<int>(kind));
+}
+
+std::string format_alert(const Alert& a, int64_t now_ns) {
+  return fmt("%-7s %-14s %-32s raised %6.1f s ago by %s: %s\n", a.active() ? "ACTIVE" : "cleared",
+             alert_kind_name(a.kind()).c_str(), a.subject().c_str(), age_s(a.raised_ns(), now_ns),
+             a.raised_by().c_str(), a.message().c_str());
+}
+
+std::string alerts_json(const std::vector<Alert>& alerts, int64_t now_ns) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const Alert& a : alerts) {
+    out.push_back({{"id", a.alert_id().to_string()},
+                   {"kind", alert_kind_name(a.kind())},
+                   {"subject", a.subject().to_string()},
+                   {"active", a.active()},
+                   {"raised_ns", a.raised_ns()},
+                   {"raised_s_ago", age_s(a.raised_ns(), now_ns)},
+                   {"changed_ns", a.stamp_ns()},
+                   {"raised_by", a.raised_by().to_string()},
+                   {"message", a.message().to_string()}});
+  }
+  return out.dump(2) + "\n";
 }
 
 std::string format_correction(const PoseCorrection& c) {
@@ -229,6 +398,14 @@ std::string describe(const Heartbeat& s) {
 std::string describe(const MapReply& s) {
   return fmt("map reply %llu %s %s", static_cast<unsigned long long>(s.request_id()),
              map_result_name(s.result()).c_str(), s.message().c_str());
+}
+std::string describe(const Alert& s) {
+  std::string line = format_alert(s, s.stamp_ns());
+  line.pop_back();  // echo ends each sample's line itself
+  return "alert " + s.alert_id().to_string() + " " + line;
+}
+std::string describe(const ForgetRobot& s) {
+  return fmt("forget %llu %s", static_cast<unsigned long long>(s.request_id()), s.robot_id().c_str());
 }
 std::string describe(const PathReply& s) {
   return fmt("path reply %llu %s", static_cast<unsigned long long>(s.request_id()),

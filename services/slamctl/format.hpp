@@ -1,9 +1,11 @@
 #pragma once
 // slamctl's text side, plain C++: parsing mode/kind names from the command line and formatting
 // samples as the lines a person reads. No DDS entities here, only the generated value types.
+#include <map>
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "common/fastdds/fast_topics.hpp"
 
@@ -19,7 +21,35 @@ std::string correction_source_name(CorrectionSource source);
 // Seconds since a *_ns stamp, for "last seen 1.2 s ago".
 double age_s(int64_t stamp_ns, int64_t now_ns);
 
-std::string format_heartbeat(const Heartbeat& hb, int64_t now_ns);
+// A service as `slamctl status` heard it: its latest heartbeat, and each counter's rate per second
+// between the first and the latest heartbeat heard (none when only one was heard).
+struct ServiceSeen {
+  Heartbeat latest;
+  std::map<std::string, double> rates;
+};
+ServiceSeen service_seen(const Heartbeat& first, const Heartbeat& latest);
+// The counters whose rates tell whether a service works (gateway: messages_in, ...); empty for a
+// service not in the table.
+const std::vector<std::string>& main_counters(std::string_view service);
+// Counters that count something going wrong (failures, rejections, drops, losses, errors).
+bool is_error_counter(std::string_view name);
+// One line: service, instance, state, uptime, last heard, main rates, non-zero error counters;
+// verbose: then every counter on a line of its own, with its rate when known.
+std::string format_service(const ServiceSeen& s, int64_t now_ns, bool verbose);
+std::string services_json(const std::vector<ServiceSeen>& services, int64_t now_ns);
+
+// A robot as `slamctl robots` saw it.
+struct RobotSeen {
+  RobotState state;
+  std::optional<PoseCorrection> correction;
+  std::optional<RobotPath> path;
+};
+std::string robots_json(const std::vector<RobotSeen>& robots, int64_t now_ns);
+
+std::string alert_kind_name(AlertKind kind);  // "robot offline", "service silent", "battery low"
+// One line: ACTIVE/cleared, kind, subject, age, who raised it, the message.
+std::string format_alert(const Alert& a, int64_t now_ns);
+std::string alerts_json(const std::vector<Alert>& alerts, int64_t now_ns);
 // "(x, y, theta deg) version V keyframes K loops L SOURCE": a robot's map <- odom correction.
 std::string format_correction(const PoseCorrection& c);
 // One line per robot: its state (pose in the map frame), its goal and its correction ("-" when none
@@ -44,5 +74,7 @@ std::string describe(const SimGroundTruth& s);
 std::string describe(const Heartbeat& s);
 std::string describe(const MapReply& s);
 std::string describe(const PathReply& s);
+std::string describe(const Alert& s);
+std::string describe(const ForgetRobot& s);
 
 }  // namespace slam::ctl

@@ -16,6 +16,7 @@
 #include <filesystem>
 #include <functional>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <regex>
 #include <sstream>
@@ -106,7 +107,7 @@ class Hosts {
   std::string suffix_;
 };
 
-// One service line of `slamctl status` and the counters under it.
+// One service of `slamctl status --json` and its counters.
 struct ServiceStatus {
   std::string service;
   long pid = 0;
@@ -117,24 +118,17 @@ struct ServiceStatus {
   }
 };
 
-// A service line starts in column 0 ("mapper  host:pid  pid 123  up ..."); its counters follow,
-// indented ("    cells_changed    42").
+// Nothing parsed from output that is not JSON (slamctl failed: its error line).
 std::vector<ServiceStatus> parse_status(const std::string& out) {
   std::vector<ServiceStatus> services;
-  std::istringstream lines(out);
-  std::string line;
-  while (std::getline(lines, line)) {
-    std::istringstream words(line);
-    if (line.empty()) continue;
-    if (line[0] != ' ') {
-      ServiceStatus s;
-      std::string instance, pid_word;
-      if (words >> s.service >> instance >> pid_word >> s.pid && pid_word == "pid") services.push_back(s);
-    } else if (!services.empty()) {
-      std::string name;
-      int64_t value = 0;
-      if (words >> name >> value) services.back().counters[name] = value;
-    }
+  const auto json = nlohmann::json::parse(out, nullptr, false);
+  if (!json.is_array()) return services;
+  for (const auto& s : json) {
+    ServiceStatus status;
+    status.service = s.value("service", "");
+    status.pid = s.value("pid", 0L);
+    for (const auto& [name, value] : s["counters"].items()) status.counters[name] = value.get<int64_t>();
+    services.push_back(std::move(status));
   }
   return services;
 }
@@ -175,7 +169,9 @@ class Fleet {
     if (rc == -1) group_.stop(name, SIGKILL);
     return {rc, group_.log(name)};
   }
-  std::vector<ServiceStatus> status(bool ds) { return parse_status(slamctl(ds, {"status"}).second); }
+  std::vector<ServiceStatus> status(bool ds) {
+    return parse_status(slamctl(ds, {"status", "--json"}).second);
+  }
 
   // Polls `slamctl status` until `pred` holds for what it shows.
   bool wait_status(bool ds, const std::function<bool(const std::vector<ServiceStatus>&)>& pred,

@@ -7,7 +7,9 @@
 #include <cmath>
 #include <filesystem>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <optional>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -153,6 +155,49 @@ TEST_F(SlamctlTest, StatusRobotsAndEcho) {
   expect_fails({"echo", "slam/no/such/topic", "-n", "1"});
 }
 
+// The scripting and operator views: status in full and as JSON, robots as JSON, alerts, forget.
+TEST_F(SlamctlTest, StatusVariantsAlertsAndForget) {
+  const CtlRun verbose = ctl({"status", "--verbose"});
+  expect_ok(verbose, "status --verbose");
+  EXPECT_NE(verbose.output.find("waypoints_sent"), std::string::npos) << verbose.output;
+  EXPECT_GT(verbose.lines(), 20u) << "every counter on a line: " << verbose.output;
+
+  const CtlRun status = ctl({"status", "--json"});
+  expect_ok(status, "status --json");
+  std::set<std::string> services;
+  for (const auto& s : nlohmann::json::parse(status.output)) {
+    services.insert(s["service"].get<std::string>());
+    EXPECT_TRUE(s["counters"].is_object()) << s.dump();
+  }
+  for (const char* s : {"gateway", "mapper", "planner", "simulator"}) EXPECT_TRUE(services.contains(s)) << s;
+
+  CtlRun robots;
+  ASSERT_TRUE(wait_until(
+      [&] {
+        robots = ctl({"robots", "--json"});
+        return robots.code == 0 && nlohmann::json::parse(robots.output).size() == 2;
+      },
+      30s, 500ms))
+      << robots.output;
+  for (const auto& r : nlohmann::json::parse(robots.output)) EXPECT_EQ(r["presence"], "online") << r.dump();
+
+  const CtlRun alerts = ctl({"alerts"});
+  expect_ok(alerts, "alerts");
+  EXPECT_GE(alerts.lines(), 1u) << alerts.output;
+  const CtlRun alerts_json = ctl({"alerts", "--all", "--json"});
+  expect_ok(alerts_json, "alerts --json");
+  EXPECT_TRUE(nlohmann::json::parse(alerts_json.output).is_array()) << alerts_json.output;
+  expect_fails({"alerts"}, empty_domain.id());
+
+  // A simulated robot keeps reporting, so it comes back at once: this is about the command.
+  const CtlRun forget = ctl({"forget", robot_ids().at(0)});
+  expect_ok(forget, "forget");
+  EXPECT_EQ(forget.lines(), 1u) << forget.output;
+  EXPECT_NE(forget.output.find("forgotten"), std::string::npos) << forget.output;
+  expect_fails({"forget"});
+  expect_fails({"forget", "r1"}, empty_domain.id());
+}
+
 TEST_F(SlamctlTest, GoalAndPath) {
   const std::string id = robot_ids().at(0);
   const CtlRun goal = ctl({"goal", id, "direct", "5", "5"});
@@ -199,7 +244,10 @@ TEST_F(SlamctlTest, MapFilesGridAndEdits) {
   expect_map_ok({"map", "load", yaml});
   expect_fails({"map", "load", group.dir() + "/missing.yaml"});
 
-  expect_map_ok({"grid", "--resolution", "0.1"});
+  const CtlRun grid = ctl({"grid", "--resolution", "0.1"});
+  expect_ok(grid, "grid");
+  EXPECT_EQ(grid.lines(), 1u) << grid.output;
+  EXPECT_NE(grid.output.find("grid"), std::string::npos) << grid.output;
   EXPECT_TRUE(wait_until([&] { return std::abs(effects.resolution() - 0.1) < 1e-9; }, 20s))
       << "resolution " << effects.resolution();
   expect_fails({"grid", "--resolution", "-1"});
@@ -213,7 +261,10 @@ TEST_F(SlamctlTest, MapFilesGridAndEdits) {
 }
 
 TEST_F(SlamctlTest, SimSpawnRemovePauseResume) {
-  expect_ok(ctl({"sim", "spawn", "2"}), "sim spawn");
+  const CtlRun spawn = ctl({"sim", "spawn", "2"});
+  expect_ok(spawn, "sim spawn");
+  EXPECT_EQ(spawn.lines(), 1u) << spawn.output;
+  EXPECT_NE(spawn.output.find("spawned 2"), std::string::npos) << spawn.output;
   EXPECT_TRUE(wait_until([&] { return robot_count() == 4; }, 20s)) << robot_count();
   expect_fails({"sim", "spawn", "0"});
 

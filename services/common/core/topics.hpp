@@ -54,5 +54,7 @@ inline constexpr TopicInfo kSimReply{"slam/sim/reply", kCommandQos};
 inline constexpr TopicInfo kSimWorld{"slam/sim/world", kStateQos};
 inline constexpr TopicInfo kSimGroundTruth{"slam/sim/ground_truth", kTelemetryQos};
 inline constexpr TopicInfo kHeartbeat{"slam/system/heartbeat", kHeartbeatQos};
+inline constexpr TopicInfo kAlert{"slam/system/alert", kStateQos};
+inline constexpr TopicInfo kForgetRobot{"slam/robot/forget", kCommandQos};
 
 }  // namespace slam::topics

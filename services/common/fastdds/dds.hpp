@@ -94,6 +94,17 @@ class Writer {
   bool write(const T& sample) {
     return log_write_result(writer_->write(const_cast<T*>(&sample), fdds::HANDLE_NIL), writer_);
   }
+  // The instance keyed like `key_sample` is gone (a forgotten robot): readers and late joiners of a
+  // transient-local topic no longer get its last sample from this writer.
+  bool dispose(const T& key_sample) {
+    return log_write_result(writer_->dispose(const_cast<T*>(&key_sample), fdds::HANDLE_NIL), writer_);
+  }
+  // This writer no longer speaks for the instance (another instance of the service took it over);
+  // its last sample is not replayed to late joiners.
+  bool unregister(const T& key_sample) {
+    return log_write_result(writer_->unregister_instance(const_cast<T*>(&key_sample), fdds::HANDLE_NIL),
+                            writer_);
+  }
   // Number of readers currently matched (for readiness checks and tests).
   int matched_readers() const;
   // Waits until `n` readers matched, then a little longer: the remote reader may match this writer

@@ -38,5 +38,7 @@ inline const Topic<SimReply, SimReplyPubSubType> kSimReply{topics::kSimReply};
 inline const Topic<SimWorld, SimWorldPubSubType> kSimWorld{topics::kSimWorld};
 inline const Topic<SimGroundTruth, SimGroundTruthPubSubType> kSimGroundTruth{topics::kSimGroundTruth};
 inline const Topic<Heartbeat, HeartbeatPubSubType> kHeartbeat{topics::kHeartbeat};
+inline const Topic<Alert, AlertPubSubType> kAlert{topics::kAlert};
+inline const Topic<ForgetRobot, ForgetRobotPubSubType> kForgetRobot{topics::kForgetRobot};
 
 }  // namespace slam::dds

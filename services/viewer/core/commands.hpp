@@ -77,6 +77,18 @@ struct InitialPoseCommand {
   Pose pose;
 };
 
+// Every gateway, planner and viewer drops the robot (ForgetRobot); its map data stays.
+struct ForgetCommand {
+  std::string robot_id;
+};
+
+// A path request (PathRequest) the viewer previews: drawn with its length, or the reason it failed.
+struct PathPreviewCommand {
+  Vec2 start;
+  Vec2 goal;
+  std::string algorithm = "astar";
+};
+
 class CommandSink {
  public:
   virtual ~CommandSink() = default;
@@ -87,6 +99,8 @@ class CommandSink {
   virtual uint64_t send(const SimCommand& c) = 0;
   virtual uint64_t send(const MapFileCommand& c) = 0;
   virtual uint64_t send(const InitialPoseCommand& c) = 0;
+  virtual uint64_t send(const ForgetCommand& c) = 0;
+  virtual uint64_t send(const PathPreviewCommand& c) = 0;
 };
 
 }  // namespace slam::viewer

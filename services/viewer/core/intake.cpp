@@ -55,6 +55,18 @@ const char* correction_source_name(CorrectionSource s) {
   return "?";
 }
 
+const char* alert_kind_name(AlertKind k) {
+  switch (k) {
+    case AlertKind::RobotOffline:
+      return "robot offline";
+    case AlertKind::ServiceSilent:
+      return "service silent";
+    case AlertKind::BatteryLow:
+      return "battery low";
+  }
+  return "?";
+}
+
 void IntakeBatch::clear() {
   snapshot.reset();
   patches.clear();
@@ -70,6 +82,9 @@ void IntakeBatch::clear() {
   replies.clear();
   mqtt_replies.clear();
   sim_replies.clear();
+  alerts.clear();
+  forgets.clear();
+  path_replies.clear();
   mqtt_dropped = 0;
 }
 
@@ -161,6 +176,21 @@ void Intake::push(MqttReplyData&& r) {
 void Intake::push(SimReplyData&& r) {
   std::lock_guard lock(mutex_);
   pending_.sim_replies.push_back(std::move(r));
+}
+
+void Intake::push(AlertData&& a) {
+  std::lock_guard lock(mutex_);
+  pending_.alerts.push_back(std::move(a));
+}
+
+void Intake::push(ForgetData&& f) {
+  std::lock_guard lock(mutex_);
+  pending_.forgets.push_back(std::move(f));
+}
+
+void Intake::push(PathReplyData&& r) {
+  std::lock_guard lock(mutex_);
+  pending_.path_replies.push_back(std::move(r));
 }
 
 void Intake::drain(IntakeBatch& out) {

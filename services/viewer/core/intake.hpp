@@ -27,6 +27,9 @@ struct IntakeBatch {
   std::vector<MapReplyData> replies;
   std::vector<MqttReplyData> mqtt_replies;
   std::vector<SimReplyData> sim_replies;
+  std::vector<AlertData> alerts;
+  std::vector<ForgetData> forgets;
+  std::vector<PathReplyData> path_replies;
   uint64_t mqtt_dropped = 0;  // entries dropped because the render thread fell behind
 
   void clear();
@@ -51,6 +54,9 @@ class Intake {
   void push(MapReplyData&& r);
   void push(MqttReplyData&& r);
   void push(SimReplyData&& r);
+  void push(AlertData&& a);
+  void push(ForgetData&& f);
+  void push(PathReplyData&& r);
 
   // Moves everything pending into `out` (cleared first); `out`'s buffers are reused next time.
   void drain(IntakeBatch& out);

@@ -15,10 +15,12 @@ enum class GoalMode : uint8_t { Idle, Direct, Planned, Square, Explore, Home, St
 enum class GoalStatus : uint8_t { None, Active, Reached, Failed };
 enum class ServiceState : uint8_t { Starting, Running, Stopping };
 enum class CorrectionSource : uint8_t { Identity, Match, Loop, Operator, Restored };
+enum class AlertKind : uint8_t { RobotOffline, ServiceSilent, BatteryLow };
 
 const char* goal_mode_name(GoalMode m);
 const char* goal_status_name(GoalStatus s);
 const char* correction_source_name(CorrectionSource s);
+const char* alert_kind_name(AlertKind k);
 
 struct GridInfoData {
   uint32_t width = 0;
@@ -129,6 +131,32 @@ struct SimRobotTruthData {
 struct SimTruthData {
   bool paused = false;
   std::vector<SimRobotTruthData> robots;
+};
+
+// An operator alert (Alert, raised and cleared by the planners).
+struct AlertData {
+  std::string alert_id;
+  AlertKind kind = AlertKind::RobotOffline;
+  std::string subject;
+  bool active = false;
+  int64_t raised_ns = 0;  // wall clock
+  std::string message;
+  std::string raised_by;
+};
+
+// A ForgetRobot command (from this viewer or any other client).
+struct ForgetData {
+  std::string robot_id;
+};
+
+// A planner's PathReply.
+struct PathReplyData {
+  uint64_t request_id = 0;
+  bool ok = false;     // PLAN_OK
+  std::string reason;  // why not, when not ok
+  std::vector<Vec2> path;
+  double length_m = 0.0;
+  double planning_time_s = 0.0;
 };
 
 struct MapReplyData {

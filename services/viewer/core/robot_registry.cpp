@@ -20,6 +20,18 @@ RobotView* RobotRegistry::find(const std::string& id) {
   return it == index_.end() ? nullptr : robots_[it->second].get();
 }
 
+bool RobotRegistry::forget(const std::string& id) {
+  const auto it = index_.find(id);
+  if (it == index_.end()) return false;
+  const size_t at = it->second;
+  robots_.erase(robots_.begin() + static_cast<std::ptrdiff_t>(at));
+  index_.erase(it);
+  for (auto& [other, position] : index_)
+    if (position > at) --position;
+  ++removals_;
+  return true;
+}
+
 void RobotRegistry::ingest(const ObservationData& o) {
   RobotView& r = get_or_add(o.robot_id);
   ++r.observations;

@@ -57,6 +57,11 @@ class RobotRegistry {
   void ingest(RobotStateData&& s);
   void ingest(RobotPathData&& p);
   void ingest(PoseCorrectionData&& c);
+  // The operator forgot the robot: its view, settings and points go, and the robots after it move
+  // up one place. False when it was not known.
+  bool forget(const std::string& id);
+  // Bumped by every forget: whoever keeps data by robot position (the GL point buffers) rebuilds it.
+  uint64_t removals() const { return removals_; }
 
   // Settings given to robots seen from now on; apply_defaults_to_all() pushes them to every robot.
   RobotSettings& defaults() { return defaults_; }
@@ -72,6 +77,7 @@ class RobotRegistry {
   RobotSettings defaults_;
   std::vector<std::unique_ptr<RobotView>> robots_;
   std::unordered_map<std::string, size_t> index_;  // id -> position in robots_
+  uint64_t removals_ = 0;
 };
 
 }  // namespace slam::viewer

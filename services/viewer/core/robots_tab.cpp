@@ -22,4 +22,8 @@ void RobotsTab::reset_robot(ViewerState& state, CommandSink& sink, RobotView& r)
     r.points.reset();
 }
 
+void RobotsTab::forget_robot(ViewerState& state, CommandSink& sink, const RobotView& r) {
+  state.note_sent(sink.send(ForgetCommand{r.id}), "forget " + r.id, error);
+}
+
 }  // namespace slam::viewer

@@ -41,6 +41,12 @@ void ViewerState::ingest(IntakeBatch& batch, int64_t now_ns) {
   for (auto& s : batch.states) robots.ingest(std::move(s));
   for (auto& p : batch.paths) robots.ingest(std::move(p));
   for (auto& c : batch.corrections) robots.ingest(std::move(c));
+  for (const auto& f : batch.forgets) {
+    robots.forget(f.robot_id);
+    if (selected_robot == f.robot_id) selected_robot = "*";
+  }
+  for (auto& a : batch.alerts) alerts.update(std::move(a));
+  for (auto& r : batch.path_replies) path_preview.reply(std::move(r));
   for (auto& h : batch.heartbeats) services.update(std::move(h), now_ns);
   for (auto& e : batch.mqtt) {
     (e.inbound ? rates.mqtt_in : rates.mqtt_out).add();
@@ -65,6 +71,7 @@ void ViewerState::ingest(IntakeBatch& batch, int64_t now_ns) {
   mqtt_requests.tick(now_ns);
   sim_requests.tick(now_ns);
   pose_requests.tick(now_ns);
+  path_preview.tick(now_ns);
   rates.tick(now_ns);
 }
 

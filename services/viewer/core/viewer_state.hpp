@@ -7,11 +7,13 @@
 #include <optional>
 #include <string>
 
+#include "viewer/core/alert_board.hpp"
 #include "viewer/core/cell_colors.hpp"
 #include "viewer/core/click_actions.hpp"
 #include "viewer/core/grid_mirror.hpp"
 #include "viewer/core/intake.hpp"
 #include "viewer/core/mqtt_log.hpp"
+#include "viewer/core/path_preview.hpp"
 #include "viewer/core/pose_tool.hpp"
 #include "viewer/core/rate_meter.hpp"
 #include "viewer/core/request_tracker.hpp"
@@ -39,6 +41,7 @@ struct ViewerState {
   MqttSubscriptionsData subscriptions;
   bool have_subscriptions = false;
   ServiceHealth services;
+  AlertBoard alerts;
   MessageRates rates;
   std::optional<SimWorldData> world;
   std::optional<SimTruthData> truth;
@@ -69,7 +72,8 @@ struct ViewerState {
   std::string selected_robot = "*";  // goals and manual drive go here; "*" = every robot
   double square_size = 1.0;
   bool square_centred = false;
-  PoseTool pose_tool;  // "Set pose": drag on the map sends the selected robot an InitialPose
+  PoseTool pose_tool;        // "Set pose": drag on the map sends the selected robot an InitialPose
+  PathPreview path_preview;  // "Preview path": two clicks send a PathRequest, the reply is drawn
 
   // Process info.
   int64_t started_ns = 0;  // monotonic

@@ -131,6 +131,31 @@ SimReplyData from_idl(const slam::SimReply& r) {
   return {{r.command_id(), r.ok(), r.message().to_string()}};
 }
 
+AlertData from_idl(const slam::Alert& a) {
+  return {a.alert_id().to_string(),
+          static_cast<AlertKind>(a.kind()),
+          a.subject().to_string(),
+          a.active(),
+          a.raised_ns(),
+          a.message().to_string(),
+          a.raised_by().to_string()};
+}
+
+ForgetData from_idl(const slam::ForgetRobot& f) {
+  return {f.robot_id().to_string()};
+}
+
+PathReplyData from_idl(const slam::PathReply& r) {
+  PathReplyData d;
+  d.request_id = r.request_id();
+  d.ok = r.status() == slam::PLAN_OK;
+  d.reason = r.reason().to_string();
+  for (const auto& p : r.path()) d.path.push_back(vec(p));
+  d.length_m = r.length_m();
+  d.planning_time_s = r.planning_time_s();
+  return d;
+}
+
 PoseCorrectionData from_idl(const slam::PoseCorrection& c) {
   return {c.robot_id().to_string(), c.version(),
           pose(c.map_from_odom()),  c.keyframes(),
@@ -212,6 +237,24 @@ slam::InitialPose to_idl(const InitialPoseCommand& c, uint64_t request_id) {
   pose.theta(c.pose.theta);
   p.pose(pose);
   return p;
+}
+
+slam::ForgetRobot to_idl(const ForgetCommand& c, uint64_t request_id) {
+  slam::ForgetRobot f;
+  f.request_id(request_id);
+  f.robot_id(c.robot_id);
+  return f;
+}
+
+slam::PathRequest to_idl(const PathPreviewCommand& c, uint64_t request_id) {
+  slam::PathRequest r;
+  r.request_id(request_id);
+  r.client_id("viewer");
+  r.start(point(c.start));
+  r.goal(point(c.goal));
+  r.algorithm(c.algorithm);
+  r.time_budget_s(1.0);
+  return r;
 }
 
 }  // namespace slam::viewer

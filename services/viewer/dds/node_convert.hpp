@@ -21,6 +21,9 @@ MapReplyData from_idl(const slam::MapReply& r);
 MqttReplyData from_idl(const slam::MqttReply& r);
 SimReplyData from_idl(const slam::SimReply& r);
 PoseCorrectionData from_idl(const slam::PoseCorrection& c);
+AlertData from_idl(const slam::Alert& a);
+ForgetData from_idl(const slam::ForgetRobot& f);
+PathReplyData from_idl(const slam::PathReply& r);
 
 slam::NavGoal to_idl(const GoalCommand& c, uint64_t goal_id);
 slam::MapEdit to_idl(const MapEditCommand& c, uint64_t request_id);
@@ -29,5 +32,7 @@ slam::MqttRequest to_idl(const MqttRequestCommand& c, uint64_t request_id);
 slam::SimControl to_idl(const SimCommand& c, uint64_t command_id);
 slam::MapFileRequest to_idl(const MapFileCommand& c, uint64_t request_id);
 slam::InitialPose to_idl(const InitialPoseCommand& c, uint64_t request_id);
+slam::ForgetRobot to_idl(const ForgetCommand& c, uint64_t request_id);
+slam::PathRequest to_idl(const PathPreviewCommand& c, uint64_t request_id);
 
 }  // namespace slam::viewer

@@ -78,9 +78,12 @@ Status ViewerNode::create_writers() {
         make_writer_into(p, dds::kSimControl, sim_writer_),
         make_writer_into(p, dds::kMapFileRequest, file_writer_),
         make_writer_into(p, dds::kInitialPose, initial_pose_writer_),
+        make_writer_into(p, dds::kForgetRobot, forget_writer_),
+        make_writer_into(p, dds::kPathRequest, path_request_writer_),
         make_intake_requester(p, dds::kMapReply, intake_, received_, map_requester_),
         make_intake_requester(p, dds::kMqttReply, intake_, received_, mqtt_requester_),
-        make_intake_requester(p, dds::kSimReply, intake_, received_, sim_requester_)})
+        make_intake_requester(p, dds::kSimReply, intake_, received_, sim_requester_),
+        make_intake_requester(p, dds::kPathReply, intake_, received_, path_requester_)})
     if (!s) return s;
   return {};
 }
@@ -99,7 +102,9 @@ Status ViewerNode::create_readers() {
                    make_intake_reader(p, dds::kMqttTraffic, in, rx, traffic_reader_),
                    make_intake_reader(p, dds::kMqttSubscriptions, in, rx, subscriptions_reader_),
                    make_intake_reader(p, dds::kSimWorld, in, rx, world_reader_),
-                   make_intake_reader(p, dds::kSimGroundTruth, in, rx, truth_reader_)})
+                   make_intake_reader(p, dds::kSimGroundTruth, in, rx, truth_reader_),
+                   make_intake_reader(p, dds::kAlert, in, rx, alert_reader_),
+                   make_intake_reader(p, dds::kForgetRobot, in, rx, forget_reader_)})
     if (!s) return s;
   return {};
 }
@@ -138,6 +143,20 @@ uint64_t ViewerNode::send(const MapFileCommand& c) {
 }
 uint64_t ViewerNode::send(const InitialPoseCommand& c) {
   return request(*map_requester_, *initial_pose_writer_, to_idl(c, 0));
+}
+
+uint64_t ViewerNode::send(const ForgetCommand& c) {
+  // A command every gateway, planner and viewer acts on; nobody replies (slamctl forget likewise).
+  const uint64_t id = goal_ids_.next();
+  if (!forget_writer_->write(to_idl(c, id))) {
+    bump(send_failed_);
+    return 0;
+  }
+  bump(sent_);
+  return id;
+}
+uint64_t ViewerNode::send(const PathPreviewCommand& c) {
+  return request(*path_requester_, *path_request_writer_, to_idl(c, 0));
 }
 
 }  // namespace slam::viewer

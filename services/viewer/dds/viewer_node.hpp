@@ -31,6 +31,8 @@ class ViewerNode final : public CommandSink {
   uint64_t send(const SimCommand& c) override;
   uint64_t send(const MapFileCommand& c) override;
   uint64_t send(const InitialPoseCommand& c) override;
+  uint64_t send(const ForgetCommand& c) override;
+  uint64_t send(const PathPreviewCommand& c) override;
 
  private:
   ViewerNode(Intake& intake, Counters& counters);
@@ -56,10 +58,13 @@ class ViewerNode final : public CommandSink {
   std::unique_ptr<dds::Writer<SimControl>> sim_writer_;
   std::unique_ptr<dds::Writer<MapFileRequest>> file_writer_;
   std::unique_ptr<dds::Writer<InitialPose>> initial_pose_writer_;
+  std::unique_ptr<dds::Writer<ForgetRobot>> forget_writer_;
+  std::unique_ptr<dds::Writer<PathRequest>> path_request_writer_;
   // After the writers they resend through, so they stop first.
   std::unique_ptr<dds::Requester<MapReply>> map_requester_;
   std::unique_ptr<dds::Requester<MqttReply>> mqtt_requester_;
   std::unique_ptr<dds::Requester<SimReply>> sim_requester_;
+  std::unique_ptr<dds::Requester<PathReply>> path_requester_;
   std::unique_ptr<dds::Reader<GridSnapshot>> snapshot_reader_;
   std::unique_ptr<dds::Reader<GridTiles>> patch_reader_;
   std::unique_ptr<dds::Reader<RobotObservation>> observation_reader_;
@@ -71,6 +76,8 @@ class ViewerNode final : public CommandSink {
   std::unique_ptr<dds::Reader<MqttSubscriptions>> subscriptions_reader_;
   std::unique_ptr<dds::Reader<SimWorld>> world_reader_;
   std::unique_ptr<dds::Reader<SimGroundTruth>> truth_reader_;
+  std::unique_ptr<dds::Reader<Alert>> alert_reader_;
+  std::unique_ptr<dds::Reader<ForgetRobot>> forget_reader_;
 };
 
 }  // namespace slam::viewer

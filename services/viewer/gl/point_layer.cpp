@@ -110,6 +110,12 @@ void PointLayer::grow(RobotBuffer& b, size_t points) {
 }
 
 void PointLayer::sync(const RobotRegistry& robots) {
+  if (robots.removals() != removals_) {
+    // A forgotten robot moved the ones after it: every buffer is uploaded again from its robot.
+    removals_ = robots.removals();
+    for (RobotBuffer& b : buffers_) b.uploaded = 0;
+    ++epoch_;
+  }
   if (buffers_.size() < robots.size()) buffers_.resize(robots.size());
   for (size_t i = 0; i < robots.size(); ++i) {
     const PointStore& store = robots.at(i).points;

@@ -87,7 +87,8 @@ class PointLayer {
   std::vector<RobotBuffer> buffers_;
   Target targets_[2];
   int shown_ = 0;
-  uint64_t epoch_ = 1;  // bumped when a robot's points were reset
+  uint64_t epoch_ = 1;     // bumped when a robot's points were reset
+  uint64_t removals_ = 0;  // RobotRegistry::removals() the buffers were uploaded for
   bool have_last_view_ = false;
   ViewTransform last_view_;
   std::vector<float> fp_scratch_;

@@ -8,6 +8,7 @@
 
 #include "viewer/core/auto_fit.hpp"
 #include "viewer/core/clicks_tab.hpp"
+#include "viewer/core/preview_clicks.hpp"
 #include "viewer/gl/gl_api.hpp"
 
 namespace slam::viewer {
@@ -53,6 +54,9 @@ void MapInput::handle(ViewerState& state, CommandSink& sink, int64_t now_ns) {
   // The pose tool owns the left button while armed; Escape or a right click cancels it.
   const bool pose_tool = state.pose_tool.armed();
   if (pose_tool && ImGui::IsKeyPressed(GLFW_KEY_ESCAPE)) cancel_pose_tool(state);
+  // The path preview owns the left button while armed, alike.
+  const bool preview_tool = state.path_preview.armed();
+  if (preview_tool && ImGui::IsKeyPressed(GLFW_KEY_ESCAPE)) cancel_path_preview(state);
   if (pose_drag_ && state.pose_tool.dragging()) {
     pose_drag(state, mouse);
     if (!ImGui::IsMouseDown(0)) pose_release(state, sink, mouse, now_ns);
@@ -61,6 +65,8 @@ void MapInput::handle(ViewerState& state, CommandSink& sink, int64_t now_ns) {
   if (drag_button_ < 0 && over_map) {
     if (pose_tool && ImGui::IsMouseClicked(1)) {
       cancel_pose_tool(state);
+    } else if (preview_tool && ImGui::IsMouseClicked(1)) {
+      cancel_path_preview(state);
     } else {
       for (int b : {1, 2})
         if (ImGui::IsMouseClicked(b)) {
@@ -73,6 +79,8 @@ void MapInput::handle(ViewerState& state, CommandSink& sink, int64_t now_ns) {
       if (state.pose_tool.armed()) {
         pose_press(state, mouse);
         pose_drag_ = true;
+      } else if (state.path_preview.armed()) {
+        path_preview_click(state, sink, mouse, now_ns);
       } else {
         apply_click(state, sink, mouse, MouseButton::Left);
       }

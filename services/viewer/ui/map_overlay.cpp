@@ -8,6 +8,7 @@
 #include <cstdio>
 
 #include "viewer/core/clicks_tab.hpp"
+#include "viewer/core/preview_clicks.hpp"
 #include "viewer/ui/map_input.hpp"
 
 namespace slam::viewer {
@@ -84,6 +85,33 @@ void draw_pose_arrow(ImDrawList* dl, const ViewTransform& v, const PoseTool::Arr
                         {to.x - head * ux + 0.5f * head * uy, to.y - head * uy - 0.5f * head * ux}, kColor);
 }
 
+// The previewed path: the polyline with its length at the goal, or a red line from start to goal
+// with the reason it failed; while the goal click is awaited, a ring at the start.
+void draw_path_preview(ImDrawList* dl, const ViewTransform& v, const PathPreview& preview) {
+  constexpr ImU32 kColor = IM_COL32(0, 230, 230, 255);
+  constexpr ImU32 kFailed = IM_COL32(255, 60, 60, 255);
+  if (const auto start = preview.pending_start())
+    dl->AddCircle(screen(v, start->x, start->y), 6.0f, kColor, 16, 2.5f);
+  const auto& request = preview.request();
+  if (!request) return;
+  const ImVec2 from = screen(v, request->start.x, request->start.y),
+               to = screen(v, request->goal.x, request->goal.y);
+  const auto& result = preview.result();
+  const bool ok = result && result->ok;
+  if (ok) {
+    for (size_t i = 1; i < result->path.size(); ++i)
+      dl->AddLine(screen(v, result->path[i - 1].x, result->path[i - 1].y),
+                  screen(v, result->path[i].x, result->path[i].y), kColor, 3.0f);
+  } else if (result) {
+    dl->AddLine(from, to, kFailed, 1.5f);
+  }
+  dl->AddCircle(from, 6.0f, ok || !result ? kColor : kFailed, 16, 2.5f);
+  draw_target(dl, to, ok || !result ? kColor : kFailed);
+  const std::string label = preview.summary();
+  dl->AddText({to.x + 13.0f, to.y + 5.0f}, IM_COL32(0, 0, 0, 220), label.c_str());
+  dl->AddText({to.x + 12.0f, to.y + 4.0f}, ok || !result ? kColor : kFailed, label.c_str());
+}
+
 }  // namespace
 
 void draw_map_overlay(const ViewerState& state) {
@@ -119,6 +147,7 @@ void draw_map_overlay(const ViewerState& state) {
       }
     }
   if (const auto arrow = state.pose_tool.arrow()) draw_pose_arrow(dl, v, *arrow);
+  draw_path_preview(dl, v, state.path_preview);
   dl->PopClipRect();
 }
 
@@ -157,6 +186,12 @@ void draw_view_bar(ViewerState& state) {
     if (ImGui::Button("Cancel pose")) cancel_pose_tool(state);
   } else if (ImGui::Button("Set pose")) {
     arm_pose_tool(state);
+  }
+  ImGui::SameLine();
+  if (state.path_preview.armed()) {
+    if (ImGui::Button("Cancel path")) cancel_path_preview(state);
+  } else if (ImGui::Button("Preview path")) {
+    arm_path_preview(state);
   }
   ImGui::SameLine();
   const ImVec2 m = ImGui::GetIO().MousePos;

@@ -1,9 +1,11 @@
-// Main tab: uptime, robots, message rates with small plots, every service's heartbeat.
+// Main tab: uptime, robots, active alerts, the path preview, message rates with small plots,
+// every service's heartbeat.
 #include <imgui.h>
 
 #include <algorithm>
 #include <cstdio>
 
+#include "common/core/clock.hpp"
 #include "viewer/ui/panels.hpp"
 
 namespace slam::viewer {
@@ -52,6 +54,16 @@ void draw_main_tab(const ViewerState& state, int64_t now_ns) {
   }
   if (!state.grid_error.empty()) ImGui::TextColored({1, 0.4f, 0.4f, 1}, "%s", state.grid_error.c_str());
   ImGui::TextDisabled("GL: %s", state.renderer.c_str());
+
+  const auto alerts = state.alerts.active();
+  char alerts_title[48];
+  std::snprintf(alerts_title, sizeof alerts_title, "Alerts (%zu)", alerts.size());
+  section_title(alerts_title);
+  if (alerts.empty()) ImGui::TextDisabled("no active alert");
+  const int64_t wall_now = slam::now_ns();  // alerts carry wall-clock stamps
+  for (const AlertData* a : alerts)
+    ImGui::TextColored({1.0f, 0.55f, 0.2f, 1.0f}, "%s", describe(*a, wall_now).c_str());
+  ImGui::TextDisabled("path preview: %s", state.path_preview.summary().c_str());
 
   section_title("Messages");
   rate_row("observations", state.rates.observations);

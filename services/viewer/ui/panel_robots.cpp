@@ -39,6 +39,9 @@ void robot_details(RobotsTab& tab, ViewerState& state, CommandSink& sink, RobotV
   ImGui::SameLine();
   if (ImGui::SmallButton("select")) RobotsTab::select(state, r.id);
   if (ImGui::Button("reset robot (delete its observations)")) tab.reset_robot(state, sink, r);
+  ImGui::SameLine();
+  // Gateways, planners and viewers drop it (goal, path, alerts); its map data stays.
+  if (ImGui::Button("forget")) tab.forget_robot(state, sink, r);
 
   if (r.has_state) {
     const RobotStateData& st = r.state;

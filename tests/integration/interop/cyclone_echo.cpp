@@ -51,6 +51,8 @@ const EchoTopic kTopics[] = {
     {&slam_SimWorld_desc, slam::topics::kSimWorld},
     {&slam_SimGroundTruth_desc, slam::topics::kSimGroundTruth},
     {&slam_Heartbeat_desc, slam::topics::kHeartbeat},
+    {&slam_Alert_desc, slam::topics::kAlert},
+    {&slam_ForgetRobot_desc, slam::topics::kForgetRobot},
 };
 
 volatile std::sig_atomic_t g_stop = 0;

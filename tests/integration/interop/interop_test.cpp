@@ -104,12 +104,14 @@ const std::vector<Case>& cases() {
       make_case("SimWorld", dds::kSimWorld, &sample_sim_world),
       make_case("SimGroundTruth", dds::kSimGroundTruth, &sample_sim_ground_truth),
       make_case("Heartbeat", dds::kHeartbeat, &sample_heartbeat),
+      make_case("Alert", dds::kAlert, &sample_alert),
+      make_case("ForgetRobot", dds::kForgetRobot, &sample_forget_robot),
   };
   return all;
 }
 
 // Topic types in topics.hpp: a new type there must get a case (and a line in cyclone_echo.cpp).
-constexpr size_t kTopicTypes = 25;
+constexpr size_t kTopicTypes = 27;
 
 class InteropTest : public ::testing::TestWithParam<size_t> {};
 

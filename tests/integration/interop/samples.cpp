@@ -326,4 +326,24 @@ Heartbeat sample_heartbeat() {
   return s;
 }
 
+Alert sample_alert() {
+  Alert s;
+  s.alert_id("battery/sim-7");
+  s.kind(ALERT_BATTERY_LOW);
+  s.subject("sim-7");
+  s.active(true);
+  s.raised_ns(1'700'000'000'123'456'789LL);
+  s.stamp_ns(-3);
+  s.message("robot 'sim-7' battery 12 % (below 20 %): sent home");
+  s.raised_by("host:4242");
+  return s;
+}
+
+ForgetRobot sample_forget_robot() {
+  ForgetRobot s;
+  s.request_id(0xfedcba9876543210ULL);
+  s.robot_id("forgotten-robot-1");
+  return s;
+}
+
 }  // namespace slam::interop

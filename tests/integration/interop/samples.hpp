@@ -30,5 +30,7 @@ SimReply sample_sim_reply();
 SimWorld sample_sim_world();
 SimGroundTruth sample_sim_ground_truth();
 Heartbeat sample_heartbeat();
+Alert sample_alert();
+ForgetRobot sample_forget_robot();
 
 }  // namespace slam::interop

@@ -202,5 +202,33 @@ TEST(RobotRegistry, NewRobotsBeyondTheLimitAreRefusedKnownOnesContinue) {
   EXPECT_EQ(registry.accept_observation("a", Protocol::V1, o, at(2)).kind, AcceptResult::Kind::Accepted);
 }
 
+TEST(RobotRegistry, ForgottenRobotIsGoneAndComesBackNewWithSequenceOne) {
+  RobotRegistry registry;
+  auto a = pose_at(1, 1);
+  registry.accept_observation("a", Protocol::V1, a, at(1));
+  registry.accept_observation("a", Protocol::V1, a, at(2));
+  changed_ids(registry);
+  EXPECT_TRUE(registry.forget("a"));
+  EXPECT_EQ(registry.find("a"), nullptr);
+  EXPECT_EQ(registry.online(), 0u);
+  EXPECT_TRUE(changed_ids(registry).empty());
+  EXPECT_FALSE(registry.forget("a"));
+  const AcceptResult again = registry.accept_observation("a", Protocol::V1, a, at(3));
+  EXPECT_TRUE(again.first_seen);
+  EXPECT_EQ(again.seq, 1u);
+  EXPECT_EQ(registry.online(), 1u);
+}
+
+TEST(RobotRegistry, ForgettingAnOfflineRobotKeepsTheOnlineCount) {
+  RobotRegistry registry({kSecond, 10});
+  auto a = pose_at(1, 1);
+  registry.accept_observation("a", Protocol::V1, a, at(1));
+  registry.accept_observation("b", Protocol::V1, a, at(5));
+  registry.expire(at(3));
+  ASSERT_EQ(registry.online(), 1u);
+  EXPECT_TRUE(registry.forget("a"));
+  EXPECT_EQ(registry.online(), 1u);
+}
+
 }  // namespace
 }  // namespace slam::gateway

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <nlohmann/json.hpp>
 
 namespace slam::ctl {
 namespace {
@@ -73,18 +74,146 @@ TEST(SlamctlFormat, PathReplyListsStatusAndPoints) {
   EXPECT_NE(text.find("(1.00, 2.00)"), std::string::npos);
 }
 
-TEST(SlamctlFormat, HeartbeatListsCounters) {
+Heartbeat heartbeat(const char* service, double uptime_s,
+                    std::vector<std::pair<const char*, int64_t>> counters) {
   Heartbeat hb;
-  hb.service("mapper");
+  hb.service(service);
+  hb.instance_id("host:42");
+  hb.state(SERVICE_RUNNING);
+  hb.uptime_s(uptime_s);
   hb.stamp_ns(0);
-  Counter c;
-  c.name("observations");
-  c.value(42);
-  hb.counters().push_back(c);
-  const std::string text = format_heartbeat(hb, 1'000'000'000);
-  EXPECT_NE(text.find("mapper"), std::string::npos);
-  EXPECT_NE(text.find("observations"), std::string::npos);
-  EXPECT_NE(text.find("42"), std::string::npos);
+  for (const auto& [name, value] : counters) {
+    Counter c;
+    c.name(name);
+    c.value(value);
+    hb.counters().push_back(c);
+  }
+  return hb;
+}
+
+TEST(SlamctlFormat, RatesComeFromTwoHeartbeats) {
+  const auto first = heartbeat("gateway", 10.0, {{"messages_in", 100}, {"observations", 50}});
+  const auto latest = heartbeat("gateway", 12.0, {{"messages_in", 140}, {"observations", 50}, {"new", 3}});
+  const ServiceSeen seen = service_seen(first, latest);
+  EXPECT_DOUBLE_EQ(seen.rates.at("messages_in"), 20.0);
+  EXPECT_DOUBLE_EQ(seen.rates.at("observations"), 0.0);
+  EXPECT_FALSE(seen.rates.contains("new")) << "a counter the first heartbeat lacked has no rate";
+  EXPECT_TRUE(service_seen(latest, latest).rates.empty()) << "one heartbeat: no rates";
+}
+
+TEST(SlamctlFormat, ServiceLineShowsMainRatesAndOnlyNonZeroErrors) {
+  const auto first = heartbeat("gateway", 10.0, {{"messages_in", 100}, {"publish_failures", 0}});
+  const auto latest =
+      heartbeat("gateway", 11.0,
+                {{"messages_in", 110}, {"publish_failures", 0}, {"rejected_bad_json", 3}, {"statuses", 9}});
+  const std::string line = format_service(service_seen(first, latest), 1'000'000'000, false);
+  EXPECT_EQ(std::count(line.begin(), line.end(), '\n'), 1) << line;
+  EXPECT_NE(line.find("gateway"), std::string::npos) << line;
+  EXPECT_NE(line.find("running"), std::string::npos) << line;
+  EXPECT_NE(line.find("up     11.0 s"), std::string::npos) << line;
+  EXPECT_NE(line.find("messages_in 10.0/s"), std::string::npos) << line;
+  EXPECT_NE(line.find("errors: rejected_bad_json 3"), std::string::npos) << line;
+  EXPECT_EQ(line.find("publish_failures"), std::string::npos) << "zero errors are not shown: " << line;
+  EXPECT_EQ(line.find("statuses"), std::string::npos) << "not a main counter: " << line;
+
+  const std::string verbose = format_service(service_seen(first, latest), 1'000'000'000, true);
+  EXPECT_EQ(std::count(verbose.begin(), verbose.end(), '\n'), 5) << verbose;
+  EXPECT_NE(verbose.find("statuses"), std::string::npos) << verbose;
+}
+
+TEST(SlamctlFormat, ErrorCountersAreRecognisedByName) {
+  for (const char* name : {"write_failures", "robots_refused", "rejected_bad_json", "traffic_dropped",
+                           "observations_lost", "request_errors", "loop_overruns"})
+    EXPECT_TRUE(is_error_counter(name)) << name;
+  for (const char* name : {"messages_in", "robots_online", "waypoints_sent", "alerts_active"})
+    EXPECT_FALSE(is_error_counter(name)) << name;
+  EXPECT_FALSE(main_counters("planner").empty());
+  EXPECT_TRUE(main_counters("unknown-service").empty());
+}
+
+TEST(SlamctlFormat, StatusJsonCarriesCountersRatesAndErrors) {
+  const auto first = heartbeat("mapper", 1.0, {{"observations", 10}, {"store_errors", 1}});
+  const auto latest = heartbeat("mapper", 3.0, {{"observations", 30}, {"store_errors", 1}});
+  const auto json = nlohmann::json::parse(services_json({service_seen(first, latest)}, 2'000'000'000));
+  ASSERT_TRUE(json.is_array());
+  ASSERT_EQ(json.size(), 1u);
+  EXPECT_EQ(json[0]["service"], "mapper");
+  EXPECT_EQ(json[0]["instance"], "host:42");
+  EXPECT_EQ(json[0]["state"], "running");
+  EXPECT_DOUBLE_EQ(json[0]["uptime_s"].get<double>(), 3.0);
+  EXPECT_DOUBLE_EQ(json[0]["seen_s_ago"].get<double>(), 2.0);
+  EXPECT_EQ(json[0]["counters"]["observations"], 30);
+  EXPECT_DOUBLE_EQ(json[0]["rates"]["observations"].get<double>(), 10.0);
+  EXPECT_EQ(json[0]["errors"]["store_errors"], 1);
+  EXPECT_FALSE(json[0]["errors"].contains("observations"));
+}
+
+TEST(SlamctlFormat, RobotsJsonHasNullsForWhatIsUnknown) {
+  RobotSeen v1;
+  v1.state.robot_id("legacy");
+  v1.state.protocol(PROTOCOL_V1);
+  v1.state.presence(PRESENCE_OFFLINE);
+  v1.state.battery(-1.0f);
+  v1.state.pose().x(1.5);
+  RobotSeen v2;
+  v2.state.robot_id("modern");
+  v2.state.protocol(PROTOCOL_V2);
+  v2.state.has_heading(true);
+  v2.state.pose().theta(0.5);
+  v2.state.battery(0.75f);
+  v2.path = RobotPath{};
+  v2.path->mode(GOAL_HOME);
+  v2.path->status(GOAL_STATUS_ACTIVE);
+  v2.correction = PoseCorrection{};
+  v2.correction->version(4);
+  const auto json = nlohmann::json::parse(robots_json({v1, v2}, 0));
+  ASSERT_EQ(json.size(), 2u);
+  EXPECT_EQ(json[0]["id"], "legacy");
+  EXPECT_EQ(json[0]["presence"], "offline");
+  EXPECT_EQ(json[0]["protocol"], "v1");
+  EXPECT_DOUBLE_EQ(json[0]["x"].get<double>(), 1.5);
+  EXPECT_TRUE(json[0]["theta"].is_null());
+  EXPECT_TRUE(json[0]["battery"].is_null());
+  EXPECT_TRUE(json[0]["goal"].is_null());
+  EXPECT_TRUE(json[0]["correction"].is_null());
+  EXPECT_DOUBLE_EQ(json[1]["theta"].get<double>(), 0.5);
+  EXPECT_DOUBLE_EQ(json[1]["battery"].get<double>(), 0.75);
+  EXPECT_EQ(json[1]["goal"]["mode"], "home");
+  EXPECT_EQ(json[1]["goal"]["status"], "active");
+  EXPECT_EQ(json[1]["correction"]["version"], 4);
+}
+
+Alert alert(const char* id, AlertKind kind, bool active) {
+  Alert a;
+  a.alert_id(id);
+  a.kind(kind);
+  a.subject("sim-1");
+  a.active(active);
+  a.raised_ns(1'000'000'000);
+  a.stamp_ns(2'000'000'000);
+  a.raised_by("host:7");
+  a.message("robot 'sim-1' battery 10 % (below 20 %): sent home");
+  return a;
+}
+
+TEST(SlamctlFormat, AlertLineAndJson) {
+  const std::string line = format_alert(alert("battery/sim-1", ALERT_BATTERY_LOW, true), 4'000'000'000);
+  EXPECT_EQ(std::count(line.begin(), line.end(), '\n'), 1) << line;
+  for (const char* part : {"ACTIVE", "battery low", "sim-1", "raised    3.0 s ago", "host:7", "sent home"})
+    EXPECT_NE(line.find(part), std::string::npos) << part << " in " << line;
+  EXPECT_NE(format_alert(alert("offline/sim-1", ALERT_ROBOT_OFFLINE, false), 0).find("cleared"),
+            std::string::npos);
+
+  const auto json = nlohmann::json::parse(alerts_json(
+      {alert("battery/sim-1", ALERT_BATTERY_LOW, true), alert("silent/x", ALERT_SERVICE_SILENT, false)},
+      4'000'000'000));
+  ASSERT_EQ(json.size(), 2u);
+  EXPECT_EQ(json[0]["id"], "battery/sim-1");
+  EXPECT_EQ(json[0]["kind"], "battery low");
+  EXPECT_EQ(json[0]["active"], true);
+  EXPECT_DOUBLE_EQ(json[0]["raised_s_ago"].get<double>(), 3.0);
+  EXPECT_EQ(json[1]["kind"], "service silent");
+  EXPECT_EQ(json[1]["active"], false);
 }
 
 }  // namespace

@@ -17,10 +17,12 @@ class FakeCommandSink final : public CommandSink {
   uint64_t send(const SimCommand& c) override { return record(sim, c); }
   uint64_t send(const MapFileCommand& c) override { return record(map_files, c); }
   uint64_t send(const InitialPoseCommand& c) override { return record(initial_poses, c); }
+  uint64_t send(const ForgetCommand& c) override { return record(forgets, c); }
+  uint64_t send(const PathPreviewCommand& c) override { return record(path_previews, c); }
 
   size_t total() const {
     return goals.size() + edits.size() + grid_configs.size() + mqtt.size() + sim.size() + map_files.size() +
-           initial_poses.size();
+           initial_poses.size() + forgets.size() + path_previews.size();
   }
 
   std::vector<GoalCommand> goals;
@@ -30,6 +32,8 @@ class FakeCommandSink final : public CommandSink {
   std::vector<SimCommand> sim;
   std::vector<MapFileCommand> map_files;
   std::vector<InitialPoseCommand> initial_poses;
+  std::vector<ForgetCommand> forgets;
+  std::vector<PathPreviewCommand> path_previews;
   bool refuse = false;
   uint64_t last_id = 0;
 
