@@ -67,7 +67,8 @@ PlannerNode::PlannerNode(const PlannerOptions& options, Counters& counters)
       fleet_(options.fleet),
       seq_base_(static_cast<uint64_t>(now_ns() / 1'000'000)),
       // The instance id this process's heartbeats carry (host:pid), so peers and self agree.
-      ownership_(ServiceIdentity::of("planner").instance_id, monotonic_ns(), ownership_config(options)) {}
+      ownership_(ServiceIdentity::of("planner").instance_id, monotonic_ns(), ownership_config(options)),
+      missions_(counters) {}
 
 Result<std::unique_ptr<PlannerNode>> PlannerNode::create(const PlannerOptions& options, Counters& counters) {
   std::unique_ptr<PlannerNode> node(new PlannerNode(options, counters));
@@ -134,6 +135,7 @@ Status PlannerNode::configure() {
                                 });
   if (!goals) return goals.error();
   goal_reader_ = std::move(*goals);
+  SLAM_TRY(missions_.connect(*participant_));
   auto requests =
       dds::make_reader(*participant_, dds::kPathRequest,
                        [this](const slam::PathRequest& r, const auto&) { intake_.push_request(r); });
@@ -157,6 +159,7 @@ void PlannerNode::run_once() {
   const int64_t now = monotonic_ns();
   update_ownership(now);
   apply_reports();
+  missions_.run(fleet_, goal_store_);
   submit_requests(batch_.requests);
   count_replans();
   fleet_.tick(grid_, now);
@@ -177,9 +180,10 @@ void PlannerNode::resume_goals() {
     }
     ++resumed;
   }
+  const size_t missions = missions_.resume(record, fleet_);
   if (!options_.goal_store.empty()) {
-    spdlog::info("goal store {}: {} goal(s) resumed, {} home(s) known", options_.goal_store, resumed,
-                 record.homes.size());
+    spdlog::info("goal store {}: {} goal(s) and {} mission(s) resumed, {} home(s) known", options_.goal_store,
+                 resumed, missions, record.homes.size());
   }
 }
 
@@ -288,6 +292,7 @@ void PlannerNode::apply_goals(const std::vector<ReceivedGoal>& goals) {
       continue;
     }
     bump(metrics_.goals_accepted);
+    missions_.goal_accepted(command->robot_id);
     store_goal(command->robot_id, command->goal, received.sent_ns);
     spdlog::info("goal {} (mode {}) for robot '{}' ({} robot(s) now), target ({}, {})", sample.goal_id(),
                  static_cast<uint32_t>(sample.mode()), id, *started, sample.target().x(),

@@ -25,6 +25,7 @@
 #include "common/fastdds/fast_topics.hpp"
 #include "planner/fleet.hpp"
 #include "planner/goal_store.hpp"
+#include "planner/mission_edge.hpp"
 #include "planner/planner_intake.hpp"
 #include "planner/planner_msgs.hpp"
 #include "planner/planner_options.hpp"
@@ -156,6 +157,8 @@ class PlannerNode {
   std::unique_ptr<dds::Reader<slam::PathRequest>> request_reader_;
   std::unique_ptr<dds::Reader<slam::Heartbeat>> heartbeat_reader_;
   std::unique_ptr<dds::Reader<slam::RobotPath>> path_reader_;
+  // Its reader stops before the participant goes.
+  MissionEdge missions_;
 };
 
 }  // namespace slam::planner

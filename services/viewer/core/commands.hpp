@@ -77,6 +77,13 @@ struct InitialPoseCommand {
   Pose pose;
 };
 
+// A list of waypoints for one robot, driven in order once or looped (NavMission).
+struct MissionCommand {
+  std::string robot_id;
+  std::vector<Vec2> waypoints;
+  bool loop = false;
+};
+
 class CommandSink {
  public:
   virtual ~CommandSink() = default;
@@ -87,6 +94,7 @@ class CommandSink {
   virtual uint64_t send(const SimCommand& c) = 0;
   virtual uint64_t send(const MapFileCommand& c) = 0;
   virtual uint64_t send(const InitialPoseCommand& c) = 0;
+  virtual uint64_t send(const MissionCommand& c) = 0;
 };
 
 }  // namespace slam::viewer

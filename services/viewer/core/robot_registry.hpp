@@ -32,6 +32,8 @@ struct RobotView {
   RobotStateData state;
   bool has_path = false;
   RobotPathData path;
+  bool has_mission = false;
+  MissionData mission;
   bool has_correction = false;
   PoseCorrectionData correction;
   PointStore points;  // raw, in the robot's odometry frame: draw them through map_from_odom()
@@ -56,6 +58,7 @@ class RobotRegistry {
   void ingest(const ObservationData& o);
   void ingest(RobotStateData&& s);
   void ingest(RobotPathData&& p);
+  void ingest(MissionData&& m);
   void ingest(PoseCorrectionData&& c);
 
   // Settings given to robots seen from now on; apply_defaults_to_all() pushes them to every robot.

@@ -11,6 +11,7 @@
 #include "viewer/core/click_actions.hpp"
 #include "viewer/core/grid_mirror.hpp"
 #include "viewer/core/intake.hpp"
+#include "viewer/core/mission_tool.hpp"
 #include "viewer/core/mqtt_log.hpp"
 #include "viewer/core/pose_tool.hpp"
 #include "viewer/core/rate_meter.hpp"
@@ -70,6 +71,7 @@ struct ViewerState {
   double square_size = 1.0;
   bool square_centred = false;
   PoseTool pose_tool;  // "Set pose": drag on the map sends the selected robot an InitialPose
+  MissionTool mission_tool;  // while armed, left clicks add waypoints to a mission for the selected robot
 
   // Process info.
   int64_t started_ns = 0;  // monotonic

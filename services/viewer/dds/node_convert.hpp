@@ -12,6 +12,7 @@ GridPatchData from_idl(const slam::GridTiles& p);
 ObservationData from_idl(const slam::RobotObservation& o);
 RobotStateData from_idl(const slam::RobotState& s);
 RobotPathData from_idl(const slam::RobotPath& p);
+MissionData from_idl(const slam::NavMission& m);
 HeartbeatData from_idl(const slam::Heartbeat& h);
 MqttEntry from_idl(const slam::MqttTraffic& t);
 MqttSubscriptionsData from_idl(const slam::MqttSubscriptions& s);
@@ -29,5 +30,6 @@ slam::MqttRequest to_idl(const MqttRequestCommand& c, uint64_t request_id);
 slam::SimControl to_idl(const SimCommand& c, uint64_t command_id);
 slam::MapFileRequest to_idl(const MapFileCommand& c, uint64_t request_id);
 slam::InitialPose to_idl(const InitialPoseCommand& c, uint64_t request_id);
+slam::NavMission to_idl(const MissionCommand& c, uint64_t mission_id);
 
 }  // namespace slam::viewer

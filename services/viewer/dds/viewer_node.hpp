@@ -31,6 +31,7 @@ class ViewerNode final : public CommandSink {
   uint64_t send(const SimCommand& c) override;
   uint64_t send(const MapFileCommand& c) override;
   uint64_t send(const InitialPoseCommand& c) override;
+  uint64_t send(const MissionCommand& c) override;
 
  private:
   ViewerNode(Intake& intake, Counters& counters);
@@ -56,6 +57,7 @@ class ViewerNode final : public CommandSink {
   std::unique_ptr<dds::Writer<SimControl>> sim_writer_;
   std::unique_ptr<dds::Writer<MapFileRequest>> file_writer_;
   std::unique_ptr<dds::Writer<InitialPose>> initial_pose_writer_;
+  std::unique_ptr<dds::Writer<NavMission>> mission_writer_;
   // After the writers they resend through, so they stop first.
   std::unique_ptr<dds::Requester<MapReply>> map_requester_;
   std::unique_ptr<dds::Requester<MqttReply>> mqtt_requester_;
@@ -65,6 +67,7 @@ class ViewerNode final : public CommandSink {
   std::unique_ptr<dds::Reader<RobotObservation>> observation_reader_;
   std::unique_ptr<dds::Reader<RobotState>> state_reader_;
   std::unique_ptr<dds::Reader<RobotPath>> path_reader_;
+  std::unique_ptr<dds::Reader<NavMission>> mission_reader_;
   std::unique_ptr<dds::Reader<PoseCorrection>> correction_reader_;
   std::unique_ptr<dds::Reader<Heartbeat>> heartbeat_reader_;
   std::unique_ptr<dds::Reader<MqttTraffic>> traffic_reader_;

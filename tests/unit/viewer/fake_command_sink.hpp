@@ -17,10 +17,11 @@ class FakeCommandSink final : public CommandSink {
   uint64_t send(const SimCommand& c) override { return record(sim, c); }
   uint64_t send(const MapFileCommand& c) override { return record(map_files, c); }
   uint64_t send(const InitialPoseCommand& c) override { return record(initial_poses, c); }
+  uint64_t send(const MissionCommand& c) override { return record(missions, c); }
 
   size_t total() const {
     return goals.size() + edits.size() + grid_configs.size() + mqtt.size() + sim.size() + map_files.size() +
-           initial_poses.size();
+           initial_poses.size() + missions.size();
   }
 
   std::vector<GoalCommand> goals;
@@ -30,6 +31,7 @@ class FakeCommandSink final : public CommandSink {
   std::vector<SimCommand> sim;
   std::vector<MapFileCommand> map_files;
   std::vector<InitialPoseCommand> initial_poses;
+  std::vector<MissionCommand> missions;
   bool refuse = false;
   uint64_t last_id = 0;
 
