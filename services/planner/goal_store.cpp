@@ -93,7 +93,8 @@ Result<StoredGoal> to_stored_goal(const json& item, size_t index) {
 Result<StoredMission> to_stored_mission(const json& item, size_t index) {
   const std::string where = "missions[" + std::to_string(index) + "]";
   if (!item.is_object()) return Error{where + " must be an object"};
-  for (const char* key : {"robot_id", "mission_id", "waypoints", "loop", "current", "laps", "status", "sent_ns"}) {
+  for (const char* key :
+       {"robot_id", "mission_id", "waypoints", "loop", "current", "laps", "status", "sent_ns"}) {
     if (!item.contains(key)) return Error{where + " has no \"" + key + "\""};
   }
   StoredMission out;
@@ -277,8 +278,8 @@ void GoalStore::put(const StoredGoal& goal) {
 
 void GoalStore::put_mission(const StoredMission& mission) {
   const auto kept = record_.missions.find(mission.robot_id);
-  const bool is_new = kept == record_.missions.end() ||
-                      kept->second.mission.mission_id != mission.mission.mission_id;
+  const bool is_new =
+      kept == record_.missions.end() || kept->second.mission.mission_id != mission.mission.mission_id;
   if (const auto goal = record_.goals.find(mission.robot_id); is_new && goal != record_.goals.end())
     goal->second.finished = true;
   record_.missions[mission.robot_id] = mission;

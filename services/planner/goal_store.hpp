@@ -35,7 +35,7 @@ struct StoredMission {
 struct GoalRecord {
   std::map<std::string, StoredGoal> goals;        // the latest goal per robot_id
   std::map<std::string, StoredMission> missions;  // the latest mission per robot_id
-  std::map<std::string, Vec2> homes;        // where each robot was first seen
+  std::map<std::string, Vec2> homes;              // where each robot was first seen
 };
 
 // The file's text (JSON, documented in docs/services.md) to a record, or what is wrong with it.

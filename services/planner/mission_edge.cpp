@@ -66,7 +66,8 @@ void MissionEdge::run(Fleet& fleet, GoalStore& store) {
   for (const Received& r : taken_) {
     const std::string id = r.sample.robot_id().to_string();
     auto mission = to_mission(r.sample, r.sent_ns);
-    auto receipt = mission ? missions_.receive(*mission, fleet, store) : Result<FleetMissions::Receipt>(mission.error());
+    auto receipt =
+        mission ? missions_.receive(*mission, fleet, store) : Result<FleetMissions::Receipt>(mission.error());
     if (!receipt) {
       reject(r.sample, receipt.message());
       continue;
@@ -84,7 +85,8 @@ void MissionEdge::run(Fleet& fleet, GoalStore& store) {
   for (const std::string& id : missions_.step(fleet)) {
     bump(skipped_);
     if (const MissionRunner::Running* m = missions_.runner().find(id))
-      warnings_.warn("skip:" + id, "robot '{}' mission {}: {}", id, m->mission.mission_id, m->progress.reason);
+      warnings_.warn("skip:" + id, "robot '{}' mission {}: {}", id, m->mission.mission_id,
+                     m->progress.reason);
   }
   missions_.take_changed(fleet, store, publish_);
   for (const std::string& id : publish_) publish(id);

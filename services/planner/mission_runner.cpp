@@ -30,7 +30,8 @@ Goal leg_goal(const Mission& mission, const MissionProgress& progress) {
   return goal;
 }
 
-Goal MissionRunner::start(const std::string& robot_id, const Mission& mission, const MissionProgress& progress) {
+Goal MissionRunner::start(const std::string& robot_id, const Mission& mission,
+                          const MissionProgress& progress) {
   missions_[robot_id] = Running{mission, progress, 0};
   changed_.insert(robot_id);
   return leg_goal(mission, progress);
@@ -57,7 +58,8 @@ std::vector<std::string> MissionRunner::cancel_all() {
   return out;
 }
 
-std::optional<Goal> MissionRunner::leg_ended(const std::string& robot_id, bool reached, const std::string& reason) {
+std::optional<Goal> MissionRunner::leg_ended(const std::string& robot_id, bool reached,
+                                             const std::string& reason) {
   const auto it = missions_.find(robot_id);
   if (it == missions_.end() || it->second.progress.status != MissionStatus::Active) return std::nullopt;
   Running& r = it->second;

@@ -273,7 +273,8 @@ int cmd_mission(Session& s, const MissionArgs& a) {
     spec = std::move(*loaded);
   }
   spec.loop = spec.loop || a.loop;
-  if (spec.loop && spec.waypoints.size() < 2) return usage_error("a looped mission needs at least two waypoints");
+  if (spec.loop && spec.waypoints.size() < 2)
+    return usage_error("a looped mission needs at least two waypoints");
   NavMission mission;
   mission.robot_id(a.robot);
   mission.mission_id(s.next_goal_id());
@@ -282,8 +283,8 @@ int cmd_mission(Session& s, const MissionArgs& a) {
   mission.status(MISSION_ACTIVE);
   const int rc = send(s, dds::kNavMission, mission, "planner");
   if (rc == 0)
-    std::printf("mission of %zu waypoint(s)%s sent to %s\n", spec.waypoints.size(), spec.loop ? ", looped," : "",
-                a.robot.c_str());
+    std::printf("mission of %zu waypoint(s)%s sent to %s\n", spec.waypoints.size(),
+                spec.loop ? ", looped," : "", a.robot.c_str());
   return rc;
 }
 
@@ -532,7 +533,8 @@ const std::vector<Subcommand>& subcommands() {
       {"status", "services seen, with their heartbeats and counters", add_status},
       {"robots", "known robots: id, map-frame pose, last seen, goal mode, correction", add_robots},
       {"goal", "set a robot's standing goal: goal ROBOT|all MODE [x y]", add_goal},
-      {"mission", "send a robot waypoints to drive in order: mission ROBOT x1 y1 x2 y2 ... [--loop] | --file FILE",
+      {"mission",
+       "send a robot waypoints to drive in order: mission ROBOT x1 y1 x2 y2 ... [--loop] | --file FILE",
        add_mission},
       {"missions", "each robot's mission: waypoint being driven to, laps done, status", add_missions},
       {"path", "plan a path: path x0 y0 x1 y1", add_path},

@@ -101,7 +101,8 @@ Result<MissionSpec> load_mission_file(const std::string& path) {
 
 bool mission_behind(const NavMission& next, const NavMission& kept) {
   if (next.mission_id() != kept.mission_id()) return false;
-  if ((next.status() == MISSION_ACTIVE) != (kept.status() == MISSION_ACTIVE)) return next.status() == MISSION_ACTIVE;
+  if ((next.status() == MISSION_ACTIVE) != (kept.status() == MISSION_ACTIVE))
+    return next.status() == MISSION_ACTIVE;
   return next.laps() < kept.laps() || (next.laps() == kept.laps() && next.current() < kept.current());
 }
 
@@ -129,7 +130,7 @@ std::string format_mission(const NavMission& m) {
             fixed(p.x()) + ", " + fixed(p.y()) + ")";
   }
   line += ", " + std::to_string(m.laps()) + " lap(s) done, " + (m.loop() ? "looped" : "once");
-  if (!m.reason().empty()) line += "; " + m.reason().to_string();
+  if (m.reason().size() > 0) line += "; " + m.reason().to_string();
   return line + "\n";
 }
 

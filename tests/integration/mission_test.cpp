@@ -77,9 +77,9 @@ class MissionTest : public ::testing::Test {
   }
 
   void start_planner(const std::string& name) {
-    group_.start(name, {testkit::bin_path("slam-planner"), "--domain", std::to_string(domain_.id()),
-                        "--goals-resend-period-s", "0.3", "--no-share", "--goal-store",
-                        group_.dir() + "/goals.json"});
+    group_.start(
+        name, {testkit::bin_path("slam-planner"), "--domain", std::to_string(domain_.id()),
+               "--goals-resend-period-s", "0.3", "--no-share", "--goal-store", group_.dir() + "/goals.json"});
   }
 
   void move_robot(double x, double y) {

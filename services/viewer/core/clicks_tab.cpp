@@ -76,8 +76,8 @@ void add_mission_waypoint(ViewerState& state, Vec2 screen) {
     return;
   }
   char line[96];
-  std::snprintf(line, sizeof line, "mission waypoint %zu at (%.2f, %.2f)", state.mission_tool.waypoints().size(),
-                w.x, w.y);
+  std::snprintf(line, sizeof line, "mission waypoint %zu at (%.2f, %.2f)",
+                state.mission_tool.waypoints().size(), w.x, w.y);
   state.status_line = line;
 }
 

@@ -18,7 +18,7 @@ struct IntakeBatch {
   std::vector<ObservationData> observations;
   std::vector<RobotStateData> states;
   std::vector<RobotPathData> paths;
-  std::vector<MissionData> missions;  // the newest per robot
+  std::vector<MissionData> missions;            // the newest per robot
   std::vector<PoseCorrectionData> corrections;  // the newest per robot
   std::vector<HeartbeatData> heartbeats;
   std::vector<MqttEntry> mqtt;

@@ -70,7 +70,7 @@ struct ViewerState {
   std::string selected_robot = "*";  // goals and manual drive go here; "*" = every robot
   double square_size = 1.0;
   bool square_centred = false;
-  PoseTool pose_tool;  // "Set pose": drag on the map sends the selected robot an InitialPose
+  PoseTool pose_tool;        // "Set pose": drag on the map sends the selected robot an InitialPose
   MissionTool mission_tool;  // while armed, left clicks add waypoints to a mission for the selected robot
 
   // Process info.

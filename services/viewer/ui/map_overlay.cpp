@@ -73,8 +73,8 @@ void draw_path(ImDrawList* dl, const ViewTransform& v, const RobotView& r) {
 
 // A mission's waypoints joined in driving order (closed when looped), numbered, the one being
 // driven to ringed. `current` past the end: none is (the draft).
-void draw_mission(ImDrawList* dl, const ViewTransform& v, const std::vector<Vec2>& wps, bool loop, size_t current,
-                  ImU32 col) {
+void draw_mission(ImDrawList* dl, const ViewTransform& v, const std::vector<Vec2>& wps, bool loop,
+                  size_t current, ImU32 col) {
   for (size_t i = 0; i + 1 < wps.size(); ++i)
     dl->AddLine(screen(v, wps[i].x, wps[i].y), screen(v, wps[i + 1].x, wps[i + 1].y), col, 1.5f);
   if (loop && wps.size() > 2)
@@ -116,8 +116,10 @@ void draw_map_overlay(const ViewerState& state) {
   for (size_t i = 0; i < state.robots.size(); ++i) {
     const RobotView& r = state.robots.at(i);
     if (!r.settings.visible) continue;
-    if (state.show_paths && r.settings.show_path && r.has_mission && r.mission.status == MissionStatus::Active)
-      draw_mission(dl, v, r.mission.waypoints, r.mission.loop, r.mission.current, to_u32(r.settings.color, 0.6f));
+    if (state.show_paths && r.settings.show_path && r.has_mission &&
+        r.mission.status == MissionStatus::Active)
+      draw_mission(dl, v, r.mission.waypoints, r.mission.loop, r.mission.current,
+                   to_u32(r.settings.color, 0.6f));
     if (state.show_paths && r.settings.show_path && r.has_path) draw_path(dl, v, r);
   }
   if (state.show_truth && state.truth)

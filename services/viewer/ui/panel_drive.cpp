@@ -44,8 +44,9 @@ void mission_section(ViewerState& state, CommandSink& sink) {
   if (state.selected_robot != "*")
     if (const RobotView* r = state.robots.find(state.selected_robot); r != nullptr && r->has_mission) {
       const MissionData& m = r->mission;
-      ImGui::Text("mission %llu: %s, waypoint %u/%zu, %u lap(s)", static_cast<unsigned long long>(m.mission_id),
-                  mission_status_name(m.status), m.current + 1, m.waypoints.size(), m.laps);
+      ImGui::Text("mission %llu: %s, waypoint %u/%zu, %u lap(s)",
+                  static_cast<unsigned long long>(m.mission_id), mission_status_name(m.status), m.current + 1,
+                  m.waypoints.size(), m.laps);
       if (!m.reason.empty()) hint("%s", m.reason.c_str());
     }
   hint("A mission replaces the robot's goal; any goal sent later (stop, explore, a click) cancels it.");

@@ -194,8 +194,9 @@ namespace {
 
 TEST(GoalRecord, MissionsRoundTripWithTheirProgress) {
   GoalRecord original;
-  original.missions["r1"] = StoredMission{"r1", Mission{21, {{1, 2}, {3.5, -4}}, true},
-                                          MissionProgress{1, 7, MissionStatus::Active, "waypoint 0 skipped: x"}, 500};
+  original.missions["r1"] =
+      StoredMission{"r1", Mission{21, {{1, 2}, {3.5, -4}}, true},
+                    MissionProgress{1, 7, MissionStatus::Active, "waypoint 0 skipped: x"}, 500};
   original.missions["r2"] =
       StoredMission{"r2", Mission{22, {{0, 0}}, false}, MissionProgress{0, 1, MissionStatus::Done, ""}, 400};
   auto parsed = parse_goal_record(format_goal_record(original));
@@ -246,7 +247,8 @@ TEST(GoalStore, AMissionAndAGoalReplaceEachOther) {
   EXPECT_EQ(missions_to_resume(store->record()).size(), 1u);
 
   store->put(StoredGoal{"r2", Goal{7, GoalMode::Stop, {}, 0.0, SquareAnchor::Corner}, 3000, false});
-  EXPECT_EQ(store->record().missions.at("r1").progress.status, MissionStatus::Active) << "another robot's goal";
+  EXPECT_EQ(store->record().missions.at("r1").progress.status, MissionStatus::Active)
+      << "another robot's goal";
   store->put(StoredGoal{"r1", Goal{8, GoalMode::Home, {}, 0.0, SquareAnchor::Corner}, 3000, false});
   EXPECT_EQ(store->record().missions.at("r1").progress.status, MissionStatus::Cancelled);
   EXPECT_TRUE(missions_to_resume(store->record()).empty());

@@ -86,7 +86,8 @@ TEST_F(MissionToolTest, UndoAndClearEditTheDraftWhichHasABound) {
   EXPECT_EQ(tool.waypoints().size(), kMaxMissionWaypoints);
 }
 
-MissionData mission(uint64_t id, uint32_t current, uint32_t laps, MissionStatus status = MissionStatus::Active) {
+MissionData mission(uint64_t id, uint32_t current, uint32_t laps,
+                    MissionStatus status = MissionStatus::Active) {
   MissionData m;
   m.robot_id = "r1";
   m.mission_id = id;
