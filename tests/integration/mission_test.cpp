@@ -150,8 +150,11 @@ TEST_F(MissionTest, ALoopedMissionKeepsPatrollingAfterAPlannerRestartAndAGoalCan
       << "laps before the restart: " << before << ", now: " << laps(kMission);
   EXPECT_NE(group_.log("planner-restarted").find("1 mission(s) resumed"), std::string::npos);
   // Still the same patrol: every reported waypoint index is one of the three.
-  for (const NavMission& m : missions_.items())
-    if (m.mission_id() == kMission) EXPECT_LT(m.current(), 3u);
+  for (const NavMission& m : missions_.items()) {
+    if (m.mission_id() == kMission) {
+      EXPECT_LT(m.current(), 3u);
+    }
+  }
 
   // A goal sent later cancels the mission, and the planner says so on the mission's topic.
   NavGoal stop;

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <string>
 
 #include "viewer/core/clicks_tab.hpp"
 #include "viewer/ui/map_input.hpp"
@@ -83,9 +84,8 @@ void draw_mission(ImDrawList* dl, const ViewTransform& v, const std::vector<Vec2
     const ImVec2 p = screen(v, wps[i].x, wps[i].y);
     dl->AddCircleFilled(p, 5.0f, col, 12);
     if (i == current) dl->AddCircle(p, 10.0f, IM_COL32(255, 255, 255, 255), 20, 2.5f);
-    char label[8];
-    std::snprintf(label, sizeof label, "%zu", i + 1);
-    dl->AddText({p.x + 7.0f, p.y + 2.0f}, IM_COL32(255, 255, 255, 230), label);
+    const std::string label = std::to_string(i + 1);
+    dl->AddText({p.x + 7.0f, p.y + 2.0f}, IM_COL32(255, 255, 255, 230), label.c_str());
   }
 }
 

@@ -8,6 +8,7 @@
 #include <array>
 #include <cstdio>
 
+#include "viewer/core/clicks_tab.hpp"
 #include "viewer/ui/panels.hpp"
 
 namespace slam::viewer {
