@@ -66,8 +66,10 @@ std::optional<Goal> MissionRunner::leg_ended(const std::string& robot_id, bool r
   MissionProgress& p = r.progress;
   const size_t n = r.mission.waypoints.size();
   changed_.insert(robot_id);
+  ++r.legs_in_pass;
   if (reached) {
     r.failures_in_row = 0;
+    ++r.reached_in_pass;
   } else {
     ++r.failures_in_row;
     p.reason = "waypoint " + std::to_string(p.current) + " skipped: " + reason;
@@ -85,6 +87,14 @@ std::optional<Goal> MissionRunner::leg_ended(const std::string& robot_id, bool r
     end(r, MissionStatus::Done, "");
     return std::nullopt;
   }
+  // Judged on whole passes only: one resumed or adopted mid-way is not.
+  const bool stuck = r.legs_in_pass == n && r.reached_in_pass < 2;
+  r.legs_in_pass = 0;
+  r.reached_in_pass = 0;
+  if (stuck) {
+    end(r, MissionStatus::Failed, "fewer than two waypoints reachable in a pass (" + p.reason + ")");
+    return std::nullopt;
+  }
   p.current = 0;
   return leg_goal(r.mission, p);
 }
@@ -96,6 +106,8 @@ std::optional<Goal> MissionRunner::adopt(const std::string& robot_id, const Miss
   const bool moved = r.progress.current != progress.current;
   r.progress = progress;
   r.failures_in_row = 0;
+  r.legs_in_pass = 0;
+  r.reached_in_pass = 0;
   changed_.insert(robot_id);
   if (!moved || progress.status != MissionStatus::Active) return std::nullopt;
   return leg_goal(r.mission, r.progress);

@@ -5,8 +5,9 @@
 // GoalTracker's business. Pure logic, no DDS: the service feeds it leg outcomes.
 //
 // An unreachable waypoint (its leg failed) is reported in the progress and skipped; the mission
-// fails only when every waypoint failed in a row, so a patrol survives one blocked door but does not
-// spin forever when nothing is reachable.
+// fails when every waypoint failed in a row, or when a whole pass of a looped mission reached fewer
+// than two waypoints (the robot could not move: legs would end at once, lap after lap). So a patrol
+// survives one blocked door but does not spin when it cannot go anywhere.
 #include <cstddef>
 #include <cstdint>
 #include <map>
@@ -53,6 +54,8 @@ class MissionRunner {
     Mission mission;
     MissionProgress progress;
     size_t failures_in_row = 0;  // legs failed since the last one reached
+    size_t legs_in_pass = 0;     // legs ended since the pass began at waypoint 0
+    size_t reached_in_pass = 0;  // of those, reached
   };
 
   // Starts robot_id's mission at `progress` (a resumed or adopted mission continues where it was);

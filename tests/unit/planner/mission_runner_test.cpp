@@ -64,6 +64,7 @@ TEST(MissionRunner, AnUnreachableWaypointIsSkippedAndReported) {
 TEST(MissionRunner, FailsWhenEveryWaypointFailedInARow) {
   MissionRunner runner;
   runner.start("r", three_points(true));
+  ASSERT_TRUE(runner.leg_ended("r", true, ""));
   ASSERT_TRUE(runner.leg_ended("r", false, "NO_PATH"));
   ASSERT_TRUE(runner.leg_ended("r", true, ""));  // one reached: the count starts again
   ASSERT_TRUE(runner.leg_ended("r", false, "NO_PATH"));
@@ -71,6 +72,22 @@ TEST(MissionRunner, FailsWhenEveryWaypointFailedInARow) {
   EXPECT_FALSE(runner.leg_ended("r", false, "NO_PATH"));
   EXPECT_EQ(runner.find("r")->progress.status, MissionStatus::Failed);
   EXPECT_EQ(runner.find("r")->progress.reason, "no waypoint reachable: NO_PATH");
+}
+
+TEST(MissionRunner, APatrolThatCannotMoveFailsAfterAWholePass) {
+  // Only the waypoint the robot stands on is reachable: its leg ends at once, lap after lap.
+  MissionRunner runner;
+  runner.start("r", three_points(true));
+  ASSERT_TRUE(runner.leg_ended("r", true, ""));
+  ASSERT_TRUE(runner.leg_ended("r", false, "GOAL_BLOCKED"));
+  EXPECT_FALSE(runner.leg_ended("r", false, "GOAL_BLOCKED"));
+  EXPECT_EQ(runner.find("r")->progress.status, MissionStatus::Failed);
+  EXPECT_EQ(runner.find("r")->progress.reason,
+            "fewer than two waypoints reachable in a pass (waypoint 2 skipped: GOAL_BLOCKED)");
+  // A pass that began mid-way (resumed at waypoint 2) is not judged.
+  runner.start("r", three_points(true), MissionProgress{2, 0, MissionStatus::Active, ""});
+  EXPECT_TRUE(runner.leg_ended("r", true, ""));
+  EXPECT_TRUE(runner.active("r"));
 }
 
 TEST(MissionRunner, CancelEndsOnlyRunningMissions) {
