@@ -77,13 +77,14 @@ void draw_path(ImDrawList* dl, const ViewTransform& v, const RobotView& r) {
 void draw_mission(ImDrawList* dl, const ViewTransform& v, const std::vector<Vec2>& wps, bool loop,
                   size_t current, ImU32 col) {
   for (size_t i = 0; i + 1 < wps.size(); ++i)
-    dl->AddLine(screen(v, wps[i].x, wps[i].y), screen(v, wps[i + 1].x, wps[i + 1].y), col, 1.5f);
+    dl->AddLine(screen(v, wps[i].x, wps[i].y), screen(v, wps[i + 1].x, wps[i + 1].y), col, 2.5f);
   if (loop && wps.size() > 2)
-    dl->AddLine(screen(v, wps.back().x, wps.back().y), screen(v, wps.front().x, wps.front().y), col, 1.5f);
+    dl->AddLine(screen(v, wps.back().x, wps.back().y), screen(v, wps.front().x, wps.front().y), col, 2.5f);
   for (size_t i = 0; i < wps.size(); ++i) {
     const ImVec2 p = screen(v, wps[i].x, wps[i].y);
-    dl->AddCircleFilled(p, 5.0f, col, 12);
-    if (i == current) dl->AddCircle(p, 10.0f, IM_COL32(255, 255, 255, 255), 20, 2.5f);
+    dl->AddCircleFilled(p, 6.0f, col, 12);
+    dl->AddCircle(p, 6.0f, IM_COL32(0, 0, 0, 200), 12, 1.0f);
+    if (i == current) dl->AddCircle(p, 11.0f, IM_COL32(255, 255, 255, 255), 20, 3.0f);
     const std::string label = std::to_string(i + 1);
     dl->AddText({p.x + 7.0f, p.y + 2.0f}, IM_COL32(255, 255, 255, 230), label.c_str());
   }
