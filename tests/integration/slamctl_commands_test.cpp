@@ -206,13 +206,14 @@ TEST_F(SlamctlTest, MissionAndMissions) {
   EXPECT_EQ(sent.lines(), 1u) << sent.output;
   EXPECT_NE(sent.output.find("mission of 2 waypoint(s), looped, sent to " + id), std::string::npos)
       << sent.output;
-  // The planner reports the mission's progress: `missions` lists it as active.
+  // slamctl exits once the planner acknowledged it: what `missions` lists is the planner's report of
+  // the mission (active, or failed when the empty world left the waypoints unexplored).
   CtlRun listed;
   EXPECT_TRUE(wait_until(
       [&] {
         listed = ctl({"missions"});
         return listed.code == 0 && listed.output.find(id + " mission ") != std::string::npos &&
-               listed.output.find(": active, waypoint ") != std::string::npos;
+               listed.output.find(", waypoint ") != std::string::npos;
       },
       30s, 500ms))
       << listed.output;
