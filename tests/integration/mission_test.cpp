@@ -1,11 +1,13 @@
 // Missions end to end on slam-planner: this test plays the mapper (a free room), the gateway (a
 // robot that drives to each waypoint it is sent) and the operator (NavMission, NavGoal). A looped
 // mission keeps patrolling after the planner is killed (-9) and started again from its goal store,
-// and a goal sent afterwards cancels it.
+// and a goal sent afterwards cancels it; with two planners sharing the robot, it keeps patrolling
+// while either of them is killed.
 #include <gtest/gtest.h>
 
 #include <atomic>
 #include <csignal>
+#include <limits>
 #include <memory>
 #include <string>
 #include <thread>
@@ -47,7 +49,6 @@ GridSnapshot free_room() {
 class MissionTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    start_planner("planner");
     auto p = dds::Participant::create(domain_.id(), "mission_test");
     ASSERT_TRUE(p) << p.message();
     participant_ = std::move(*p);
@@ -56,30 +57,54 @@ class MissionTest : public ::testing::Test {
     goals_ = testkit::make_test_writer(*participant_, dds::kNavGoal);
     waypoint_reader_ = testkit::make_inbox_reader(*participant_, dds::kWaypointCommand, waypoints_);
     mission_reader_ = testkit::make_inbox_reader(*participant_, dds::kNavMission, missions_);
-    ASSERT_TRUE(wait_until(
-        [&] {
-          return snapshots_->matched_readers() > 0 && states_->matched_readers() > 0 &&
-                 waypoint_reader_->matched_writers() > 0 && mission_reader_->matched_writers() > 0;
-        },
-        60s))
-        << group_.log("planner");
     snapshots_->write(free_room());
     move_robot(1.0, 1.0);
     robot_ = std::thread([this] { drive(); });
+  }
+
+  // Waits for the planners started to match the test's topics.
+  void connect(int planners) {
+    ASSERT_TRUE(wait_until(
+        [&] {
+          return snapshots_->matched_readers() >= planners && states_->matched_readers() >= planners &&
+                 waypoint_reader_->matched_writers() >= planners &&
+                 mission_reader_->matched_writers() >= planners;
+        },
+        60s));
+  }
+
+  // Sends the patrol from a short-lived client (like slamctl, gone before any restart: then only
+  // the goal stores have it) and waits until the robot drove it twice.
+  void send_patrol(uint64_t mission_id, int planners) {
+    auto sender = testkit::make_test_writer(*participant_, dds::kNavMission);
+    NavMission m;
+    m.robot_id(kRobot);
+    m.mission_id(mission_id);
+    m.waypoints({pt(2.0, 1.0), pt(8.0, 1.0), pt(8.0, 5.0)});
+    m.loop(true);
+    m.status(MISSION_ACTIVE);
+    // Every planner and the test's own reader.
+    ASSERT_TRUE(wait_until([&] { return sender->matched_readers() > planners; }, 30s));
+    sender->write(m);
+    ASSERT_TRUE(wait_until([&] { return laps(mission_id) >= 2; }, 90s)) << "the patrol never looped twice";
+    ASSERT_TRUE(sender->wait_for_acknowledgments(10s));
   }
 
   void TearDown() override {
     stop_ = true;
     if (robot_.joinable()) robot_.join();
     if (HasFailure())
-      for (const char* name : {"planner", "planner-restarted"})
+      for (const char* name : {"planner", "planner-restarted", "planner-a", "planner-b", "planner-a2"})
         std::cerr << "--- " << name << " log ---\n" << group_.log(name);
   }
 
-  void start_planner(const std::string& name) {
-    group_.start(
-        name, {testkit::bin_path("slam-planner"), "--domain", std::to_string(domain_.id()),
-               "--goals-resend-period-s", "0.3", "--no-share", "--goal-store", group_.dir() + "/goals.json"});
+  // A lone planner keeping its goals in `store`, or (`share`) one of several sharing the robot.
+  void start_planner(const std::string& name, const std::string& store, bool share = false) {
+    std::vector<std::string> argv{testkit::bin_path("slam-planner"), "--domain", std::to_string(domain_.id()),
+                                  "--goals-resend-period-s",         "0.3",      "--goal-store",
+                                  group_.dir() + "/" + store};
+    if (!share) argv.push_back("--no-share");
+    group_.start(name, argv);
   }
 
   void move_robot(double x, double y) {
@@ -103,12 +128,21 @@ class MissionTest : public ::testing::Test {
     }
   }
 
-  // The most laps the planner reported for `mission_id` (0 before any report).
+  // The most laps the planners reported for `mission_id` (0 before any report).
   uint32_t laps(uint64_t mission_id) const {
     uint32_t most = 0;
     for (const NavMission& m : missions_.items())
       if (m.mission_id() == mission_id) most = std::max(most, m.laps());
     return most;
+  }
+
+  // The fewest laps reported for `mission_id` from the `from`-th report received on.
+  uint32_t fewest_laps_since(size_t from, uint64_t mission_id) const {
+    const auto items = missions_.items();
+    uint32_t fewest = std::numeric_limits<uint32_t>::max();
+    for (size_t i = from; i < items.size(); ++i)
+      if (items[i].mission_id() == mission_id) fewest = std::min(fewest, items[i].laps());
+    return fewest;
   }
 
   testkit::DomainLease domain_;
@@ -127,25 +161,14 @@ class MissionTest : public ::testing::Test {
 
 TEST_F(MissionTest, ALoopedMissionKeepsPatrollingAfterAPlannerRestartAndAGoalCancelsIt) {
   constexpr uint64_t kMission = 77;
-  {
-    // Sent by a short-lived client (like slamctl): after the restart only the goal store has it.
-    auto sender = testkit::make_test_writer(*participant_, dds::kNavMission);
-    NavMission m;
-    m.robot_id(kRobot);
-    m.mission_id(kMission);
-    m.waypoints({pt(2.0, 1.0), pt(8.0, 1.0), pt(8.0, 5.0)});
-    m.loop(true);
-    m.status(MISSION_ACTIVE);
-    ASSERT_TRUE(wait_until([&] { return sender->matched_readers() > 1; }, 30s));
-    sender->write(m);
-    ASSERT_TRUE(wait_until([&] { return laps(kMission) >= 2; }, 90s)) << "the patrol never looped twice";
-    ASSERT_TRUE(sender->wait_for_acknowledgments(10s));
-  }
+  start_planner("planner", "goals.json");
+  connect(1);
+  send_patrol(kMission, 1);
 
   group_.stop("planner", SIGKILL);
   const uint32_t before = laps(kMission);
   std::this_thread::sleep_for(1s);  // whatever the killed planner sent has arrived
-  start_planner("planner-restarted");
+  start_planner("planner-restarted", "goals.json");
   EXPECT_TRUE(wait_until([&] { return laps(kMission) >= before + 2; }, 90s))
       << "laps before the restart: " << before << ", now: " << laps(kMission);
   EXPECT_NE(group_.log("planner-restarted").find("1 mission(s) resumed"), std::string::npos);
@@ -168,6 +191,31 @@ TEST_F(MissionTest, ALoopedMissionKeepsPatrollingAfterAPlannerRestartAndAGoalCan
         return last && last->status() == MISSION_CANCELLED;
       },
       30s));
+}
+
+TEST_F(MissionTest, WithTwoPlannersThePatrolContinuesWhicheverOfThemIsKilled) {
+  constexpr uint64_t kMission = 91;
+  start_planner("planner-a", "goals-a.json", true);
+  start_planner("planner-b", "goals-b.json", true);
+  connect(2);
+  send_patrol(kMission, 2);
+  // One of the two drives the robot; each is killed in turn (the first restarted in between), so
+  // the owner is killed once: the survivor continues from the waypoint it learnt from the owner.
+  // The survivor continues the patrol where it was, not from its start.
+  group_.stop("planner-a", SIGKILL);
+  uint32_t before = laps(kMission);
+  size_t from = missions_.size();
+  EXPECT_TRUE(wait_until([&] { return laps(kMission) >= before + 2; }, 90s))
+      << "after planner-a was killed: " << laps(kMission) << " laps, " << before << " before";
+  EXPECT_GE(fewest_laps_since(from, kMission), before);
+  start_planner("planner-a2", "goals-a.json", true);
+  std::this_thread::sleep_for(5s);  // past its warm-up: it shares the robot again
+  group_.stop("planner-b", SIGKILL);
+  before = laps(kMission);
+  from = missions_.size();
+  EXPECT_TRUE(wait_until([&] { return laps(kMission) >= before + 2; }, 90s))
+      << "after planner-b was killed: " << laps(kMission) << " laps, " << before << " before";
+  EXPECT_GE(fewest_laps_since(from, kMission), before);
 }
 
 }  // namespace
