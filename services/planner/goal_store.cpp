@@ -24,6 +24,7 @@ constexpr size_t kMaxRobotId = 64;  // NavGoal.robot_id is a string<64>
 constexpr std::array<const char*, 7> kModeNames{"idle",    "direct", "planned", "square",
                                                 "explore", "home",   "stop"};
 constexpr std::array<const char*, 2> kAnchorNames{"corner", "centred"};
+constexpr std::array<const char*, 4> kMissionStatusNames{"active", "done", "failed", "cancelled"};
 
 template <size_t N>
 Result<size_t> name_index(const json& value, const std::array<const char*, N>& names, const char* what) {
@@ -89,6 +90,46 @@ Result<StoredGoal> to_stored_goal(const json& item, size_t index) {
   return out;
 }
 
+Result<StoredMission> to_stored_mission(const json& item, size_t index) {
+  const std::string where = "missions[" + std::to_string(index) + "]";
+  if (!item.is_object()) return Error{where + " must be an object"};
+  for (const char* key :
+       {"robot_id", "mission_id", "waypoints", "loop", "current", "laps", "status", "sent_ns"}) {
+    if (!item.contains(key)) return Error{where + " has no \"" + key + "\""};
+  }
+  StoredMission out;
+  auto id = to_robot_id(item["robot_id"], where + ".robot_id");
+  if (!id) return id.error();
+  out.robot_id = *id;
+  if (!item["mission_id"].is_number_unsigned())
+    return Error{where + ".mission_id must be a non-negative integer"};
+  out.mission.mission_id = item["mission_id"].get<uint64_t>();
+  const json& waypoints = item["waypoints"];
+  if (!waypoints.is_array()) return Error{where + ".waypoints must be an array of [x, y]"};
+  for (size_t i = 0; i < waypoints.size(); ++i) {
+    auto p = to_point(waypoints[i], where + ".waypoints[" + std::to_string(i) + "]");
+    if (!p) return p.error();
+    out.mission.waypoints.push_back(*p);
+  }
+  if (!item["loop"].is_boolean()) return Error{where + ".loop must be true or false"};
+  out.mission.loop = item["loop"].get<bool>();
+  if (!item["current"].is_number_unsigned()) return Error{where + ".current must be a non-negative integer"};
+  out.progress.current = item["current"].get<size_t>();
+  if (!item["laps"].is_number_unsigned()) return Error{where + ".laps must be a non-negative integer"};
+  out.progress.laps = item["laps"].get<uint32_t>();
+  auto status = name_index(item["status"], kMissionStatusNames, (where + ".status").c_str());
+  if (!status) return status.error();
+  out.progress.status = static_cast<MissionStatus>(*status);
+  if (item.contains("reason")) {
+    if (!item["reason"].is_string()) return Error{where + ".reason must be a string"};
+    out.progress.reason = item["reason"].get<std::string>();
+  }
+  if (!item["sent_ns"].is_number_integer()) return Error{where + ".sent_ns must be an integer"};
+  out.sent_ns = item["sent_ns"].get<int64_t>();
+  if (auto s = validate(out.mission, out.progress); !s) return Error{where + ": " + s.message()};
+  return out;
+}
+
 // Robot ids come off the network: invalid UTF-8 is replaced rather than failing the save.
 std::string dump(const nlohmann::ordered_json& value) {
   return value.dump(-1, ' ', false, nlohmann::ordered_json::error_handler_t::replace);
@@ -114,6 +155,17 @@ Result<GoalRecord> parse_goal_record(std::string_view text) {
       const std::string id = goal->robot_id;
       if (!record.goals.emplace(id, std::move(*goal)).second)
         return Error{"goals[" + std::to_string(i) + "]: a second goal for robot '" + id + "'"};
+    }
+  }
+  if (doc.contains("missions")) {
+    const json& missions = doc["missions"];
+    if (!missions.is_array()) return Error{"\"missions\" must be an array"};
+    for (size_t i = 0; i < missions.size(); ++i) {
+      auto mission = to_stored_mission(missions[i], i);
+      if (!mission) return mission.error();
+      const std::string id = mission->robot_id;
+      if (!record.missions.emplace(id, std::move(*mission)).second)
+        return Error{"missions[" + std::to_string(i) + "]: a second mission for robot '" + id + "'"};
     }
   }
   if (doc.contains("homes")) {
@@ -145,10 +197,27 @@ std::string format_goal_record(const GoalRecord& record) {
         {"finished", g.finished}};
     goals += (goals.empty() ? "\n  " : ",\n  ") + dump(goal);
   }
+  std::string missions;
+  for (const auto& [id, m] : record.missions) {
+    nlohmann::ordered_json waypoints = nlohmann::ordered_json::array();
+    for (const Vec2& p : m.mission.waypoints) waypoints.push_back({p.x, p.y});
+    const nlohmann::ordered_json mission{
+        {"robot_id", id},
+        {"mission_id", m.mission.mission_id},
+        {"waypoints", waypoints},
+        {"loop", m.mission.loop},
+        {"current", m.progress.current},
+        {"laps", m.progress.laps},
+        {"status", kMissionStatusNames[static_cast<size_t>(m.progress.status)]},
+        {"reason", m.progress.reason},
+        {"sent_ns", m.sent_ns}};
+    missions += (missions.empty() ? "\n  " : ",\n  ") + dump(mission);
+  }
   nlohmann::ordered_json homes = nlohmann::ordered_json::object();
   for (const auto& [id, p] : record.homes) homes[id] = {p.x, p.y};
   return std::string("{\"format\": \"") + kFormat + "\", \"version\": " + std::to_string(kVersion) +
-         ",\n \"goals\": [" + goals + (goals.empty() ? "" : "\n ") + "],\n \"homes\": " + dump(homes) + "}\n";
+         ",\n \"goals\": [" + goals + (goals.empty() ? "" : "\n ") + "],\n \"missions\": [" + missions +
+         (missions.empty() ? "" : "\n ") + "],\n \"homes\": " + dump(homes) + "}\n";
 }
 
 std::vector<StoredGoal> goals_to_resume(const GoalRecord& record) {
@@ -159,6 +228,15 @@ std::vector<StoredGoal> goals_to_resume(const GoalRecord& record) {
     if (a.sent_ns != b.sent_ns) return a.sent_ns < b.sent_ns;
     return a.robot_id == kAllRobots && b.robot_id != kAllRobots;
   });
+  return out;
+}
+
+std::vector<StoredMission> missions_to_resume(const GoalRecord& record) {
+  std::vector<StoredMission> out;
+  for (const auto& [id, m] : record.missions)
+    if (m.progress.status == MissionStatus::Active) out.push_back(m);
+  std::stable_sort(out.begin(), out.end(),
+                   [](const StoredMission& a, const StoredMission& b) { return a.sent_ns < b.sent_ns; });
   return out;
 }
 
@@ -181,12 +259,30 @@ Result<GoalStore> GoalStore::open(const std::string& path) {
 }
 
 bool GoalStore::is_stale(const std::string& robot_id, int64_t sent_ns) const {
-  const auto it = record_.goals.find(robot_id);
-  return it != record_.goals.end() && sent_ns <= it->second.sent_ns;
+  const auto goal = record_.goals.find(robot_id);
+  if (goal != record_.goals.end() && sent_ns <= goal->second.sent_ns) return true;
+  const auto mission = record_.missions.find(robot_id);
+  return mission != record_.missions.end() && sent_ns <= mission->second.sent_ns;
 }
 
 void GoalStore::put(const StoredGoal& goal) {
   record_.goals[goal.robot_id] = goal;
+  for (auto& [id, m] : record_.missions) {
+    if ((goal.robot_id == kAllRobots || id == goal.robot_id) && m.progress.status == MissionStatus::Active) {
+      m.progress.status = MissionStatus::Cancelled;
+      m.progress.reason = "replaced by a goal";
+    }
+  }
+  dirty_ = true;
+}
+
+void GoalStore::put_mission(const StoredMission& mission) {
+  const auto kept = record_.missions.find(mission.robot_id);
+  const bool is_new =
+      kept == record_.missions.end() || kept->second.mission.mission_id != mission.mission.mission_id;
+  if (const auto goal = record_.goals.find(mission.robot_id); is_new && goal != record_.goals.end())
+    goal->second.finished = true;
+  record_.missions[mission.robot_id] = mission;
   dirty_ = true;
 }
 

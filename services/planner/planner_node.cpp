@@ -68,7 +68,8 @@ PlannerNode::PlannerNode(const PlannerOptions& options, Counters& counters)
       robots_forgotten_(counters.get("robots_forgotten")),
       fleet_(options.fleet),
       // The instance id this process's heartbeats carry (host:pid), so peers and self agree.
-      ownership_(ServiceIdentity::of("planner").instance_id, monotonic_ns(), ownership_config(options)) {}
+      ownership_(ServiceIdentity::of("planner").instance_id, monotonic_ns(), ownership_config(options)),
+      missions_(counters) {}
 
 Result<std::unique_ptr<PlannerNode>> PlannerNode::create(const PlannerOptions& options, Counters& counters) {
   std::unique_ptr<PlannerNode> node(new PlannerNode(options, counters));
@@ -139,6 +140,7 @@ Status PlannerNode::configure() {
                                 });
   if (!goals) return goals.error();
   goal_reader_ = std::move(*goals);
+  SLAM_TRY(missions_.connect(*participant_));
   auto requests =
       dds::make_reader(*participant_, dds::kPathRequest,
                        [this](const slam::PathRequest& r, const auto&) { intake_.push_request(r); });
@@ -174,6 +176,7 @@ void PlannerNode::run_once() {
     std::lock_guard lock(ownership_mutex_);
     return ownership_.owns(key, now);
   });
+  missions_.run(fleet_, goal_store_);
   submit_requests(batch_.requests);
   count_replans();
   fleet_.tick(grid_, now);
@@ -194,9 +197,10 @@ void PlannerNode::resume_goals() {
     }
     ++resumed;
   }
+  const size_t missions = missions_.resume(record, fleet_);
   if (!options_.goal_store.empty()) {
-    spdlog::info("goal store {}: {} goal(s) resumed, {} home(s) known", options_.goal_store, resumed,
-                 record.homes.size());
+    spdlog::info("goal store {}: {} goal(s) and {} mission(s) resumed, {} home(s) known", options_.goal_store,
+                 resumed, missions, record.homes.size());
   }
 }
 
@@ -305,6 +309,7 @@ void PlannerNode::apply_goals(const std::vector<ReceivedGoal>& goals) {
       continue;
     }
     bump(metrics_.goals_accepted);
+    missions_.goal_accepted(command->robot_id);
     store_goal(command->robot_id, command->goal, received.sent_ns);
     spdlog::info("goal {} (mode {}) for robot '{}' ({} robot(s) now), target ({}, {})", sample.goal_id(),
                  static_cast<uint32_t>(sample.mode()), id, *started, sample.target().x(),

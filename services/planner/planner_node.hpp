@@ -26,6 +26,7 @@
 #include "planner/alert_node.hpp"
 #include "planner/fleet.hpp"
 #include "planner/goal_store.hpp"
+#include "planner/mission_edge.hpp"
 #include "planner/planner_intake.hpp"
 #include "planner/planner_msgs.hpp"
 #include "planner/planner_options.hpp"
@@ -166,6 +167,8 @@ class PlannerNode {
   std::unique_ptr<dds::Reader<slam::RobotPath>> path_reader_;
   std::unique_ptr<dds::Reader<slam::ForgetRobot>> forget_reader_;
   std::unique_ptr<AlertNode> alerts_;
+  // Its reader stops before the participant goes.
+  MissionEdge missions_;
 };
 
 }  // namespace slam::planner

@@ -17,6 +17,7 @@
 #include "common/core/shutdown.hpp"
 #include "common/fastdds/requester.hpp"
 #include "slamctl/format.hpp"
+#include "slamctl/mission_file.hpp"
 
 namespace slam::ctl {
 namespace {
@@ -339,6 +340,73 @@ Handler add_goal(CLI::App& cli) {
   return [a](Session& s) { return cmd_goal(s, *a); };
 }
 
+struct MissionArgs {
+  std::string robot;
+  std::vector<double> xy;
+  std::string file;
+  bool loop = false;
+};
+
+int cmd_mission(Session& s, const MissionArgs& a) {
+  if (a.robot == "all" || a.robot == "*") return usage_error("a mission is for one robot, not " + a.robot);
+  if (a.file.empty() == a.xy.empty())
+    return usage_error("give the waypoints as x1 y1 x2 y2 ... or --file FILE, not both");
+  MissionSpec spec;
+  if (a.file.empty()) {
+    auto waypoints = waypoints_from_numbers(a.xy);
+    if (!waypoints) return usage_error(waypoints.message());
+    spec.waypoints = std::move(*waypoints);
+  } else {
+    auto loaded = load_mission_file(a.file);
+    if (!loaded) return usage_error(loaded.message());
+    spec = std::move(*loaded);
+  }
+  spec.loop = spec.loop || a.loop;
+  if (spec.loop && spec.waypoints.size() < 2)
+    return usage_error("a looped mission needs at least two waypoints");
+  NavMission mission;
+  mission.robot_id(a.robot);
+  mission.mission_id(s.next_goal_id());
+  mission.waypoints(spec.waypoints);
+  mission.loop(spec.loop);
+  mission.status(MISSION_ACTIVE);
+  const int rc = send(s, dds::kNavMission, mission, "planner");
+  if (rc == 0)
+    std::printf("mission of %zu waypoint(s)%s sent to %s\n", spec.waypoints.size(),
+                spec.loop ? ", looped," : "", a.robot.c_str());
+  return rc;
+}
+
+Handler add_mission(CLI::App& cli) {
+  auto a = std::make_shared<MissionArgs>();
+  cli.add_option("robot", a->robot, "robot id")->required();
+  cli.add_option("xy", a->xy, "waypoints x1 y1 x2 y2 ... in metres (map frame)");
+  cli.add_option("--file", a->file, "YAML mission file (waypoints: [[x, y], ...], loop: true|false)");
+  cli.add_flag("--loop", a->loop, "start again at the first waypoint after the last (patrol)");
+  return [a](Session& s) { return cmd_mission(s, *a); };
+}
+
+int cmd_missions(Session& s) {
+  std::mutex mutex;
+  std::map<std::string, NavMission> seen;
+  auto reader = dds::make_reader(s.participant(), dds::kNavMission, [&](const NavMission& m, const auto&) {
+    std::lock_guard lock(mutex);
+    auto [it, inserted] = seen.try_emplace(m.robot_id().to_string(), m);
+    if (!inserted && !mission_behind(m, it->second)) it->second = m;
+  });
+  if (!reader) return fail(reader.message());
+  if (wait_until([&] { return (*reader)->matched_writers() > 0; }, s.timeout()))
+    wait_for_shutdown(std::min<std::chrono::milliseconds>(s.timeout(), 1500ms));
+  reader->reset();
+  if (seen.empty()) return fail("no mission known on DDS domain " + std::to_string(s.domain()));
+  for (const auto& [id, m] : seen) std::printf("%s", format_mission(m).c_str());
+  return 0;
+}
+
+Handler add_missions(CLI::App&) {
+  return cmd_missions;
+}
+
 struct PathArgs {
   std::vector<double> ends;
   std::string algorithm = "astar";
@@ -593,6 +661,10 @@ const std::vector<Subcommand>& subcommands() {
       {"alerts", "active alerts: robots offline, low batteries, silent services", add_alerts},
       {"forget", "drop a robot from gateways, planners and viewers (its map data stays)", add_forget},
       {"goal", "set a robot's standing goal: goal ROBOT|all MODE [x y]", add_goal},
+      {"mission",
+       "send a robot waypoints to drive in order: mission ROBOT x1 y1 x2 y2 ... [--loop] | --file FILE",
+       add_mission},
+      {"missions", "each robot's mission: waypoint being driven to, laps done, status", add_missions},
       {"path", "plan a path: path x0 y0 x1 y1", add_path},
       {"map", "save or load the map (ROS map_server YAML + PGM, on the mapper's disk)", add_map},
       {"grid", "change the grid layout (the mapper rebuilds from its store)", add_grid},

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -235,6 +236,44 @@ TEST_F(SlamctlTest, GoalAndPath) {
   const CtlRun outside = ctl({"path", "0", "0", "900", "900"});
   EXPECT_NE(outside.code, 0) << outside.output;
   expect_fails({"path", "1", "2", "3"});
+}
+
+TEST_F(SlamctlTest, MissionAndMissions) {
+  const std::string id = robot_ids().at(0);
+  const auto truth = effects.truth();
+  ASSERT_TRUE(truth);
+  const auto& at = truth->robots()[0].true_pose();
+  const auto coord = [](double v) { return std::to_string(v); };
+  // A small patrol around where the robot stands (space the mapper has seen).
+  const CtlRun sent =
+      ctl({"mission", id, coord(at.x() + 0.5), coord(at.y()), coord(at.x()), coord(at.y() + 0.5), "--loop"});
+  expect_ok(sent, "mission");
+  EXPECT_EQ(sent.lines(), 1u) << sent.output;
+  EXPECT_NE(sent.output.find("mission of 2 waypoint(s), looped, sent to " + id), std::string::npos)
+      << sent.output;
+  // slamctl exits once the planner acknowledged it: what `missions` lists is the planner's report of
+  // the mission (active, or failed when the empty world left the waypoints unexplored).
+  CtlRun listed;
+  EXPECT_TRUE(wait_until(
+      [&] {
+        listed = ctl({"missions"});
+        return listed.code == 0 && listed.output.find(id + " mission ") != std::string::npos &&
+               listed.output.find(", waypoint ") != std::string::npos;
+      },
+      30s, 500ms))
+      << listed.output;
+
+  // From a mission file, once: it replaces the patrol.
+  const std::string file = group.dir() + "/mission.yaml";
+  std::ofstream(file) << "waypoints:\n  - [" << at.x() << ", " << at.y() << "]\n";
+  const CtlRun from_file = ctl({"mission", id, "--file", file});
+  expect_ok(from_file, "mission --file");
+  EXPECT_NE(from_file.output.find("mission of 1 waypoint(s) sent to " + id), std::string::npos)
+      << from_file.output;
+  expect_fails({"mission", id, "1", "2", "3"});
+  expect_fails({"mission", id, "1", "2", "--loop"});
+  expect_fails({"mission", id, "--file", group.dir() + "/no-such-file.yaml"});
+  expect_fails({"missions"}, empty_domain.id());
 }
 
 TEST_F(SlamctlTest, MapFilesGridAndEdits) {

@@ -41,6 +41,7 @@ inline constexpr TopicInfo kMapEdit{"slam/map/edit", kCommandQos};
 inline constexpr TopicInfo kMapFileRequest{"slam/map/file_request", kCommandQos};
 inline constexpr TopicInfo kMapReply{"slam/map/reply", kCommandQos};
 inline constexpr TopicInfo kNavGoal{"slam/nav/goal", kStateQos};
+inline constexpr TopicInfo kNavMission{"slam/nav/mission", kStateQos};
 inline constexpr TopicInfo kRobotPath{"slam/nav/path", kStateQos};
 inline constexpr TopicInfo kWaypointCommand{"slam/nav/waypoint", kCommandQos};
 inline constexpr TopicInfo kPathRequest{"slam/nav/path_request", kCommandQos};

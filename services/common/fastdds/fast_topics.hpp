@@ -24,6 +24,7 @@ inline const Topic<MapEdit, MapEditPubSubType> kMapEdit{topics::kMapEdit};
 inline const Topic<MapFileRequest, MapFileRequestPubSubType> kMapFileRequest{topics::kMapFileRequest};
 inline const Topic<MapReply, MapReplyPubSubType> kMapReply{topics::kMapReply};
 inline const Topic<NavGoal, NavGoalPubSubType> kNavGoal{topics::kNavGoal};
+inline const Topic<NavMission, NavMissionPubSubType> kNavMission{topics::kNavMission};
 inline const Topic<RobotPath, RobotPathPubSubType> kRobotPath{topics::kRobotPath};
 inline const Topic<WaypointCommand, WaypointCommandPubSubType> kWaypointCommand{topics::kWaypointCommand};
 inline const Topic<PathRequest, PathRequestPubSubType> kPathRequest{topics::kPathRequest};

@@ -11,6 +11,10 @@ void set_click_action(ViewerState& state, MouseButton button, ClickAction action
 }
 
 void apply_click(ViewerState& state, CommandSink& sink, Vec2 screen, MouseButton button) {
+  if (button == MouseButton::Left && state.mission_tool.armed()) {
+    add_mission_waypoint(state, screen);
+    return;
+  }
   const ClickAction action = button == MouseButton::Left ? state.left_click : state.right_click;
   const Vec2 w = state.view.screen_to_world(screen);
   const ClickOutcome out =
@@ -63,6 +67,30 @@ void pose_release(ViewerState& state, CommandSink& sink, Vec2 screen, int64_t no
   } else {
     state.status_line = error;
   }
+}
+
+void add_mission_waypoint(ViewerState& state, Vec2 screen) {
+  const Vec2 w = state.view.screen_to_world(screen);
+  if (Status s = state.mission_tool.add(w); !s) {
+    state.status_line = s.message();
+    return;
+  }
+  char line[96];
+  std::snprintf(line, sizeof line, "mission waypoint %zu at (%.2f, %.2f)",
+                state.mission_tool.waypoints().size(), w.x, w.y);
+  state.status_line = line;
+}
+
+void send_mission(ViewerState& state, CommandSink& sink) {
+  auto mission = state.mission_tool.command(state.selected_robot);
+  if (!mission) {
+    state.status_line = mission.message();
+    return;
+  }
+  const std::string what = "mission of " + std::to_string(mission->waypoints.size()) + " waypoint(s)" +
+                           (mission->loop ? ", looped," : "") + " for " + mission->robot_id;
+  std::string error;
+  if (!state.note_sent(sink.send(*mission), what, error)) state.status_line = error;
 }
 
 void cancel_pose_tool(ViewerState& state) {

@@ -13,7 +13,7 @@ enum class MouseButton : uint8_t { Left, Right };
 void set_click_action(ViewerState& state, MouseButton button, ClickAction action);
 
 // Sends what `button`'s action asks for at window point `screen` (nothing for "nothing") and
-// names it on the status line.
+// names it on the status line. While the mission tool is armed, the left button adds a waypoint.
 void apply_click(ViewerState& state, CommandSink& sink, Vec2 screen, MouseButton button);
 
 // A drag shorter than this (window pixels) gives the pose tool no heading.
@@ -28,5 +28,10 @@ void pose_drag(ViewerState& state, Vec2 screen);
 void pose_release(ViewerState& state, CommandSink& sink, Vec2 screen, int64_t now_ns);
 // Escape or a right click.
 void cancel_pose_tool(ViewerState& state);
+
+// The mission tool: a waypoint at window point `screen`, and sending the draft to the selected robot
+// (the status line names what was sent, or why not).
+void add_mission_waypoint(ViewerState& state, Vec2 screen);
+void send_mission(ViewerState& state, CommandSink& sink);
 
 }  // namespace slam::viewer

@@ -89,6 +89,13 @@ struct PathPreviewCommand {
   std::string algorithm = "astar";
 };
 
+// A list of waypoints for one robot, driven in order once or looped (NavMission).
+struct MissionCommand {
+  std::string robot_id;
+  std::vector<Vec2> waypoints;
+  bool loop = false;
+};
+
 class CommandSink {
  public:
   virtual ~CommandSink() = default;
@@ -101,6 +108,7 @@ class CommandSink {
   virtual uint64_t send(const InitialPoseCommand& c) = 0;
   virtual uint64_t send(const ForgetCommand& c) = 0;
   virtual uint64_t send(const PathPreviewCommand& c) = 0;
+  virtual uint64_t send(const MissionCommand& c) = 0;
 };
 
 }  // namespace slam::viewer

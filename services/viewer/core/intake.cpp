@@ -67,12 +67,27 @@ const char* alert_kind_name(AlertKind k) {
   return "?";
 }
 
+const char* mission_status_name(MissionStatus s) {
+  switch (s) {
+    case MissionStatus::Active:
+      return "active";
+    case MissionStatus::Done:
+      return "done";
+    case MissionStatus::Failed:
+      return "failed";
+    case MissionStatus::Cancelled:
+      return "cancelled";
+  }
+  return "?";
+}
+
 void IntakeBatch::clear() {
   snapshot.reset();
   patches.clear();
   observations.clear();
   states.clear();
   paths.clear();
+  missions.clear();
   corrections.clear();
   heartbeats.clear();
   mqtt.clear();
@@ -122,6 +137,16 @@ void Intake::push(RobotPathData&& p) {
       return;
     }
   pending_.paths.push_back(std::move(p));
+}
+
+void Intake::push(MissionData&& m) {
+  std::lock_guard lock(mutex_);
+  for (auto& old : pending_.missions)
+    if (old.robot_id == m.robot_id) {
+      old = std::move(m);
+      return;
+    }
+  pending_.missions.push_back(std::move(m));
 }
 
 void Intake::push(PoseCorrectionData&& c) {

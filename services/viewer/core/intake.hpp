@@ -18,6 +18,7 @@ struct IntakeBatch {
   std::vector<ObservationData> observations;
   std::vector<RobotStateData> states;
   std::vector<RobotPathData> paths;
+  std::vector<MissionData> missions;            // the newest per robot
   std::vector<PoseCorrectionData> corrections;  // the newest per robot
   std::vector<HeartbeatData> heartbeats;
   std::vector<MqttEntry> mqtt;
@@ -45,6 +46,7 @@ class Intake {
   void push(ObservationData&& o);
   void push(RobotStateData&& s);
   void push(RobotPathData&& p);
+  void push(MissionData&& m);
   void push(PoseCorrectionData&& c);
   void push(HeartbeatData&& h);
   void push(MqttEntry&& e);

@@ -16,11 +16,13 @@ enum class GoalStatus : uint8_t { None, Active, Reached, Failed };
 enum class ServiceState : uint8_t { Starting, Running, Stopping };
 enum class CorrectionSource : uint8_t { Identity, Match, Loop, Operator, Restored };
 enum class AlertKind : uint8_t { RobotOffline, ServiceSilent, BatteryLow };
+enum class MissionStatus : uint8_t { Active, Done, Failed, Cancelled };
 
 const char* goal_mode_name(GoalMode m);
 const char* goal_status_name(GoalStatus s);
 const char* correction_source_name(CorrectionSource s);
 const char* alert_kind_name(AlertKind k);
+const char* mission_status_name(MissionStatus s);
 
 struct GridInfoData {
   uint32_t width = 0;
@@ -88,6 +90,18 @@ struct RobotPathData {
   Vec2 target;
   std::vector<Vec2> waypoints;
   uint32_t current = 0;
+  std::string reason;
+};
+
+// A robot's mission and its progress (NavMission: the planner driving the robot rewrites it).
+struct MissionData {
+  std::string robot_id;
+  uint64_t mission_id = 0;
+  std::vector<Vec2> waypoints;
+  bool loop = false;
+  uint32_t current = 0;  // the waypoint being driven to
+  uint32_t laps = 0;
+  MissionStatus status = MissionStatus::Active;
   std::string reason;
 };
 

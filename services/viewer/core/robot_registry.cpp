@@ -51,6 +51,26 @@ void RobotRegistry::ingest(RobotPathData&& p) {
   r.has_path = true;
 }
 
+namespace {
+
+// Several writers keep a robot's mission (its sender and the planner reporting progress): a late
+// joiner gets their samples in any order. Of the same mission, the one further along is kept.
+bool behind(const MissionData& next, const MissionData& kept) {
+  if (next.mission_id != kept.mission_id) return false;
+  if ((next.status == MissionStatus::Active) != (kept.status == MissionStatus::Active))
+    return next.status == MissionStatus::Active;
+  return next.laps < kept.laps || (next.laps == kept.laps && next.current < kept.current);
+}
+
+}  // namespace
+
+void RobotRegistry::ingest(MissionData&& m) {
+  RobotView& r = get_or_add(m.robot_id);
+  if (r.has_mission && behind(m, r.mission)) return;
+  r.mission = std::move(m);
+  r.has_mission = true;
+}
+
 void RobotRegistry::ingest(PoseCorrectionData&& c) {
   RobotView& r = get_or_add(c.robot_id);
   r.correction = std::move(c);

@@ -32,6 +32,8 @@ struct RobotView {
   RobotStateData state;
   bool has_path = false;
   RobotPathData path;
+  bool has_mission = false;
+  MissionData mission;
   bool has_correction = false;
   PoseCorrectionData correction;
   PointStore points;  // raw, in the robot's odometry frame: draw them through map_from_odom()
@@ -56,6 +58,7 @@ class RobotRegistry {
   void ingest(const ObservationData& o);
   void ingest(RobotStateData&& s);
   void ingest(RobotPathData&& p);
+  void ingest(MissionData&& m);
   void ingest(PoseCorrectionData&& c);
   // The operator forgot the robot: its view, settings and points go, and the robots after it move
   // up one place. False when it was not known.

@@ -40,6 +40,7 @@ void ViewerState::ingest(IntakeBatch& batch, int64_t now_ns) {
   }
   for (auto& s : batch.states) robots.ingest(std::move(s));
   for (auto& p : batch.paths) robots.ingest(std::move(p));
+  for (auto& m : batch.missions) robots.ingest(std::move(m));
   for (auto& c : batch.corrections) robots.ingest(std::move(c));
   for (const auto& f : batch.forgets) {
     robots.forget(f.robot_id);

@@ -12,6 +12,7 @@
 #include "viewer/core/click_actions.hpp"
 #include "viewer/core/grid_mirror.hpp"
 #include "viewer/core/intake.hpp"
+#include "viewer/core/mission_tool.hpp"
 #include "viewer/core/mqtt_log.hpp"
 #include "viewer/core/path_preview.hpp"
 #include "viewer/core/pose_tool.hpp"
@@ -74,6 +75,7 @@ struct ViewerState {
   bool square_centred = false;
   PoseTool pose_tool;        // "Set pose": drag on the map sends the selected robot an InitialPose
   PathPreview path_preview;  // "Preview path": two clicks send a PathRequest, the reply is drawn
+  MissionTool mission_tool;  // while armed, left clicks add waypoints to a mission for the selected robot
 
   // Process info.
   int64_t started_ns = 0;  // monotonic

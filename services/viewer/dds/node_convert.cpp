@@ -77,6 +77,20 @@ RobotPathData from_idl(const slam::RobotPath& p) {
   return d;
 }
 
+MissionData from_idl(const slam::NavMission& m) {
+  MissionData d;
+  d.robot_id = m.robot_id().to_string();
+  d.mission_id = m.mission_id();
+  d.waypoints.reserve(m.waypoints().size());
+  for (const auto& w : m.waypoints()) d.waypoints.push_back(vec(w));
+  d.loop = m.loop();
+  d.current = m.current();
+  d.laps = m.laps();
+  d.status = static_cast<MissionStatus>(m.status());
+  d.reason = m.reason().to_string();
+  return d;
+}
+
 HeartbeatData from_idl(const slam::Heartbeat& h) {
   HeartbeatData d;
   d.service = h.service().to_string();
@@ -171,6 +185,16 @@ slam::NavGoal to_idl(const GoalCommand& c, uint64_t goal_id) {
   g.square_size(c.square_size);
   g.square_anchor(c.square_centred ? slam::SQUARE_CENTRED : slam::SQUARE_CORNER);
   return g;
+}
+
+slam::NavMission to_idl(const MissionCommand& c, uint64_t mission_id) {
+  slam::NavMission m;
+  m.robot_id(c.robot_id);
+  m.mission_id(mission_id);
+  for (const Vec2& w : c.waypoints) m.waypoints().push_back(point(w));
+  m.loop(c.loop);
+  m.status(slam::MISSION_ACTIVE);
+  return m;
 }
 
 slam::MapEdit to_idl(const MapEditCommand& c, uint64_t request_id) {

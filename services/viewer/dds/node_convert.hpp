@@ -12,6 +12,7 @@ GridPatchData from_idl(const slam::GridTiles& p);
 ObservationData from_idl(const slam::RobotObservation& o);
 RobotStateData from_idl(const slam::RobotState& s);
 RobotPathData from_idl(const slam::RobotPath& p);
+MissionData from_idl(const slam::NavMission& m);
 HeartbeatData from_idl(const slam::Heartbeat& h);
 MqttEntry from_idl(const slam::MqttTraffic& t);
 MqttSubscriptionsData from_idl(const slam::MqttSubscriptions& s);
@@ -34,5 +35,6 @@ slam::MapFileRequest to_idl(const MapFileCommand& c, uint64_t request_id);
 slam::InitialPose to_idl(const InitialPoseCommand& c, uint64_t request_id);
 slam::ForgetRobot to_idl(const ForgetCommand& c, uint64_t request_id);
 slam::PathRequest to_idl(const PathPreviewCommand& c, uint64_t request_id);
+slam::NavMission to_idl(const MissionCommand& c, uint64_t mission_id);
 
 }  // namespace slam::viewer

@@ -80,6 +80,7 @@ Status ViewerNode::create_writers() {
         make_writer_into(p, dds::kInitialPose, initial_pose_writer_),
         make_writer_into(p, dds::kForgetRobot, forget_writer_),
         make_writer_into(p, dds::kPathRequest, path_request_writer_),
+        make_writer_into(p, dds::kNavMission, mission_writer_),
         make_intake_requester(p, dds::kMapReply, intake_, received_, map_requester_),
         make_intake_requester(p, dds::kMqttReply, intake_, received_, mqtt_requester_),
         make_intake_requester(p, dds::kSimReply, intake_, received_, sim_requester_),
@@ -97,6 +98,7 @@ Status ViewerNode::create_readers() {
                    make_intake_reader(p, dds::kRobotObservation, in, rx, observation_reader_),
                    make_intake_reader(p, dds::kRobotState, in, rx, state_reader_),
                    make_intake_reader(p, dds::kRobotPath, in, rx, path_reader_),
+                   make_intake_reader(p, dds::kNavMission, in, rx, mission_reader_),
                    make_intake_reader(p, dds::kPoseCorrection, in, rx, correction_reader_),
                    make_intake_reader(p, dds::kHeartbeat, in, rx, heartbeat_reader_),
                    make_intake_reader(p, dds::kMqttTraffic, in, rx, traffic_reader_),
@@ -113,6 +115,18 @@ uint64_t ViewerNode::send(const GoalCommand& c) {
   // A goal is state (kept for late joiners while this viewer runs), not a request: written once.
   const uint64_t id = goal_ids_.next();
   if (!goal_writer_->write(to_idl(c, id))) {
+    bump(send_failed_);
+    return 0;
+  }
+  bump(sent_);
+  return id;
+}
+
+uint64_t ViewerNode::send(const MissionCommand& c) {
+  // Like a goal: state, written once; its id comes from the same source (goals and missions
+  // replace each other).
+  const uint64_t id = goal_ids_.next();
+  if (!mission_writer_->write(to_idl(c, id))) {
     bump(send_failed_);
     return 0;
   }

@@ -33,6 +33,7 @@ class ViewerNode final : public CommandSink {
   uint64_t send(const InitialPoseCommand& c) override;
   uint64_t send(const ForgetCommand& c) override;
   uint64_t send(const PathPreviewCommand& c) override;
+  uint64_t send(const MissionCommand& c) override;
 
  private:
   ViewerNode(Intake& intake, Counters& counters);
@@ -60,6 +61,7 @@ class ViewerNode final : public CommandSink {
   std::unique_ptr<dds::Writer<InitialPose>> initial_pose_writer_;
   std::unique_ptr<dds::Writer<ForgetRobot>> forget_writer_;
   std::unique_ptr<dds::Writer<PathRequest>> path_request_writer_;
+  std::unique_ptr<dds::Writer<NavMission>> mission_writer_;
   // After the writers they resend through, so they stop first.
   std::unique_ptr<dds::Requester<MapReply>> map_requester_;
   std::unique_ptr<dds::Requester<MqttReply>> mqtt_requester_;
@@ -70,6 +72,7 @@ class ViewerNode final : public CommandSink {
   std::unique_ptr<dds::Reader<RobotObservation>> observation_reader_;
   std::unique_ptr<dds::Reader<RobotState>> state_reader_;
   std::unique_ptr<dds::Reader<RobotPath>> path_reader_;
+  std::unique_ptr<dds::Reader<NavMission>> mission_reader_;
   std::unique_ptr<dds::Reader<PoseCorrection>> correction_reader_;
   std::unique_ptr<dds::Reader<Heartbeat>> heartbeat_reader_;
   std::unique_ptr<dds::Reader<MqttTraffic>> traffic_reader_;

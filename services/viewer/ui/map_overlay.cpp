@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <string>
 
 #include "viewer/core/clicks_tab.hpp"
 #include "viewer/core/preview_clicks.hpp"
@@ -72,6 +73,24 @@ void draw_path(ImDrawList* dl, const ViewTransform& v, const RobotView& r) {
                 r.path.status == GoalStatus::Failed ? IM_COL32(255, 40, 40, 255) : col);
 }
 
+// A mission's waypoints joined in driving order (closed when looped), numbered, the one being
+// driven to ringed. `current` past the end: none is (the draft).
+void draw_mission(ImDrawList* dl, const ViewTransform& v, const std::vector<Vec2>& wps, bool loop,
+                  size_t current, ImU32 col) {
+  for (size_t i = 0; i + 1 < wps.size(); ++i)
+    dl->AddLine(screen(v, wps[i].x, wps[i].y), screen(v, wps[i + 1].x, wps[i + 1].y), col, 2.5f);
+  if (loop && wps.size() > 2)
+    dl->AddLine(screen(v, wps.back().x, wps.back().y), screen(v, wps.front().x, wps.front().y), col, 2.5f);
+  for (size_t i = 0; i < wps.size(); ++i) {
+    const ImVec2 p = screen(v, wps[i].x, wps[i].y);
+    dl->AddCircleFilled(p, 6.0f, col, 12);
+    dl->AddCircle(p, 6.0f, IM_COL32(0, 0, 0, 200), 12, 1.0f);
+    if (i == current) dl->AddCircle(p, 11.0f, IM_COL32(255, 255, 255, 255), 20, 3.0f);
+    const std::string label = std::to_string(i + 1);
+    dl->AddText({p.x + 7.0f, p.y + 2.0f}, IM_COL32(255, 255, 255, 230), label.c_str());
+  }
+}
+
 // The pose tool's drag: a thick arrow from the pressed point (a ring marks it) to the cursor.
 void draw_pose_arrow(ImDrawList* dl, const ViewTransform& v, const PoseTool::Arrow& a) {
   constexpr ImU32 kColor = IM_COL32(255, 200, 0, 255);
@@ -126,6 +145,10 @@ void draw_map_overlay(const ViewerState& state) {
   for (size_t i = 0; i < state.robots.size(); ++i) {
     const RobotView& r = state.robots.at(i);
     if (!r.settings.visible) continue;
+    if (state.show_paths && r.settings.show_path && r.has_mission &&
+        r.mission.status == MissionStatus::Active)
+      draw_mission(dl, v, r.mission.waypoints, r.mission.loop, r.mission.current,
+                   to_u32(r.settings.color, 0.6f));
     if (state.show_paths && r.settings.show_path && r.has_path) draw_path(dl, v, r);
   }
   if (state.show_truth && state.truth)
@@ -148,6 +171,10 @@ void draw_map_overlay(const ViewerState& state) {
     }
   if (const auto arrow = state.pose_tool.arrow()) draw_pose_arrow(dl, v, *arrow);
   draw_path_preview(dl, v, state.path_preview);
+  // The mission being drawn up, in the tool's own colour.
+  const auto& draft = state.mission_tool.waypoints();
+  if (!draft.empty())
+    draw_mission(dl, v, draft, state.mission_tool.loop(), draft.size(), IM_COL32(255, 200, 0, 220));
   dl->PopClipRect();
 }
 

@@ -1,12 +1,14 @@
 // Manual drive tab (the 2019 calibration drive): a manual target, a square path of a given size
 // with the target as its first corner or its centre, and a button per corner of that square, for
-// the selected robot or every robot. The actions are DriveTab's (core/drive_tab.hpp); this file
+// the selected robot or every robot; and the mission tool. The actions are DriveTab's
+// (core/drive_tab.hpp) and the mission tool's (core/mission_tool.hpp, clicks_tab.hpp); this file
 // only lays out the widgets.
 #include <imgui.h>
 
 #include <array>
 #include <cstdio>
 
+#include "viewer/core/clicks_tab.hpp"
 #include "viewer/ui/panels.hpp"
 
 namespace slam::viewer {
@@ -24,6 +26,31 @@ void corner_buttons(DriveTab& tab, ViewerState& state, CommandSink& sink) {
     if (ImGui::Button(label, ImVec2(width, 0.0f))) tab.drive_corner(state, sink, i);
     if (i == 3 || i == 0) ImGui::SameLine();
   }
+}
+
+// The mission tool: armed, left clicks on the map add waypoints; sent to the selected robot.
+void mission_section(ViewerState& state, CommandSink& sink) {
+  section_title("Mission (waypoints in order)");
+  MissionTool& tool = state.mission_tool;
+  bool armed = tool.armed();
+  if (ImGui::Checkbox("add waypoints by left click", &armed)) tool.set_armed(armed);
+  bool loop = tool.loop();
+  if (ImGui::Checkbox("loop (patrol)", &loop)) tool.set_loop(loop);
+  ImGui::Text("%zu waypoint(s)", tool.waypoints().size());
+  if (ImGui::Button("send mission")) send_mission(state, sink);
+  ImGui::SameLine();
+  if (ImGui::Button("undo last")) tool.undo();
+  ImGui::SameLine();
+  if (ImGui::Button("clear")) tool.clear();
+  if (state.selected_robot != "*")
+    if (const RobotView* r = state.robots.find(state.selected_robot); r != nullptr && r->has_mission) {
+      const MissionData& m = r->mission;
+      ImGui::Text("mission %llu: %s, waypoint %u/%zu, %u lap(s)",
+                  static_cast<unsigned long long>(m.mission_id), mission_status_name(m.status), m.current + 1,
+                  m.waypoints.size(), m.laps);
+      if (!m.reason.empty()) hint("%s", m.reason.c_str());
+    }
+  hint("A mission replaces the robot's goal; any goal sent later (stop, explore, a click) cancels it.");
 }
 
 }  // namespace
@@ -68,6 +95,7 @@ void draw_drive_tab(DriveTab& tab, ViewerState& state, CommandSink& sink) {
   if (ImGui::Button("idle")) tab.drive(state, sink, GoalMode::Idle);
   error_line(tab.error);
   hint("Clicks with 'set target' use the square settings in square mode.");
+  mission_section(state, sink);
 }
 
 }  // namespace slam::viewer

@@ -188,3 +188,71 @@ TEST(GoalStore, ResumedGoalsAndHomesDriveTheFleetAsBefore) {
 
 }  // namespace
 }  // namespace slam::planner
+
+namespace slam::planner {
+namespace {
+
+TEST(GoalRecord, MissionsRoundTripWithTheirProgress) {
+  GoalRecord original;
+  original.missions["r1"] =
+      StoredMission{"r1", Mission{21, {{1, 2}, {3.5, -4}}, true},
+                    MissionProgress{1, 7, MissionStatus::Active, "waypoint 0 skipped: x"}, 500};
+  original.missions["r2"] =
+      StoredMission{"r2", Mission{22, {{0, 0}}, false}, MissionProgress{0, 1, MissionStatus::Done, ""}, 400};
+  auto parsed = parse_goal_record(format_goal_record(original));
+  ASSERT_TRUE(parsed) << parsed.message();
+  ASSERT_EQ(parsed->missions.size(), 2u);
+  const StoredMission& m = parsed->missions.at("r1");
+  EXPECT_EQ(m.mission.mission_id, 21u);
+  EXPECT_EQ(m.mission.waypoints, (std::vector<Vec2>{{1, 2}, {3.5, -4}}));
+  EXPECT_TRUE(m.mission.loop);
+  EXPECT_EQ(m.progress, original.missions.at("r1").progress);
+  EXPECT_EQ(m.sent_ns, 500);
+  EXPECT_EQ(parsed->missions.at("r2").progress.status, MissionStatus::Done);
+  const auto resume = missions_to_resume(*parsed);
+  ASSERT_EQ(resume.size(), 1u);
+  EXPECT_EQ(resume[0].robot_id, "r1");
+}
+
+TEST(GoalRecord, BadMissionsNameWhatIsWrong) {
+  const std::string head = R"({"format": "slam-planner-goals", "version": 1, "missions": [)";
+  const auto error_of = [&](const std::string& mission) {
+    auto r = parse_goal_record(head + mission + "]}");
+    return r ? std::string("accepted") : r.message();
+  };
+  const std::string good =
+      R"({"robot_id": "a", "mission_id": 1, "waypoints": [[0, 0], [1, 1]], "loop": true, "current": 1, )"
+      R"("laps": 0, "status": "active", "sent_ns": 5})";
+  EXPECT_EQ(error_of(good), "accepted");
+  EXPECT_NE(error_of(R"({"robot_id": "a"})").find("missions[0] has no \"mission_id\""), std::string::npos);
+  std::string past_end = good;
+  past_end.replace(past_end.find("\"current\": 1"), 12, "\"current\": 2");
+  EXPECT_NE(error_of(past_end).find("missions[0]: mission current waypoint 2"), std::string::npos);
+  std::string bad_status = good;
+  bad_status.replace(bad_status.find("\"active\""), 8, "\"lost\"");
+  EXPECT_NE(error_of(bad_status).find("missions[0].status must be one of active, done"), std::string::npos);
+  EXPECT_NE(error_of(good + ", " + good).find("a second mission for robot 'a'"), std::string::npos);
+}
+
+TEST(GoalStore, AMissionAndAGoalReplaceEachOther) {
+  auto store = GoalStore::open("");
+  ASSERT_TRUE(store);
+  store->put(StoredGoal{"r1", Goal{5, GoalMode::Planned, {1, 2}, 0.0, SquareAnchor::Corner}, 1000, false});
+  const StoredMission mission{"r1", Mission{6, {{1, 1}, {2, 2}}, true}, {}, 2000};
+  store->put_mission(mission);
+  EXPECT_TRUE(store->record().goals.at("r1").finished);
+  EXPECT_TRUE(store->is_stale("r1", 2000));
+  EXPECT_TRUE(store->is_stale("r1", 1500));
+  EXPECT_FALSE(store->is_stale("r1", 2001));
+  EXPECT_EQ(missions_to_resume(store->record()).size(), 1u);
+
+  store->put(StoredGoal{"r2", Goal{7, GoalMode::Stop, {}, 0.0, SquareAnchor::Corner}, 3000, false});
+  EXPECT_EQ(store->record().missions.at("r1").progress.status, MissionStatus::Active)
+      << "another robot's goal";
+  store->put(StoredGoal{"r1", Goal{8, GoalMode::Home, {}, 0.0, SquareAnchor::Corner}, 3000, false});
+  EXPECT_EQ(store->record().missions.at("r1").progress.status, MissionStatus::Cancelled);
+  EXPECT_TRUE(missions_to_resume(store->record()).empty());
+}
+
+}  // namespace
+}  // namespace slam::planner

@@ -46,7 +46,7 @@ TEST(SlamctlSubcommands, NamesAreUniqueAndEachHasAHandler) {
     EXPECT_TRUE(names.insert(sub.name).second) << sub.name;
     EXPECT_FALSE(sub.help.empty()) << sub.name;
   }
-  for (const char* name : {"status", "robots", "alerts", "forget", "goal", "path", "map", "grid", "obstruct",
+  for (const char* name : {"status", "robots", "alerts", "forget", "mission", "missions", "goal", "path", "map", "grid", "obstruct",
                            "unobstruct", "reset", "pose", "sim", "echo"})
     EXPECT_TRUE(names.contains(name)) << name;
   for (const auto& [cli, run] : line.handlers) EXPECT_TRUE(run) << cli->get_name();
@@ -57,6 +57,9 @@ TEST(SlamctlSubcommands, OnlyTheGivenSubcommandIsParsed) {
       {"status"},
       {"goal", "r1", "direct", "1", "2", "--size", "2"},
       {"path", "0", "0", "1", "1", "--algorithm", "rrtstar"},
+      {"mission", "r1", "1", "-2", "3.5", "4", "--loop"},
+      {"mission", "r1", "--file", "/tmp/patrol.yaml"},
+      {"missions"},
       {"map", "save", "/tmp/m.yaml"},
       {"grid", "--resolution", "0.1", "--origin", "-5", "-5"},
       {"unobstruct", "1.5", "2"},
