@@ -22,6 +22,21 @@ std::string describe(Vec2 p) {
   return buf;
 }
 
+// Why no path exists: under Allowed the search crossed unexplored space too, so known walls
+// separate start and goal; under Blocked the unexplored space may still hold a way.
+std::string no_path_reason(Vec2 start, Vec2 goal, UnknownPolicy policy) {
+  const std::string route = "no path from " + describe(start) + " to " + describe(goal);
+  return policy == UnknownPolicy::Allowed
+             ? route + ": unreachable, enclosed by known walls (not even a way through unexplored space)"
+             : route + " through explored space (unexplored space is blocked)";
+}
+
+// Why a cell cannot be a start or goal: an unknown one is impassable only under Blocked.
+std::string impassable_reason(const PlanningGrid& grid, Cell cell) {
+  return grid.unknown(cell) ? " is in unexplored space (unexplored space is blocked)"
+                            : " is in an obstacle or too close to one";
+}
+
 std::string metres(double m) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.2f m", m);
@@ -85,16 +100,11 @@ std::optional<PlanResult> PathPlanner::reject(const PlanningGrid& grid, const Pa
     return failure(PlanStatus::InvalidRequest, "goal " + describe(query.goal) + " is outside the map");
   }
   if (grid.impassable(*start, config_.unknown)) {
-    return failure(
-        PlanStatus::StartBlocked,
-        "start " + describe(query.start) +
-            (grid.unknown(*start) ? " is in unexplored space" : " is in an obstacle or too close to one"));
+    return failure(PlanStatus::StartBlocked,
+                   "start " + describe(query.start) + impassable_reason(grid, *start));
   }
   if (grid.impassable(*goal, config_.unknown)) {
-    return failure(
-        PlanStatus::GoalBlocked,
-        "goal " + describe(query.goal) +
-            (grid.unknown(*goal) ? " is in unexplored space" : " is in an obstacle or too close to one"));
+    return failure(PlanStatus::GoalBlocked, "goal " + describe(query.goal) + impassable_reason(grid, *goal));
   }
   return std::nullopt;
 }
@@ -104,9 +114,8 @@ PlanResult PathPlanner::run_astar(const PlanningGrid& grid, Cell from, Cell to, 
   const AstarOptions options{policy, config_.unknown_cost_factor};
   const PlanStatus status = astar_.search(grid, from, to, options, cells_);
   if (status != PlanStatus::Ok) {
-    return failure(status, status == PlanStatus::NoPath
-                               ? "no path from " + describe(start) + " to " + describe(goal)
-                               : std::string(to_string(status)));
+    return failure(status, status == PlanStatus::NoPath ? no_path_reason(start, goal, policy)
+                                                        : std::string(to_string(status)));
   }
   PlanResult result;
   result.status = PlanStatus::Ok;
@@ -141,9 +150,7 @@ PlanResult PathPlanner::plan_for_robot(const PlanningGrid& grid, Vec2 start, Vec
   const auto from = escape_.find(grid, *start_cell, radius, policy);
   if (!from) {
     return failure(PlanStatus::StartBlocked,
-                   "start " + describe(start) +
-                       (grid.unknown(*start_cell) ? " is in unexplored space"
-                                                  : " is in an obstacle or too close to one") +
+                   "start " + describe(start) + impassable_reason(grid, *start_cell) +
                        " with no passable cell within " + metres(config_.escape_radius_m));
   }
   std::optional<Cell> to = *goal_cell;
@@ -153,10 +160,7 @@ PlanResult PathPlanner::plan_for_robot(const PlanningGrid& grid, Vec2 start, Vec
     to.reset();
   }
   if (!to) {
-    return failure(PlanStatus::GoalBlocked,
-                   "goal " + describe(goal) +
-                       (grid.unknown(*goal_cell) ? " is in unexplored space"
-                                                 : " is in an obstacle or too close to one"));
+    return failure(PlanStatus::GoalBlocked, "goal " + describe(goal) + impassable_reason(grid, *goal_cell));
   }
   const bool escaped = !(*from == *start_cell);
   const Vec2 leg_start = escaped ? grid.centre(*from) : start;
@@ -190,8 +194,7 @@ PlanResult PathPlanner::plan(const PlanningGrid& grid, const PathQuery& query) {
                            query.goal, config_.unknown)
                          .status == PlanStatus::NoPath) {
         // OMPL cannot tell "no path" from "not found yet"; an exhaustive A* can.
-        result = failure(PlanStatus::NoPath,
-                         "no path from " + describe(query.start) + " to " + describe(query.goal));
+        result = failure(PlanStatus::NoPath, no_path_reason(query.start, query.goal, config_.unknown));
       } else {
         result = failure(outcome.status, std::move(outcome.reason));
       }

@@ -16,7 +16,9 @@
 namespace slam::planner {
 
 struct PlannerConfig {
-  UnknownPolicy unknown = UnknownPolicy::Blocked;
+  // Goals and path requests plan through unexplored cells (a robot discovers the way as it drives,
+  // as Nav2's allow_unknown does); Blocked refuses targets in unexplored space.
+  UnknownPolicy unknown = UnknownPolicy::Allowed;
   double unknown_cost_factor = 3.0;  // A* step cost multiplier into unknown cells (>= 1)
   uint32_t ompl_seed = 1;
   // How far one RRT extension reaches (RRTConnect, RRT*); 0 = OMPL's default, a fifth of the map's

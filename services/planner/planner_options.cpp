@@ -26,9 +26,11 @@ void add_planner_options(CLI::App& app, PlannerOptions& o) {
          [&planner](const std::string& v) {
            planner.unknown = v == "allowed" ? UnknownPolicy::Allowed : UnknownPolicy::Blocked;
          },
-         "unexplored cells: blocked or allowed")
+         "unexplored cells on the way to a goal or path request's target: allowed (planned through at "
+         "the unknown cost factor, re-planned as the map fills in) or blocked (targets in unexplored "
+         "space are refused)")
       ->check(CLI::IsMember({"blocked", "allowed"}))
-      ->default_str("blocked");
+      ->default_str("allowed");
   app.add_option("--planner-unknown-cost-factor", planner.unknown_cost_factor,
                  "A* step cost multiplier into unexplored cells when allowed (>= 1)")
       ->capture_default_str();

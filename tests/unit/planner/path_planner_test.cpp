@@ -101,12 +101,12 @@ TEST(PathPlanner, ReportsNoPathForEveryAlgorithm) {
 
 TEST(PathPlanner, UnknownPolicyComesFromConfig) {
   const PlanningGrid g = test::grid_from_art({"..??.."}, 1.0);
-  PathPlanner strict({});
+  PlannerConfig strict_config;
+  strict_config.unknown = UnknownPolicy::Blocked;
+  PathPlanner strict(strict_config);
   EXPECT_EQ(strict.plan(g, {{0.5, 0.5}, {5.5, 0.5}, "astar", 1.0}).status, PlanStatus::NoPath);
   EXPECT_EQ(strict.plan(g, {{0.5, 0.5}, {2.5, 0.5}, "astar", 1.0}).status, PlanStatus::GoalBlocked);
-  PlannerConfig loose;
-  loose.unknown = UnknownPolicy::Allowed;
-  PathPlanner lenient(loose);
+  PathPlanner lenient({});  // the default (unknown_space_test.cpp)
   EXPECT_EQ(lenient.plan(g, {{0.5, 0.5}, {5.5, 0.5}, "astar", 1.0}).status, PlanStatus::Ok);
 }
 

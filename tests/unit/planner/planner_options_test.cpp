@@ -25,19 +25,19 @@ std::string parse(PlannerOptions& options, std::vector<std::string> args) {
 TEST(PlannerOptions, DefaultsAreValid) {
   PlannerOptions options;
   EXPECT_TRUE(validate(options));
-  EXPECT_EQ(options.fleet.planner.unknown, UnknownPolicy::Blocked);
+  EXPECT_EQ(options.fleet.planner.unknown, UnknownPolicy::Allowed);
 }
 
 TEST(PlannerOptions, FlagsSetTheCoreConfiguration) {
   PlannerOptions o;
   ASSERT_EQ(parse(o, {"--domain", "7", "--goals-reach-tolerance-m", "0.3", "--goals-resend-period-s", "0.5",
-                      "--planner-unknown", "allowed", "--planner-ompl-seed", "42", "--planner-ompl-range-m",
+                      "--planner-unknown", "blocked", "--planner-ompl-seed", "42", "--planner-ompl-range-m",
                       "2.5", "--explore-min-cluster-cells", "9", "--request-workers", "3"}),
             "");
   EXPECT_EQ(o.service.domain, 7);
   EXPECT_DOUBLE_EQ(o.fleet.goals.reach_tolerance_m, 0.3);
   EXPECT_DOUBLE_EQ(o.fleet.goals.resend_period_s, 0.5);
-  EXPECT_EQ(o.fleet.planner.unknown, UnknownPolicy::Allowed);
+  EXPECT_EQ(o.fleet.planner.unknown, UnknownPolicy::Blocked);
   EXPECT_EQ(o.fleet.planner.ompl_seed, 42u);
   EXPECT_DOUBLE_EQ(o.fleet.planner.ompl_range_m, 2.5);
   EXPECT_EQ(o.fleet.explore.min_cluster_cells, 9u);
