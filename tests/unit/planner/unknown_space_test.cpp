@@ -114,7 +114,8 @@ Drive drive(test::HiddenWorld& world, Vec2 start, Vec2 target) {
     if (t.status() != GoalStatus::Active || !wp) break;
     const double d = distance(out.position, *wp);
     const double s = std::min(1.0, d) / std::max(d, 1e-9);
-    const Vec2 next{out.position.x + (wp->x - out.position.x) * s, out.position.y + (wp->y - out.position.y) * s};
+    const Vec2 next{out.position.x + (wp->x - out.position.x) * s,
+                    out.position.y + (wp->y - out.position.y) * s};
     EXPECT_TRUE(segment_clear(world.truth(), out.position, next, UnknownPolicy::Blocked))
         << "drove into a wall at step " << step;
     out.position = next;
