@@ -39,6 +39,17 @@ void add_planner_options(CLI::App& app, PlannerOptions& o) {
   app.add_option("--planner-ompl-range-m", planner.ompl_range_m,
                  "longest RRT extension in metres (rrtconnect, rrtstar); 0: OMPL's default")
       ->capture_default_str();
+  app.add_option("--planner-ompl-fmt-samples", planner.ompl_fmt_samples,
+                 "states FMT* (fmtstar) samples: more take longer and give shorter paths")
+      ->capture_default_str();
+  app.add_option("--planner-goal-algorithm", planner.goal_algorithm,
+                 "what robot goals are planned with: astar, or an OMPL planner (rrtconnect, rrtstar, "
+                 "prmstar, fmtstar) with A* answering when it finds nothing in time")
+      ->check(CLI::IsMember({"astar", "rrtconnect", "rrtstar", "prmstar", "fmtstar"}))
+      ->capture_default_str();
+  app.add_option("--planner-goal-time-budget-s", planner.goal_time_budget_s,
+                 "time (s) an OMPL goal algorithm gets per plan")
+      ->capture_default_str();
   app.add_option("--planner-max-time-budget-s", planner.max_time_budget_s,
                  "path requests asking for more time (s) are refused")
       ->capture_default_str();

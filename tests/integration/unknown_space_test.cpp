@@ -51,11 +51,11 @@ class UnknownSpaceTest : public ::testing::Test {
  protected:
   void SetUp() override {
     const std::string domain = std::to_string(domain_.id());
-    group_.start("gateway",
-                 {bin_path("slam-gateway"), "--domain", domain, "--broker", "tcp://127.0.0.1:" + std::to_string(port_)});
+    group_.start("gateway", {bin_path("slam-gateway"), "--domain", domain, "--broker",
+                             "tcp://127.0.0.1:" + std::to_string(port_)});
     // SLAM off: the robot's reports are the map frame, so the test can judge waypoints against the wall.
-    group_.start("mapper",
-                 {bin_path("slam-mapper"), "--domain", domain, "--store", group_.dir() + "/map.db", "--slam", "off"});
+    group_.start("mapper", {bin_path("slam-mapper"), "--domain", domain, "--store", group_.dir() + "/map.db",
+                            "--slam", "off"});
     // The planner's defaults: unexplored space allowed.
     group_.start("planner", {bin_path("slam-planner"), "--domain", domain, "--no-share", "--goal-store",
                              group_.dir() + "/goals.json"});
@@ -110,7 +110,9 @@ TEST_F(UnknownSpaceTest, AV1RobotSentBehindItsReportedWallIsSteeredAroundIt) {
   // Only the wall and the rays to it are known: the goal behind it is unexplored.
   ASSERT_NO_FATAL_FAILURE(report_until(
       robot, v1_adv(Scene::kStart, Scene::wall()),
-      [](const Map& m) { return m.state(Vec{1.52, 0.03}) == CELL_OCCUPIED && m.state(Vec{1.0, 0.0}) == CELL_FREE; },
+      [](const Map& m) {
+        return m.state(Vec{1.52, 0.03}) == CELL_OCCUPIED && m.state(Vec{1.0, 0.0}) == CELL_FREE;
+      },
       "the reported wall"));
   const auto map = probe_.map();
   ASSERT_EQ(map->state(Scene::kGoal), CELL_UNKNOWN) << "the goal must lie in unexplored space";
@@ -135,8 +137,8 @@ TEST_F(UnknownSpaceTest, AV1RobotSentBehindItsReportedWallIsSteeredAroundIt) {
   ASSERT_GE(route.size(), 3u) << "a route around the wall bends at least once";
   for (size_t i = 1; i < route.size(); ++i) {
     EXPECT_GT(segment_distance(route[i - 1], route[i], Scene::kWallA, Scene::kWallB), 0.05)
-        << "segment (" << route[i - 1].x << ", " << route[i - 1].y << ") -> (" << route[i].x << ", " << route[i].y
-        << ") crosses or grazes the reported wall";
+        << "segment (" << route[i - 1].x << ", " << route[i - 1].y << ") -> (" << route[i].x << ", "
+        << route[i].y << ") crosses or grazes the reported wall";
   }
   std::cout << "[ route  ]";
   for (const Vec& p : route) std::cout << " (" << p.x << ", " << p.y << ")";

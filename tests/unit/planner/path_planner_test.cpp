@@ -46,7 +46,7 @@ TEST(PathPlanner, OmplPlannersFindClearPaths) {
   const PlanningGrid g = two_rooms();
   PathPlanner p({});
   const double astar_length = p.plan(g, {{0.5, 0.5}, {5.5, 3.5}, "astar", 1.0}).length_m;
-  for (const char* algorithm : {"rrtconnect", "rrtstar", "prmstar"}) {
+  for (const char* algorithm : {"rrtconnect", "rrtstar", "prmstar", "fmtstar"}) {
     const PlanResult r = p.plan(g, {{0.5, 0.5}, {5.5, 3.5}, algorithm, 0.3});
     ASSERT_EQ(r.status, PlanStatus::Ok) << algorithm << ": " << r.reason;
     EXPECT_NEAR(r.path.front().x, 0.5, 1e-9);
@@ -55,6 +55,35 @@ TEST(PathPlanner, OmplPlannersFindClearPaths) {
     EXPECT_GE(r.length_m, astar_length * 0.9) << algorithm;
     EXPECT_GT(r.planning_time_s, 0.0);
   }
+}
+
+// FMT* samples a fixed number of states with OMPL's generator, seeded once per process
+// (PlannerConfig::ompl_seed): on this small map its 6000 states leave no room for a detour.
+TEST(PathPlanner, FmtStarPathsAreWithinATenthOfAstar) {
+  const PlanningGrid g = two_rooms();
+  PathPlanner p({});
+  const double astar_length = p.plan(g, {{0.5, 0.5}, {5.5, 3.5}, "astar", 1.0}).length_m;
+  for (int run = 0; run < 5; ++run) {
+    const PlanResult r = p.plan(g, {{0.5, 0.5}, {5.5, 3.5}, "fmtstar", 1.0});
+    ASSERT_EQ(r.status, PlanStatus::Ok) << r.reason;
+    expect_clear(g, r);
+    EXPECT_LE(r.length_m, 1.10 * astar_length) << "run " << run;
+  }
+}
+
+TEST(PathPlanner, RobotGoalsCanBePlannedWithASamplingPlanner) {
+  const PlanningGrid g = two_rooms();
+  PathPlanner p({});
+  const PlanResult r = p.plan_for_robot(g, {0.5, 0.5}, {5.5, 3.5}, UnknownPolicy::Allowed, false, "fmtstar");
+  ASSERT_EQ(r.status, PlanStatus::Ok) << r.reason;
+  expect_clear(g, r);
+  EXPECT_EQ(r.path.back(), (Vec2{5.5, 3.5}));
+  // Enclosed stays enclosed whatever the algorithm.
+  PlanningGrid closed = test::uniform_grid(30, 10, kCellFree, 0.1);
+  for (int y = 0; y < 10; ++y) closed.set({15, y}, kCellOccupied);
+  const PlanResult none =
+      p.plan_for_robot(closed, {0.5, 0.5}, {2.5, 0.5}, UnknownPolicy::Allowed, false, "fmtstar");
+  EXPECT_EQ(none.status, PlanStatus::NoPath) << none.reason;
 }
 
 TEST(PathPlanner, RejectsBadRequestsWithReasons) {
@@ -123,6 +152,16 @@ TEST(PathPlanner, ValidatesConfig) {
   EXPECT_FALSE(validate(c));
   c.ompl_range_m = 0.0;  // OMPL's own default
   EXPECT_TRUE(validate(c));
+  c = {};
+  c.goal_algorithm = "dijkstra";
+  EXPECT_FALSE(validate(c));
+  c.goal_algorithm = "fmtstar";
+  EXPECT_TRUE(validate(c));
+  c.goal_time_budget_s = 0.0;
+  EXPECT_FALSE(validate(c));
+  c = {};
+  c.ompl_fmt_samples = 10;
+  EXPECT_FALSE(validate(c));
 }
 
 }  // namespace

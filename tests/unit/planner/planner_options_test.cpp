@@ -30,9 +30,26 @@ TEST(PlannerOptions, DefaultsAreValid) {
 
 TEST(PlannerOptions, FlagsSetTheCoreConfiguration) {
   PlannerOptions o;
-  ASSERT_EQ(parse(o, {"--domain", "7", "--goals-reach-tolerance-m", "0.3", "--goals-resend-period-s", "0.5",
-                      "--planner-unknown", "blocked", "--planner-ompl-seed", "42", "--planner-ompl-range-m",
-                      "2.5", "--explore-min-cluster-cells", "9", "--request-workers", "3"}),
+  ASSERT_EQ(parse(o, {"--domain",
+                      "7",
+                      "--goals-reach-tolerance-m",
+                      "0.3",
+                      "--goals-resend-period-s",
+                      "0.5",
+                      "--planner-unknown",
+                      "blocked",
+                      "--planner-ompl-seed",
+                      "42",
+                      "--planner-ompl-range-m",
+                      "2.5",
+                      "--planner-goal-algorithm",
+                      "fmtstar",
+                      "--planner-ompl-fmt-samples",
+                      "3000",
+                      "--explore-min-cluster-cells",
+                      "9",
+                      "--request-workers",
+                      "3"}),
             "");
   EXPECT_EQ(o.service.domain, 7);
   EXPECT_DOUBLE_EQ(o.fleet.goals.reach_tolerance_m, 0.3);
@@ -40,14 +57,20 @@ TEST(PlannerOptions, FlagsSetTheCoreConfiguration) {
   EXPECT_EQ(o.fleet.planner.unknown, UnknownPolicy::Blocked);
   EXPECT_EQ(o.fleet.planner.ompl_seed, 42u);
   EXPECT_DOUBLE_EQ(o.fleet.planner.ompl_range_m, 2.5);
+  EXPECT_EQ(o.fleet.planner.goal_algorithm, "fmtstar");
+  EXPECT_EQ(o.fleet.planner.ompl_fmt_samples, 3000u);
   EXPECT_EQ(o.fleet.explore.min_cluster_cells, 9u);
   EXPECT_EQ(o.request_workers, 3u);
   EXPECT_TRUE(validate(o));
 }
 
-TEST(PlannerOptions, UnknownPolicyMustBeANamedOne) {
+TEST(PlannerOptions, UnknownPolicyAndGoalAlgorithmMustBeNamedOnes) {
   PlannerOptions o;
   EXPECT_NE(parse(o, {"--planner-unknown", "sometimes"}).find("--planner-unknown"), std::string::npos);
+  PlannerOptions p;
+  EXPECT_NE(parse(p, {"--planner-goal-algorithm", "dijkstra"}).find("--planner-goal-algorithm"),
+            std::string::npos);
+  EXPECT_EQ(PlannerOptions{}.fleet.planner.goal_algorithm, "astar");
 }
 
 TEST(PlannerOptions, SharingIsOnUnlessALonePlannerIsAskedFor) {
@@ -67,6 +90,8 @@ TEST(PlannerOptions, BadValuesNameTheirKey) {
       {{"--goals-resend-period-s", "-1"}, "resend_period_s"},
       {{"--planner-unknown-cost-factor", "0.5"}, "unknown_cost_factor"},
       {{"--planner-max-time-budget-s", "0"}, "max_time_budget_s"},
+      {{"--planner-goal-time-budget-s", "0"}, "goal_time_budget_s"},
+      {{"--planner-ompl-fmt-samples", "10"}, "ompl_fmt_samples"},
       {{"--explore-min-cluster-cells", "0"}, "min_cluster_cells"},
       {{"--loop-rate-hz", "0"}, "loop_rate_hz"},
       {{"--request-workers", "0"}, "request_workers"},
