@@ -42,7 +42,8 @@ class BucketNearestNeighbors : public ompl::NearestNeighbors<T> {
   }
   bool remove(const T& data) override {
     auto& bucket = buckets_[bucket_of(position_(data))];
-    const auto it = std::find_if(bucket.begin(), bucket.end(), [&](const Entry& e) { return e.data == data; });
+    const auto it =
+        std::find_if(bucket.begin(), bucket.end(), [&](const Entry& e) { return e.data == data; });
     if (it == bucket.end()) return false;
     bucket.erase(it);
     --size_;
@@ -70,7 +71,8 @@ class BucketNearestNeighbors : public ompl::NearestNeighbors<T> {
         if (reach * reach > kth) break;
       }
       const size_t before = found_.size();
-      visit_ring(cx, cy, ring, [&](const Entry& e) { found_.emplace_back(distance2(p, e.position), e.data); });
+      visit_ring(cx, cy, ring,
+                 [&](const Entry& e) { found_.emplace_back(distance2(p, e.position), e.data); });
       if (found_.size() >= k && found_.size() != before) {
         std::nth_element(found_.begin(), found_.begin() + static_cast<std::ptrdiff_t>(k - 1), found_.end(),
                          by_distance);
@@ -134,7 +136,8 @@ class BucketNearestNeighbors : public ompl::NearestNeighbors<T> {
   void visit_ring(int cx, int cy, int ring, Visit&& visit) const {
     const auto bucket = [&](int x, int y) {
       if (x < 0 || y < 0 || x >= columns_ || y >= rows_) return;
-      for (const Entry& e : buckets_[static_cast<size_t>(y) * static_cast<size_t>(columns_) + static_cast<size_t>(x)])
+      for (const Entry& e :
+           buckets_[static_cast<size_t>(y) * static_cast<size_t>(columns_) + static_cast<size_t>(x)])
         visit(e);
     };
     if (ring == 0) {

@@ -27,7 +27,7 @@ struct PlannerConfig {
   // so a few metres grows the trees faster (docs/performance.md, planner).
   double ompl_range_m = 3.0;
   // FMT*'s sample count: its time grows with it, its path length shrinks (docs/performance.md).
-  uint32_t ompl_fmt_samples = 6000;
+  uint32_t ompl_fmt_samples = 8000;
   // The algorithm robot goals (and exploring robots' legs) are planned with: "astar" or an OMPL
   // planner; OMPL gets goal_time_budget_s, and A* answers when it finds nothing in that time.
   std::string goal_algorithm = "astar";

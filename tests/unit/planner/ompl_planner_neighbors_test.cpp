@@ -20,7 +20,8 @@ TEST(BucketNearestNeighbors, FindsWhatABruteForceSearchFinds) {
   const auto at = [&points](const size_t& i) { return points[i]; };
   BucketNearestNeighbors<size_t> buckets({-5.0, 2.0}, {20.0, 6.0}, 0.7, at);
   ompl::NearestNeighborsLinear<size_t> linear;
-  linear.setDistanceFunction([&](const size_t& a, const size_t& b) { return distance(points[a], points[b]); });
+  linear.setDistanceFunction(
+      [&](const size_t& a, const size_t& b) { return distance(points[a], points[b]); });
   for (size_t i = 0; i + 1 < points.size(); ++i) {
     buckets.add(i);
     linear.add(i);

@@ -58,7 +58,7 @@ TEST(PathPlanner, OmplPlannersFindClearPaths) {
 }
 
 // FMT* samples a fixed number of states with OMPL's generator, seeded once per process
-// (PlannerConfig::ompl_seed): on this small map its 6000 states leave no room for a detour.
+// (PlannerConfig::ompl_seed): on this small map its 8000 states leave no room for a detour.
 TEST(PathPlanner, FmtStarPathsAreWithinATenthOfAstar) {
   const PlanningGrid g = two_rooms();
   PathPlanner p({});
