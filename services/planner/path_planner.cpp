@@ -135,7 +135,8 @@ PlanResult PathPlanner::run_astar(const PlanningGrid& grid, Cell from, Cell to, 
 }
 
 PlanResult PathPlanner::run_ompl(const PlanningGrid& grid, Cell from, Cell to, Vec2 start, Vec2 goal,
-                                 std::string_view algorithm, double budget_s, UnknownPolicy policy) {
+                                 std::string_view algorithm, double budget_s, UnknownPolicy policy,
+                                 bool astar_when_out_of_time) {
   try {
     OmplOutcome outcome = ompl_.plan(grid, start, goal, algorithm, budget_s, policy);
     if (outcome.status == PlanStatus::Ok) {
@@ -145,11 +146,10 @@ PlanResult PathPlanner::run_ompl(const PlanningGrid& grid, Cell from, Cell to, V
       result.length_m = path_length(result.path);
       return result;
     }
+    if (outcome.status != PlanStatus::Timeout) return failure(outcome.status, std::move(outcome.reason));
     // OMPL cannot tell "no path" from "not found yet"; an exhaustive A* can.
-    if (outcome.status == PlanStatus::Timeout &&
-        run_astar(grid, from, to, start, goal, policy).status == PlanStatus::NoPath) {
-      return failure(PlanStatus::NoPath, no_path_reason(start, goal, policy));
-    }
+    PlanResult astar = run_astar(grid, from, to, start, goal, policy);
+    if (astar_when_out_of_time || astar.status == PlanStatus::NoPath) return astar;
     return failure(outcome.status, std::move(outcome.reason));
   } catch (const std::exception& e) {
     return failure(PlanStatus::InvalidRequest, std::string("OMPL failed: ") + e.what());
@@ -197,14 +197,10 @@ PlanResult PathPlanner::plan_for_robot(const PlanningGrid& grid, Vec2 start, Vec
   const bool escaped = !(*from == *start_cell);
   const Vec2 leg_start = escaped ? grid.centre(*from) : start;
   const Vec2 leg_goal = *to == *goal_cell ? goal : grid.centre(*to);
-  PlanResult result;
-  if (algorithm != "astar") {
-    result = run_ompl(grid, *from, *to, leg_start, leg_goal, algorithm, config_.goal_time_budget_s, policy);
-  }
-  // A* plans the goal, or takes over when sampling found nothing in time.
-  if (algorithm == "astar" || result.status == PlanStatus::Timeout) {
-    result = run_astar(grid, *from, *to, leg_start, leg_goal, policy);
-  }
+  // A goal never fails for want of sampling time: A* takes over then.
+  PlanResult result = algorithm == "astar" ? run_astar(grid, *from, *to, leg_start, leg_goal, policy)
+                                           : run_ompl(grid, *from, *to, leg_start, leg_goal, algorithm,
+                                                      config_.goal_time_budget_s, policy, true);
   if (result.ok() && escaped) {
     result.path.insert(result.path.begin(), start);
     result.length_m = path_length(result.path);
@@ -222,7 +218,7 @@ PlanResult PathPlanner::plan(const PlanningGrid& grid, const PathQuery& query) {
                        config_.unknown);
   } else {
     result = run_ompl(grid, *grid.cell_at(query.start), *grid.cell_at(query.goal), query.start, query.goal,
-                      query.algorithm, query.time_budget_s, config_.unknown);
+                      query.algorithm, query.time_budget_s, config_.unknown, false);
   }
   result.planning_time_s = seconds_since(t0);
   return result;

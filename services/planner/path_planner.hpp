@@ -72,10 +72,12 @@ class PathPlanner {
   std::optional<PlanResult> reject(const PlanningGrid& grid, const PathQuery& query) const;
   PlanResult run_astar(const PlanningGrid& grid, Cell from, Cell to, Vec2 start, Vec2 goal,
                        UnknownPolicy policy);
-  // An OMPL planner from `start` (in cell `from`) to `goal` (in `to`); a time-out becomes NO_PATH
-  // when A* proves there is none.
+  // An OMPL planner from `start` (in cell `from`) to `goal` (in `to`). When it finds nothing in
+  // time, A* decides: NO_PATH when it proves there is none, else TIMEOUT, or with
+  // `astar_when_out_of_time` A*'s own path.
   PlanResult run_ompl(const PlanningGrid& grid, Cell from, Cell to, Vec2 start, Vec2 goal,
-                      std::string_view algorithm, double budget_s, UnknownPolicy policy);
+                      std::string_view algorithm, double budget_s, UnknownPolicy policy,
+                      bool astar_when_out_of_time);
   double escape_cells(const PlanningGrid& grid) const;
 
   PlannerConfig config_;

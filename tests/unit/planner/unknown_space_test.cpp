@@ -98,8 +98,8 @@ struct Drive {
   std::string reason;
 };
 
-Drive drive(test::HiddenWorld& world, Vec2 start, Vec2 target) {
-  Fleet fleet({});
+Drive drive(test::HiddenWorld& world, Vec2 start, Vec2 target, const FleetConfig& config = {}) {
+  Fleet fleet(config);
   Drive out{start, {}, {}, {}};
   world.sense(start);
   fleet.observe("r", start);
@@ -150,6 +150,25 @@ TEST(Fleet, AGoalInUnexploredSpaceIsReachedByReplanningAsTheMapFillsIn) {
   EXPECT_FALSE(segment_clear(world.truth(), start, d.first_plan.front(), UnknownPolicy::Blocked));
   EXPECT_EQ(d.status, GoalStatus::Reached) << d.reason;
   EXPECT_LE(distance(d.position, target), FleetConfig{}.goals.reach_tolerance_m);
+}
+
+TEST(Fleet, AGoalInUnexploredSpaceIsReachedWithASamplingGoalAlgorithmToo) {
+  test::HiddenWorld world({
+      "##############",
+      "#............#",
+      "#.....#......#",
+      "#.....#......#",
+      "#.....#......#",
+      "#............#",
+      "##############",
+  });
+  FleetConfig config;
+  config.planner.goal_algorithm = "fmtstar";
+  config.planner.ompl_fmt_samples = 500;
+  const Vec2 target{11.5, 3.5};
+  const Drive d = drive(world, {1.5, 3.5}, target, config);
+  EXPECT_EQ(d.status, GoalStatus::Reached) << d.reason;
+  EXPECT_LE(distance(d.position, target), config.goals.reach_tolerance_m);
 }
 
 TEST(Fleet, AGoalFoundEnclosedByWallsFailsWithTheReason) {
