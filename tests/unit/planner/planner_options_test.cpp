@@ -3,8 +3,11 @@
 
 #include <gtest/gtest.h>
 
+#include <fstream>
 #include <string>
 #include <vector>
+
+#include "temp_dir.hpp"
 
 namespace slam::planner {
 namespace {
@@ -71,6 +74,23 @@ TEST(PlannerOptions, UnknownPolicyAndGoalAlgorithmMustBeNamedOnes) {
   EXPECT_NE(parse(p, {"--planner-goal-algorithm", "dijkstra"}).find("--planner-goal-algorithm"),
             std::string::npos);
   EXPECT_EQ(PlannerOptions{}.fleet.planner.goal_algorithm, "astar");
+}
+
+TEST(PlannerOptions, TheConfigFileSetsTheUnknownSpacePolicyAndTheGoalAlgorithm) {
+  const testkit::TempDir dir("planner-options");
+  const auto path = (dir / "planner.yaml").string();
+  std::ofstream(path)
+      << "planner:\n  unknown: blocked\n  goal_algorithm: fmtstar\n  ompl_fmt_samples: 4000\n";
+  PlannerOptions o;
+  CLI::App app{"test"};
+  add_planner_options(app, o);
+  std::vector<std::string> args{"prog", "--config", path};
+  std::vector<char*> argv;
+  for (auto& a : args) argv.push_back(a.data());
+  EXPECT_FALSE(parse_command_line(app, static_cast<int>(argv.size()), argv.data()));
+  EXPECT_EQ(o.fleet.planner.unknown, UnknownPolicy::Blocked);
+  EXPECT_EQ(o.fleet.planner.goal_algorithm, "fmtstar");
+  EXPECT_EQ(o.fleet.planner.ompl_fmt_samples, 4000u);
 }
 
 TEST(PlannerOptions, SharingIsOnUnlessALonePlannerIsAskedFor) {
