@@ -114,8 +114,8 @@ void Fleet::plan_paths(const PlanningGrid& grid, int64_t now_ns) {
     if (!robot.owned || !t.needs_plan()) continue;
     // Home is where the robot once stood: inflation may cover it now, a cell beside it will do.
     const bool snap_goal = t.mode() == GoalMode::Home || t.homing();
-    const PlanResult result =
-        planner_.plan_for_robot(grid, robot.position, t.plan_target(), policy(robot), snap_goal);
+    const PlanResult result = planner_.plan_for_robot(grid, robot.position, t.plan_target(), policy(robot),
+                                                      snap_goal, config_.planner.goal_algorithm);
     if (result.ok()) {
       t.set_path(result.path);
       continue;

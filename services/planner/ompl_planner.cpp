@@ -8,6 +8,7 @@
 #include <ompl/base/spaces/RealVectorStateSpace.h>
 #include <ompl/geometric/PathSimplifier.h>
 #include <ompl/geometric/SimpleSetup.h>
+#include <ompl/geometric/planners/fmt/FMT.h>
 #include <ompl/geometric/planners/prm/PRMstar.h>
 #include <ompl/geometric/planners/rrt/RRTConnect.h>
 #include <ompl/geometric/planners/rrt/RRTstar.h>
@@ -16,10 +17,12 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <memory>
 #include <mutex>
 
 #include "planner/line_of_sight.hpp"
+#include "planner/ompl_planner_neighbors.hpp"
 
 namespace slam::planner {
 
@@ -91,7 +94,33 @@ class GridMotionValidator : public ob::MotionValidator {
   UnknownPolicy policy_;
 };
 
-ob::PlannerPtr make_planner(std::string_view name, const ob::SpaceInformationPtr& si, double range_m) {
+// FMT* (fast marching tree) with BucketNearestNeighbors in place of OMPL's default structure: FMT*
+// samples all its states up front and asks each expanded state for its k nearest, which made the
+// default GNAT's distance computations a third of the planning time (docs/performance.md, planner).
+class BucketFmt : public og::FMT {
+ public:
+  BucketFmt(const ob::SpaceInformationPtr& si, uint32_t samples) : og::FMT(si) {
+    setNumSamples(samples);
+    // Each state links to fewer neighbours than OMPL's default (k = 0.8 of it): on the benchmark
+    // map 8000 states at 0.8 gave shorter paths in less time than 6000 at 1.0 (docs/performance.md).
+    setRadiusMultiplier(0.8);
+    setName("FMTstar");
+  }
+
+  void setup() override {
+    og::FMT::setup();
+    const auto& bounds = si_->getStateSpace()->as<ob::RealVectorStateSpace>()->getBounds();
+    const Vec2 origin{bounds.low[0], bounds.low[1]};
+    const Vec2 extent{bounds.high[0] - bounds.low[0], bounds.high[1] - bounds.low[1]};
+    // About four samples per bucket when they spread evenly: a k-nearest query reads a few rings.
+    const double side = 2.0 * std::sqrt(extent.x * extent.y / std::max(1u, getNumSamples()));
+    nn_ = std::make_shared<BucketNearestNeighbors<Motion*>>(
+        origin, extent, side, [](Motion* const& m) { return to_vec(m->getState()); });
+  }
+};
+
+ob::PlannerPtr make_planner(std::string_view name, const ob::SpaceInformationPtr& si, double range_m,
+                            uint32_t fmt_samples) {
   if (name == "rrtconnect") {
     auto p = std::make_shared<og::RRTConnect>(si);
     if (range_m > 0.0) p->setRange(range_m);
@@ -103,16 +132,18 @@ ob::PlannerPtr make_planner(std::string_view name, const ob::SpaceInformationPtr
     return p;
   }
   if (name == "prmstar") return std::make_shared<og::PRMstar>(si);
+  if (name == "fmtstar") return std::make_shared<BucketFmt>(si, fmt_samples);
   return nullptr;
 }
 
 }  // namespace
 
 bool is_ompl_algorithm(std::string_view name) {
-  return name == "rrtconnect" || name == "rrtstar" || name == "prmstar";
+  return name == "rrtconnect" || name == "rrtstar" || name == "prmstar" || name == "fmtstar";
 }
 
-OmplPlanner::OmplPlanner(uint32_t seed, double range_m) : range_m_(range_m) {
+OmplPlanner::OmplPlanner(uint32_t seed, double range_m, uint32_t fmt_samples)
+    : range_m_(range_m), fmt_samples_(fmt_samples) {
   static std::once_flag seeded;
   std::call_once(seeded, [seed] { ompl::RNG::setSeed(seed); });
   ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
@@ -136,7 +167,7 @@ OmplOutcome OmplPlanner::plan(const PlanningGrid& grid, Vec2 start, Vec2 goal, s
   setup.setStateValidityChecker(std::make_shared<GridValidityChecker>(si, grid, policy));
   si->setMotionValidator(std::make_shared<GridMotionValidator>(si, grid, policy));
   setup.setOptimizationObjective(std::make_shared<ob::PathLengthOptimizationObjective>(si));
-  ob::PlannerPtr planner = make_planner(algorithm, si, range_m_);
+  ob::PlannerPtr planner = make_planner(algorithm, si, range_m_, fmt_samples_);
   if (!planner) {
     outcome.status = PlanStatus::InvalidRequest;
     outcome.reason = "unknown OMPL algorithm '" + std::string(algorithm) + "'";
@@ -163,7 +194,15 @@ OmplOutcome OmplPlanner::plan(const PlanningGrid& grid, Vec2 start, Vec2 goal, s
   og::PathGeometric& path = setup.getSolutionPath();
   const double used = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   og::PathSimplifier simplifier(si);
-  simplifier.simplify(path, ob::timedPlannerTerminationCondition(std::max(0.0, budget_s - used)), true);
+  if (algorithm == "fmtstar") {
+    // FMT*'s path already takes near-shortest ways between obstacles: one pass of vertex removal
+    // and shortcutting takes 0.1 ms; a full simplification took 5-30 ms on the benchmark map for
+    // paths about 3 % shorter (docs/performance.md, planner).
+    simplifier.reduceVertices(path);
+    simplifier.shortcutPath(path);
+  } else {
+    simplifier.simplify(path, ob::timedPlannerTerminationCondition(std::max(0.0, budget_s - used)), true);
+  }
   outcome.path.reserve(path.getStateCount());
   for (unsigned i = 0; i < path.getStateCount(); ++i) outcome.path.push_back(to_vec(path.getState(i)));
   outcome.status = PlanStatus::Ok;

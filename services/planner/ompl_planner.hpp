@@ -1,7 +1,9 @@
 #pragma once
-// Sampling-based planners from OMPL ("rrtconnect", "rrtstar", "prmstar") over the planning grid:
-// a 2-D real vector space bounded by the grid, states valid on passable cells, motions checked
-// cell by cell (GridMotionValidator), the solution simplified with OMPL's PathSimplifier.
+// Sampling-based planners from OMPL ("rrtconnect", "rrtstar", "prmstar", "fmtstar") over the
+// planning grid: a 2-D real vector space bounded by the grid, states valid on passable cells, motions
+// checked cell by cell (GridMotionValidator), the solution simplified with OMPL's PathSimplifier.
+// OMPL planners treat unexplored cells (when the policy allows them) as plain free space: the
+// unknown-cost factor is A*'s.
 #include <cstdint>
 #include <string>
 #include <string_view>
@@ -25,16 +27,18 @@ class OmplPlanner {
  public:
   // Seeds OMPL's global generator (only the first planner in a process can: OMPL ignores later
   // seeds once sampling started) and quiets OMPL's logging to warnings. `range_m` > 0 limits each
-  // RRT extension (0: OMPL's default).
-  OmplPlanner(uint32_t seed, double range_m);
+  // RRT extension (0: OMPL's default); `fmt_samples` is FMT*'s sample count.
+  OmplPlanner(uint32_t seed, double range_m, uint32_t fmt_samples);
 
   // Plans start -> goal with `algorithm` within `budget_s`: three quarters for solving, the rest
-  // (at least one pass) for simplification. Start and goal must be valid cells; the caller checks.
+  // (at least one pass) for simplification; FMT* stops when its tree reaches the goal and gets one
+  // shortcutting pass. Start and goal must be valid cells; the caller checks.
   OmplOutcome plan(const PlanningGrid& grid, Vec2 start, Vec2 goal, std::string_view algorithm,
                    double budget_s, UnknownPolicy policy) const;
 
  private:
   double range_m_ = 0.0;
+  uint32_t fmt_samples_ = 0;
 };
 
 }  // namespace slam::planner

@@ -26,9 +26,11 @@ void add_planner_options(CLI::App& app, PlannerOptions& o) {
          [&planner](const std::string& v) {
            planner.unknown = v == "allowed" ? UnknownPolicy::Allowed : UnknownPolicy::Blocked;
          },
-         "unexplored cells: blocked or allowed")
+         "unexplored cells on the way to a goal or path request's target: allowed (planned through at "
+         "the unknown cost factor, re-planned as the map fills in) or blocked (targets in unexplored "
+         "space are refused)")
       ->check(CLI::IsMember({"blocked", "allowed"}))
-      ->default_str("blocked");
+      ->default_str("allowed");
   app.add_option("--planner-unknown-cost-factor", planner.unknown_cost_factor,
                  "A* step cost multiplier into unexplored cells when allowed (>= 1)")
       ->capture_default_str();
@@ -36,6 +38,17 @@ void add_planner_options(CLI::App& app, PlannerOptions& o) {
       ->capture_default_str();
   app.add_option("--planner-ompl-range-m", planner.ompl_range_m,
                  "longest RRT extension in metres (rrtconnect, rrtstar); 0: OMPL's default")
+      ->capture_default_str();
+  app.add_option("--planner-ompl-fmt-samples", planner.ompl_fmt_samples,
+                 "states FMT* (fmtstar) samples: more take longer and give shorter paths")
+      ->capture_default_str();
+  app.add_option("--planner-goal-algorithm", planner.goal_algorithm,
+                 "what robot goals are planned with: astar, or an OMPL planner (rrtconnect, rrtstar, "
+                 "prmstar, fmtstar) with A* answering when it finds nothing in time")
+      ->check(CLI::IsMember({"astar", "rrtconnect", "rrtstar", "prmstar", "fmtstar"}))
+      ->capture_default_str();
+  app.add_option("--planner-goal-time-budget-s", planner.goal_time_budget_s,
+                 "time (s) an OMPL goal algorithm gets per plan")
       ->capture_default_str();
   app.add_option("--planner-max-time-budget-s", planner.max_time_budget_s,
                  "path requests asking for more time (s) are refused")

@@ -429,7 +429,8 @@ int cmd_path(Session& s, const PathArgs& a) {
 Handler add_path(CLI::App& cli) {
   auto a = std::make_shared<PathArgs>();
   cli.add_option("coordinates", a->ends, "start x y, goal x y (metres)")->expected(4)->required();
-  cli.add_option("--algorithm", a->algorithm, "astar, rrtconnect, rrtstar or prmstar")->capture_default_str();
+  cli.add_option("--algorithm", a->algorithm, "astar, fmtstar, rrtconnect, rrtstar or prmstar")
+      ->capture_default_str();
   cli.add_option("--budget", a->budget_s, "time budget in seconds")->capture_default_str();
   return [a](Session& s) { return cmd_path(s, *a); };
 }

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "grid_builder.hpp"
-#include "planner/line_of_sight.hpp"
+#include "hidden_world.hpp"
 
 namespace slam::planner {
 namespace {
@@ -111,60 +111,16 @@ TEST(Fleet, PlansAndReportsFailures) {
   EXPECT_EQ(fleet.tracker("a")->waypoints().back(), (Vec2{3.5, 2.5}));
 }
 
-// A hidden world the robots uncover within a sensing radius, with line of sight.
-class World {
- public:
-  World()
-      : truth_(test::grid_from_art({
-            "##############################",
-            "#............#...............#",
-            "#............#...............#",
-            "#............#.......#.......#",
-            "#....................#.......#",
-            "#............#.......#.......#",
-            "######.#######.......#########",
-            "#............#...............#",
-            "#............#...............#",
-            "#............................#",
-            "#............#...............#",
-            "##############################",
-        })),
-        map_(test::uniform_grid(30, 12, kCellUnknown)) {}
-
-  // Reveals what a robot at p sees; returns the changed box.
-  CellBox sense(Vec2 p) {
-    const int r = 5;
-    const Cell c = *truth_.cell_at(p);
-    const int32_t x0 = std::max(0, c.x - r);
-    const int32_t y0 = std::max(0, c.y - r);
-    const int32_t x1 = std::min(truth_.width() - 1, c.x + r);
-    const int32_t y1 = std::min(truth_.height() - 1, c.y + r);
-    CellBox box{x0, y0, x1 - x0 + 1, y1 - y0 + 1};
-    for (int32_t y = y0; y <= y1; ++y) {
-      for (int32_t x = x0; x <= x1; ++x) {
-        const Cell q{x, y};
-        uint8_t v = map_.at(q);
-        bool seen = true;
-        walk_segment(truth_.to_grid(p), truth_.to_grid(truth_.centre(q)), [&](Cell k, double) {
-          if (k == q) return true;
-          seen = seen && !truth_.blocked(k);
-          return seen;
-        });
-        if (seen && std::hypot(q.x - c.x, q.y - c.y) <= r) v = truth_.at(q);
-        map_.set(q, v);
-      }
-    }
-    return box;
-  }
-  const PlanningGrid& map() const { return map_; }
-
- private:
-  PlanningGrid truth_;
-  PlanningGrid map_;
+// The world the exploration test's robots uncover.
+const std::vector<std::string> kExploredWorld = {
+    "##############################", "#............#...............#", "#............#...............#",
+    "#............#.......#.......#", "#....................#.......#", "#............#.......#.......#",
+    "######.#######.......#########", "#............#...............#", "#............#...............#",
+    "#............................#", "#............#...............#", "##############################",
 };
 
 TEST(Fleet, ExploresTheWholeWorldAndComesHome) {
-  World world;
+  test::HiddenWorld world(kExploredWorld);
   FleetConfig config;
   config.explore.min_cluster_cells = 2;
   config.goals.reach_tolerance_m = 0.3;

@@ -46,6 +46,7 @@ TEST(PathPlanner, OmplPlannersFindClearPaths) {
   const PlanningGrid g = two_rooms();
   PathPlanner p({});
   const double astar_length = p.plan(g, {{0.5, 0.5}, {5.5, 3.5}, "astar", 1.0}).length_m;
+  // fmtstar: FmtStarPathsAreWithinATenthOfAstar.
   for (const char* algorithm : {"rrtconnect", "rrtstar", "prmstar"}) {
     const PlanResult r = p.plan(g, {{0.5, 0.5}, {5.5, 3.5}, algorithm, 0.3});
     ASSERT_EQ(r.status, PlanStatus::Ok) << algorithm << ": " << r.reason;
@@ -55,6 +56,39 @@ TEST(PathPlanner, OmplPlannersFindClearPaths) {
     EXPECT_GE(r.length_m, astar_length * 0.9) << algorithm;
     EXPECT_GT(r.planning_time_s, 0.0);
   }
+}
+
+// FMT* samples a fixed number of states with OMPL's generator, seeded once per process
+// (PlannerConfig::ompl_seed): on this small map its 8000 states leave no room for a detour. It
+// stops when it reaches the goal: the generous budget only keeps a loaded machine from cutting it.
+TEST(PathPlanner, FmtStarPathsAreWithinATenthOfAstar) {
+  const PlanningGrid g = two_rooms();
+  PathPlanner p({});
+  const double astar_length = p.plan(g, {{0.5, 0.5}, {5.5, 3.5}, "astar", 1.0}).length_m;
+  for (int run = 0; run < 5; ++run) {
+    const PlanResult r = p.plan(g, {{0.5, 0.5}, {5.5, 3.5}, "fmtstar", 10.0});
+    ASSERT_EQ(r.status, PlanStatus::Ok) << r.reason;
+    expect_clear(g, r);
+    EXPECT_LE(r.length_m, 1.10 * astar_length) << "run " << run;
+  }
+}
+
+TEST(PathPlanner, RobotGoalsCanBePlannedWithASamplingPlanner) {
+  const PlanningGrid g = two_rooms();
+  PlannerConfig config;
+  config.goal_time_budget_s = 10.0;  // FMT* stops at the goal; A* would take over after the budget
+  PathPlanner p(config);
+  const PlanResult r = p.plan_for_robot(g, {0.5, 0.5}, {5.5, 3.5}, UnknownPolicy::Allowed, false, "fmtstar");
+  ASSERT_EQ(r.status, PlanStatus::Ok) << r.reason;
+  expect_clear(g, r);
+  EXPECT_EQ(r.path.back(), (Vec2{5.5, 3.5}));
+  // Enclosed stays enclosed whatever the algorithm (FMT* samples on until its default budget).
+  PlanningGrid closed = test::uniform_grid(30, 10, kCellFree, 0.1);
+  for (int y = 0; y < 10; ++y) closed.set({15, y}, kCellOccupied);
+  PathPlanner q({});
+  const PlanResult none =
+      q.plan_for_robot(closed, {0.5, 0.5}, {2.5, 0.5}, UnknownPolicy::Allowed, false, "fmtstar");
+  EXPECT_EQ(none.status, PlanStatus::NoPath) << none.reason;
 }
 
 TEST(PathPlanner, RejectsBadRequestsWithReasons) {
@@ -101,12 +135,12 @@ TEST(PathPlanner, ReportsNoPathForEveryAlgorithm) {
 
 TEST(PathPlanner, UnknownPolicyComesFromConfig) {
   const PlanningGrid g = test::grid_from_art({"..??.."}, 1.0);
-  PathPlanner strict({});
+  PlannerConfig strict_config;
+  strict_config.unknown = UnknownPolicy::Blocked;
+  PathPlanner strict(strict_config);
   EXPECT_EQ(strict.plan(g, {{0.5, 0.5}, {5.5, 0.5}, "astar", 1.0}).status, PlanStatus::NoPath);
   EXPECT_EQ(strict.plan(g, {{0.5, 0.5}, {2.5, 0.5}, "astar", 1.0}).status, PlanStatus::GoalBlocked);
-  PlannerConfig loose;
-  loose.unknown = UnknownPolicy::Allowed;
-  PathPlanner lenient(loose);
+  PathPlanner lenient({});  // the default (unknown_space_test.cpp)
   EXPECT_EQ(lenient.plan(g, {{0.5, 0.5}, {5.5, 0.5}, "astar", 1.0}).status, PlanStatus::Ok);
 }
 
@@ -123,6 +157,16 @@ TEST(PathPlanner, ValidatesConfig) {
   EXPECT_FALSE(validate(c));
   c.ompl_range_m = 0.0;  // OMPL's own default
   EXPECT_TRUE(validate(c));
+  c = {};
+  c.goal_algorithm = "dijkstra";
+  EXPECT_FALSE(validate(c));
+  c.goal_algorithm = "fmtstar";
+  EXPECT_TRUE(validate(c));
+  c.goal_time_budget_s = 0.0;
+  EXPECT_FALSE(validate(c));
+  c = {};
+  c.ompl_fmt_samples = 10;
+  EXPECT_FALSE(validate(c));
 }
 
 }  // namespace
