@@ -21,7 +21,8 @@ bool node_installed() {
 }
 
 TEST(BridgeTest, FoxgloveClientSeesTheFleetAndDrivesARobot) {
-  if (!node_installed()) GTEST_SKIP() << "node is not installed (apt-get install nodejs): no Foxglove client to run";
+  if (!node_installed())
+    GTEST_SKIP() << "node is not installed (apt-get install nodejs): no Foxglove client to run";
   const std::string node_dir = SLAM_NODE_TESTS_DIR;
   ASSERT_TRUE(std::filesystem::exists(node_dir + "/node_modules/@foxglove/ws-protocol"))
       << "the pinned npm packages are missing: run scripts/setup.sh (npm ci in tests/node)";
@@ -35,16 +36,16 @@ TEST(BridgeTest, FoxgloveClientSeesTheFleetAndDrivesARobot) {
   group.start("bridge", {testkit::bin_path("slam-bridge"), "--domain", domain, "--bind",
                          "127.0.0.1:" + std::to_string(ws_port)});
   group.start("gateway", {testkit::bin_path("slam-gateway"), "--domain", domain, "--broker", broker});
-  group.start("mapper", {testkit::bin_path("slam-mapper"), "--domain", domain, "--store", group.dir() + "/map.db",
-                         "--snapshot-period", "1"});
+  group.start("mapper", {testkit::bin_path("slam-mapper"), "--domain", domain, "--store",
+                         group.dir() + "/map.db", "--snapshot-period", "1"});
   group.start("planner", {testkit::bin_path("slam-planner"), "--domain", domain, "--goal-store",
                           group.dir() + "/goals.json"});
-  group.start("simulator", {testkit::bin_path("slam-simulator"), "--domain", domain, "--broker", broker, "--world",
-                            "empty", "--robots", "1", "--drift", "0", "--seed", "5"});
+  group.start("simulator", {testkit::bin_path("slam-simulator"), "--domain", domain, "--broker", broker,
+                            "--world", "empty", "--robots", "1", "--drift", "0", "--seed", "5"});
   ASSERT_TRUE(testkit::wait_port_open(ws_port, 20s)) << group.log("bridge");
 
-  group.start("client",
-              {"node", node_dir + "/foxglove_client_test.mjs", "ws://127.0.0.1:" + std::to_string(ws_port), "90"});
+  group.start("client", {"node", node_dir + "/foxglove_client_test.mjs",
+                         "ws://127.0.0.1:" + std::to_string(ws_port), "90"});
   const int code = group.wait_exit("client", 120s);
   EXPECT_EQ(code, 0) << group.log("client");
   EXPECT_TRUE(group.running("bridge")) << group.log("bridge");

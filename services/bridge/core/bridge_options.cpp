@@ -23,7 +23,8 @@ void add_bridge_options(CLI::App& app, BridgeOptions& o) {
   add_service_options(app, o.service);
   app.add_option("--bind", o.bind, "ADDR:PORT of the Foxglove WebSocket server (0.0.0.0 for every interface)")
       ->capture_default_str();
-  app.add_option("--periods-map-full-s", o.periods.map_full_s, "the whole grid goes out at most this often (s)")
+  app.add_option("--periods-map-full-s", o.periods.map_full_s,
+                 "the whole grid goes out at most this often (s)")
       ->capture_default_str();
   app.add_option("--periods-map-updates-s", o.periods.map_updates_s,
                  "the changed part of the grid goes out at most this often (s)")

@@ -55,11 +55,12 @@ FoxgloveFace::FoxgloveFace(const ChannelPeriods& periods, std::string session_id
 void FoxgloveFace::connect(ClientId client) {
   clients_[client] = Session{};
   clients_counter_.store(static_cast<int64_t>(clients_.size()));
-  frames_.send_text(client, foxglove::server_info("slam-bridge", {"clientPublish", "services"}, {"json"}, session_id_));
+  frames_.send_text(
+      client, foxglove::server_info("slam-bridge", {"clientPublish", "services"}, {"json"}, session_id_));
   frames_.send_text(client, foxglove::advertise(channel_table()));
-  frames_.send_text(client, foxglove::advertise_services({{kPathServiceId, kPathService, "slam/PlanPath",
-                                                           "slam.PathRequest", schemas::kPathRequest,
-                                                           "slam.PathResponse", schemas::kPathResponse}}));
+  frames_.send_text(client, foxglove::advertise_services(
+                                {{kPathServiceId, kPathService, "slam/PlanPath", "slam.PathRequest",
+                                  schemas::kPathRequest, "slam.PathResponse", schemas::kPathResponse}}));
 }
 
 void FoxgloveFace::disconnect(ClientId client) {
@@ -104,8 +105,9 @@ void FoxgloveFace::handle_op(ClientId client, Session& session, std::string_view
       const auto sub_id = s["id"].get<uint32_t>();
       session.subscriptions[sub_id] = channel;
       if (!state->second.last_payload.empty()) {
-        frames_.send_binary(client, foxglove::message_data(sub_id, static_cast<uint64_t>(state->second.last_stamp_ns),
-                                                           state->second.last_payload));
+        frames_.send_binary(client,
+                            foxglove::message_data(sub_id, static_cast<uint64_t>(state->second.last_stamp_ns),
+                                                   state->second.last_payload));
         bump(messages_sent_);
       }
     }
@@ -119,7 +121,8 @@ void FoxgloveFace::handle_op(ClientId client, Session& session, std::string_view
         warn(client, "advertise: each channel needs an unsigned id and a topic");
         continue;
       }
-      const std::string encoding = c.contains("encoding") && c["encoding"].is_string() ? c["encoding"].get<std::string>() : "";
+      const std::string encoding =
+          c.contains("encoding") && c["encoding"].is_string() ? c["encoding"].get<std::string>() : "";
       session.advertised[c["id"].get<uint32_t>()] = {c["topic"].get<std::string>(), encoding};
     }
   } else if (op == "unadvertise") {
@@ -141,12 +144,14 @@ void FoxgloveFace::receive_binary(ClientId client, std::string_view bytes) {
     on_service_call(client, std::get<foxglove::ServiceCallRequest>(*frame));
 }
 
-void FoxgloveFace::on_client_message(ClientId client, Session& session, const foxglove::ClientMessageData& m) {
+void FoxgloveFace::on_client_message(ClientId client, Session& session,
+                                     const foxglove::ClientMessageData& m) {
   const auto channel = session.advertised.find(m.channel_id);
   if (channel == session.advertised.end())
     return warn(client, "message on channel " + std::to_string(m.channel_id) + ", which was not advertised");
   if (channel->second.topic != kGoalTopic || channel->second.encoding != "json")
-    return warn(client, "only " + std::string(kGoalTopic) + " (json) is accepted, not " + channel->second.topic);
+    return warn(client,
+                "only " + std::string(kGoalTopic) + " (json) is accepted, not " + channel->second.topic);
   auto goal = parse_goal(m.payload);
   if (!goal) return warn(client, goal.message());
   bump(goals_received_);
@@ -169,12 +174,12 @@ void FoxgloveFace::on_service_call(ClientId client, const foxglove::ServiceCallR
 void FoxgloveFace::answer(const PathCall& call, const std::optional<PathAnswer>& answer) {
   if (!clients_.contains(call.client)) return;  // gone meanwhile
   if (!answer) {
-    frames_.send_text(call.client,
-                      foxglove::service_call_failure(call.service_id, call.call_id, "no planner answered in time"));
+    frames_.send_text(call.client, foxglove::service_call_failure(call.service_id, call.call_id,
+                                                                  "no planner answered in time"));
     return;
   }
-  frames_.send_binary(call.client,
-                      foxglove::service_call_response(call.service_id, call.call_id, "json", path_answer_json(*answer)));
+  frames_.send_binary(call.client, foxglove::service_call_response(call.service_id, call.call_id, "json",
+                                                                   path_answer_json(*answer)));
 }
 
 bool FoxgloveFace::subscribed(Channel channel) const {
@@ -201,7 +206,8 @@ void FoxgloveFace::send(Channel channel, std::string payload, int64_t now_mono_n
   for (const auto& [client, session] : clients_)
     for (const auto& [sub, c] : session.subscriptions)
       if (c == channel) {
-        frames_.send_binary(client, foxglove::message_data(sub, static_cast<uint64_t>(stamp_ns), s.last_payload));
+        frames_.send_binary(client,
+                            foxglove::message_data(sub, static_cast<uint64_t>(stamp_ns), s.last_payload));
         bump(messages_sent_);
       }
 }
@@ -217,8 +223,8 @@ void FoxgloveFace::publish(const FleetModel& fleet, MapView& map, int64_t now_mo
     } else if (due(Channel::MapUpdates, map.revision(), now_mono_ns)) {
       const CellBox changed = map.take_changed();
       if (!changed.empty())
-        send(Channel::MapUpdates, grid_message(map.geometry(), map.cells(), changed, map.stamp_ns()), now_mono_ns,
-             stamp_ns, map.revision());
+        send(Channel::MapUpdates, grid_message(map.geometry(), map.cells(), changed, map.stamp_ns()),
+             now_mono_ns, stamp_ns, map.revision());
     }
   }
   if (due(Channel::Robots, v.robots, now_mono_ns))
@@ -232,7 +238,8 @@ void FoxgloveFace::publish(const FleetModel& fleet, MapView& map, int64_t now_mo
   // Health changes with time alone (seconds since each service was heard).
   const auto health_version = static_cast<uint64_t>(now_mono_ns);
   if (!fleet.services().empty() && due(Channel::Health, health_version, now_mono_ns))
-    send(Channel::Health, health_message(fleet, now_mono_ns, stamp_ns), now_mono_ns, stamp_ns, health_version);
+    send(Channel::Health, health_message(fleet, now_mono_ns, stamp_ns), now_mono_ns, stamp_ns,
+         health_version);
 }
 
 }  // namespace slam::bridge

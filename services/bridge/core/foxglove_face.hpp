@@ -71,8 +71,8 @@ const std::vector<foxglove::ChannelInfo>& channel_table();
 
 class FoxgloveFace {
  public:
-  FoxgloveFace(const ChannelPeriods& periods, std::string session_id, FrameSink& frames, OperatorSink& operators,
-               Counters& counters);
+  FoxgloveFace(const ChannelPeriods& periods, std::string session_id, FrameSink& frames,
+               OperatorSink& operators, Counters& counters);
 
   // A client connected: serverInfo, the channels and the path service go to it.
   void connect(ClientId client);
@@ -95,8 +95,8 @@ class FoxgloveFace {
     std::string encoding;
   };
   struct Session {
-    std::map<uint32_t, Channel> subscriptions;        // by subscription id
-    std::map<uint32_t, ClientChannel> advertised;     // the client's own channels, by id
+    std::map<uint32_t, Channel> subscriptions;     // by subscription id
+    std::map<uint32_t, ClientChannel> advertised;  // the client's own channels, by id
   };
   struct ChannelState {
     int64_t period_ns = 0;

@@ -66,22 +66,38 @@ Rgba from_hsv(double hue, double saturation, double value, double alpha) {
   const double m = value - c;
   double r = 0, g = 0, b = 0;
   switch (static_cast<int>(h)) {
-    case 0: r = c, g = x; break;
-    case 1: r = x, g = c; break;
-    case 2: g = c, b = x; break;
-    case 3: g = x, b = c; break;
-    case 4: r = x, b = c; break;
-    default: r = c, b = x; break;
+    case 0:
+      r = c, g = x;
+      break;
+    case 1:
+      r = x, g = c;
+      break;
+    case 2:
+      g = c, b = x;
+      break;
+    case 3:
+      g = x, b = c;
+      break;
+    case 4:
+      r = x, b = c;
+      break;
+    default:
+      r = c, b = x;
+      break;
   }
   return {r + m, g + m, b + m, alpha};
 }
 
 const char* status_name(PathStatus s) {
   switch (s) {
-    case PathStatus::Active: return "active";
-    case PathStatus::Reached: return "reached";
-    case PathStatus::Failed: return "failed";
-    case PathStatus::None: break;
+    case PathStatus::Active:
+      return "active";
+    case PathStatus::Reached:
+      return "reached";
+    case PathStatus::Failed:
+      return "failed";
+    case PathStatus::None:
+      break;
   }
   return "none";
 }
@@ -101,9 +117,12 @@ Rgba robot_color(const std::string& robot_id) {
 int8_t occupancy_of(uint8_t cell) {
   if ((cell & kCellObstructed) != 0) return 100;
   switch (cell & kCellStateMask) {
-    case kCellOccupied: return 100;
-    case kCellFree: return (cell & kCellInflated) != 0 ? 50 : 0;
-    default: return -1;
+    case kCellOccupied:
+      return 100;
+    case kCellFree:
+      return (cell & kCellInflated) != 0 ? 50 : 0;
+    default:
+      return -1;
   }
 }
 
@@ -232,13 +251,14 @@ std::string points_message(const FleetModel& fleet, int64_t stamp_ns) {
 std::string health_message(const FleetModel& fleet, int64_t now_mono_ns, int64_t stamp_ns) {
   json services = json::array();
   for (const auto& [key, s] : fleet.services())
-    services.push_back({{"service", s.beat.service},
-                        {"instance_id", s.beat.instance_id},
-                        {"host", s.beat.host},
-                        {"pid", s.beat.pid},
-                        {"state", s.beat.state},
-                        {"uptime_s", s.beat.uptime_s},
-                        {"last_heard_s", static_cast<double>(std::max<int64_t>(now_mono_ns - s.heard_ns, 0)) / 1e9}});
+    services.push_back(
+        {{"service", s.beat.service},
+         {"instance_id", s.beat.instance_id},
+         {"host", s.beat.host},
+         {"pid", s.beat.pid},
+         {"state", s.beat.state},
+         {"uptime_s", s.beat.uptime_s},
+         {"last_heard_s", static_cast<double>(std::max<int64_t>(now_mono_ns - s.heard_ns, 0)) / 1e9}});
   return json{{"timestamp", time_of(stamp_ns)}, {"services", std::move(services)}}.dump();
 }
 

@@ -29,12 +29,9 @@ bool get_u32(std::string_view frame, size_t& offset, uint32_t& v) {
 
 std::string server_info(const std::string& name, const std::vector<std::string>& capabilities,
                         const std::vector<std::string>& supported_encodings, const std::string& session_id) {
-  return json{{"op", "serverInfo"},
-              {"name", name},
-              {"capabilities", capabilities},
-              {"supportedEncodings", supported_encodings},
-              {"metadata", json::object()},
-              {"sessionId", session_id}}
+  return json{{"op", "serverInfo"},           {"name", name},
+              {"capabilities", capabilities}, {"supportedEncodings", supported_encodings},
+              {"metadata", json::object()},   {"sessionId", session_id}}
       .dump();
 }
 
@@ -74,7 +71,8 @@ std::string status(StatusLevel level, const std::string& message) {
 }
 
 std::string service_call_failure(uint32_t service_id, uint32_t call_id, const std::string& message) {
-  return json{{"op", "serviceCallFailure"}, {"serviceId", service_id}, {"callId", call_id}, {"message", message}}
+  return json{
+      {"op", "serviceCallFailure"}, {"serviceId", service_id}, {"callId", call_id}, {"message", message}}
       .dump();
 }
 

@@ -28,7 +28,7 @@ struct ChannelInfo {
   std::string topic;
   std::string encoding;  // "json"
   std::string schema_name;
-  std::string schema;  // the JSON schema text
+  std::string schema;           // the JSON schema text
   std::string schema_encoding;  // "jsonschema"
 };
 

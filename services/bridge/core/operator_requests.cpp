@@ -26,7 +26,8 @@ Result<double> finite_number(const json& j, const char* key, const char* what) {
 
 Result<Vec2> point(const json& j, const char* key, const char* what) {
   const auto it = j.find(key);
-  if (it == j.end() || !it->is_object()) return Error{std::string(what) + " needs an object '" + key + "' {x, y}"};
+  if (it == j.end() || !it->is_object())
+    return Error{std::string(what) + " needs an object '" + key + "' {x, y}"};
   auto x = finite_number(*it, "x", what);
   if (!x) return x.error();
   auto y = finite_number(*it, "y", what);

@@ -2,7 +2,6 @@
 #include "bridge/dds/bridge_node.hpp"
 
 #include <spdlog/spdlog.h>
-
 #include <unistd.h>
 
 #include "common/core/clock.hpp"
@@ -17,54 +16,81 @@ Pose pose_of(const Pose2& p) {
 
 PathStatus status_of(GoalStatus s) {
   switch (s) {
-    case GOAL_STATUS_ACTIVE: return PathStatus::Active;
-    case GOAL_STATUS_REACHED: return PathStatus::Reached;
-    case GOAL_STATUS_FAILED: return PathStatus::Failed;
-    default: return PathStatus::None;
+    case GOAL_STATUS_ACTIVE:
+      return PathStatus::Active;
+    case GOAL_STATUS_REACHED:
+      return PathStatus::Reached;
+    case GOAL_STATUS_FAILED:
+      return PathStatus::Failed;
+    default:
+      return PathStatus::None;
   }
 }
 
 const char* mode_name(GoalMode m) {
   switch (m) {
-    case GOAL_DIRECT: return "direct";
-    case GOAL_PLANNED: return "planned";
-    case GOAL_SQUARE: return "square";
-    case GOAL_EXPLORE: return "explore";
-    case GOAL_HOME: return "home";
-    case GOAL_STOP: return "stop";
-    default: return "idle";
+    case GOAL_DIRECT:
+      return "direct";
+    case GOAL_PLANNED:
+      return "planned";
+    case GOAL_SQUARE:
+      return "square";
+    case GOAL_EXPLORE:
+      return "explore";
+    case GOAL_HOME:
+      return "home";
+    case GOAL_STOP:
+      return "stop";
+    default:
+      return "idle";
   }
 }
 
 GoalMode mode_of(GoalKind k) {
   switch (k) {
-    case GoalKind::Planned: return GOAL_PLANNED;
-    case GoalKind::Direct: return GOAL_DIRECT;
-    case GoalKind::Explore: return GOAL_EXPLORE;
-    case GoalKind::Home: return GOAL_HOME;
-    case GoalKind::Stop: return GOAL_STOP;
-    case GoalKind::Idle: break;
+    case GoalKind::Planned:
+      return GOAL_PLANNED;
+    case GoalKind::Direct:
+      return GOAL_DIRECT;
+    case GoalKind::Explore:
+      return GOAL_EXPLORE;
+    case GoalKind::Home:
+      return GOAL_HOME;
+    case GoalKind::Stop:
+      return GOAL_STOP;
+    case GoalKind::Idle:
+      break;
   }
   return GOAL_IDLE;
 }
 
 const char* plan_status_name(PlanStatus s) {
   switch (s) {
-    case PLAN_OK: return "ok";
-    case PLAN_START_BLOCKED: return "start_blocked";
-    case PLAN_GOAL_BLOCKED: return "goal_blocked";
-    case PLAN_NO_PATH: return "no_path";
-    case PLAN_TIMEOUT: return "timeout";
-    case PLAN_NO_MAP: return "no_map";
-    default: return "invalid_request";
+    case PLAN_OK:
+      return "ok";
+    case PLAN_START_BLOCKED:
+      return "start_blocked";
+    case PLAN_GOAL_BLOCKED:
+      return "goal_blocked";
+    case PLAN_NO_PATH:
+      return "no_path";
+    case PLAN_TIMEOUT:
+      return "timeout";
+    case PLAN_NO_MAP:
+      return "no_map";
+    default:
+      return "invalid_request";
   }
 }
 
 const char* state_name(ServiceState s) {
   switch (s) {
-    case SERVICE_RUNNING: return "running";
-    case SERVICE_STOPPING: return "stopping";
-    default: return "starting";
+    case SERVICE_RUNNING:
+      return "running";
+    case SERVICE_STOPPING:
+      return "stopping";
+    default:
+      return "starting";
   }
 }
 
@@ -138,8 +164,12 @@ Status BridgeNode::create_readers() {
                           s.presence() == PRESENCE_ONLINE, s.last_seen_ns()});
   }));
   SLAM_TRY(make(dds::kRobotPath, path_reader_, [&in](const RobotPath& s) {
-    RobotPathInput path{s.robot_id().to_string(), status_of(s.status()), mode_name(s.mode()),
-                        Vec2{s.target().x(), s.target().y()}, {}, s.current()};
+    RobotPathInput path{s.robot_id().to_string(),
+                        status_of(s.status()),
+                        mode_name(s.mode()),
+                        Vec2{s.target().x(), s.target().y()},
+                        {},
+                        s.current()};
     path.waypoints.reserve(s.waypoints().size());
     for (const Point2& w : s.waypoints()) path.waypoints.push_back({w.x(), w.y()});
     queue(in, in.paths, std::move(path));
@@ -160,15 +190,17 @@ Status BridgeNode::create_readers() {
   }));
   SLAM_TRY(make(dds::kGridSnapshot, snapshot_reader_, [&in](const GridSnapshot& s) {
     const GridInfo& info = s.info();
-    GridSnapshotInput snap{s.layout_id(), s.version(), s.stamp_ns(),
-                           GridGeometry{Vec2{info.origin().x(), info.origin().y()}, info.resolution(),
-                                        static_cast<int32_t>(info.width()), static_cast<int32_t>(info.height())},
-                           s.cells()};
+    GridSnapshotInput snap{
+        s.layout_id(), s.version(), s.stamp_ns(),
+        GridGeometry{Vec2{info.origin().x(), info.origin().y()}, info.resolution(),
+                     static_cast<int32_t>(info.width()), static_cast<int32_t>(info.height())},
+        s.cells()};
     queue(in, in.map, std::move(snap));
   }));
   SLAM_TRY(make(dds::kGridTiles, tiles_reader_, [&in](const GridTiles& t) {
     queue(in, in.map,
-          GridTilesInput{t.layout_id(), t.version(), t.stamp_ns(), t.tile_side(), t.encoding(), t.tiles(), t.data()});
+          GridTilesInput{t.layout_id(), t.version(), t.stamp_ns(), t.tile_side(), t.encoding(), t.tiles(),
+                         t.data()});
   }));
   return {};
 }
@@ -206,10 +238,18 @@ void BridgeNode::run_once() {
   wait_for_shutdown(kLoopPeriod);
   for (const ClientEvent& e : ws_->take_events()) {
     switch (e.kind) {
-      case ClientEvent::Kind::Connected: face_->connect(e.client); break;
-      case ClientEvent::Kind::Disconnected: face_->disconnect(e.client); break;
-      case ClientEvent::Kind::Text: face_->receive_text(e.client, e.bytes); break;
-      case ClientEvent::Kind::Binary: face_->receive_binary(e.client, e.bytes); break;
+      case ClientEvent::Kind::Connected:
+        face_->connect(e.client);
+        break;
+      case ClientEvent::Kind::Disconnected:
+        face_->disconnect(e.client);
+        break;
+      case ClientEvent::Kind::Text:
+        face_->receive_text(e.client, e.bytes);
+        break;
+      case ClientEvent::Kind::Binary:
+        face_->receive_binary(e.client, e.bytes);
+        break;
     }
   }
   drain_intake();
@@ -226,7 +266,8 @@ void BridgeNode::send_goal(const GoalCommand& goal) {
   target.y(goal.target.y);
   sample.target(target);
   if (!goal_writer_->write(sample)) log_.warn("goal", "bridge: goal for {} not written", goal.robot_id);
-  spdlog::info("bridge: goal {} for {} ({}, {})", sample.goal_id(), goal.robot_id, goal.target.x, goal.target.y);
+  spdlog::info("bridge: goal {} for {} ({}, {})", sample.goal_id(), goal.robot_id, goal.target.x,
+               goal.target.y);
 }
 
 void BridgeNode::request_path(const PathCall& call) {
@@ -245,7 +286,10 @@ void BridgeNode::request_path(const PathCall& call) {
   path_requester_->send(*path_writer_, request, [this, call](const std::optional<PathReply>& reply) {
     std::optional<PathAnswer> answer;
     if (reply) {
-      answer = PathAnswer{plan_status_name(reply->status()), reply->reason().to_string(), {}, reply->length_m(),
+      answer = PathAnswer{plan_status_name(reply->status()),
+                          reply->reason().to_string(),
+                          {},
+                          reply->length_m(),
                           reply->planning_time_s()};
       for (const Point2& p : reply->path()) answer->path.push_back({p.x(), p.y()});
     }

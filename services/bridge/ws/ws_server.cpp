@@ -9,7 +9,6 @@
 #include <websocketpp/config/asio_no_tls.hpp>
 #include <websocketpp/server.hpp>
 
-
 namespace slam::bridge {
 
 namespace {
@@ -80,7 +79,8 @@ struct WsServer::Impl {
     return ec ? nullptr : con;
   }
 
-  void send(WsClientId client, const std::string& bytes, websocketpp::frame::opcode::value op, bool droppable) {
+  void send(WsClientId client, const std::string& bytes, websocketpp::frame::opcode::value op,
+            bool droppable) {
     auto con = connection(client);
     if (!con) return;
     if (droppable && con->get_buffered_amount() > backlog_bytes) {
@@ -123,19 +123,18 @@ Result<std::unique_ptr<WsServer>> WsServer::start(const std::string& host, uint1
     });
     return accept;
   });
-  s.set_open_handler([p](Handle hdl) {
-    guarded("websocket open", [&] { p->push(ClientEvent::Kind::Connected, hdl); });
-  });
+  s.set_open_handler(
+      [p](Handle hdl) { guarded("websocket open", [&] { p->push(ClientEvent::Kind::Connected, hdl); }); });
   s.set_close_handler([p](Handle hdl) {
     guarded("websocket close", [&] { p->push(ClientEvent::Kind::Disconnected, hdl); });
   });
-  s.set_fail_handler([p](Handle hdl) {
-    guarded("websocket fail", [&] { p->push(ClientEvent::Kind::Disconnected, hdl); });
-  });
+  s.set_fail_handler(
+      [p](Handle hdl) { guarded("websocket fail", [&] { p->push(ClientEvent::Kind::Disconnected, hdl); }); });
   s.set_message_handler([p](Handle hdl, Server::message_ptr msg) {
     guarded("websocket message", [&] {
       const bool text = msg->get_opcode() == websocketpp::frame::opcode::text;
-      p->push(text ? ClientEvent::Kind::Text : ClientEvent::Kind::Binary, hdl, std::move(msg->get_raw_payload()));
+      p->push(text ? ClientEvent::Kind::Text : ClientEvent::Kind::Binary, hdl,
+              std::move(msg->get_raw_payload()));
     });
   });
 
@@ -145,9 +144,7 @@ Result<std::unique_ptr<WsServer>> WsServer::start(const std::string& host, uint1
   if (ec) return Error{"cannot listen on " + host + ":" + std::to_string(port) + ": " + ec.message()};
   s.start_accept(ec);
   if (ec) return Error{"websocket accept: " + ec.message()};
-  p->io = std::thread([p] {
-    guarded("websocket I/O", [&] { p->server.run(); });
-  });
+  p->io = std::thread([p] { guarded("websocket I/O", [&] { p->server.run(); }); });
   return std::unique_ptr<WsServer>(new WsServer(std::move(impl)));
 }
 
@@ -159,7 +156,8 @@ WsServer::~WsServer() {
     std::lock_guard lock(impl_->mutex);
     for (const auto& [id, hdl] : impl_->handles) open.push_back(hdl);
   }
-  for (const Handle& hdl : open) impl_->server.close(hdl, websocketpp::close::status::going_away, "bridge stopping", ec);
+  for (const Handle& hdl : open)
+    impl_->server.close(hdl, websocketpp::close::status::going_away, "bridge stopping", ec);
   impl_->server.stop();
   if (impl_->io.joinable()) impl_->io.join();
 }
