@@ -1,62 +1,98 @@
 // Foxglove JSON messages from the fleet model (see foxglove_messages.hpp).
 #include "bridge/core/foxglove_messages.hpp"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
-#include <nlohmann/json.hpp>
 #include <vector>
 
-#include "bridge/core/base64.hpp"
+#include "bridge/core/json_writer.hpp"
 #include "common/core/cell_class.hpp"
 
 namespace slam::bridge {
 namespace {
 
-using nlohmann::json;
-
-json time_of(int64_t stamp_ns) {
+void write_time(JsonWriter& w, std::string_view key, int64_t stamp_ns) {
   const int64_t ns = std::max<int64_t>(stamp_ns, 0);
-  return {{"sec", ns / 1'000'000'000}, {"nsec", ns % 1'000'000'000}};
+  w.key(key)
+      .begin_object()
+      .key("sec")
+      .value(ns / 1'000'000'000)
+      .key("nsec")
+      .value(ns % 1'000'000'000)
+      .end_object();
 }
 
-json vec3(double x, double y, double z) {
-  return {{"x", x}, {"y", y}, {"z", z}};
+void write_vec3(JsonWriter& w, std::string_view key, double x, double y, double z) {
+  w.key(key).begin_object().key("x").value(x).key("y").value(y).key("z").value(z).end_object();
 }
 
 // Rotation about +z by `theta`.
-json yaw(double theta) {
-  return {{"x", 0.0}, {"y", 0.0}, {"z", std::sin(theta / 2.0)}, {"w", std::cos(theta / 2.0)}};
+void write_yaw(JsonWriter& w, std::string_view key, double theta) {
+  w.key(key).begin_object().key("x").value(0.0).key("y").value(0.0);
+  w.key("z").value(std::sin(theta / 2.0)).key("w").value(std::cos(theta / 2.0)).end_object();
 }
 
-json pose(double x, double y, double z, double theta = 0.0) {
-  return {{"position", vec3(x, y, z)}, {"orientation", yaw(theta)}};
+void write_pose(JsonWriter& w, double x, double y, double z, double theta = 0.0) {
+  w.key("pose").begin_object();
+  write_vec3(w, "position", x, y, z);
+  write_yaw(w, "orientation", theta);
+  w.end_object();
 }
 
-json color(const Rgba& c) {
-  return {{"r", c.r}, {"g", c.g}, {"b", c.b}, {"a", c.a}};
+void write_color(JsonWriter& w, const Rgba& c) {
+  w.key("color").begin_object().key("r").value(c.r).key("g").value(c.g).key("b").value(c.b);
+  w.key("a").value(c.a).end_object();
 }
 
-// A SceneEntity with every primitive list present and empty, as the schema requires.
-json entity(const std::string& id, int64_t stamp_ns) {
-  const json empty = json::array();
-  return {{"timestamp", time_of(stamp_ns)},
-          {"frame_id", kMapFrame},
-          {"id", id},
-          {"lifetime", {{"sec", 0}, {"nsec", 0}}},
-          {"frame_locked", false},
-          {"metadata", empty},
-          {"arrows", empty},
-          {"cubes", empty},
-          {"spheres", empty},
-          {"cylinders", empty},
-          {"lines", empty},
-          {"triangles", empty},
-          {"texts", empty},
-          {"models", empty}};
+// Opens a SceneEntity in the map frame; the caller writes metadata and the primitive lists it has,
+// then close_entity() adds the remaining lists empty, as the schema requires all of them.
+class EntityWriter {
+ public:
+  EntityWriter(JsonWriter& w, std::string_view id, int64_t stamp_ns) : w_(w) {
+    w.begin_object();
+    write_time(w, "timestamp", stamp_ns);
+    w.key("frame_id").value(kMapFrame).key("id").value(id);
+    w.key("lifetime").begin_object().key("sec").value(0).key("nsec").value(0).end_object();
+    w.key("frame_locked").value(false);
+  }
+  // Starts the list `name` (one of kLists); the caller fills it and ends it.
+  JsonWriter& list(std::string_view name) {
+    for (size_t i = 0; i < kLists.size(); ++i)
+      if (kLists[i] == name) written_[i] = true;
+    return w_.key(name).begin_array();
+  }
+  void close() {
+    for (size_t i = 0; i < kLists.size(); ++i)
+      if (!written_[i]) w_.empty_array(kLists[i]);
+    w_.end_object();
+  }
+
+ private:
+  static constexpr std::array<std::string_view, 9> kLists = {
+      "metadata", "arrows", "cubes", "spheres", "cylinders", "lines", "triangles", "texts", "models"};
+  JsonWriter& w_;
+  std::array<bool, 9> written_{};
+};
+
+void write_sphere(JsonWriter& w, double x, double y, double z, double size, const Rgba& c) {
+  w.begin_object();
+  write_pose(w, x, y, z);
+  write_vec3(w, "size", size, size, size);
+  write_color(w, c);
+  w.end_object();
 }
 
-json sphere(double x, double y, double z, double size, const Rgba& c) {
-  return {{"pose", pose(x, y, z)}, {"size", vec3(size, size, size)}, {"color", color(c)}};
+void write_numeric_field(JsonWriter& w, std::string_view name, int offset, uint8_t type) {
+  w.begin_object()
+      .key("name")
+      .value(name)
+      .key("offset")
+      .value(offset)
+      .key("type")
+      .value(int{type})
+      .end_object();
 }
 
 Rgba from_hsv(double hue, double saturation, double value, double alpha) {
@@ -135,93 +171,139 @@ std::string grid_message(const GridGeometry& geometry, std::span<const uint8_t> 
     for (int32_t x = 0; x < box.width; ++x) bytes[k++] = static_cast<uint8_t>(occupancy_of(row[x]));
   }
   const Vec2 corner = geometry.corner(Cell{box.x0, box.y0});
-  const json message = {
-      {"timestamp", time_of(stamp_ns)},
-      {"frame_id", kMapFrame},
-      {"pose", pose(corner.x, corner.y, 0.0)},
-      {"column_count", box.width},
-      {"cell_size", {{"x", geometry.resolution}, {"y", geometry.resolution}}},
-      {"row_stride", box.width},
-      {"cell_stride", 1},
-      {"fields", json::array({{{"name", "occupancy"}, {"offset", 0}, {"type", kNumericInt8}}})},
-      {"data", base64(bytes)}};
-  return message.dump();
+  std::string out;
+  out.reserve(bytes.size() * 4 / 3 + 512);
+  JsonWriter w(out);
+  w.begin_object();
+  write_time(w, "timestamp", stamp_ns);
+  w.key("frame_id").value(kMapFrame);
+  write_pose(w, corner.x, corner.y, 0.0);
+  w.key("column_count").value(box.width);
+  w.key("cell_size")
+      .begin_object()
+      .key("x")
+      .value(geometry.resolution)
+      .key("y")
+      .value(geometry.resolution)
+      .end_object();
+  w.key("row_stride").value(box.width).key("cell_stride").value(1);
+  w.key("fields").begin_array();
+  write_numeric_field(w, "occupancy", 0, kNumericInt8);
+  w.end_array();
+  w.key("data").base64_value(bytes);
+  w.end_object();
+  return out;
 }
 
 std::string robots_message(const FleetModel& fleet, int64_t stamp_ns) {
-  json entities = json::array();
+  std::string out;
+  JsonWriter w(out);
+  w.begin_object().empty_array("deletions").key("entities").begin_array();
   for (const auto& [id, r] : fleet.robots()) {
     if (!r.has_state) continue;
     Rgba c = robot_color(id);
     if (!r.state.online) c.a = 0.35;
     const Pose& p = r.state.pose;
-    json e = entity("robot/" + id, stamp_ns);
-    e["metadata"] = json::array({{{"key", "robot_id"}, {"value", id}},
-                                 {{"key", "online"}, {"value", r.state.online ? "true" : "false"}}});
-    if (r.state.has_heading)
-      e["arrows"] = json::array({{{"pose", pose(p.x, p.y, 0.05, p.theta)},
-                                  {"shaft_length", 0.25},
-                                  {"shaft_diameter", 0.06},
-                                  {"head_length", 0.15},
-                                  {"head_diameter", 0.14},
-                                  {"color", color(c)}}});
-    else
-      e["spheres"] = json::array({sphere(p.x, p.y, 0.05, 0.25, c)});
-    e["texts"] = json::array({{{"pose", pose(p.x, p.y, 0.35)},
-                               {"billboard", true},
-                               {"font_size", 14.0},
-                               {"scale_invariant", true},
-                               {"color", color(c)},
-                               {"text", id}}});
-    entities.push_back(std::move(e));
+    EntityWriter e(w, "robot/" + id, stamp_ns);
+    e.list("metadata");
+    for (const auto& [k, v] : {std::pair<const char*, std::string_view>{"robot_id", id},
+                               {"online", r.state.online ? "true" : "false"}})
+      w.begin_object().key("key").value(k).key("value").value(v).end_object();
+    w.end_array();
+    if (r.state.has_heading) {
+      e.list("arrows").begin_object();
+      write_pose(w, p.x, p.y, 0.05, p.theta);
+      w.key("shaft_length").value(0.25).key("shaft_diameter").value(0.06);
+      w.key("head_length").value(0.15).key("head_diameter").value(0.14);
+      write_color(w, c);
+      w.end_object().end_array();
+    } else {
+      e.list("spheres");
+      write_sphere(w, p.x, p.y, 0.05, 0.25, c);
+      w.end_array();
+    }
+    e.list("texts").begin_object();
+    write_pose(w, p.x, p.y, 0.35);
+    w.key("billboard").value(true).key("font_size").value(14.0).key("scale_invariant").value(true);
+    write_color(w, c);
+    w.key("text").value(id).end_object().end_array();
+    e.close();
   }
-  return json{{"deletions", json::array()}, {"entities", std::move(entities)}}.dump();
+  w.end_array().end_object();
+  return out;
 }
 
 std::string transforms_message(const FleetModel& fleet, int64_t stamp_ns) {
-  json transforms = json::array();
+  std::string out;
+  JsonWriter w(out);
+  w.begin_object().key("transforms").begin_array();
   for (const auto& [id, r] : fleet.robots()) {
     if (!r.has_state) continue;
     const Pose& p = r.state.pose;
-    transforms.push_back({{"timestamp", time_of(stamp_ns)},
-                          {"parent_frame_id", kMapFrame},
-                          {"child_frame_id", id},
-                          {"translation", vec3(p.x, p.y, 0.0)},
-                          {"rotation", yaw(p.theta)}});
+    w.begin_object();
+    write_time(w, "timestamp", stamp_ns);
+    w.key("parent_frame_id").value(kMapFrame).key("child_frame_id").value(id);
+    write_vec3(w, "translation", p.x, p.y, 0.0);
+    write_yaw(w, "rotation", p.theta);
+    w.end_object();
   }
-  return json{{"transforms", std::move(transforms)}}.dump();
+  w.end_array().end_object();
+  return out;
 }
 
 std::string paths_message(const FleetModel& fleet, int64_t stamp_ns) {
-  json entities = json::array();
+  std::string out;
+  JsonWriter w(out);
+  w.begin_object().empty_array("deletions").key("entities").begin_array();
   for (const auto& [id, r] : fleet.robots()) {
     if (!r.has_path) continue;
-    json e = entity("path/" + id, stamp_ns);
     const RobotPathInput& path = r.path;
+    EntityWriter e(w, "path/" + id, stamp_ns);
+    e.list("metadata");
+    for (const auto& [k, v] : {std::pair<const char*, std::string_view>{"robot_id", id},
+                               {"mode", path.mode},
+                               {"status", status_name(path.status)}})
+      w.begin_object().key("key").value(k).key("value").value(v).end_object();
+    w.end_array();
     if (path.status == PathStatus::Active) {
       Rgba c = robot_color(id);
       c.a = 0.8;
-      json points = json::array();
-      if (r.has_state) points.push_back(vec3(r.state.pose.x, r.state.pose.y, 0.02));
-      for (size_t i = path.current; i < path.waypoints.size(); ++i)
-        points.push_back(vec3(path.waypoints[i].x, path.waypoints[i].y, 0.02));
-      if (points.size() >= 2)
-        e["lines"] = json::array({{{"type", kLineStrip},
-                                   {"pose", pose(0.0, 0.0, 0.0)},
-                                   {"thickness", 0.04},
-                                   {"scale_invariant", false},
-                                   {"points", std::move(points)},
-                                   {"color", color(c)},
-                                   {"colors", json::array()},
-                                   {"indices", json::array()}}});
-      e["spheres"] = json::array({sphere(path.target.x, path.target.y, 0.02, 0.2, c)});
+      const size_t remaining = path.waypoints.size() - std::min<size_t>(path.current, path.waypoints.size());
+      if (remaining + (r.has_state ? 1 : 0) >= 2) {
+        e.list("lines").begin_object().key("type").value(int{kLineStrip});
+        write_pose(w, 0.0, 0.0, 0.0);
+        w.key("thickness").value(0.04).key("scale_invariant").value(false);
+        w.key("points").begin_array();
+        if (r.has_state)
+          w.begin_object()
+              .key("x")
+              .value(r.state.pose.x)
+              .key("y")
+              .value(r.state.pose.y)
+              .key("z")
+              .value(0.02)
+              .end_object();
+        for (size_t i = path.current; i < path.waypoints.size(); ++i)
+          w.begin_object()
+              .key("x")
+              .value(path.waypoints[i].x)
+              .key("y")
+              .value(path.waypoints[i].y)
+              .key("z")
+              .value(0.02)
+              .end_object();
+        w.end_array();
+        write_color(w, c);
+        w.empty_array("colors").empty_array("indices").end_object().end_array();
+      }
+      e.list("spheres");
+      write_sphere(w, path.target.x, path.target.y, 0.02, 0.2, c);
+      w.end_array();
     }
-    e["metadata"] = json::array({{{"key", "robot_id"}, {"value", id}},
-                                 {{"key", "mode"}, {"value", path.mode}},
-                                 {{"key", "status"}, {"value", status_name(path.status)}}});
-    entities.push_back(std::move(e));
+    e.close();
   }
-  return json{{"deletions", json::array()}, {"entities", std::move(entities)}}.dump();
+  w.end_array().end_object();
+  return out;
 }
 
 std::string points_message(const FleetModel& fleet, int64_t stamp_ns) {
@@ -230,36 +312,46 @@ std::string points_message(const FleetModel& fleet, int64_t stamp_ns) {
   size_t total = 0;
   for (const auto& [id, r] : fleet.robots()) total += r.points.size();
   bytes.resize(total * kStride);
-  uint8_t* out = bytes.data();
+  uint8_t* out_bytes = bytes.data();
   for (const auto& [id, r] : fleet.robots())
-    r.points.for_each([&out](Vec2 p) {
+    r.points.for_each([&out_bytes](Vec2 p) {
       const float xyz[3] = {static_cast<float>(p.x), static_cast<float>(p.y), 0.0f};
-      std::memcpy(out, xyz, kStride);  // little-endian hosts only, as the schema wants
-      out += kStride;
+      std::memcpy(out_bytes, xyz, kStride);  // little-endian hosts only, as the schema wants
+      out_bytes += kStride;
     });
-  const json message = {{"timestamp", time_of(stamp_ns)},
-                        {"frame_id", kMapFrame},
-                        {"pose", pose(0.0, 0.0, 0.0)},
-                        {"point_stride", kStride},
-                        {"fields", json::array({{{"name", "x"}, {"offset", 0}, {"type", kNumericFloat32}},
-                                                {{"name", "y"}, {"offset", 4}, {"type", kNumericFloat32}},
-                                                {{"name", "z"}, {"offset", 8}, {"type", kNumericFloat32}}})},
-                        {"data", base64(bytes)}};
-  return message.dump();
+  std::string out;
+  out.reserve(bytes.size() * 4 / 3 + 512);
+  JsonWriter w(out);
+  w.begin_object();
+  write_time(w, "timestamp", stamp_ns);
+  w.key("frame_id").value(kMapFrame);
+  write_pose(w, 0.0, 0.0, 0.0);
+  w.key("point_stride").value(static_cast<int64_t>(kStride));
+  w.key("fields").begin_array();
+  write_numeric_field(w, "x", 0, kNumericFloat32);
+  write_numeric_field(w, "y", 4, kNumericFloat32);
+  write_numeric_field(w, "z", 8, kNumericFloat32);
+  w.end_array();
+  w.key("data").base64_value(bytes);
+  w.end_object();
+  return out;
 }
 
 std::string health_message(const FleetModel& fleet, int64_t now_mono_ns, int64_t stamp_ns) {
-  json services = json::array();
-  for (const auto& [key, s] : fleet.services())
-    services.push_back(
-        {{"service", s.beat.service},
-         {"instance_id", s.beat.instance_id},
-         {"host", s.beat.host},
-         {"pid", s.beat.pid},
-         {"state", s.beat.state},
-         {"uptime_s", s.beat.uptime_s},
-         {"last_heard_s", static_cast<double>(std::max<int64_t>(now_mono_ns - s.heard_ns, 0)) / 1e9}});
-  return json{{"timestamp", time_of(stamp_ns)}, {"services", std::move(services)}}.dump();
+  std::string out;
+  JsonWriter w(out);
+  w.begin_object();
+  write_time(w, "timestamp", stamp_ns);
+  w.key("services").begin_array();
+  for (const auto& [key, s] : fleet.services()) {
+    w.begin_object().key("service").value(s.beat.service).key("instance_id").value(s.beat.instance_id);
+    w.key("host").value(s.beat.host).key("pid").value(s.beat.pid).key("state").value(s.beat.state);
+    w.key("uptime_s").value(s.beat.uptime_s);
+    w.key("last_heard_s").value(static_cast<double>(std::max<int64_t>(now_mono_ns - s.heard_ns, 0)) / 1e9);
+    w.end_object();
+  }
+  w.end_array().end_object();
+  return out;
 }
 
 }  // namespace slam::bridge

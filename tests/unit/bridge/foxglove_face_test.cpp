@@ -35,7 +35,8 @@ class RecordingSinks : public FrameSink, public OperatorSink {
   std::vector<std::string> payloads(uint32_t sub) const {
     std::vector<std::string> out;
     for (const Sent& s : sent)
-      if (s.binary && s.bytes[0] == 0x01 && static_cast<uint8_t>(s.bytes[1]) == sub) out.push_back(s.bytes.substr(13));
+      if (s.binary && s.bytes[0] == 0x01 && static_cast<uint8_t>(s.bytes[1]) == sub)
+        out.push_back(s.bytes.substr(13));
     return out;
   }
 
@@ -49,9 +50,10 @@ class FoxgloveFaceTest : public ::testing::Test {
   FoxgloveFaceTest() : face_(ChannelPeriods{}, "session", sinks_, sinks_, counters_) {}
 
   void subscribe(ClientId client, uint32_t sub, Channel channel) {
-    face_.receive_text(client, json{{"op", "subscribe"},
-                                    {"subscriptions", {{{"id", sub}, {"channelId", static_cast<uint32_t>(channel)}}}}}
-                                   .dump());
+    face_.receive_text(client,
+                       json{{"op", "subscribe"},
+                            {"subscriptions", {{{"id", sub}, {"channelId", static_cast<uint32_t>(channel)}}}}}
+                           .dump());
   }
   void robot_at(double x) { fleet_.ingest(RobotStateInput{"r1", Pose{x, 0, 0}, true, true, 0}); }
 

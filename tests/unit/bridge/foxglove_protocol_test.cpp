@@ -26,7 +26,8 @@ TEST(FoxgloveProtocol, ParsesAClientMessage) {
 }
 
 TEST(FoxgloveProtocol, ParsesAServiceCallAndFramesItsResponse) {
-  const std::string frame = std::string("\x02\x01\x00\x00\x00\x09\x00\x00\x00\x04\x00\x00\x00", 13) + "json{}";
+  const std::string frame =
+      std::string("\x02\x01\x00\x00\x00\x09\x00\x00\x00\x04\x00\x00\x00", 13) + "json{}";
   auto parsed = parse_client_binary(frame);
   ASSERT_TRUE(parsed) << parsed.message();
   const auto& r = std::get<ServiceCallRequest>(*parsed);
@@ -40,12 +41,14 @@ TEST(FoxgloveProtocol, ParsesAServiceCallAndFramesItsResponse) {
 TEST(FoxgloveProtocol, RefusesShortAndUnknownFrames) {
   EXPECT_FALSE(parse_client_binary(""));
   EXPECT_FALSE(parse_client_binary(std::string("\x01\x07\x00", 3)));
-  EXPECT_FALSE(parse_client_binary(std::string("\x02\x01\x00\x00\x00\x09\x00\x00\x00\x40\x00\x00\x00json", 17)));
+  EXPECT_FALSE(
+      parse_client_binary(std::string("\x02\x01\x00\x00\x00\x09\x00\x00\x00\x40\x00\x00\x00json", 17)));
   EXPECT_FALSE(parse_client_binary("\x09"));
 }
 
 TEST(FoxgloveProtocol, AdvertisesChannelsWithTheirSchemas) {
-  const auto j = nlohmann::json::parse(advertise({{3, "/robots", "json", "foxglove.SceneUpdate", "{}", "jsonschema"}}));
+  const auto j =
+      nlohmann::json::parse(advertise({{3, "/robots", "json", "foxglove.SceneUpdate", "{}", "jsonschema"}}));
   EXPECT_EQ(j["op"], "advertise");
   EXPECT_EQ(j["channels"][0]["id"], 3);
   EXPECT_EQ(j["channels"][0]["schemaName"], "foxglove.SceneUpdate");

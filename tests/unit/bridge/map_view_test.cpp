@@ -18,14 +18,16 @@ GridSnapshotInput snapshot(int32_t w, int32_t h, uint64_t version) {
 }
 
 // A patch that marks cell (x, y) occupied on a w x h grid, as the mapper would encode it.
-GridTilesInput patch(std::vector<uint8_t> cells, int32_t w, int32_t h, int32_t x, int32_t y, uint64_t version) {
+GridTilesInput patch(std::vector<uint8_t> cells, int32_t w, int32_t h, int32_t x, int32_t y,
+                     uint64_t version) {
   cells[static_cast<size_t>(y * w + x)] = kCellOccupied;
   DirtyTiles dirty;
   dirty.reset(TileLayout{w, h, 32});
   dirty.mark(x, y);
   EncodedTiles encoded;
   encode_tiles(cells, dirty, encoded);
-  return GridTilesInput{1, version, 0, 32, static_cast<uint8_t>(encoded.encoding), encoded.tiles, encoded.data};
+  return GridTilesInput{1,           version, 0, 32, static_cast<uint8_t>(encoded.encoding), encoded.tiles,
+                        encoded.data};
 }
 
 TEST(MapView, ASnapshotChangesTheWholeGrid) {

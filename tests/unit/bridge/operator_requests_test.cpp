@@ -36,7 +36,8 @@ TEST(OperatorRequests, ParsesAPathQueryWithDefaults) {
   EXPECT_EQ(q->algorithm, "astar");
   EXPECT_GT(q->time_budget_s, 0.0);
   EXPECT_FALSE(parse_path_query(R"({"start": {"x": 0}, "goal": {"x": 3, "y": 4}})"));
-  EXPECT_FALSE(parse_path_query(R"({"start": {"x": 0, "y": 0}, "goal": {"x": 3, "y": 4}, "time_budget_s": 0})"));
+  EXPECT_FALSE(
+      parse_path_query(R"({"start": {"x": 0, "y": 0}, "goal": {"x": 3, "y": 4}, "time_budget_s": 0})"));
 }
 
 TEST(OperatorRequests, AnswersInTheResponseSchemasFields) {
