@@ -34,6 +34,7 @@ using Handle = websocketpp::connection_hdl;
 struct WsServer::Impl {
   Server server;
   std::thread io;
+  std::atomic<bool> io_done{false};
   std::string subprotocol;
   uint32_t backlog_bytes = 0;
   std::atomic<int64_t>& dropped;
@@ -158,6 +159,9 @@ WsServer::~WsServer() {
   }
   for (const Handle& hdl : open)
     impl_->server.close(hdl, websocketpp::close::status::going_away, "bridge stopping", ec);
+  // The I/O thread ends by itself once every closing handshake is done; a client that does not
+  // answer within a second is cut off.
+  for (int i = 0; i < 100 && !impl_->io_done; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(10));
   impl_->server.stop();
   if (impl_->io.joinable()) impl_->io.join();
 }
