@@ -202,7 +202,7 @@ for i in $(seq "$PLANNERS"); do
 done
 if ((BRIDGE)); then
   start bridge "$BIN/slam-bridge" "${common[@]}" --bind "$BRIDGE_BIND"
-  echo "run: Foxglove / Lichtblick: connect to ws://$BRIDGE_BIND (docs/ecosystem.md)"
+  [ -n "${PIDS[bridge]:-}" ] && echo "run: Foxglove / Lichtblick: connect to ws://$BRIDGE_BIND (docs/ecosystem.md)"
 fi
 if ((SIM)); then
   start simulator "$BIN/slam-simulator" "${common[@]}" --broker "$BROKER" --world "$WORLD" --robots "$ROBOTS"
