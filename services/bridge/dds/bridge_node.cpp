@@ -104,9 +104,7 @@ void queue(BridgeIntake& intake, Queue& q, Value&& value) {
 }  // namespace
 
 BridgeNode::BridgeNode(const BridgeOptions& options, Counters& counters)
-    : options_(options),
-      counters_(counters),
-      received_(counters.get("samples_received")),
+    : received_(counters.get("samples_received")),
       map_skipped_(counters.get("map_patches_skipped")),
       fleet_(options.points_per_robot) {}
 

@@ -7,6 +7,8 @@
 #include <memory>
 #include <mutex>
 #include <optional>
+#include <utility>
+#include <variant>
 #include <vector>
 
 #include "bridge/core/bridge_options.hpp"
@@ -57,8 +59,6 @@ class BridgeNode final : public OperatorSink, public FrameSink {
   Status create_readers();
   void drain_intake();
 
-  BridgeOptions options_;
-  Counters& counters_;
   std::atomic<int64_t>& received_;
   std::atomic<int64_t>& map_skipped_;
   RateLimitedLog log_;
