@@ -21,6 +21,8 @@ DATA=run/data
 LOG_DIR=run/logs
 SNAP_DIR=run/snapshots
 SNAP_PERIOD=10
+BRIDGE=1
+BRIDGE_BIND=127.0.0.1:8765
 BUILT_IN_WORLDS="office maze track rooms empty"
 
 usage() {
@@ -36,6 +38,8 @@ usage: scripts/run.sh [options]      (or BIN=build/bin compose/launch.sh [option
   --mode explore|idle  explore: send every robot exploring at start; idle: wait for goals
                        (goals kept in --data from an earlier run resume either way)  [$MODE]
   --no-sim             real robots only
+  --no-bridge          no Foxglove bridge (docs/ecosystem.md)
+  --bridge-bind A:P    where the Foxglove bridge listens (0.0.0.0:8765: every interface) [$BRIDGE_BIND]
   --fresh              start afresh: deletes the map store and the planner's goals in --data
   --domain N           DDS domain id (0..232)                                       [$DOMAIN]
   --broker URL         use this MQTT broker instead of starting mosquitto
@@ -63,8 +67,9 @@ while (($#)); do
   case "$1" in
     --headless) HEADLESS=1 ;;
     --no-sim) SIM=0 ;;
+    --no-bridge) BRIDGE=0 ;;
     --fresh) FRESH=1 ;;
-    --world | --robots | --gateways | --planners | --mode | --domain | --broker | --port | --data | --logs | --snapshots | --snapshot-period)
+    --world | --robots | --gateways | --planners | --mode | --domain | --broker | --port | --data | --logs | --snapshots | --snapshot-period | --bridge-bind)
       need_value "$1" $#
       case "$1" in
         --world) WORLD=$2 ;;
@@ -79,6 +84,7 @@ while (($#)); do
         --logs) LOG_DIR=$2 ;;
         --snapshots) SNAP_DIR=$2 ;;
         --snapshot-period) SNAP_PERIOD=$2 ;;
+        --bridge-bind) BRIDGE_BIND=$2 ;;
       esac
       shift ;;
     -h | --help) usage; exit 0 ;;
@@ -194,6 +200,10 @@ for i in $(seq "$PLANNERS"); do
   ((PLANNERS == 1)) || goals="$DATA/goals-$i.json"
   start "$name" "$BIN/slam-planner" "${common[@]}" --goal-store "$goals"
 done
+if ((BRIDGE)); then
+  start bridge "$BIN/slam-bridge" "${common[@]}" --bind "$BRIDGE_BIND"
+  [ -n "${PIDS[bridge]:-}" ] && echo "run: Foxglove / Lichtblick: connect to ws://$BRIDGE_BIND (docs/ecosystem.md)"
+fi
 if ((SIM)); then
   start simulator "$BIN/slam-simulator" "${common[@]}" --broker "$BROKER" --world "$WORLD" --robots "$ROBOTS"
 fi

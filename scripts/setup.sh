@@ -13,6 +13,8 @@ PACKAGES=(
   libglfw3-dev libimgui-dev libgl-dev libx11-dev libgl1-mesa-dri xvfb xauth
   libgtest-dev libgmock-dev libbenchmark-dev
   libsqlite3-dev libcli11-dev libspdlog-dev nlohmann-json3-dev libyaml-cpp-dev libstb-dev
+  libwebsocketpp-dev libasio-dev  # the bridge's WebSocket server (header-only, standalone asio)
+  nodejs  # runs Foxglove's own client against the bridge in tests (tests/node)
   jq openssl
   docker-compose  # validates compose/docker-compose.yml in tests (no Docker engine needed)
 )
@@ -26,6 +28,26 @@ if ((${#missing[@]})); then
   SUDO=""; [ "$(id -u)" -eq 0 ] || SUDO="sudo"
   $SUDO apt-get update -qq
   DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
+
+# npm: Debian ships it apart from nodejs; a nodejs from elsewhere (NodeSource) brings its own, and
+# Debian's npm package would conflict with it, so it is installed only when no npm command exists.
+if ! command -v npm >/dev/null 2>&1; then
+  echo "setup: installing npm"
+  SUDO=""; [ "$(id -u)" -eq 0 ] || SUDO="sudo"
+  $SUDO apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends npm
+fi
+
+# The pinned npm packages of the Node tests (tests/node/package-lock.json), again only when the lock
+# file changed since the last install. Without the registry the build goes on and the bridge test
+# says what is missing.
+NODE_DIR="$(dirname "$0")/../tests/node"
+if [ ! -f "$NODE_DIR/node_modules/.package-lock.json" ] ||
+  [ "$NODE_DIR/package-lock.json" -nt "$NODE_DIR/node_modules/.package-lock.json" ]; then
+  echo "setup: npm ci in tests/node"
+  (cd "$NODE_DIR" && npm ci --no-audit --no-fund --loglevel=error) ||
+    echo "setup: warning: npm ci failed in tests/node; the bridge's Node test will fail until it succeeds" >&2
 fi
 
 # Configure once, then build incrementally (Ninja). SLAM_CMAKE_ARGS adds options, e.g. -DSLAM_SANITIZE=ON.

@@ -1,0 +1,52 @@
+// The fleet as the bridge knows it (see fleet_model.hpp).
+#include "bridge/core/fleet_model.hpp"
+
+namespace slam::bridge {
+
+void PointRing::add(Vec2 p) {
+  if (capacity_ == 0) return;
+  if (points_.size() < capacity_) {
+    points_.push_back(p);
+    return;
+  }
+  points_[next_] = p;
+  next_ = (next_ + 1) % capacity_;
+}
+
+RobotView& FleetModel::robot(const std::string& id) {
+  return robots_.try_emplace(id, points_per_robot_).first->second;
+}
+
+void FleetModel::ingest(const RobotStateInput& s) {
+  RobotView& r = robot(s.robot_id);
+  r.state = s;
+  r.has_state = true;
+  ++versions_.robots;
+}
+
+void FleetModel::ingest(RobotPathInput&& p) {
+  RobotView& r = robot(p.robot_id);
+  r.path = std::move(p);
+  r.has_path = true;
+  ++versions_.paths;
+}
+
+void FleetModel::ingest(const CorrectionInput& c) {
+  robot(c.robot_id).map_from_odom = c.map_from_odom;
+}
+
+void FleetModel::ingest(const ObservationInput& o) {
+  if (o.hits.empty()) return;
+  RobotView& r = robot(o.robot_id);
+  for (const Vec2& hit : o.hits) r.points.add(r.map_from_odom.transform(hit));
+  ++versions_.points;
+}
+
+void FleetModel::ingest(const HeartbeatInput& h, int64_t now_mono_ns) {
+  ServiceView& s = services_[{h.service, h.instance_id}];
+  s.beat = h;
+  s.heard_ns = now_mono_ns;
+  ++versions_.health;
+}
+
+}  // namespace slam::bridge

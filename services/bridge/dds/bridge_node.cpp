@@ -1,0 +1,298 @@
+// slam-bridge's DDS edge and loop (see bridge_node.hpp).
+#include "bridge/dds/bridge_node.hpp"
+
+#include <spdlog/spdlog.h>
+#include <unistd.h>
+
+#include "common/core/clock.hpp"
+#include "common/core/shutdown.hpp"
+
+namespace slam::bridge {
+namespace {
+
+Pose pose_of(const Pose2& p) {
+  return {p.x(), p.y(), p.theta()};
+}
+
+PathStatus status_of(GoalStatus s) {
+  switch (s) {
+    case GOAL_STATUS_ACTIVE:
+      return PathStatus::Active;
+    case GOAL_STATUS_REACHED:
+      return PathStatus::Reached;
+    case GOAL_STATUS_FAILED:
+      return PathStatus::Failed;
+    default:
+      return PathStatus::None;
+  }
+}
+
+const char* mode_name(GoalMode m) {
+  switch (m) {
+    case GOAL_DIRECT:
+      return "direct";
+    case GOAL_PLANNED:
+      return "planned";
+    case GOAL_SQUARE:
+      return "square";
+    case GOAL_EXPLORE:
+      return "explore";
+    case GOAL_HOME:
+      return "home";
+    case GOAL_STOP:
+      return "stop";
+    default:
+      return "idle";
+  }
+}
+
+GoalMode mode_of(GoalKind k) {
+  switch (k) {
+    case GoalKind::Planned:
+      return GOAL_PLANNED;
+    case GoalKind::Direct:
+      return GOAL_DIRECT;
+    case GoalKind::Explore:
+      return GOAL_EXPLORE;
+    case GoalKind::Home:
+      return GOAL_HOME;
+    case GoalKind::Stop:
+      return GOAL_STOP;
+    case GoalKind::Idle:
+      break;
+  }
+  return GOAL_IDLE;
+}
+
+const char* plan_status_name(PlanStatus s) {
+  switch (s) {
+    case PLAN_OK:
+      return "ok";
+    case PLAN_START_BLOCKED:
+      return "start_blocked";
+    case PLAN_GOAL_BLOCKED:
+      return "goal_blocked";
+    case PLAN_NO_PATH:
+      return "no_path";
+    case PLAN_TIMEOUT:
+      return "timeout";
+    case PLAN_NO_MAP:
+      return "no_map";
+    default:
+      return "invalid_request";
+  }
+}
+
+const char* state_name(ServiceState s) {
+  switch (s) {
+    case SERVICE_RUNNING:
+      return "running";
+    case SERVICE_STOPPING:
+      return "stopping";
+    default:
+      return "starting";
+  }
+}
+
+// Pushes `value` into `queue` under the intake's lock.
+template <class Queue, class Value>
+void queue(BridgeIntake& intake, Queue& q, Value&& value) {
+  std::lock_guard lock(intake.mutex);
+  q.push_back(std::forward<Value>(value));
+}
+
+}  // namespace
+
+BridgeNode::BridgeNode(const BridgeOptions& options, Counters& counters)
+    : received_(counters.get("samples_received")),
+      map_skipped_(counters.get("map_patches_skipped")),
+      fleet_(options.points_per_robot) {}
+
+BridgeNode::~BridgeNode() = default;
+
+Result<std::unique_ptr<BridgeNode>> BridgeNode::create(const BridgeOptions& options, Counters& counters) {
+  std::unique_ptr<BridgeNode> node(new BridgeNode(options, counters));
+  auto participant = dds::Participant::create(options.service.domain, "slam-bridge");
+  if (!participant) return participant.error();
+  node->participant_ = std::move(*participant);
+  auto& p = *node->participant_;
+
+  auto goals = dds::make_writer(p, dds::kNavGoal);
+  if (!goals) return Error{"writer for NavGoal: " + goals.message()};
+  node->goal_writer_ = std::move(*goals);
+  auto paths = dds::make_writer(p, dds::kPathRequest);
+  if (!paths) return Error{"writer for PathRequest: " + paths.message()};
+  node->path_writer_ = std::move(*paths);
+  RetryPolicy policy;
+  policy.timeout = std::chrono::milliseconds(static_cast<int64_t>(options.path_timeout_s * 1000.0));
+  auto requester = dds::Requester<PathReply>::create(p, dds::kPathReply, policy);
+  if (!requester) return Error{"requester on PathReply: " + requester.message()};
+  node->path_requester_ = std::move(*requester);
+  SLAM_TRY(node->create_readers());
+
+  auto bind = parse_bind(options.bind);
+  if (!bind) return bind.error();
+  auto ws = WsServer::start(bind->host, bind->port, foxglove::kSubprotocol, options.client_backlog_bytes,
+                            counters.get("messages_dropped"));
+  if (!ws) return ws.error();
+  node->ws_ = std::move(*ws);
+  const std::string session = std::to_string(::getpid()) + "-" + std::to_string(now_ns());
+  node->face_ = std::make_unique<FoxgloveFace>(options.periods, session, *node, *node, counters);
+  spdlog::info("bridge: Foxglove WebSocket server on ws://{}:{}", bind->host, node->ws_->port());
+  return node;  // on any error above, `node` is destroyed here with what it had built
+}
+
+Status BridgeNode::create_readers() {
+  auto& p = *participant_;
+  auto& in = intake_;
+  auto& rx = received_;
+  // A reader whose callback converts the sample into the intake; nothing else on that thread.
+  auto make = [&](const auto& topic, auto& out, auto convert) -> Status {
+    auto r = dds::make_reader(p, topic, [convert, &rx](const auto& sample, const dds::fdds::SampleInfo&) {
+      convert(sample);
+      bump(rx);
+    });
+    if (!r) return Error{std::string("reader for ") + topic.info.name + ": " + r.message()};
+    out = std::move(*r);
+    return {};
+  };
+  SLAM_TRY(make(dds::kRobotState, state_reader_, [&in](const RobotState& s) {
+    queue(in, in.states,
+          RobotStateInput{s.robot_id().to_string(), pose_of(s.pose()), s.has_heading(),
+                          s.presence() == PRESENCE_ONLINE, s.last_seen_ns()});
+  }));
+  SLAM_TRY(make(dds::kRobotPath, path_reader_, [&in](const RobotPath& s) {
+    RobotPathInput path{s.robot_id().to_string(),
+                        status_of(s.status()),
+                        mode_name(s.mode()),
+                        Vec2{s.target().x(), s.target().y()},
+                        {},
+                        s.current()};
+    path.waypoints.reserve(s.waypoints().size());
+    for (const Point2& w : s.waypoints()) path.waypoints.push_back({w.x(), w.y()});
+    queue(in, in.paths, std::move(path));
+  }));
+  SLAM_TRY(make(dds::kPoseCorrection, correction_reader_, [&in](const PoseCorrection& c) {
+    queue(in, in.corrections, CorrectionInput{c.robot_id().to_string(), pose_of(c.map_from_odom())});
+  }));
+  SLAM_TRY(make(dds::kRobotObservation, observation_reader_, [&in](const RobotObservation& o) {
+    ObservationInput obs{o.robot_id().to_string(), {}};
+    obs.hits.reserve(o.hits().size());
+    for (const Point2& h : o.hits()) obs.hits.push_back({h.x(), h.y()});
+    queue(in, in.observations, std::move(obs));
+  }));
+  SLAM_TRY(make(dds::kHeartbeat, heartbeat_reader_, [&in](const Heartbeat& h) {
+    queue(in, in.heartbeats,
+          HeartbeatInput{h.service().to_string(), h.instance_id().to_string(), h.host().to_string(), h.pid(),
+                         state_name(h.state()), h.uptime_s()});
+  }));
+  SLAM_TRY(make(dds::kGridSnapshot, snapshot_reader_, [&in](const GridSnapshot& s) {
+    const GridInfo& info = s.info();
+    GridSnapshotInput snap{
+        s.layout_id(), s.version(), s.stamp_ns(),
+        GridGeometry{Vec2{info.origin().x(), info.origin().y()}, info.resolution(),
+                     static_cast<int32_t>(info.width()), static_cast<int32_t>(info.height())},
+        s.cells()};
+    queue(in, in.map, std::move(snap));
+  }));
+  SLAM_TRY(make(dds::kGridTiles, tiles_reader_, [&in](const GridTiles& t) {
+    queue(in, in.map,
+          GridTilesInput{t.layout_id(), t.version(), t.stamp_ns(), t.tile_side(), t.encoding(), t.tiles(),
+                         t.data()});
+  }));
+  return {};
+}
+
+void BridgeNode::drain_intake() {
+  BridgeIntake batch;
+  {
+    std::lock_guard lock(intake_.mutex);
+    std::swap(batch.states, intake_.states);
+    std::swap(batch.paths, intake_.paths);
+    std::swap(batch.corrections, intake_.corrections);
+    std::swap(batch.observations, intake_.observations);
+    std::swap(batch.heartbeats, intake_.heartbeats);
+    std::swap(batch.map, intake_.map);
+    std::swap(batch.answers, intake_.answers);
+  }
+  const int64_t now = monotonic_ns();
+  // Corrections first: the observations that arrived with them are placed through them.
+  for (const auto& c : batch.corrections) fleet_.ingest(c);
+  for (const auto& s : batch.states) fleet_.ingest(s);
+  for (auto& p : batch.paths) fleet_.ingest(std::move(p));
+  for (const auto& o : batch.observations) fleet_.ingest(o);
+  for (const auto& h : batch.heartbeats) fleet_.ingest(h, now);
+  for (auto& m : batch.map) {
+    const Status s = std::visit([this](auto& input) { return map_.ingest(std::move(input)); }, m);
+    if (!s) {
+      bump(map_skipped_);
+      log_.warn("map", "bridge: {}", s.message());
+    }
+  }
+  for (const auto& [call, answer] : batch.answers) face_->answer(call, answer);
+}
+
+void BridgeNode::run_once() {
+  wait_for_shutdown(kLoopPeriod);
+  for (const ClientEvent& e : ws_->take_events()) {
+    switch (e.kind) {
+      case ClientEvent::Kind::Connected:
+        face_->connect(e.client);
+        break;
+      case ClientEvent::Kind::Disconnected:
+        face_->disconnect(e.client);
+        break;
+      case ClientEvent::Kind::Text:
+        face_->receive_text(e.client, e.bytes);
+        break;
+      case ClientEvent::Kind::Binary:
+        face_->receive_binary(e.client, e.bytes);
+        break;
+    }
+  }
+  drain_intake();
+  face_->publish(fleet_, map_, monotonic_ns(), now_ns());
+}
+
+void BridgeNode::send_goal(const GoalCommand& goal) {
+  NavGoal sample;
+  sample.robot_id(goal.robot_id);
+  sample.goal_id(goal_ids_.next());
+  sample.mode(mode_of(goal.kind));
+  Point2 target;
+  target.x(goal.target.x);
+  target.y(goal.target.y);
+  sample.target(target);
+  if (!goal_writer_->write(sample)) log_.warn("goal", "bridge: goal for {} not written", goal.robot_id);
+  spdlog::info("bridge: goal {} for {} ({}, {})", sample.goal_id(), goal.robot_id, goal.target.x,
+               goal.target.y);
+}
+
+void BridgeNode::request_path(const PathCall& call) {
+  PathRequest request;
+  request.client_id("bridge");
+  Point2 start, goal;
+  start.x(call.query.start.x);
+  start.y(call.query.start.y);
+  goal.x(call.query.goal.x);
+  goal.y(call.query.goal.y);
+  request.start(start);
+  request.goal(goal);
+  request.algorithm(call.query.algorithm);
+  request.time_budget_s(call.query.time_budget_s);
+  // The answer comes back on a DDS thread and goes through the intake to the loop.
+  path_requester_->send(*path_writer_, request, [this, call](const std::optional<PathReply>& reply) {
+    std::optional<PathAnswer> answer;
+    if (reply) {
+      answer = PathAnswer{plan_status_name(reply->status()),
+                          reply->reason().to_string(),
+                          {},
+                          reply->length_m(),
+                          reply->planning_time_s()};
+      for (const Point2& p : reply->path()) answer->path.push_back({p.x(), p.y()});
+    }
+    queue(intake_, intake_.answers, std::make_pair(call, std::move(answer)));
+  });
+}
+
+}  // namespace slam::bridge
