@@ -40,9 +40,10 @@ usage: scripts/run.sh [options]      (or BIN=build/bin compose/launch.sh [option
                        (goals kept in --data from an earlier run resume either way)  [$MODE]
   --no-sim             real robots only
   --fresh              start afresh: deletes the map store and the planner's goals in --data
-  --secure             MQTT over TLS (passwords, ACL) and DDS Security; certificates and
-                       permissions in --data/security (made on first use); the simulator's DDS
-                       side moves to domain --domain + 1, unsecured (docs/security.md)
+  --secure             MQTT over TLS (passwords, ACL; mutual TLS on --port + 1) and DDS
+                       Security; certificates and permissions in --data/security (made on
+                       first use); the simulator's DDS side moves to domain --domain + 1,
+                       unsecured (docs/security.md)
   --domain N           DDS domain id (0..232)                                       [$DOMAIN]
   --broker URL         use this MQTT broker instead of starting mosquitto
   --port N             port of the local mosquitto                                  [$PORT]
@@ -207,21 +208,13 @@ if [ -z "$BROKER" ]; then
      { echo "gateway:$(cat "$SECURITY/mqtt-gateway.password")"
        for i in $(seq $((10#$ROBOTS + 64))); do echo "sim-$i:$(cat "$SECURITY/mqtt-sim.password")"; done
      } >"$passwords") && mosquitto_passwd -U "$passwords" || fail "cannot write $passwords (mosquitto_passwd)"
-    # TLS only, known users only, the production ACL; a client certificate is checked when given.
-    # `user`: mosquitto started as root would read the keys as user mosquitto otherwise.
-    cat >"$conf" <<CONF
-listener $PORT 127.0.0.1
-cafile $SECURITY/ca.crt
-certfile $SECURITY/broker.crt
-keyfile $SECURITY/broker.key
-require_certificate false
-allow_anonymous false
-password_file $passwords
-acl_file $PWD/compose/mosquitto/acl
-user $(id -un)
-persistence false
-max_queued_messages 100000
-CONF
+    # compose/mosquitto/mosquitto-secure.conf on the loopback port. `user`: mosquitto started as root
+    # would read the keys as user mosquitto otherwise.
+    # Robots with a certificate of the CA connect to the port after --port (mutual TLS).
+    sed -e "s|^listener 8883|listener $PORT 127.0.0.1|" -e "s|^listener 8884|listener $((10#$PORT + 1)) 127.0.0.1|" \
+      -e "s|SECURITY/|$SECURITY/|" -e "s|^acl_file .*|acl_file $PWD/compose/mosquitto/acl|" \
+      compose/mosquitto/mosquitto-secure.conf >"$conf"
+    echo "user $(id -un)" >>"$conf"
     BROKER="ssl://127.0.0.1:$PORT"
   else
     printf 'listener %s 127.0.0.1\nallow_anonymous true\npersistence false\nmax_queued_messages 100000\n' "$PORT" >"$conf"

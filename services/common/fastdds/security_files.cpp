@@ -98,7 +98,8 @@ Status check_signed_document(const std::string& file, X509* ca, const std::strin
   if (!document) return problem(file, "not signed (no S/MIME signature)");
   if (!content) return problem(file, "signature without the signed document (not multipart/signed)");
   Store store(X509_STORE_new());
-  if (!store || X509_STORE_add_cert(store.get(), ca) != 1) return problem(file, "cannot be checked (out of memory)");
+  if (!store || X509_STORE_add_cert(store.get(), ca) != 1)
+    return problem(file, "cannot be checked (out of memory)");
   Bio discard(BIO_new(BIO_s_null()));
   if (PKCS7_verify(document.get(), nullptr, store.get(), content.get(), discard.get(), PKCS7_TEXT) != 1) {
     const char* detail = nullptr;
@@ -106,7 +107,8 @@ Status check_signed_document(const std::string& file, X509* ca, const std::strin
     const unsigned long reason = ERR_peek_last_error_data(&detail, &detail_flags);
     if (ERR_GET_REASON(reason) == PKCS7_R_CERTIFICATE_VERIFY_ERROR) {
       const bool text = detail != nullptr && (detail_flags & ERR_TXT_STRING) != 0;
-      return problem(file, "not signed by " + ca_file + (text ? " (" + std::string(detail) + ")" : std::string()));
+      return problem(file,
+                     "not signed by " + ca_file + (text ? " (" + std::string(detail) + ")" : std::string()));
     }
     return problem(file, "signature does not match the content (tampered with?)");
   }
@@ -138,8 +140,10 @@ Result<std::optional<SecurityFiles>> security_from_environment() {
   const bool has_dir = dir != nullptr && *dir != '\0';
   const bool has_identity = identity != nullptr && *identity != '\0';
   if (!has_dir && !has_identity) return std::optional<SecurityFiles>{};
-  if (!has_dir) return Error{std::string(kIdentityVariable) + " is set but " + kSecurityDirVariable + " is not"};
-  if (!has_identity) return Error{std::string(kSecurityDirVariable) + " is set but " + kIdentityVariable + " is not"};
+  if (!has_dir)
+    return Error{std::string(kIdentityVariable) + " is set but " + kSecurityDirVariable + " is not"};
+  if (!has_identity)
+    return Error{std::string(kSecurityDirVariable) + " is set but " + kIdentityVariable + " is not"};
   return std::optional<SecurityFiles>{SecurityFiles::in(dir, identity)};
 }
 
@@ -148,13 +152,16 @@ Status check_security_files(const SecurityFiles& files) {
   if (!identity_ca) return identity_ca.status();
   auto certificate = load_certificate(files.identity_certificate);
   if (!certificate) return certificate.status();
-  if (auto s = check_signed_by(files.identity_certificate, certificate->get(), files.identity_ca, identity_ca->get());
+  if (auto s = check_signed_by(files.identity_certificate, certificate->get(), files.identity_ca,
+                               identity_ca->get());
       !s)
     return s;
-  if (auto s = check_private_key(files.private_key, certificate->get(), files.identity_certificate); !s) return s;
+  if (auto s = check_private_key(files.private_key, certificate->get(), files.identity_certificate); !s)
+    return s;
   auto permissions_ca = load_certificate(files.permissions_ca);
   if (!permissions_ca) return permissions_ca.status();
-  if (auto s = check_signed_document(files.governance, permissions_ca->get(), files.permissions_ca); !s) return s;
+  if (auto s = check_signed_document(files.governance, permissions_ca->get(), files.permissions_ca); !s)
+    return s;
   return check_signed_document(files.permissions, permissions_ca->get(), files.permissions_ca);
 }
 

@@ -22,7 +22,9 @@ namespace fs = std::filesystem;
 using testkit::TempDir;
 
 // Runs a shell command line; true when it exits 0 (its output goes to the test log).
-bool shell(const std::string& command) { return std::system(("set -e; " + command).c_str()) == 0; }
+bool shell(const std::string& command) {
+  return std::system(("set -e; " + command).c_str()) == 0;
+}
 
 std::string make_security(const fs::path& dir) {
   return "bash " SLAM_SOURCE_DIR "/compose/make-security.sh '" + dir.string() + "' >/dev/null";
@@ -100,22 +102,27 @@ TEST_F(CheckSecurityFiles, GarbageInsteadOfACertificateIsRefused) {
 TEST_F(CheckSecurityFiles, ExpiredCertificateIsRefused) {
   // The same key and name, signed by the right CA, valid until yesterday.
   const fs::path d = dir_.path() / "good";
-  ASSERT_TRUE(shell("cd '" + d.string() +
-                    "' && openssl req -new -key identities/gateway.key -subj /CN=gateway -out g.csr 2>/dev/null"
-                    " && openssl x509 -req -in g.csr -CA ca.crt -CAkey ca.key -days -1"
-                    " -out identities/gateway.crt 2>/dev/null"));
+  ASSERT_TRUE(
+      shell("cd '" + d.string() +
+            "' && openssl req -new -key identities/gateway.key -subj /CN=gateway -out g.csr 2>/dev/null"
+            " && openssl x509 -req -in g.csr -CA ca.crt -CAkey ca.key -days -1"
+            " -out identities/gateway.crt 2>/dev/null"));
   expect_refused(good("identities/gateway.crt"), "certificate expired on ");
 }
 
 TEST_F(CheckSecurityFiles, CertificateOfAnotherCaIsRefused) {
-  fs::copy_file(other("identities/gateway.crt"), good("identities/gateway.crt"), fs::copy_options::overwrite_existing);
-  fs::copy_file(other("identities/gateway.key"), good("identities/gateway.key"), fs::copy_options::overwrite_existing);
+  fs::copy_file(other("identities/gateway.crt"), good("identities/gateway.crt"),
+                fs::copy_options::overwrite_existing);
+  fs::copy_file(other("identities/gateway.key"), good("identities/gateway.key"),
+                fs::copy_options::overwrite_existing);
   expect_refused(good("identities/gateway.crt"), "not signed by " + good("ca.crt").string());
 }
 
 TEST_F(CheckSecurityFiles, KeyOfAnotherIdentityIsRefused) {
-  fs::copy_file(good("identities/mapper.key"), good("identities/gateway.key"), fs::copy_options::overwrite_existing);
-  expect_refused(good("identities/gateway.key"), "is not the key of " + good("identities/gateway.crt").string());
+  fs::copy_file(good("identities/mapper.key"), good("identities/gateway.key"),
+                fs::copy_options::overwrite_existing);
+  expect_refused(good("identities/gateway.key"),
+                 "is not the key of " + good("identities/gateway.crt").string());
 }
 
 TEST_F(CheckSecurityFiles, UnsignedPermissionsAreRefused) {
@@ -138,7 +145,8 @@ TEST_F(CheckSecurityFiles, TamperedPermissionsAreRefused) {
 TEST_F(CheckSecurityFiles, PermissionsSignedByAnotherCaAreRefused) {
   fs::copy_file(other("identities/gateway.permissions.p7s"), good("identities/gateway.permissions.p7s"),
                 fs::copy_options::overwrite_existing);
-  expect_refused(good("identities/gateway.permissions.p7s"), "not signed by " + good("permissions-ca.crt").string());
+  expect_refused(good("identities/gateway.permissions.p7s"),
+                 "not signed by " + good("permissions-ca.crt").string());
 }
 
 TEST_F(CheckSecurityFiles, GovernanceSignedByAnotherCaIsRefused) {
