@@ -29,22 +29,25 @@ class SecureBrokerTest : public ::testing::Test {
   void SetUp() override {
     ASSERT_NO_FATAL_FAILURE(make_security(security_));
     ASSERT_NO_FATAL_FAILURE(make_security(other_));
-    ASSERT_NO_FATAL_FAILURE(run("robot-cert", "bash " + (kCompose / "make-security.sh").string() + " " + security_ +
-                                                  " robot robot-a && bash " + (kCompose / "make-security.sh").string() +
-                                                  " " + other_ + " robot robot-a"));
-    ASSERT_NO_FATAL_FAILURE(run("passwords", "printf 'gateway:gateway-pw\\nrobot-a:a-pw\\nrobot-b:b-pw\\nsim-1:sim-pw\\n' > " +
-                                                 security_ + "/mqtt-passwords && mosquitto_passwd -U " + security_ +
-                                                 "/mqtt-passwords"));
+    ASSERT_NO_FATAL_FAILURE(run("robot-cert", "bash " + (kCompose / "make-security.sh").string() + " " +
+                                                  security_ + " robot robot-a && bash " +
+                                                  (kCompose / "make-security.sh").string() + " " + other_ +
+                                                  " robot robot-a"));
+    ASSERT_NO_FATAL_FAILURE(
+        run("passwords", "printf 'gateway:gateway-pw\\nrobot-a:a-pw\\nrobot-b:b-pw\\nsim-1:sim-pw\\n' > " +
+                             security_ + "/mqtt-passwords && mosquitto_passwd -U " + security_ +
+                             "/mqtt-passwords"));
     port_ = free_tcp_port();
     do mutual_port_ = free_tcp_port();
     while (mutual_port_ == port_);
     const std::string conf = group_.dir() + "/mosquitto.conf";
     // The same substitutions as compose/launch.sh --secure.
-    ASSERT_NO_FATAL_FAILURE(run("conf", "sed -e 's|^listener 8883|listener " + std::to_string(port_) +
-                                            " 127.0.0.1|' -e 's|^listener 8884|listener " +
-                                            std::to_string(mutual_port_) + " 127.0.0.1|' -e 's|SECURITY/|" + security_ + "/|' -e 's|^acl_file .*|acl_file " +
-                                            (kCompose / "mosquitto" / "acl").string() + "|' " +
-                                            (kCompose / "mosquitto" / "mosquitto-secure.conf").string() + " > " + conf));
+    ASSERT_NO_FATAL_FAILURE(
+        run("conf", "sed -e 's|^listener 8883|listener " + std::to_string(port_) +
+                        " 127.0.0.1|' -e 's|^listener 8884|listener " + std::to_string(mutual_port_) +
+                        " 127.0.0.1|' -e 's|SECURITY/|" + security_ + "/|' -e 's|^acl_file .*|acl_file " +
+                        (kCompose / "mosquitto" / "acl").string() + "|' " +
+                        (kCompose / "mosquitto" / "mosquitto-secure.conf").string() + " > " + conf));
     std::ofstream(conf, std::ios::app) << "log_dest stderr\n"
                                        << "user " << getpwuid(geteuid())->pw_name << "\n";
     group_.start("mosquitto", {"mosquitto", "-c", conf});
@@ -60,7 +63,8 @@ class SecureBrokerTest : public ::testing::Test {
     ASSERT_EQ(group_.wait_exit(name, 60s), 0) << group_.log(name);
   }
   void make_security(const std::string& dir) {
-    run("make-" + fs::path(dir).filename().string(), "bash " + (kCompose / "make-security.sh").string() + " " + dir);
+    run("make-" + fs::path(dir).filename().string(),
+        "bash " + (kCompose / "make-security.sh").string() + " " + dir);
   }
 
   std::string tls_url() const { return "ssl://127.0.0.1:" + std::to_string(port_); }
@@ -128,10 +132,11 @@ TEST_F(SecureBrokerTest, MutualTlsRefusesAClientWithoutCertificate) {
 TEST_F(SecureBrokerTest, ExpiredClientCertificateIsRefused) {
   // robot-a's own key and name, signed by the right CA, valid until yesterday.
   const std::string robots = security_ + "/robots";
-  ASSERT_NO_FATAL_FAILURE(run("expired", "cd " + robots +
-                                             " && openssl req -new -key robot-a.key -subj /CN=robot-a -out old.csr"
-                                             " && openssl x509 -req -in old.csr -CA ../ca.crt -CAkey ../ca.key -days -1"
-                                             " -out expired.crt"));
+  ASSERT_NO_FATAL_FAILURE(
+      run("expired", "cd " + robots +
+                         " && openssl req -new -key robot-a.key -subj /CN=robot-a -out old.csr"
+                         " && openssl x509 -req -in old.csr -CA ../ca.crt -CAkey ../ca.key -days -1"
+                         " -out expired.crt"));
   EXPECT_NE(robot_with(robots + "/expired.crt", robots + "/robot-a.key")->connect(), 0);
   // The valid certificate of the same key gets in: only the dates differed.
   EXPECT_EQ(robot_with(robots + "/robot-a.crt", robots + "/robot-a.key")->connect(), 0);
@@ -156,8 +161,9 @@ TEST_F(SecureBrokerTest, SimulatorVerifiesTheBrokerAgainstTheCa) {
   auto gateway = login("gateway", "gateway-pw");
   ASSERT_TRUE(gateway->subscribe("v1/robot/+/adv"));
   DomainLease domain;
-  group_.start("simulator", {bin_path("slam-simulator"), "--domain", std::to_string(domain.id()), "--broker",
-                             tls_url(), "--tls-ca-file", ca(security_), "--mqtt-password", "sim-pw", "--robots", "1"});
+  group_.start("simulator",
+               {bin_path("slam-simulator"), "--domain", std::to_string(domain.id()), "--broker", tls_url(),
+                "--tls-ca-file", ca(security_), "--mqtt-password", "sim-pw", "--robots", "1"});
   EXPECT_TRUE(gateway->wait_for("v1/robot/sim-1/adv", 20s)) << group_.log("simulator");
 }
 
@@ -166,8 +172,8 @@ TEST_F(SecureBrokerTest, SimulatorTrustingAnotherCaDeliversNothing) {
   ASSERT_TRUE(gateway->subscribe("v1/robot/+/adv"));
   DomainLease domain;
   group_.start("simulator", {bin_path("slam-simulator"), "--domain", std::to_string(domain.id()), "--broker",
-                             tls_url(), "--tls-ca-file", ca(other_), "--mqtt-password", "sim-pw", "--robots", "1",
-                             "--log-level", "debug"});
+                             tls_url(), "--tls-ca-file", ca(other_), "--mqtt-password", "sim-pw", "--robots",
+                             "1", "--log-level", "debug"});
   // The simulator's connection failed (it keeps retrying); a robot of the right CA gets through after.
   ASSERT_TRUE(wait_until([&] { return group_.log("simulator").find("failed") != std::string::npos; }, 20s))
       << group_.log("simulator");
@@ -175,7 +181,8 @@ TEST_F(SecureBrokerTest, SimulatorTrustingAnotherCaDeliversNothing) {
   ASSERT_TRUE(robot->publish("v1/robot/robot-a/adv", std::string("\x03\x00\x04\x00", 4)));
   ASSERT_TRUE(gateway->wait_for("v1/robot/robot-a/adv", 10s));
   EXPECT_TRUE(group_.running("simulator"));
-  EXPECT_FALSE(gateway->last("v1/robot/sim-1/adv")) << "the simulator connected to a broker its CA did not sign";
+  EXPECT_FALSE(gateway->last("v1/robot/sim-1/adv"))
+      << "the simulator connected to a broker its CA did not sign";
 }
 
 }  // namespace
