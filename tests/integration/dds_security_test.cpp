@@ -177,6 +177,18 @@ TEST_F(DdsSecurityTest, IdentityWithoutThePermissionCannotWriteTheTopic) {
   for (const NavGoal& g : goals.items()) EXPECT_EQ(g.robot_id().to_string(), "allowed-robot");
 }
 
+TEST_F(DdsSecurityTest, TamperedPermissionsStopAServiceWithOneLine) {
+  const std::string permissions = security_ + "/identities/mapper.permissions.p7s";
+  group_.start("tamper", {"sed", "-i", "s|<topic>slam/map/edit</topic>|<topic>slam/nav/goal</topic>|", permissions});
+  ASSERT_EQ(group_.wait_exit("tamper", 10s), 0);
+  group_.start("mapper", as("mapper", {bin_path("slam-mapper"), "--domain", std::to_string(domain_.id()), "--store",
+                                       group_.dir() + "/map.db"}));
+  EXPECT_EQ(group_.wait_exit("mapper", 30s), 1);
+  const std::string log = group_.log("mapper");
+  EXPECT_EQ(log, "slam-mapper: error: DDS security: " + permissions +
+                     ": signature does not match the content (tampered with?)\n");
+}
+
 // Runs the gateway (secure or not) with a robot reporting while every UDP packet is captured.
 class DdsWireTest : public DdsSecurityTest {
  protected:
