@@ -127,9 +127,11 @@ permissions() {  # permissions NAME ROLES: DIR/identities/NAME.permissions.xml a
   smime_sign "$base.permissions.xml" "$base.permissions.p7s"
 }
 
-# Every participant authenticated, discovery and every RTPS message encrypted (so no sample, key
-# or robot id is readable on the wire), each topic's readers and writers checked against the
-# permissions. Payloads are not encrypted a second time on their own: the message around them is.
+# Every participant authenticated; discovery and liveliness encrypted; every sample's payload
+# encrypted (data protection: no robot id or coordinate readable on the wire; Fast DDS sends no key
+# in clear beside it); each topic's readers and writers checked against the permissions. Not
+# rtps protection (whole messages): Fast DDS 2.9 then overruns its message buffer under load and
+# aborts; not metadata protection: it halves the gateway's rate (docs/security.md, performance.md).
 governance() {
   cat >"$DIR/governance.xml" <<'XML'
 <?xml version="1.0" encoding="UTF-8"?>
@@ -141,7 +143,7 @@ governance() {
       <enable_join_access_control>true</enable_join_access_control>
       <discovery_protection_kind>ENCRYPT</discovery_protection_kind>
       <liveliness_protection_kind>ENCRYPT</liveliness_protection_kind>
-      <rtps_protection_kind>ENCRYPT</rtps_protection_kind>
+      <rtps_protection_kind>NONE</rtps_protection_kind>
       <topic_access_rules>
         <topic_rule>
           <topic_expression>*</topic_expression>
@@ -150,7 +152,7 @@ governance() {
           <enable_read_access_control>true</enable_read_access_control>
           <enable_write_access_control>true</enable_write_access_control>
           <metadata_protection_kind>NONE</metadata_protection_kind>
-          <data_protection_kind>NONE</data_protection_kind>
+          <data_protection_kind>ENCRYPT</data_protection_kind>
         </topic_rule>
       </topic_access_rules>
     </domain_rule>

@@ -36,7 +36,9 @@ const std::string kAdv("\xd2\x04\x2e\x16", 4);
 constexpr double kX = 12.34;
 constexpr double kY = 56.78;
 
-std::string bytes_of(double v) { return std::string(reinterpret_cast<const char*>(&v), sizeof v); }
+std::string bytes_of(double v) {
+  return std::string(reinterpret_cast<const char*>(&v), sizeof v);
+}
 
 // The payloads of every IPv4 UDP packet this host sends or receives while it runs (an AF_PACKET
 // socket: needs CAP_NET_RAW). MQTT is TCP and not captured: only DDS traffic is looked at.
@@ -107,9 +109,9 @@ class DdsSecurityTest : public ::testing::Test {
     return argv;
   }
   void start_gateway(bool secure) {
-    group_.start("gateway", as(secure ? "gateway" : "", {bin_path("slam-gateway"), "--domain",
-                                                         std::to_string(domain_.id()), "--broker",
-                                                         "tcp://127.0.0.1:" + std::to_string(port_)}));
+    group_.start("gateway", as(secure ? "gateway" : "",
+                               {bin_path("slam-gateway"), "--domain", std::to_string(domain_.id()),
+                                "--broker", "tcp://127.0.0.1:" + std::to_string(port_)}));
   }
   std::unique_ptr<dds::Participant> participant(const std::string& identity) {
     std::optional<dds::SecurityFiles> files;
@@ -151,7 +153,8 @@ TEST_F(DdsSecurityTest, ParticipantWithoutCertificateDiscoversAndReceivesNothing
   EXPECT_EQ(plain_reader->matched_writers(), 0);
   EXPECT_EQ(plain_heartbeat_reader->matched_writers(), 0);
   EXPECT_EQ(plain_seen.size(), 0u);
-  EXPECT_EQ(plain_heartbeats.size(), 0u) << "the gateway's heartbeats reached a participant without a certificate";
+  EXPECT_EQ(plain_heartbeats.size(), 0u)
+      << "the gateway's heartbeats reached a participant without a certificate";
 }
 
 TEST_F(DdsSecurityTest, IdentityWithoutThePermissionCannotWriteTheTopic) {
@@ -165,8 +168,9 @@ TEST_F(DdsSecurityTest, IdentityWithoutThePermissionCannotWriteTheTopic) {
 
   // slamctl run as the mapper cannot send a goal; run as itself (an operator) it can.
   const auto goal = [&](const std::string& identity, const std::string& robot) {
-    group_.start("slamctl-" + identity, as(identity, {bin_path("slamctl"), "--domain", std::to_string(domain_.id()),
-                                                      "--timeout", "10", "goal", robot, "explore"}));
+    group_.start("slamctl-" + identity,
+                 as(identity, {bin_path("slamctl"), "--domain", std::to_string(domain_.id()), "--timeout",
+                               "10", "goal", robot, "explore"}));
     return group_.wait_exit("slamctl-" + identity, 60s);
   };
   EXPECT_NE(goal("mapper", "denied-robot"), 0) << group_.log("slamctl-mapper");
@@ -179,10 +183,11 @@ TEST_F(DdsSecurityTest, IdentityWithoutThePermissionCannotWriteTheTopic) {
 
 TEST_F(DdsSecurityTest, TamperedPermissionsStopAServiceWithOneLine) {
   const std::string permissions = security_ + "/identities/mapper.permissions.p7s";
-  group_.start("tamper", {"sed", "-i", "s|<topic>slam/map/edit</topic>|<topic>slam/nav/goal</topic>|", permissions});
+  group_.start("tamper",
+               {"sed", "-i", "s|<topic>slam/map/edit</topic>|<topic>slam/nav/goal</topic>|", permissions});
   ASSERT_EQ(group_.wait_exit("tamper", 10s), 0);
-  group_.start("mapper", as("mapper", {bin_path("slam-mapper"), "--domain", std::to_string(domain_.id()), "--store",
-                                       group_.dir() + "/map.db"}));
+  group_.start("mapper", as("mapper", {bin_path("slam-mapper"), "--domain", std::to_string(domain_.id()),
+                                       "--store", group_.dir() + "/map.db"}));
   EXPECT_EQ(group_.wait_exit("mapper", 30s), 1);
   const std::string log = group_.log("mapper");
   EXPECT_EQ(log, "slam-mapper: error: DDS security: " + permissions +
@@ -211,7 +216,8 @@ class DdsWireTest : public DdsSecurityTest {
 
 TEST_F(DdsWireTest, SecureDomainCarriesNoRobotIdOrCoordinateInClear) {
   auto capture = capture_while_reporting(true);
-  if (!capture) GTEST_SKIP() << "no packet capture here (AF_PACKET needs CAP_NET_RAW): " << std::strerror(errno);
+  if (!capture)
+    GTEST_SKIP() << "no packet capture here (AF_PACKET needs CAP_NET_RAW): " << std::strerror(errno);
   EXPECT_GT(capture->packets(), 0u);
   EXPECT_FALSE(capture->contains(kRobot)) << "the robot id crossed the wire in clear";
   EXPECT_FALSE(capture->contains(bytes_of(kX))) << "x crossed the wire in clear";
@@ -220,7 +226,8 @@ TEST_F(DdsWireTest, SecureDomainCarriesNoRobotIdOrCoordinateInClear) {
 
 TEST_F(DdsWireTest, PlainDomainCarriesThemInClear) {
   auto capture = capture_while_reporting(false);
-  if (!capture) GTEST_SKIP() << "no packet capture here (AF_PACKET needs CAP_NET_RAW): " << std::strerror(errno);
+  if (!capture)
+    GTEST_SKIP() << "no packet capture here (AF_PACKET needs CAP_NET_RAW): " << std::strerror(errno);
   EXPECT_TRUE(capture->contains(kRobot));
   EXPECT_TRUE(capture->contains(bytes_of(kX)));
 }
