@@ -149,6 +149,19 @@ TEST_F(CheckSecurityFiles, PermissionsSignedByAnotherCaAreRefused) {
                  "not signed by " + good("permissions-ca.crt").string());
 }
 
+TEST_F(CheckSecurityFiles, PermissionsCaThatMayNotSignDocumentsIsRefused) {
+  // A permissions CA without digitalSignature: Fast DDS's S/MIME check refuses what it signs.
+  const fs::path d = dir_.path() / "good";
+  ASSERT_TRUE(
+      shell("cd '" + d.string() +
+            "' && openssl req -x509 -new -key permissions-ca.key -subj '/CN=slamfleet permissions CA'"
+            " -days 1 -addext basicConstraints=critical,CA:TRUE -addext keyUsage=critical,keyCertSign"
+            " -out permissions-ca.crt 2>/dev/null"
+            " && openssl smime -sign -text -in governance.xml -out governance.p7s -signer permissions-ca.crt"
+            " -inkey permissions-ca.key"));
+  expect_refused(good("governance.p7s"), "unsuitable certificate purpose");
+}
+
 TEST_F(CheckSecurityFiles, GovernanceSignedByAnotherCaIsRefused) {
   fs::copy_file(other("governance.p7s"), good("governance.p7s"), fs::copy_options::overwrite_existing);
   expect_refused(good("governance.p7s"), "not signed by ");
