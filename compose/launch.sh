@@ -202,11 +202,13 @@ fi
 if [ -z "$BROKER" ]; then
   conf="$LOG_DIR/mosquitto.conf"
   if ((SECURE)); then
-    # Accounts: the gateway, and sim-1 .. sim-N with room for robots added while running.
+    # Accounts: the gateway, sim-1 .. sim-N with room for robots added while running, and the real
+    # robots listed as ID:PASSWORD lines in $SECURITY/mqtt-robots (kept by the operator).
     passwords="$SECURITY/mqtt-passwords"
     (umask 077
      { echo "gateway:$(cat "$SECURITY/mqtt-gateway.password")"
        for i in $(seq $((10#$ROBOTS + 64))); do echo "sim-$i:$(cat "$SECURITY/mqtt-sim.password")"; done
+       [ ! -r "$SECURITY/mqtt-robots" ] || grep -v -e '^#' -e '^[[:space:]]*$' "$SECURITY/mqtt-robots" || true
      } >"$passwords") && mosquitto_passwd -U "$passwords" || fail "cannot write $passwords (mosquitto_passwd)"
     # compose/mosquitto/mosquitto-secure.conf on the loopback port. `user`: mosquitto started as root
     # would read the keys as user mosquitto otherwise.

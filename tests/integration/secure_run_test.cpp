@@ -31,16 +31,18 @@ TEST(SecureRun, FleetExploresOnTheSecureDomain) {
     fs::create_symlink(bin_path(program), dir / "bin" / program);
   const std::string data = (dir / "data").string();
   // The launcher runs from the source tree, as scripts/run.sh starts it.
-  group.start("run", {"env", "-C", SLAM_SOURCE_DIR, "BIN=" + (dir / "bin").string(), "bash", "compose/launch.sh",
-                      "--secure", "--headless", "--robots", "2", "--domain", std::to_string(domain.id()), "--port",
-                      std::to_string(free_tcp_port()), "--data", data, "--logs", (dir / "logs").string()});
-  ASSERT_TRUE(wait_until([&] { return fs::exists(dir / "data/security/identities/viewer.permissions.p7s"); }, 60s))
+  group.start("run",
+              {"env", "-C", SLAM_SOURCE_DIR, "BIN=" + (dir / "bin").string(), "bash", "compose/launch.sh",
+               "--secure", "--headless", "--robots", "2", "--domain", std::to_string(domain.id()), "--port",
+               std::to_string(free_tcp_port()), "--data", data, "--logs", (dir / "logs").string()});
+  ASSERT_TRUE(
+      wait_until([&] { return fs::exists(dir / "data/security/identities/viewer.permissions.p7s"); }, 60s))
       << group.log("run");
   ASSERT_TRUE(wait_until([&] { return group.log("run").find("running;") != std::string::npos; }, 60s))
       << group.log("run");
 
-  auto participant =
-      dds::Participant::create(domain.id(), "secure-run-test", dds::SecurityFiles::in(data + "/security", "viewer"));
+  auto participant = dds::Participant::create(domain.id(), "secure-run-test",
+                                              dds::SecurityFiles::in(data + "/security", "viewer"));
   ASSERT_TRUE(participant) << participant.message();
   std::mutex mutex;
   std::map<std::string, std::pair<double, double>> first;
