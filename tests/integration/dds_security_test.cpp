@@ -30,11 +30,18 @@
 namespace slam::testkit {
 namespace {
 
-const std::string kRobot = "wirerobot42";
-// v1 adv: position (12.34, 56.78) m as int16 LE centimetres; the observation carries the doubles.
-const std::string kAdv("\xd2\x04\x2e\x16", 4);
-constexpr double kX = 12.34;
-constexpr double kY = 56.78;
+// A robot and the v1 adv it sends: its position as int16 LE centimetres; the observation carries
+// the doubles. The secure and the plain wire tests use different ones: ctest may run them at once,
+// and each capture sees the other's packets.
+struct Report {
+  std::string robot;
+  std::string adv;
+  double x, y;
+};
+// Values no other test on the machine sends (the capture sees every process's UDP).
+const Report kSecureReport{"wirerobot42", std::string("\xa9\x43\x3e\x37", 4), 173.21, 141.42};
+const Report kPlainReport{"clearrobot17", std::string("\x59\x57\x5a\x67", 4), 223.61, 264.58};
+const std::string kRobot = kSecureReport.robot;
 
 std::string bytes_of(double v) {
   return std::string(reinterpret_cast<const char*>(&v), sizeof v);
@@ -121,12 +128,13 @@ class DdsSecurityTest : public ::testing::Test {
     return std::move(*p);
   }
   // The robot reports until `inbox` has one of its observations (false after the timeout).
-  bool robot_reports_until_observed(const Inbox<RobotObservation>& inbox) {
+  bool robot_reports_until_observed(const Inbox<RobotObservation>& inbox,
+                                    const Report& report = kSecureReport) {
     MqttTestClient robot(port_, "dds-security-robot");
     if (robot.connect() != 0) return false;
     return wait_until(
         [&] {
-          robot.publish("v1/robot/" + kRobot + "/adv", kAdv);
+          robot.publish("v1/robot/" + report.robot + "/adv", report.adv);
           return wait_until([&] { return inbox.size() > 0; }, 300ms);
         },
         30s);
@@ -197,39 +205,43 @@ TEST_F(DdsSecurityTest, TamperedPermissionsStopAServiceWithOneLine) {
 // Runs the gateway (secure or not) with a robot reporting while every UDP packet is captured.
 class DdsWireTest : public DdsSecurityTest {
  protected:
-  std::unique_ptr<UdpCapture> capture_while_reporting(bool secure) {
+  std::unique_ptr<UdpCapture> capture_while_reporting(bool secure, const Report& report) {
     auto capture = UdpCapture::start();
     if (!capture) return nullptr;
     start_gateway(secure);
     auto reader_participant = participant(secure ? "mapper" : "");
     Inbox<RobotObservation> seen;
     auto reader = make_inbox_reader(*reader_participant, dds::kRobotObservation, seen);
-    EXPECT_TRUE(robot_reports_until_observed(seen));
+    EXPECT_TRUE(robot_reports_until_observed(seen, report));
     if (seen.size() > 0) {
-      // The bytes searched for are in the samples: the search can succeed.
-      EXPECT_EQ(seen.items().front().pose().x(), kX);
-      EXPECT_EQ(seen.items().front().pose().y(), kY);
+      // The search looks for the exact doubles the samples carry.
+      x_ = seen.items().front().pose().x();
+      y_ = seen.items().front().pose().y();
+      EXPECT_NEAR(x_, report.x, 1e-9);
+      EXPECT_NEAR(y_, report.y, 1e-9);
     }
     return capture;
   }
+  double x_ = 0, y_ = 0;  // the coordinates of the first observation the reader got
 };
 
 TEST_F(DdsWireTest, SecureDomainCarriesNoRobotIdOrCoordinateInClear) {
-  auto capture = capture_while_reporting(true);
+  auto capture = capture_while_reporting(true, kSecureReport);
   if (!capture)
     GTEST_SKIP() << "no packet capture here (AF_PACKET needs CAP_NET_RAW): " << std::strerror(errno);
   EXPECT_GT(capture->packets(), 0u);
-  EXPECT_FALSE(capture->contains(kRobot)) << "the robot id crossed the wire in clear";
-  EXPECT_FALSE(capture->contains(bytes_of(kX))) << "x crossed the wire in clear";
-  EXPECT_FALSE(capture->contains(bytes_of(kY))) << "y crossed the wire in clear";
+  EXPECT_FALSE(capture->contains(kSecureReport.robot)) << "the robot id crossed the wire in clear";
+  EXPECT_FALSE(capture->contains(bytes_of(x_))) << "x crossed the wire in clear";
+  EXPECT_FALSE(capture->contains(bytes_of(y_))) << "y crossed the wire in clear";
 }
 
 TEST_F(DdsWireTest, PlainDomainCarriesThemInClear) {
-  auto capture = capture_while_reporting(false);
+  auto capture = capture_while_reporting(false, kPlainReport);
   if (!capture)
     GTEST_SKIP() << "no packet capture here (AF_PACKET needs CAP_NET_RAW): " << std::strerror(errno);
-  EXPECT_TRUE(capture->contains(kRobot));
-  EXPECT_TRUE(capture->contains(bytes_of(kX)));
+  EXPECT_TRUE(capture->contains(kPlainReport.robot));
+  EXPECT_TRUE(capture->contains(bytes_of(x_)));
+  EXPECT_TRUE(capture->contains(bytes_of(y_)));
 }
 
 }  // namespace
