@@ -3,6 +3,8 @@
 # simulated robots and the viewer (on its own Xvfb server, writing PNG snapshots, when there is no
 # display). Logs: one file per service in $LOG_DIR. Ctrl-C / SIGTERM stops everything it started:
 # the services and the viewer first, then the X server and the broker they were connected to.
+# --secure: MQTT over TLS with passwords and the ACL, DDS Security on every Fast DDS program
+# (files made by compose/make-security.sh into --data on first use; docs/security.md).
 set -uo pipefail
 
 BIN=${BIN:-build/bin}
@@ -17,6 +19,7 @@ MODE=explore
 HEADLESS=0
 SIM=1
 FRESH=0
+SECURE=0
 DATA=run/data
 LOG_DIR=run/logs
 SNAP_DIR=run/snapshots
@@ -41,6 +44,10 @@ usage: scripts/run.sh [options]      (or BIN=build/bin compose/launch.sh [option
   --no-bridge          no Foxglove bridge (docs/ecosystem.md)
   --bridge-bind A:P    where the Foxglove bridge listens (0.0.0.0:8765: every interface) [$BRIDGE_BIND]
   --fresh              start afresh: deletes the map store and the planner's goals in --data
+  --secure             MQTT over TLS (passwords, ACL; mutual TLS on --port + 1) and DDS
+                       Security; certificates and permissions in --data/security (made on
+                       first use); the simulator's DDS side moves to domain --domain + 1,
+                       unsecured (docs/security.md)
   --domain N           DDS domain id (0..232)                                       [$DOMAIN]
   --broker URL         use this MQTT broker instead of starting mosquitto
   --port N             port of the local mosquitto                                  [$PORT]
@@ -69,6 +76,7 @@ while (($#)); do
     --no-sim) SIM=0 ;;
     --no-bridge) BRIDGE=0 ;;
     --fresh) FRESH=1 ;;
+    --secure) SECURE=1 ;;
     --world | --robots | --gateways | --planners | --mode | --domain | --broker | --port | --data | --logs | --snapshots | --snapshot-period | --bridge-bind)
       need_value "$1" $#
       case "$1" in
@@ -132,7 +140,10 @@ start() {  # start NAME CMD...: background process in its own group, output to $
     echo "run: $name not started ($1 is not built)"
     return
   fi
-  setsid "$@" >"$LOG_DIR/$name.log" 2>&1 &
+  # Secure mode: a DDS program joins as the identity its name says ("gateway-2" -> gateway).
+  local identity=()
+  ((SECURE)) && identity=(env "SLAM_DDS_IDENTITY=${name%%-[0-9]*}")
+  setsid "${identity[@]}" "$@" >"$LOG_DIR/$name.log" 2>&1 &
   PIDS[$name]=$!
   echo "run: started $name (pid $!, log $LOG_DIR/$name.log)"
 }
@@ -172,11 +183,52 @@ trap 'stop_all 0' INT TERM
 trap 'stop_all 1' HUP  # the terminal went away: do not leave the services running
 trap '' PIPE           # stdout piped into a reader that quit (| head): keep managing the processes
 
+gateway_mqtt=()
+sim_mqtt=()
+SIM_DOMAIN=$DOMAIN
+if ((SECURE)); then
+  SECURITY=$DATA/security
+  bash compose/make-security.sh "$SECURITY" >"$LOG_DIR/make-security.log" 2>&1 ||
+    { cat "$LOG_DIR/make-security.log" >&2; fail "compose/make-security.sh failed"; }
+  SECURITY=$(cd "$SECURITY" && pwd)
+  export SLAM_DDS_SECURITY_DIR=$SECURITY
+  echo "run: secure mode: certificates and permissions in $SECURITY"
+  # MQTT passwords made once; every simulated robot logs in as its id (sim-N) with one of them.
+  (umask 077
+   [ -s "$SECURITY/mqtt-gateway.password" ] || openssl rand -hex 16 >"$SECURITY/mqtt-gateway.password"
+   [ -s "$SECURITY/mqtt-sim.password" ] || openssl rand -hex 16 >"$SECURITY/mqtt-sim.password"
+   printf 'username: gateway\npassword: %s\n' "$(cat "$SECURITY/mqtt-gateway.password")" >"$SECURITY/gateway.yaml"
+   printf 'mqtt-password: %s\n' "$(cat "$SECURITY/mqtt-sim.password")" >"$SECURITY/simulator.yaml")
+  gateway_mqtt=(--tls-ca-file "$SECURITY/ca.crt" --config "$SECURITY/gateway.yaml")
+  sim_mqtt=(--tls-ca-file "$SECURITY/ca.crt" --config "$SECURITY/simulator.yaml")
+  # Cyclone 0.10 and Fast DDS 2.9 cannot complete a secure handshake: docs/security.md.
+  SIM_DOMAIN=$(((10#$DOMAIN + 1) % 233))
+fi
+
 if [ -z "$BROKER" ]; then
   conf="$LOG_DIR/mosquitto.conf"
-  printf 'listener %s 127.0.0.1\nallow_anonymous true\npersistence false\nmax_queued_messages 100000\n' "$PORT" >"$conf"
+  if ((SECURE)); then
+    # Accounts: the gateway, sim-1 .. sim-N with room for robots added while running, and the real
+    # robots listed as ID:PASSWORD lines in $SECURITY/mqtt-robots (kept by the operator).
+    passwords="$SECURITY/mqtt-passwords"
+    (umask 077
+     { echo "gateway:$(cat "$SECURITY/mqtt-gateway.password")"
+       for i in $(seq $((10#$ROBOTS + 64))); do echo "sim-$i:$(cat "$SECURITY/mqtt-sim.password")"; done
+       [ ! -r "$SECURITY/mqtt-robots" ] || grep -v -e '^#' -e '^[[:space:]]*$' "$SECURITY/mqtt-robots" || true
+     } >"$passwords") && mosquitto_passwd -U "$passwords" || fail "cannot write $passwords (mosquitto_passwd)"
+    # compose/mosquitto/mosquitto-secure.conf on the loopback port. `user`: mosquitto started as root
+    # would read the keys as user mosquitto otherwise.
+    # Robots with a certificate of the CA connect to the port after --port (mutual TLS).
+    sed -e "s|^listener 8883|listener $PORT 127.0.0.1|" -e "s|^listener 8884|listener $((10#$PORT + 1)) 127.0.0.1|" \
+      -e "s|SECURITY/|$SECURITY/|" -e "s|^acl_file .*|acl_file $PWD/compose/mosquitto/acl|" \
+      compose/mosquitto/mosquitto-secure.conf >"$conf"
+    echo "user $(id -un)" >>"$conf"
+    BROKER="ssl://127.0.0.1:$PORT"
+  else
+    printf 'listener %s 127.0.0.1\nallow_anonymous true\npersistence false\nmax_queued_messages 100000\n' "$PORT" >"$conf"
+    BROKER="tcp://127.0.0.1:$PORT"
+  fi
   start mosquitto mosquitto -c "$conf"
-  BROKER="tcp://127.0.0.1:$PORT"
   sleep 0.5
   if [ -z "${PIDS[mosquitto]:-}" ] || ! kill -0 "${PIDS[mosquitto]}" 2>/dev/null; then
     echo "run: mosquitto did not start (port $PORT in use? try --port); its log:" >&2
@@ -190,7 +242,7 @@ instance_name() {  # instance_name SERVICE I N: "gateway" alone, "gateway-2" amo
   if (($3 == 1)); then echo "$1"; else echo "$1-$2"; fi
 }
 for i in $(seq "$GATEWAYS"); do
-  start "$(instance_name gateway "$i" "$GATEWAYS")" "$BIN/slam-gateway" "${common[@]}" --broker "$BROKER"
+  start "$(instance_name gateway "$i" "$GATEWAYS")" "$BIN/slam-gateway" "${common[@]}" --broker "$BROKER" "${gateway_mqtt[@]}"
 done
 start mapper "$BIN/slam-mapper" "${common[@]}" --store "$DATA/map.db"
 # Each planner keeps its own goal file (every one follows every goal: docs/deployment.md).
@@ -205,7 +257,7 @@ if ((BRIDGE)); then
   [ -n "${PIDS[bridge]:-}" ] && echo "run: Foxglove / Lichtblick: connect to ws://$BRIDGE_BIND (docs/ecosystem.md)"
 fi
 if ((SIM)); then
-  start simulator "$BIN/slam-simulator" "${common[@]}" --broker "$BROKER" --world "$WORLD" --robots "$ROBOTS"
+  start simulator "$BIN/slam-simulator" --domain "$SIM_DOMAIN" --broker "$BROKER" "${sim_mqtt[@]}" --world "$WORLD" --robots "$ROBOTS"
 fi
 if [ ! -x "$BIN/slam-viewer" ]; then
   echo "run: viewer not started ($BIN/slam-viewer is not built)"
@@ -235,7 +287,9 @@ fi
 if ((SIM)) && [ "$MODE" = explore ]; then
   if [ -x "$BIN/slamctl" ]; then
     # "all" also reaches robots the planner has not seen yet; slamctl gives up after --timeout.
-    ( sleep 2 && exec "$BIN/slamctl" --domain "$DOMAIN" --timeout 20 goal all explore ) >>"$LOG_DIR/slamctl.log" 2>&1 &
+    as_slamctl=()
+    ((SECURE)) && as_slamctl=(env SLAM_DDS_IDENTITY=slamctl)
+    ( sleep 2 && exec "${as_slamctl[@]}" "$BIN/slamctl" --domain "$DOMAIN" --timeout 20 goal all explore ) >>"$LOG_DIR/slamctl.log" 2>&1 &
     HELPER_PIDS+=($!)
     echo "run: robots will explore (slamctl goal all explore, log $LOG_DIR/slamctl.log)"
   else

@@ -82,6 +82,7 @@ Result<std::unique_ptr<mqtt::Connection>> RobotLinks::open(const std::string& cl
                                                            std::optional<mqtt::Will> will) {
   mqtt::ConnectionOptions options;
   options.broker = settings_.broker;
+  options.tls_ca_file = settings_.tls_ca_file;
   options.client_id = client_id;
   if (!settings_.password.empty() && !settings_.multiplex) {
     options.username = client_id;  // a robot's connection is named by its robot id

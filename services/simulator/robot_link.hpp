@@ -40,6 +40,7 @@ class RobotLinks {
     // Not empty: each robot's own connection logs in as its robot id with this password (a broker
     // with a password file and an ACL keyed by user name, like compose/mosquitto).
     std::string password;
+    std::string tls_ca_file;  // trusted for an ssl:// broker (empty: the system's CAs)
   };
 
   // Registers the counters it keeps (reports_sent, waypoints_received, mqtt_reconnects, ...) and,

@@ -54,8 +54,8 @@ Result<std::unique_ptr<SimNode>> SimNode::create(const SimOptions& options, Worl
   if (!heartbeat) return heartbeat.error();
   node->heartbeat_ = std::move(*heartbeat);
 
-  RobotLinks::Settings link_settings{options.broker, options.robot_protocol(), options.mqtt_multiplex,
-                                     codec_limits(options), options.mqtt_password};
+  RobotLinks::Settings link_settings{options.broker,        options.robot_protocol(), options.mqtt_multiplex,
+                                     codec_limits(options), options.mqtt_password,    options.tls_ca_file};
   auto links = RobotLinks::create(std::move(link_settings), counters);
   if (!links) return Error{"MQTT: " + links.message()};
   node->links_ = std::move(*links);

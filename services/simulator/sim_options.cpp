@@ -47,7 +47,9 @@ void add_sim_options(CLI::App& app, SimOptions& o) {
       ->check(CLI::IsMember({"world", "start"}))
       ->capture_default_str();
   app.add_option("--seed", o.seed, "random seed (same seed, same run)")->capture_default_str();
-  app.add_option("--broker", o.broker, "MQTT broker URL (tcp://HOST:PORT)")->capture_default_str();
+  app.add_option("--broker", o.broker, "MQTT broker URL (tcp://, mqtt://, ssl:// or mqtts://HOST:PORT)")
+      ->capture_default_str();
+  app.add_option("--tls-ca-file", o.tls_ca_file, "PEM CA certificates trusted for the broker (ssl:// URLs)");
   app.add_flag("--random-walk", o.random_walk, "idle robots drive to random reachable targets");
   app.add_option("--speed", o.speed, "simulated seconds per wall-clock second")
       ->check(CLI::Range(0.01, 100.0))
@@ -95,8 +97,11 @@ protocol::CodecLimits codec_limits(const SimOptions& o) {
 }
 
 Status validate(const SimOptions& o) {
-  if (!o.broker.starts_with("tcp://") && !o.broker.starts_with("mqtt://"))
-    return Error{fmt::format("--broker: '{}' is not tcp://HOST:PORT or mqtt://HOST:PORT", o.broker)};
+  const bool tls = o.broker.starts_with("ssl://") || o.broker.starts_with("mqtts://");
+  if (!tls && !o.broker.starts_with("tcp://") && !o.broker.starts_with("mqtt://"))
+    return Error{fmt::format("--broker: '{}' is not tcp://, mqtt://, ssl:// or mqtts://HOST:PORT", o.broker)};
+  if (!o.tls_ca_file.empty() && !tls)
+    return Error{fmt::format("--tls-ca-file is set but --broker '{}' is not ssl:// or mqtts://", o.broker)};
   if (!o.mqtt_password.empty() && o.mqtt_multiplex)
     return Error{
         "--mqtt-password logs each robot in under its own id: drop --mqtt-multiplex (one shared connection)"};

@@ -31,6 +31,7 @@ struct SimOptions {
   double speed = 1.0;           // simulated seconds per wall-clock second
   bool mqtt_multiplex = false;  // one MQTT client for every robot instead of one each
   std::string mqtt_password;    // each robot logs in as its id with it; empty: anonymous
+  std::string tls_ca_file;      // PEM CA the broker must be signed by (ssl:// and mqtts:// brokers)
   double units_per_meter = 100.0;
   double truth_rate_hz = 5.0;  // SimGroundTruth publications per second
   int beams = 16;

@@ -200,8 +200,10 @@ class Rig {
  private:
   Rig() {
     port_ = group_.start_mosquitto();
-    group_.start("gateway", {SLAM_GATEWAY_BIN, "--domain", std::to_string(domain_.id()), "--broker",
-                             "tcp://127.0.0.1:" + std::to_string(port_), "--log-level", "warn"});
+    group_.start("gateway",
+                 slam::testkit::with_dds_identity(
+                     "gateway", {SLAM_GATEWAY_BIN, "--domain", std::to_string(domain_.id()), "--broker",
+                                 "tcp://127.0.0.1:" + std::to_string(port_), "--log-level", "warn"}));
     gateway_pid_ = group_.pid("gateway");
     auto participant = slam::dds::Participant::create(domain_.id(), "bench-gateway");
     if (!participant) throw std::runtime_error(participant.message());

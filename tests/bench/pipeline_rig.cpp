@@ -127,19 +127,28 @@ Status PipelineRig::launch(const PipelineSettings& s) {
   const std::string broker = "tcp://127.0.0.1:" + std::to_string(port_);
   const std::string domain = std::to_string(domain_.id());
   const GridLayout& g = s.grid;
-  group_.start("gateway", {testkit::bin_path("slam-gateway"), "--domain", domain, "--broker", broker,
-                           "--log-level", "warn"});
+  // With DDS Security on (docs/security.md) each service runs as its identity, and the Cyclone
+  // simulator keeps its DDS side on a plain domain of its own, as run.sh --secure does.
+  const bool secure = testkit::dds_security_on();
+  const std::string sim_domain = std::to_string(secure ? sim_domain_.id() : domain_.id());
+  group_.start("gateway",
+               testkit::with_dds_identity("gateway", {testkit::bin_path("slam-gateway"), "--domain", domain,
+                                                      "--broker", broker, "--log-level", "warn"}));
   group_.start("mapper",
-               {testkit::bin_path("slam-mapper"), "--domain", domain, "--store", group_.dir() + "/map.db",
-                "--grid-resolution", fmt::format("{}", g.resolution), "--grid-origin-x",
-                fmt::format("{}", g.origin_x), "--grid-origin-y", fmt::format("{}", g.origin_y),
-                "--grid-width-m", fmt::format("{}", g.side_m), "--grid-height-m", fmt::format("{}", g.side_m),
-                "--slam", s.slam ? "on" : "off", "--log-level", "warn"});
-  group_.start("planner", {testkit::bin_path("slam-planner"), "--domain", domain, "--log-level", "warn",
-                           "--goal-store", group_.dir() + "/goals.json"});
+               testkit::with_dds_identity(
+                   "mapper",
+                   {testkit::bin_path("slam-mapper"), "--domain", domain, "--store", group_.dir() + "/map.db",
+                    "--grid-resolution", fmt::format("{}", g.resolution), "--grid-origin-x",
+                    fmt::format("{}", g.origin_x), "--grid-origin-y", fmt::format("{}", g.origin_y),
+                    "--grid-width-m", fmt::format("{}", g.side_m), "--grid-height-m",
+                    fmt::format("{}", g.side_m), "--slam", s.slam ? "on" : "off", "--log-level", "warn"}));
+  group_.start("planner",
+               testkit::with_dds_identity(
+                   "planner", {testkit::bin_path("slam-planner"), "--domain", domain, "--log-level", "warn",
+                               "--goal-store", group_.dir() + "/goals.json"}));
   group_.start("simulator", {testkit::bin_path("slam-simulator"),
                              "--domain",
-                             domain,
+                             sim_domain,
                              "--broker",
                              broker,
                              "--world",
@@ -164,16 +173,28 @@ Status PipelineRig::launch(const PipelineSettings& s) {
   auto participant = dds::Participant::create(domain_.id(), "bench-pipeline");
   if (!participant) return Error{"DDS participant: " + participant.message()};
   participant_ = std::move(*participant);
-  auto reader = dds::make_reader(*participant_, dds::kHeartbeat, [this](const Heartbeat& h, const auto&) {
+  if (secure) {
+    auto plain = dds::Participant::create(sim_domain_.id(), "bench-pipeline-sim", std::nullopt);
+    if (!plain) return Error{"DDS participant on the simulator's domain: " + plain.message()};
+    sim_participant_ = std::move(*plain);
+  }
+  dds::Participant& sim_side = secure ? *sim_participant_ : *participant_;
+  const auto heartbeat = [this](const Heartbeat& h, const auto&) {
     CounterSample sample;
     sample.stamp_ns = h.stamp_ns();
     for (const Counter& c : h.counters()) sample.values[c.name().to_string()] = c.value();
     std::lock_guard lock(mutex_);
     latest_[h.service().to_string()] = std::move(sample);
-  });
+  };
+  auto reader = dds::make_reader(*participant_, dds::kHeartbeat, heartbeat);
   if (!reader) return Error{"heartbeat reader: " + reader.message()};
   heartbeats_ = std::move(*reader);
-  auto control = dds::make_writer(*participant_, dds::kSimControl);
+  if (secure) {
+    auto sim_reader = dds::make_reader(sim_side, dds::kHeartbeat, heartbeat);
+    if (!sim_reader) return Error{"simulator heartbeat reader: " + sim_reader.message()};
+    sim_heartbeats_ = std::move(*sim_reader);
+  }
+  auto control = dds::make_writer(sim_side, dds::kSimControl);
   if (!control) return Error{"SimControl writer: " + control.message()};
   sim_control_ = std::move(*control);
   return Status::ok();

@@ -97,11 +97,14 @@ class PipelineRig {
   Status launch(const PipelineSettings& settings);
 
   testkit::DomainLease domain_;
+  testkit::DomainLease sim_domain_;  // the simulator's own plain domain when DDS Security is on
   testkit::ProcessGroup group_;
   int port_ = 0;
   int robots_ = 0;
   std::unique_ptr<dds::Participant> participant_;
+  std::unique_ptr<dds::Participant> sim_participant_;  // DDS Security on: on sim_domain_, plain
   std::unique_ptr<dds::Reader<Heartbeat>> heartbeats_;
+  std::unique_ptr<dds::Reader<Heartbeat>> sim_heartbeats_;
   std::unique_ptr<dds::Writer<SimControl>> sim_control_;
   uint64_t commands_sent_ = 0;
   mutable std::mutex mutex_;

@@ -33,6 +33,8 @@ int MqttTestClient::connect(const std::string& user, const std::string& password
   if (!ca_file_.empty()) {
     ssl.trustStore = ca_file_.c_str();
     ssl.enableServerCertAuth = 1;
+    if (!cert_file_.empty()) ssl.keyStore = cert_file_.c_str();
+    if (!key_file_.empty()) ssl.privateKey = key_file_.c_str();
     options.ssl = &ssl;
   }
   return MQTTClient_connect(client_, &options);

@@ -10,6 +10,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "inbox.hpp"
@@ -37,6 +38,11 @@ class MqttTestClient {
   // retry as 3.1 after a refusal). Returns paho's code: 0 accepted, 4 bad user name or password,
   // 5 not authorised, negative when the broker could not be reached.
   int connect(const std::string& user = {}, const std::string& password = {});
+  // TLS clients: present this PEM certificate and key to the broker at the next connect().
+  void use_client_certificate(std::string cert_file, std::string key_file) {
+    cert_file_ = std::move(cert_file);
+    key_file_ = std::move(key_file);
+  }
   bool connected() const;
   bool subscribe(const std::string& filter, int qos = 1);
   // With qos > 0, waits for the broker's acknowledgement: it has routed (or dropped) the message.
@@ -57,6 +63,8 @@ class MqttTestClient {
 
   MQTTClient client_ = nullptr;
   std::string ca_file_;
+  std::string cert_file_;
+  std::string key_file_;
   Inbox<MqttMessage> inbox_;
   size_t next_index_ = 0;
 };

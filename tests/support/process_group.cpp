@@ -85,6 +85,16 @@ bool wait_until(const std::function<bool()>& pred, std::chrono::milliseconds tim
   }
 }
 
+bool dds_security_on() {
+  const char* dir = std::getenv("SLAM_DDS_SECURITY_DIR");
+  return dir != nullptr && *dir != '\0';
+}
+
+std::vector<std::string> with_dds_identity(const std::string& identity, std::vector<std::string> argv) {
+  if (dds_security_on()) argv.insert(argv.begin(), {"env", "SLAM_DDS_IDENTITY=" + identity});
+  return argv;
+}
+
 std::string bin_path(const std::string& name) {
   return std::string(SLAM_BIN_DIR) + "/" + name;
 }

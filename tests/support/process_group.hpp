@@ -41,6 +41,13 @@ bool wait_until(const std::function<bool()>& pred, std::chrono::milliseconds tim
 // Path of a project binary (service, tool) in the build tree.
 std::string bin_path(const std::string& name);
 
+// argv run as DDS identity `identity` (env SLAM_DDS_IDENTITY=...) when this process itself runs
+// on a secure domain (SLAM_DDS_SECURITY_DIR set: docs/security.md, benches with security on);
+// otherwise argv unchanged.
+std::vector<std::string> with_dds_identity(const std::string& identity, std::vector<std::string> argv);
+// True when SLAM_DDS_SECURITY_DIR is set.
+bool dds_security_on();
+
 // Whether `pid` is a live process (not gone, not a zombie), from /proc.
 bool process_alive(pid_t pid);
 // Pids of the live processes whose process group is `pgid`, from /proc.

@@ -56,6 +56,25 @@ std::string code_name(const ReturnCode_t& rc) {
   }
 }
 
+// The builtin plugins of the DDS Security specification, on the files compose/make-security.sh makes.
+void add_security(fdds::DomainParticipantQos& pqos, const SecurityFiles& files) {
+  auto& properties = pqos.properties().properties();
+  const auto add = [&](const std::string& name, const std::string& value) {
+    properties.emplace_back(name, value);
+  };
+  const std::string auth = "dds.sec.auth.builtin.PKI-DH.";
+  const std::string access = "dds.sec.access.builtin.Access-Permissions.";
+  add("dds.sec.auth.plugin", "builtin.PKI-DH");
+  add(auth + "identity_ca", "file://" + files.identity_ca);
+  add(auth + "identity_certificate", "file://" + files.identity_certificate);
+  add(auth + "private_key", "file://" + files.private_key);
+  add("dds.sec.access.plugin", "builtin.Access-Permissions");
+  add(access + "permissions_ca", "file://" + files.permissions_ca);
+  add(access + "governance", "file://" + files.governance);
+  add(access + "permissions", "file://" + files.permissions);
+  add("dds.sec.crypto.plugin", "builtin.AES-GCM-GMAC");
+}
+
 }  // namespace
 
 fdds::DataWriterQos writer_qos(const topics::QosSpec& spec) {
@@ -85,8 +104,18 @@ fdds::DataReaderQos reader_qos(const topics::QosSpec& spec) {
 }
 
 Result<std::unique_ptr<Participant>> Participant::create(int domain_id, const std::string& name) {
+  auto security = security_from_environment();
+  if (!security) return security.error();
+  return create(domain_id, name, *security);
+}
+
+Result<std::unique_ptr<Participant>> Participant::create(int domain_id, const std::string& name,
+                                                         const std::optional<SecurityFiles>& security) {
   if (domain_id < 0 || domain_id > 232)
     return Error{"DDS domain id must be 0..232, got " + std::to_string(domain_id)};
+  if (security) {
+    if (Status s = check_security_files(*security); !s) return Error{"DDS security: " + s.message()};
+  }
   auto* factory = fdds::DomainParticipantFactory::get_instance();
   fdds::DomainParticipantQos pqos = factory->get_default_participant_qos();
   pqos.name(name);
@@ -104,10 +133,14 @@ Result<std::unique_ptr<Participant>> Participant::create(int domain_id, const st
     pqos.wire_protocol().builtin.discovery_config.leaseDuration_announcementperiod =
         eprosima::fastrtps::Duration_t(1, 0);
   }
+  if (security) add_security(pqos, *security);
   std::unique_ptr<Participant> p(new Participant());
   p->domain_id_ = domain_id;
   p->participant_ = factory->create_participant(static_cast<fdds::DomainId_t>(domain_id), pqos);
-  if (!p->participant_) return Error{"cannot create DDS participant on domain " + std::to_string(domain_id)};
+  if (!p->participant_) {
+    return Error{"cannot create DDS participant on domain " + std::to_string(domain_id) +
+                 (security ? " (DDS Security refused the files: see the lines above)" : "")};
+  }
   p->publisher_ = p->participant_->create_publisher(fdds::PUBLISHER_QOS_DEFAULT);
   p->subscriber_ = p->participant_->create_subscriber(fdds::SUBSCRIBER_QOS_DEFAULT);
   if (!p->publisher_ || !p->subscriber_) return Error{"cannot create DDS publisher/subscriber"};

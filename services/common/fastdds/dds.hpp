@@ -15,12 +15,14 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "common/core/guarded_callback.hpp"
 #include "common/core/result.hpp"
 #include "common/core/topics.hpp"
+#include "common/fastdds/security_files.hpp"
 
 namespace slam::dds {
 
@@ -38,9 +40,14 @@ fdds::DataReaderQos reader_qos(const topics::QosSpec& spec);
 // One DomainParticipant with one publisher and one subscriber. Transports: UDPv4 only, so a killed
 // process leaves no shared-memory files behind; when FASTRTPS_DEFAULT_PROFILES_FILE is set, the XML
 // profile decides instead (multi-host set-ups, discovery server; see docs/deployment.md).
+// With security files the participant joins a DDS Security domain (authenticated, access-controlled,
+// encrypted: docs/security.md) after check_security_files() passed; an error names the bad file.
 class Participant {
  public:
+  // Security from the environment (SLAM_DDS_SECURITY_DIR, SLAM_DDS_IDENTITY): every program's way.
   static Result<std::unique_ptr<Participant>> create(int domain_id, const std::string& name);
+  static Result<std::unique_ptr<Participant>> create(int domain_id, const std::string& name,
+                                                     const std::optional<SecurityFiles>& security);
   ~Participant();
   Participant(const Participant&) = delete;
   Participant& operator=(const Participant&) = delete;

@@ -87,6 +87,15 @@ TEST(SimOptions, BadValuesNameTheFlag) {
   EXPECT_THAT(validate(o).message(), HasSubstr("--broker"));
 }
 
+TEST(SimOptions, TlsBrokerWithItsCa) {
+  SimOptions o;
+  ASSERT_EQ(parse(o, {"--broker", "ssl://127.0.0.1:8883", "--tls-ca-file", "ca.crt"}), "");
+  EXPECT_EQ(o.tls_ca_file, "ca.crt");
+  EXPECT_TRUE(validate(o));
+  o.broker = "tcp://127.0.0.1:1883";  // a CA for a plain connection is a mistake, said at start
+  EXPECT_THAT(validate(o).message(), HasSubstr("--tls-ca-file"));
+}
+
 TEST(SimOptions, PasswordNeedsOneConnectionPerRobot) {
   SimOptions o;
   ASSERT_EQ(parse(o, {"--mqtt-password", "s3cret"}), "");
