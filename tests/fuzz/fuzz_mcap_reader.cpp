@@ -20,7 +20,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
       std::abort();
   for (const slam::mcap::MessageView& m : contents->messages) {
     if (!contents->channels.contains(m.channel_id)) std::abort();
-    if (!m.data.empty() && (m.data.data() < data || m.data.data() + m.data.size() > data + size)) std::abort();
+    if (!m.data.empty() && (m.data.data() < data || m.data.data() + m.data.size() > data + size))
+      std::abort();
   }
   if (contents->statistics && contents->statistics->message_count != contents->messages.size()) std::abort();
   return 0;

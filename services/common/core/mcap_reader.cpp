@@ -87,21 +87,36 @@ class Decoder {
 
 const char* opcode_name(uint8_t op) {
   switch (static_cast<Opcode>(op)) {
-    case Opcode::kHeader: return "Header";
-    case Opcode::kFooter: return "Footer";
-    case Opcode::kSchema: return "Schema";
-    case Opcode::kChannel: return "Channel";
-    case Opcode::kMessage: return "Message";
-    case Opcode::kChunk: return "Chunk";
-    case Opcode::kMessageIndex: return "MessageIndex";
-    case Opcode::kChunkIndex: return "ChunkIndex";
-    case Opcode::kAttachment: return "Attachment";
-    case Opcode::kAttachmentIndex: return "AttachmentIndex";
-    case Opcode::kStatistics: return "Statistics";
-    case Opcode::kMetadata: return "Metadata";
-    case Opcode::kMetadataIndex: return "MetadataIndex";
-    case Opcode::kSummaryOffset: return "SummaryOffset";
-    case Opcode::kDataEnd: return "DataEnd";
+    case Opcode::kHeader:
+      return "Header";
+    case Opcode::kFooter:
+      return "Footer";
+    case Opcode::kSchema:
+      return "Schema";
+    case Opcode::kChannel:
+      return "Channel";
+    case Opcode::kMessage:
+      return "Message";
+    case Opcode::kChunk:
+      return "Chunk";
+    case Opcode::kMessageIndex:
+      return "MessageIndex";
+    case Opcode::kChunkIndex:
+      return "ChunkIndex";
+    case Opcode::kAttachment:
+      return "Attachment";
+    case Opcode::kAttachmentIndex:
+      return "AttachmentIndex";
+    case Opcode::kStatistics:
+      return "Statistics";
+    case Opcode::kMetadata:
+      return "Metadata";
+    case Opcode::kMetadataIndex:
+      return "MetadataIndex";
+    case Opcode::kSummaryOffset:
+      return "SummaryOffset";
+    case Opcode::kDataEnd:
+      return "DataEnd";
   }
   return "unknown";
 }
@@ -169,14 +184,22 @@ class Parser {
         if (!d.prefixed(out_.profile) || !d.prefixed(out_.library)) return malformed(at, op);
         phase_ = Phase::kData;
         return {};
-      case Opcode::kSchema: return schema(at, op, d);
-      case Opcode::kChannel: return channel(at, op, d);
-      case Opcode::kMessage: return message(at, op, d);
-      case Opcode::kChunk: return fail(at, "chunked MCAP files are not supported (record unchunked)");
-      case Opcode::kStatistics: return statistics(at, op, d);
-      case Opcode::kSummaryOffset: return summary_offset(at, op, d);
-      case Opcode::kDataEnd: return data_end(at, op, d);
-      case Opcode::kFooter: return footer(at, op, d);
+      case Opcode::kSchema:
+        return schema(at, op, d);
+      case Opcode::kChannel:
+        return channel(at, op, d);
+      case Opcode::kMessage:
+        return message(at, op, d);
+      case Opcode::kChunk:
+        return fail(at, "chunked MCAP files are not supported (record unchunked)");
+      case Opcode::kStatistics:
+        return statistics(at, op, d);
+      case Opcode::kSummaryOffset:
+        return summary_offset(at, op, d);
+      case Opcode::kDataEnd:
+        return data_end(at, op, d);
+      case Opcode::kFooter:
+        return footer(at, op, d);
       default:
         // Indexes, attachments, metadata and opcodes from newer writers: not needed here.
         ++out_.skipped_records;
@@ -201,8 +224,8 @@ class Parser {
         !d.string_map(c.metadata))
       return malformed(at, op);
     if (c.schema_id != 0 && !out_.schemas.contains(c.schema_id))
-      return fail(at, "Channel " + std::to_string(c.id) + " names unknown schema " +
-                          std::to_string(c.schema_id));
+      return fail(at,
+                  "Channel " + std::to_string(c.id) + " names unknown schema " + std::to_string(c.schema_id));
     return define(at, out_.channels, c.id, std::move(c), "Channel");
   }
 
@@ -280,8 +303,9 @@ class Parser {
       return fail(at, "Footer says the summary starts at byte " + std::to_string(summary_start) +
                           ", it starts at " + std::to_string(summary_first_));
     if (summary_offset_start != 0 && summary_offset_start != summary_offset_first_)
-      return fail(at, "Footer says the summary offsets start at byte " + std::to_string(summary_offset_start) +
-                          ", they start at " + std::to_string(summary_offset_first_));
+      return fail(at, "Footer says the summary offsets start at byte " +
+                          std::to_string(summary_offset_start) + ", they start at " +
+                          std::to_string(summary_offset_first_));
     if (crc != 0) {
       // From the summary start (or the Footer, without a summary) to the Footer's CRC field.
       const size_t from = summary_start != 0 ? summary_start : at;
@@ -332,7 +356,7 @@ Result<Contents> parse(std::span<const uint8_t> file) {
 Result<std::unique_ptr<MappedFile>> MappedFile::open(const std::string& path) {
   const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
   if (fd < 0) return Error{"cannot open " + path + ": " + std::strerror(errno)};
-  struct stat st{};
+  struct stat st {};
   if (::fstat(fd, &st) != 0) {
     const int err = errno;
     ::close(fd);

@@ -79,7 +79,8 @@ TEST(McapReader, ReadsBackWhatTheWriterWrote) {
   EXPECT_EQ(contents->statistics->channel_count, 3u);
   EXPECT_EQ(contents->statistics->message_start_time, 100u);
   EXPECT_EQ(contents->statistics->message_end_time, 130u);
-  EXPECT_EQ(contents->statistics->channel_message_counts, (std::map<uint16_t, uint64_t>{{1, 3}, {2, 1}, {3, 1}}));
+  EXPECT_EQ(contents->statistics->channel_message_counts,
+            (std::map<uint16_t, uint64_t>{{1, 3}, {2, 1}, {3, 1}}));
   EXPECT_EQ(contents->skipped_records, 0u);
 }
 
@@ -203,7 +204,8 @@ TEST(McapReader, RefusesAMessageOnAnUnknownChannel) {
 }
 
 TEST(McapReader, RefusesChunkedFiles) {
-  auto contents = parse(hand_made([](Encoder& file) { file.record(Opcode::kChunk, std::vector<uint8_t>(40)); }));
+  auto contents =
+      parse(hand_made([](Encoder& file) { file.record(Opcode::kChunk, std::vector<uint8_t>(40)); }));
   ASSERT_FALSE(contents);
   EXPECT_NE(contents.message().find("chunked"), std::string::npos) << contents.message();
 }
