@@ -45,7 +45,7 @@ uint64_t nanoseconds(const eprosima::fastrtps::rtps::Time_t& t) {
 struct RecordArgs {
   std::string file;
   double duration_s = 0;
-  std::vector<std::string> topics;
+  std::string topics;  // comma-separated
 };
 
 int cmd_record(Session& s, const RecordArgs& a) {
@@ -75,8 +75,9 @@ int cmd_record(Session& s, const RecordArgs& a) {
   const auto start = std::chrono::steady_clock::now();
   const auto until = start + std::chrono::duration<double>(a.duration_s > 0 ? a.duration_s : 1e12);
   int ticks = 0;
-  while (!shutdown_requested() && std::chrono::steady_clock::now() < until) {
-    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(until - std::chrono::steady_clock::now());
+  while (!shutdown_requested() && !rec.failed() && std::chrono::steady_clock::now() < until) {
+    const auto left =
+        std::chrono::duration_cast<std::chrono::milliseconds>(until - std::chrono::steady_clock::now());
     wait_for_shutdown(std::min<std::chrono::milliseconds>(1000ms, std::max(left, 1ms)));
     if (!tty && ++ticks % 10 != 0) continue;
     const RecordingStats now = rec.stats();
@@ -90,15 +91,15 @@ int cmd_record(Session& s, const RecordArgs& a) {
   const RecordingStats done = rec.stats();
   if (Status closed = rec.close(); !closed) return fail(closed.message());
   std::printf("recorded %llu messages on %zu topics in %.1f s to %s (%s)\n",
-              static_cast<unsigned long long>(done.messages), done.topics, seconds_since(start), a.file.c_str(),
-              megabytes(done.bytes).c_str());
+              static_cast<unsigned long long>(done.messages), done.topics, seconds_since(start),
+              a.file.c_str(), megabytes(done.bytes).c_str());
   return 0;
 }
 
 struct ReplayArgs {
   std::string file;
   double rate = 1.0;
-  std::vector<std::string> topics;
+  std::string topics;  // comma-separated
 };
 
 int cmd_replay(Session& s, const ReplayArgs& a) {
@@ -114,7 +115,8 @@ int cmd_replay(Session& s, const ReplayArgs& a) {
 
   std::map<std::string, std::string> type_of;
   for (const dds::AnyTopic& t : dds::all_topics()) type_of.emplace(t.info.name, t.type_name);
-  const ReplayPlan plan = plan_replay(*recording, type_of, a.topics);
+  const ReplayPlan plan =
+      plan_replay(*recording, type_of, a.topics.empty() ? std::vector<std::string>{} : *selected);
   for (const std::string& line : plan.skipped) std::printf("%s\n", line.c_str());
 
   std::map<uint16_t, std::unique_ptr<dds::CdrWriter>> writer_of;  // channel id -> writer
@@ -125,13 +127,14 @@ int cmd_replay(Session& s, const ReplayArgs& a) {
   }
   // Give discovery up to the timeout to find a subscriber: volatile readers miss what is written
   // before they matched.
-  dds::wait_matched(
-      [&] {
-        int matched = 0;
-        for (const auto& [channel, writer] : writer_of) matched += writer->matched_readers();
-        return matched;
-      },
-      1, s.timeout());
+  if (!writer_of.empty())
+    dds::wait_matched(
+        [&] {
+          int matched = 0;
+          for (const auto& [channel, writer] : writer_of) matched += writer->matched_readers();
+          return matched;
+        },
+        1, s.timeout());
 
   uint64_t first_log_time = UINT64_MAX;
   for (const mcap::MessageView& m : recording->messages)
@@ -156,7 +159,8 @@ int cmd_replay(Session& s, const ReplayArgs& a) {
   // Reliable samples still in flight are lost when the process exits: wait for the acknowledgements.
   for (auto& [channel, writer] : writer_of) writer->wait_for_acknowledgments(s.timeout());
   std::printf("replayed %llu messages on %zu topics in %.1f s at rate %g from %s\n",
-              static_cast<unsigned long long>(sent), writer_of.size(), seconds_since(start), a.rate, a.file.c_str());
+              static_cast<unsigned long long>(sent), writer_of.size(), seconds_since(start), a.rate,
+              a.file.c_str());
   if (refused > 0)
     return fail(std::to_string(refused) + " messages could not be published, the first: " + first_refusal);
   return 0;
@@ -169,19 +173,19 @@ Handler add_record(CLI::App& cli) {
   cli.add_option("file", a->file, "MCAP file to write (replaced if it exists)")->required();
   cli.add_option("--duration", a->duration_s, "seconds to record (default: until Ctrl-C)")
       ->check(CLI::PositiveNumber);
-  cli.add_option("--topics", a->topics, "comma-separated topics to record (default: every topic)")
-      ->delimiter(',');
+  cli.add_option("--topics", a->topics, "comma-separated topics to record (default: every topic)");
   return [a](Session& s) { return cmd_record(s, *a); };
 }
 
 Handler add_replay(CLI::App& cli) {
   auto a = std::make_shared<ReplayArgs>();
-  cli.add_option("file", a->file, "MCAP file written by slamctl record")->required()->check(CLI::ExistingFile);
+  cli.add_option("file", a->file, "MCAP file written by slamctl record")
+      ->required()
+      ->check(CLI::ExistingFile);
   cli.add_option("--rate", a->rate, "playback speed: 2 plays twice as fast")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
-  cli.add_option("--topics", a->topics, "comma-separated topics to replay (default: every recorded topic)")
-      ->delimiter(',');
+  cli.add_option("--topics", a->topics, "comma-separated topics to replay (default: every recorded topic)");
   return [a](Session& s) { return cmd_replay(s, *a); };
 }
 

@@ -42,6 +42,11 @@ RecordingStats SessionRecorder::stats() const {
   return {writer_->message_count(), writer_->bytes_written(), channels_.size()};
 }
 
+bool SessionRecorder::failed() const {
+  std::lock_guard lock(mutex_);
+  return !failure_;
+}
+
 Status SessionRecorder::close() {
   std::lock_guard lock(mutex_);
   // Even after a failure, try to end the file so what was recorded stays readable.
@@ -50,13 +55,22 @@ Status SessionRecorder::close() {
   return closed;
 }
 
-Result<std::vector<std::string>> select_topics(const std::vector<std::string>& requested,
+Result<std::vector<std::string>> select_topics(std::string_view comma_list,
                                                const std::vector<std::string>& available) {
-  if (requested.empty()) return available;
-  for (const std::string& name : requested)
+  if (comma_list.empty()) return available;
+  std::vector<std::string> selected;
+  size_t from = 0;
+  while (from <= comma_list.size()) {
+    const size_t comma = std::min(comma_list.find(',', from), comma_list.size());
+    const std::string name(comma_list.substr(from, comma - from));
+    from = comma + 1;
+    if (name.empty()) continue;
     if (std::find(available.begin(), available.end(), name) == available.end())
       return Error{"unknown topic '" + name + "' (see docs/topics.md)"};
-  return requested;
+    selected.push_back(name);
+  }
+  if (selected.empty()) return Error{"--topics names no topic"};
+  return selected;
 }
 
 ReplayPlan plan_replay(const mcap::Contents& recording, const std::map<std::string, std::string>& type_of,
@@ -89,7 +103,8 @@ ReplayPlan plan_replay(const mcap::Contents& recording, const std::map<std::stri
 
 std::chrono::nanoseconds replay_offset(uint64_t first_log_time, uint64_t log_time, double rate) {
   if (log_time <= first_log_time) return std::chrono::nanoseconds(0);
-  return std::chrono::nanoseconds(static_cast<int64_t>(std::llround(static_cast<double>(log_time - first_log_time) / rate)));
+  return std::chrono::nanoseconds(
+      static_cast<int64_t>(std::llround(static_cast<double>(log_time - first_log_time) / rate)));
 }
 
 }  // namespace slam::ctl

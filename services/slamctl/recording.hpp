@@ -36,9 +36,11 @@ class SessionRecorder {
   static Result<std::unique_ptr<SessionRecorder>> create(const std::string& path);
 
   // log_time: when the sample was received; publish_time: when its writer stamped it (ns since epoch).
-  void add(std::string_view topic, std::string_view type_name, std::span<const uint8_t> cdr, uint64_t log_time,
-           uint64_t publish_time);
+  void add(std::string_view topic, std::string_view type_name, std::span<const uint8_t> cdr,
+           uint64_t log_time, uint64_t publish_time);
   RecordingStats stats() const;
+  // True once a sample could not be recorded (close() says why).
+  bool failed() const;
   // Ends the file (summary, footer): the file is valid only after this.
   Status close();
 
@@ -52,8 +54,9 @@ class SessionRecorder {
   Status failure_;
 };
 
-// The topics `requested` names (all of `available` when empty); an unknown name is an error.
-Result<std::vector<std::string>> select_topics(const std::vector<std::string>& requested,
+// The topics a comma-separated list names (all of `available` when empty); an unknown name is an
+// error.
+Result<std::vector<std::string>> select_topics(std::string_view comma_list,
                                                const std::vector<std::string>& available);
 
 // Which channels of a recording replay onto which topics.

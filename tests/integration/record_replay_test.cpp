@@ -136,9 +136,10 @@ TEST(RecordReplay, RecordsEveryTopicWithTrafficAndReplaysItIntoAFreshDomain) {
     EXPECT_NE(schema.data.find("struct " + local), std::string::npos) << schema.data;
   }
   // Exactly the topics that had traffic: the test's three (nothing else runs in the domain).
-  EXPECT_EQ(schema_of, (std::map<std::string, std::string>{{"slam/robot/state", "slam::RobotState"},
-                                                           {"slam/robot/observation", "slam::RobotObservation"},
-                                                           {"slam/system/heartbeat", "slam::Heartbeat"}}));
+  EXPECT_EQ(schema_of,
+            (std::map<std::string, std::string>{{"slam/robot/state", "slam::RobotState"},
+                                                {"slam/robot/observation", "slam::RobotObservation"},
+                                                {"slam/system/heartbeat", "slam::Heartbeat"}}));
   EXPECT_EQ((recorded<RobotStatePubSubType, RobotState>(*contents, "slam/robot/state")), states);
   EXPECT_EQ((recorded<RobotObservationPubSubType, RobotObservation>(*contents, "slam/robot/observation")),
             observations);
@@ -199,7 +200,8 @@ TEST(RecordReplay, ReplaySkipsChannelsOfUnknownTopicsWithALine) {
   group.start("replay", {bin_path("slamctl"), "--domain", std::to_string(domain.id()), "--timeout", "1",
                          "replay", file});
   ASSERT_EQ(group.wait_exit("replay", kExitTimeout), 0) << group.log("replay");
-  EXPECT_NE(group.log("replay").find("skipping channel '/foreign/topic'"), std::string::npos) << group.log("replay");
+  EXPECT_NE(group.log("replay").find("skipping channel '/foreign/topic'"), std::string::npos)
+      << group.log("replay");
   EXPECT_NE(group.log("replay").find("replayed 0 messages"), std::string::npos) << group.log("replay");
 }
 

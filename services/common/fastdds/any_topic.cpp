@@ -9,7 +9,8 @@ class TypedCdrWriter final : public CdrWriter {
   explicit TypedCdrWriter(std::unique_ptr<Writer<T>> writer) : writer_(std::move(writer)) {}
   Status write(std::span<const uint8_t> cdr) override {
     if (!from_cdr<PubSubT>(cdr, scratch_))
-      return Error{"bytes that are not a " + std::string(PubSubT().getName()) + " for " + writer_->topic_name()};
+      return Error{"bytes that are not a " + std::string(PubSubT().getName()) + " for " +
+                   writer_->topic_name()};
     if (!writer_->write(scratch_)) return Error{"could not write to " + writer_->topic_name()};
     return {};
   }
@@ -58,12 +59,12 @@ AnyTopic any(const Topic<T, PubSubT>& topic) {
 
 const std::vector<AnyTopic>& all_topics() {
   static const std::vector<AnyTopic> table{
-      any(kRobotObservation), any(kRobotState),      any(kRobotOdometry),    any(kPoseCorrection),
-      any(kInitialPose),      any(kGridSnapshot),    any(kGridTiles),        any(kGridConfig),
-      any(kMapEdit),          any(kMapFileRequest),  any(kMapReply),         any(kNavGoal),
-      any(kRobotPath),        any(kWaypointCommand), any(kPathRequest),      any(kPathReply),
-      any(kMqttTraffic),      any(kMqttRequest),     any(kMqttReply),        any(kMqttSubscriptions),
-      any(kSimControl),       any(kSimReply),        any(kSimWorld),         any(kSimGroundTruth),
+      any(kRobotObservation), any(kRobotState),      any(kRobotOdometry), any(kPoseCorrection),
+      any(kInitialPose),      any(kGridSnapshot),    any(kGridTiles),     any(kGridConfig),
+      any(kMapEdit),          any(kMapFileRequest),  any(kMapReply),      any(kNavGoal),
+      any(kRobotPath),        any(kWaypointCommand), any(kPathRequest),   any(kPathReply),
+      any(kMqttTraffic),      any(kMqttRequest),     any(kMqttReply),     any(kMqttSubscriptions),
+      any(kSimControl),       any(kSimReply),        any(kSimWorld),      any(kSimGroundTruth),
       any(kHeartbeat),
   };
   return table;
