@@ -46,7 +46,6 @@ TEST(SlamctlSubcommands, NamesAreUniqueAndEachHasAHandler) {
     EXPECT_TRUE(names.insert(sub.name).second) << sub.name;
     EXPECT_FALSE(sub.help.empty()) << sub.name;
   }
-  EXPECT_EQ(names.size(), 12u);
   for (const auto& [cli, run] : line.handlers) EXPECT_TRUE(run) << cli->get_name();
 }
 

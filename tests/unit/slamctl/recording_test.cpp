@@ -40,8 +40,9 @@ TEST(SessionRecorder, WritesOneChannelAndOmgidlSchemaPerTopic) {
     const mcap::Schema& schema = contents->schemas.at(channel.schema_id);
     EXPECT_EQ(schema.encoding, "omgidl");
     EXPECT_EQ(schema.name, channel.topic == "slam/robot/state" ? "slam::RobotState" : "slam::Heartbeat");
-    EXPECT_NE(schema.data.find(channel.topic == "slam/robot/state" ? "struct RobotState" : "struct Heartbeat"),
-              std::string::npos);
+    EXPECT_NE(
+        schema.data.find(channel.topic == "slam/robot/state" ? "struct RobotState" : "struct Heartbeat"),
+        std::string::npos);
   }
   ASSERT_EQ(contents->messages.size(), 3u);
   EXPECT_EQ(std::vector<uint8_t>(contents->messages[2].data.begin(), contents->messages[2].data.end()), kCdr);
@@ -91,7 +92,8 @@ TEST(SelectTopics, SplitsTheCommaListAllWhenEmptyAndRefusesUnknownNames) {
   EXPECT_FALSE(select_topics(",", all));
 }
 
-mcap::Contents recording_with(std::vector<std::tuple<uint16_t, std::string, std::string, std::string>> channels) {
+mcap::Contents recording_with(
+    std::vector<std::tuple<uint16_t, std::string, std::string, std::string>> channels) {
   mcap::Contents c;
   uint16_t schema_id = 0;
   for (auto& [id, topic, encoding, type] : channels) {
