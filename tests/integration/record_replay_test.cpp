@@ -8,6 +8,7 @@
 #include <csignal>
 #include <map>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "common/core/mcap_reader.hpp"
@@ -114,7 +115,7 @@ TEST(RecordReplay, RecordsEveryTopicWithTrafficAndReplaysItIntoAFreshDomain) {
     auto observation_writer = make_test_writer(*p, dds::kRobotObservation);
     auto heartbeat_writer = make_test_writer(*p, dds::kHeartbeat);
     group.start("record", {bin_path("slamctl"), "--domain", std::to_string(domain.id()), "record", file,
-                           "--duration", "8"});
+                           "--duration", "10"});
     publish_all(*state_writer, states);
     publish_all(*observation_writer, observations);
     publish_all(*heartbeat_writer, beats);
@@ -173,6 +174,8 @@ TEST(RecordReplay, InterruptedRecordingIsAValidFile) {
   auto writer = make_test_writer(*p, dds::kRobotState);
   group.start("record", {bin_path("slamctl"), "--domain", std::to_string(domain.id()), "record", file});
   publish_all(*writer, {robot_state(7)});
+  // Acknowledged means in the recorder's reader history; its listener takes it a moment later.
+  std::this_thread::sleep_for(1s);
   group.stop("record", SIGINT);
   ASSERT_EQ(group.wait_exit("record", kExitTimeout), 0) << group.log("record");
   auto mapped = mcap::MappedFile::open(file);
