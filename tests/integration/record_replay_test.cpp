@@ -100,7 +100,7 @@ std::vector<T> recorded(const mcap::Contents& c, const std::string& topic) {
   return out;
 }
 
-TEST(RecordReplay, RecordsEveryTopicWithTrafficAndReplaysItIntoAFreshDomain) {
+TEST(RecordReplayTest, RecordsEveryTopicWithTrafficAndReplaysItIntoAFreshDomain) {
   TempDir dir("record");
   const std::string file = (dir / "session.mcap").string();
   ProcessGroup group;
@@ -165,7 +165,7 @@ TEST(RecordReplay, RecordsEveryTopicWithTrafficAndReplaysItIntoAFreshDomain) {
   EXPECT_EQ(heartbeat_inbox.items(), beats);
 }
 
-TEST(RecordReplay, InterruptedRecordingIsAValidFile) {
+TEST(RecordReplayTest, InterruptedRecordingIsAValidFile) {
   TempDir dir("record");
   const std::string file = (dir / "interrupted.mcap").string();
   ProcessGroup group;
@@ -186,7 +186,7 @@ TEST(RecordReplay, InterruptedRecordingIsAValidFile) {
             std::vector<RobotState>{robot_state(7)});
 }
 
-TEST(RecordReplay, ReplaySkipsChannelsOfUnknownTopicsWithALine) {
+TEST(RecordReplayTest, ReplaySkipsChannelsOfUnknownTopicsWithALine) {
   TempDir dir("record");
   const std::string file = (dir / "foreign.mcap").string();
   {
