@@ -18,6 +18,7 @@
 #include "common/fastdds/requester.hpp"
 #include "slamctl/format.hpp"
 #include "slamctl/mission_file.hpp"
+#include "slamctl/record.hpp"
 
 namespace slam::ctl {
 namespace {
@@ -675,6 +676,8 @@ const std::vector<Subcommand>& subcommands() {
       {"pose", "set a robot's pose in the map (initial pose): pose ROBOT X Y THETA_DEG", add_pose},
       {"sim", "control the simulator", add_sim},
       {"echo", "print samples of a topic (see docs/topics.md) until Ctrl-C", add_echo},
+      {"record", "record every topic (or --topics) to an MCAP file Foxglove opens", add_record},
+      {"replay", "publish a recorded MCAP file again, with its timing (--rate to scale)", add_replay},
   };
   return table;
 }
