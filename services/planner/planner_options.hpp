@@ -10,12 +10,14 @@
 #include "common/core/result.hpp"
 #include "common/core/service_options.hpp"
 #include "planner/fleet.hpp"
+#include "planner/fleet_coordinator.hpp"
 
 namespace slam::planner {
 
 struct PlannerOptions {
   ServiceOptions service;
   FleetConfig fleet;
+  CoordinationConfig coordination;  // robots kept from meeting (--coordination off: ignored)
   double loop_rate_hz = 20.0;    // goal ticks, waypoint streaming and path publishing
   uint32_t request_workers = 1;  // threads answering PathRequests, each with its own planner
   uint32_t request_queue = 64;   // queued PathRequests beyond this are answered TIMEOUT at once
