@@ -20,7 +20,9 @@ bool finite_positive(double v) {
 
 // Distance between segments ab and cd (0 when they cross).
 double segment_gap(Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
-  const auto cross = [](Vec2 o, Vec2 p, Vec2 q) { return (p.x - o.x) * (q.y - o.y) - (p.y - o.y) * (q.x - o.x); };
+  const auto cross = [](Vec2 o, Vec2 p, Vec2 q) {
+    return (p.x - o.x) * (q.y - o.y) - (p.y - o.y) * (q.x - o.x);
+  };
   const double d1 = cross(a, b, c), d2 = cross(a, b, d), d3 = cross(c, d, a), d4 = cross(c, d, b);
   if (((d1 > 0 && d2 < 0) || (d1 < 0 && d2 > 0)) && ((d3 > 0 && d4 < 0) || (d3 < 0 && d4 > 0))) return 0.0;
   return std::min({distance_to_segment(a, c, d), distance_to_segment(b, c, d), distance_to_segment(c, a, b),
@@ -31,7 +33,8 @@ double segment_gap(Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
 double gap_to(std::span<const Vec2> line, Vec2 p) {
   if (line.size() == 1) return distance(line[0], p);
   double best = std::numeric_limits<double>::infinity();
-  for (size_t k = 1; k < line.size(); ++k) best = std::min(best, distance_to_segment(p, line[k - 1], line[k]));
+  for (size_t k = 1; k < line.size(); ++k)
+    best = std::min(best, distance_to_segment(p, line[k - 1], line[k]));
   return best;
 }
 
@@ -42,7 +45,8 @@ double gap_to_prefix(std::span<const Vec2> line, double length, Vec2 p) {
   for (size_t k = 1; k < line.size() && walked < length; ++k) {
     const double seg = distance(line[k - 1], line[k]);
     Vec2 end = line[k];
-    if (walked + seg > length && seg > 0.0) end = line[k - 1] + (line[k] - line[k - 1]) * ((length - walked) / seg);
+    if (walked + seg > length && seg > 0.0)
+      end = line[k - 1] + (line[k] - line[k - 1]) * ((length - walked) / seg);
     best = std::min(best, distance_to_segment(p, line[k - 1], end));
     walked += seg;
   }
@@ -116,7 +120,8 @@ void TrafficRules::decide(const PlanningGrid& grid, std::span<const TrafficRobot
   for (size_t i = 0; i < n; ++i)
     if (!robots[i].ahead.empty()) order_.push_back(static_cast<uint32_t>(i));
   std::sort(order_.begin(), order_.end(), [&](uint32_t a, uint32_t b) {
-    return std::tie(robots[a].route_since_ns, robots[a].tie, a) < std::tie(robots[b].route_since_ns, robots[b].tie, b);
+    return std::tie(robots[a].route_since_ns, robots[a].tie, a) <
+           std::tie(robots[b].route_since_ns, robots[b].tie, b);
   });
   // Robots without a route rank below every moving one.
   rank_.assign(n, static_cast<uint32_t>(n));
@@ -129,10 +134,12 @@ void TrafficRules::decide(const PlanningGrid& grid, std::span<const TrafficRobot
   const double reach = this->reach();
   const double far = 2.0 * config_.lookahead_m + reach;  // no two reservations of robots further apart meet
 
+  was_deadlocked_.resize(n);
   for (size_t i = 0; i < n; ++i) {
     TrafficDecision& d = decisions[i];
     const TrafficOrder before = d.order;
     const Vec2 held = d.hold;
+    was_deadlocked_[i] = d.deadlock ? 1 : 0;
     d = TrafficDecision{TrafficOrder::Go, robots[i].position, -1, d.waiting_since_ns, false};
     // Keep the place a waiting robot was told to stay at, so it does not creep.
     if (before == TrafficOrder::Wait) d.hold = held;
@@ -160,7 +167,8 @@ void TrafficRules::decide(const PlanningGrid& grid, std::span<const TrafficRobot
       continue;
     }
     d.blocker = blocker;
-    if (granted_[static_cast<size_t>(blocker)] && gap_to(claim(static_cast<size_t>(blocker)), me.position) < reach) {
+    if (granted_[static_cast<size_t>(blocker)] &&
+        gap_to(claim(static_cast<size_t>(blocker)), me.position) < reach) {
       // Standing on the way of a robot that goes first: step aside.
       yield(grid, robots, i, static_cast<size_t>(blocker), decisions);
     } else {
@@ -199,14 +207,27 @@ void TrafficRules::resolve_deadlocks(const PlanningGrid& grid, std::span<const T
     if (visit_[cur] != walk) continue;  // joined a chain already handled
     if (decisions[cur].order == TrafficOrder::Wait && decisions[cur].blocker >= 0 &&
         visit_[static_cast<size_t>(decisions[cur].blocker)] == walk && cur != prev) {
-      // A cycle through cur: its lowest-priority member gives way to the robot it waits for.
-      size_t lowest = cur;
-      for (size_t k = static_cast<size_t>(decisions[cur].blocker); k != cur;
-           k = static_cast<size_t>(decisions[k].blocker))
-        if (rank_[k] > rank_[lowest]) lowest = k;
-      ++deadlocks_;
-      yield(grid, robots, lowest, static_cast<size_t>(decisions[lowest].blocker), decisions);
-      decisions[lowest].deadlock = true;
+      // A cycle through cur: its lowest-priority member gives way to the robot it waits for; when it
+      // has nowhere to go, the next lowest does.
+      cycle_.clear();
+      size_t k = cur;
+      do {
+        cycle_.push_back(static_cast<uint32_t>(k));
+        k = static_cast<size_t>(decisions[k].blocker);
+      } while (k != cur);
+      // The one already stepping aside for this cycle carries on (switching roles midway would send
+      // them past each other); otherwise the lowest priority first.
+      std::sort(cycle_.begin(), cycle_.end(), [&](uint32_t a, uint32_t b) {
+        return std::tuple(was_deadlocked_[a], rank_[a]) > std::tuple(was_deadlocked_[b], rank_[b]);
+      });
+      // The same cycle stays until the yielding robot is out of the way: counted once.
+      if (std::none_of(cycle_.begin(), cycle_.end(), [&](uint32_t m) { return was_deadlocked_[m] != 0; }))
+        ++deadlocks_;
+      for (const uint32_t m : cycle_) {
+        yield(grid, robots, m, static_cast<size_t>(decisions[m].blocker), decisions);
+        decisions[m].deadlock = true;
+        if (decisions[m].order == TrafficOrder::Yield) break;
+      }
     } else if (robots[cur].ahead.empty() && cur != prev && decisions[cur].order == TrafficOrder::Go) {
       // The chain ends at a stopped robot: it steps off the way of the one waiting for it.
       yield(grid, robots, cur, prev, decisions);
@@ -277,7 +298,8 @@ bool TrafficRules::find_yield(const PlanningGrid& grid, std::span<const TrafficR
       const auto idx = static_cast<uint32_t>(grid.index(nb));
       if (seen_stamp_[idx] == stamp_ || grid.impassable(nb, UnknownPolicy::Blocked)) continue;
       const Vec2 p = grid.centre(nb);
-      if (distance(p, start) > config_.yield_search_m || !clear_of_bodies(p, body)) continue;
+      // Never squeeze past another robot on the way.
+      if (distance(p, start) > config_.yield_search_m || !clear_of_bodies(p, reach)) continue;
       seen_stamp_[idx] = stamp_;
       parent_[idx] = at;
       queue_.push_back(idx);
@@ -288,7 +310,13 @@ bool TrafficRules::find_yield(const PlanningGrid& grid, std::span<const TrafficR
   step = grid.centre(grid.cell_of(found));
   for (uint32_t at = found;; at = parent_[at]) {
     const Vec2 p = grid.centre(grid.cell_of(at));
-    if (distance(p, start) <= config_.yield_step_m && segment_clear_leaving(grid, start, p, UnknownPolicy::Blocked)) {
+    const bool passes_clear = [&] {
+      for (size_t k = 0; k < robots.size(); ++k)
+        if (k != i && distance_to_segment(robots[k].position, start, p) < body) return false;
+      return true;
+    }();
+    if (distance(p, start) <= config_.yield_step_m && passes_clear &&
+        segment_clear_leaving(grid, start, p, UnknownPolicy::Blocked)) {
       step = p;
       return true;
     }
@@ -296,7 +324,6 @@ bool TrafficRules::find_yield(const PlanningGrid& grid, std::span<const TrafficR
   }
   return true;
 }
-
 
 // --- FleetCoordinator ---
 
@@ -371,10 +398,12 @@ void FleetCoordinator::dispatch(const Fleet& fleet, std::vector<DueWaypoint>& du
   for (size_t i = 0; i < decisions_.size(); ++i) {
     Slot& s = robots_[i];
     const TrafficDecision& decision = decisions_[i];
-    const bool changed = decision.order != s.sent_order ||
-                         (decision.order != TrafficOrder::Go && distance(decision.hold, s.sent_hold) > kResendMoveM);
+    const bool changed =
+        decision.order != s.sent_order ||
+        (decision.order != TrafficOrder::Go && distance(decision.hold, s.sent_hold) > kResendMoveM);
     if (!changed || !fleet.owns(s.id)) continue;
-    const bool listed = std::any_of(due.begin(), due.end(), [&](const DueWaypoint& d) { return d.robot_id == s.id; });
+    const bool listed =
+        std::any_of(due.begin(), due.end(), [&](const DueWaypoint& d) { return d.robot_id == s.id; });
     s.sent_order = decision.order;
     s.sent_hold = decision.hold;
     if (listed) continue;
@@ -393,15 +422,16 @@ void FleetCoordinator::dispatch(const Fleet& fleet, std::vector<DueWaypoint>& du
 }
 
 size_t FleetCoordinator::held() const {
-  return static_cast<size_t>(std::count_if(decisions_.begin(), decisions_.end(), [](const TrafficDecision& d) {
-    return d.order != TrafficOrder::Go;
-  }));
+  return static_cast<size_t>(
+      std::count_if(decisions_.begin(), decisions_.end(),
+                    [](const TrafficDecision& d) { return d.order != TrafficOrder::Go; }));
 }
 
 double FleetCoordinator::longest_wait_s(int64_t now_ns) const {
   double longest = 0.0;
   for (const TrafficDecision& d : decisions_)
-    if (d.waiting_since_ns >= 0) longest = std::max(longest, static_cast<double>(now_ns - d.waiting_since_ns) * 1e-9);
+    if (d.waiting_since_ns >= 0)
+      longest = std::max(longest, static_cast<double>(now_ns - d.waiting_since_ns) * 1e-9);
   return longest;
 }
 

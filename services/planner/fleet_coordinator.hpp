@@ -30,12 +30,12 @@ namespace slam::planner {
 
 struct CoordinationConfig {
   bool enabled = true;
-  double robot_radius_m = 0.2;   // a robot's body plus its pose error
-  double clearance_m = 0.15;     // kept free between two bodies
-  double lookahead_m = 2.0;      // path reserved ahead of a moving robot
-  double body_lookahead_m = 0.8; // how far ahead another robot's body stops this one
-  double yield_search_m = 3.0;   // how far a robot looks for a place to step aside
-  double yield_step_m = 1.0;     // a yielding robot is sent at most this far at a time
+  double robot_radius_m = 0.2;    // a robot's body plus its pose error
+  double clearance_m = 0.15;      // kept free between two bodies
+  double lookahead_m = 2.0;       // path reserved ahead of a moving robot
+  double body_lookahead_m = 0.8;  // how far ahead another robot's body stops this one
+  double yield_search_m = 3.0;    // how far a robot looks for a place to step aside
+  double yield_step_m = 1.0;      // a yielding robot is sent at most this far at a time
 };
 
 Status validate(const CoordinationConfig& config);
@@ -92,12 +92,14 @@ class TrafficRules {
   std::vector<uint32_t> order_;  // robots by priority, highest first
   std::vector<uint32_t> rank_;   // position of each robot in order_
   std::vector<Vec2> claim_points_;
-  std::vector<uint32_t> claim_at_;     // claim i is claim_points_[claim_at_[2i], claim_at_[2i+1])
-  std::vector<Vec2> long_points_;      // a longer claim for yield searches
-  std::vector<uint8_t> granted_;       // claim reserved this tick
-  std::vector<uint32_t> visit_;        // wait-for graph walk stamps
-  std::vector<uint32_t> seen_stamp_;   // yield search: grid cells seen, by query stamp
-  std::vector<uint32_t> parent_;       // yield search: the cell each was reached from
+  std::vector<uint32_t> claim_at_;       // claim i is claim_points_[claim_at_[2i], claim_at_[2i+1])
+  std::vector<Vec2> long_points_;        // a longer claim for yield searches
+  std::vector<uint8_t> granted_;         // claim reserved this tick
+  std::vector<uint8_t> was_deadlocked_;  // yielded to break a cycle on the last tick
+  std::vector<uint32_t> visit_;          // wait-for graph walk stamps
+  std::vector<uint32_t> cycle_;          // the robots of one wait-for cycle
+  std::vector<uint32_t> seen_stamp_;     // yield search: grid cells seen, by query stamp
+  std::vector<uint32_t> parent_;         // yield search: the cell each was reached from
   std::vector<uint32_t> queue_;
   uint32_t stamp_ = 0;
   uint64_t deadlocks_ = 0;

@@ -16,8 +16,8 @@
 #include <mutex>
 #include <numbers>
 #include <optional>
-#include <thread>
 #include <string>
+#include <thread>
 
 #include "common/fastdds/fast_topics.hpp"
 #include "process_group.hpp"
@@ -93,14 +93,13 @@ TEST(CoordinationTest, TwoRobotsThroughOneDoorInOppositeDirectionsArriveWithoutC
   const int port = group.start_mosquitto();
   const std::string broker = "tcp://127.0.0.1:" + std::to_string(port);
   group.start("gateway", {bin_path("slam-gateway"), "--domain", domain, "--broker", broker, "--no-share"});
-  group.start("mapper",
-              {bin_path("slam-mapper"), "--domain", domain, "--store", group.dir() + "/map.db"});
+  group.start("mapper", {bin_path("slam-mapper"), "--domain", domain, "--store", group.dir() + "/map.db"});
   // Unknown space is allowed: the goals start before the far room is mapped.
   group.start("planner", {bin_path("slam-planner"), "--domain", domain, "--goal-store", "", "--no-share",
                           "--planner-unknown", "allowed", "--coordination", mode});
-  group.start("simulator", {bin_path("slam-simulator"), "--domain", domain, "--broker", broker, "--world",
-                            world_file, "--robots", "0", "--speed", std::to_string(kSpeed), "--drift", "0",
-                            "--seed", "3"});
+  group.start("simulator",
+              {bin_path("slam-simulator"), "--domain", domain, "--broker", broker, "--world", world_file,
+               "--robots", "0", "--speed", std::to_string(kSpeed), "--drift", "0", "--seed", "3"});
 
   auto participant = dds::Participant::create(lease.id(), "coordination_test");
   ASSERT_TRUE(participant) << participant.message();
@@ -156,9 +155,11 @@ TEST(CoordinationTest, TwoRobotsThroughOneDoorInOppositeDirectionsArriveWithoutC
   std::this_thread::sleep_for(1500ms);
   const auto contacts = seen.contacts();
   std::printf("coordination %s: west %s, east %s, robot_contacts %lld\n", mode.c_str(),
-              seen.reached(kWest) ? "arrived" : "did not arrive", seen.reached(kEast) ? "arrived" : "did not arrive",
+              seen.reached(kWest) ? "arrived" : "did not arrive",
+              seen.reached(kEast) ? "arrived" : "did not arrive",
               contacts ? static_cast<long long>(*contacts) : -1LL);
-  EXPECT_TRUE(arrived) << "west reached: " << seen.reached(kWest) << ", east reached: " << seen.reached(kEast);
+  EXPECT_TRUE(arrived) << "west reached: " << seen.reached(kWest)
+                       << ", east reached: " << seen.reached(kEast);
   ASSERT_TRUE(contacts.has_value()) << "no simulator heartbeat with robot_contacts";
   EXPECT_EQ(*contacts, 0);
 }

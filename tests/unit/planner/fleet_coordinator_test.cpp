@@ -85,15 +85,15 @@ PlanningGrid door_room() {
   return test::grid_from_art(rows, 0.1);
 }
 
-// A corridor 0.6 m wide along y = 5 m (x 0.5..9.5 m) with a niche going up at x 5..5.8 m.
-PlanningGrid corridor_with_niche() {
+// A corridor 0.6 m wide along y = 5 m (x 0.5..9.5 m) with a niche going up at x niche_x0..niche_x1.
+PlanningGrid corridor_with_niche(double niche_x0 = 5.0, double niche_x1 = 5.8) {
   std::vector<std::string> rows(100, std::string(100, '#'));
   for (int r = 0; r < 100; ++r) {
     const double y = (99 - r + 0.5) * 0.1;
     for (int c = 0; c < 100; ++c) {
       const double x = (c + 0.5) * 0.1;
       const bool corridor = y > 4.7 && y < 5.3 && x > 0.5 && x < 9.5;
-      const bool niche = x > 5.0 && x < 5.8 && y >= 5.3 && y < 6.6;
+      const bool niche = x > niche_x0 && x < niche_x1 && y >= 5.3 && y < 6.6;
       if (corridor || niche) rows[static_cast<size_t>(r)][static_cast<size_t>(c)] = '.';
     }
   }
@@ -160,8 +160,7 @@ TEST(TrafficRules, StoppedRobotInTheWayStepsAside) {
 
 TEST(TrafficRules, OppositeDirectionsThroughOneDoorBothArriveApart) {
   const PlanningGrid grid = door_room();
-  std::vector<Bot> bots{{{2, 3}, {{4.5, 5}, {5.5, 5}, {8, 7}}, 0},
-                        {{8, 3}, {{5.5, 5}, {4.5, 5}, {2, 7}}, 1}};
+  std::vector<Bot> bots{{{2, 3}, {{4.5, 5}, {5.5, 5}, {8, 7}}, 0}, {{8, 3}, {{5.5, 5}, {4.5, 5}, {2, 7}}, 1}};
   const RunResult r = run(grid, bots, CoordinationConfig{}, 4000);
   EXPECT_TRUE(r.all_arrived);
   EXPECT_GE(r.closest, 2.0 * CoordinationConfig{}.robot_radius_m);
@@ -170,8 +169,7 @@ TEST(TrafficRules, OppositeDirectionsThroughOneDoorBothArriveApart) {
 TEST(TrafficRules, WithoutTheRulesTheSameDoorRunMeets) {
   // The scenario above is a real test: robots that ignore each other get within one body.
   const PlanningGrid grid = door_room();
-  std::vector<Bot> bots{{{2, 3}, {{4.5, 5}, {5.5, 5}, {8, 7}}, 0},
-                        {{8, 3}, {{5.5, 5}, {4.5, 5}, {2, 7}}, 1}};
+  std::vector<Bot> bots{{{2, 3}, {{4.5, 5}, {5.5, 5}, {8, 7}}, 0}, {{8, 3}, {{5.5, 5}, {4.5, 5}, {2, 7}}, 1}};
   double closest = std::numeric_limits<double>::infinity();
   for (int step = 0; step < 4000; ++step) {
     for (Bot& b : bots) {
@@ -193,6 +191,22 @@ TEST(TrafficRules, HeadOnInACorridorTheLaterRouteUsesTheNiche) {
   EXPECT_TRUE(r.all_arrived);
   EXPECT_GE(r.closest, 2.0 * CoordinationConfig{}.robot_radius_m);
   EXPECT_GT(r.yields, 0u);
+}
+
+TEST(TrafficRules, WhenTheLowerPriorityCannotStepAsideTheOtherOneDoes) {
+  // Nose to nose; the only niche lies behind the robot that goes first.
+  const PlanningGrid grid = corridor_with_niche(5.8, 6.6);
+  std::vector<Bot> bots{{{5.4, 5}, {{1, 5}}, 0}, {{4.6, 5}, {{9, 5}}, 10}};
+  TrafficRules rules{CoordinationConfig{}};
+  std::vector<TrafficDecision> decisions;
+  rules.decide(grid, inputs(bots), 0, decisions);
+  EXPECT_EQ(rules.deadlocks(), 1u);
+  EXPECT_EQ(decisions[0].order, TrafficOrder::Yield);
+  EXPECT_EQ(decisions[1].order, TrafficOrder::Wait);
+  const RunResult r = run(grid, bots, CoordinationConfig{}, 6000);
+  EXPECT_TRUE(r.all_arrived);
+  EXPECT_GE(r.closest, 2.0 * CoordinationConfig{}.robot_radius_m);
+  EXPECT_EQ(r.deadlocks, 1u);  // one cycle, counted once however long it takes to clear
 }
 
 TEST(TrafficRules, TenRobotsCrossingARoomNeverMeet) {
