@@ -72,6 +72,7 @@ Status validate(const CoordinationConfig& c) {
   if (!finite_positive(c.yield_search_m) || c.yield_search_m > 20.0)
     return Error{"coordination yield_search_m must be in (0, 20]"};
   if (!finite_positive(c.yield_step_m)) return Error{"coordination yield_step_m must be positive"};
+  if (!finite_positive(c.replan_after_s)) return Error{"coordination replan_after_s must be positive"};
   return Status::ok();
 }
 
@@ -349,7 +350,7 @@ void FleetCoordinator::report_path(const std::string& robot_id, std::span<const 
   s.reported.assign(ahead.begin(), ahead.end());
 }
 
-void FleetCoordinator::coordinate(const Fleet& fleet, const PlanningGrid& grid, int64_t now_ns) {
+void FleetCoordinator::coordinate(Fleet& fleet, const PlanningGrid& grid, int64_t now_ns) {
   inputs_.clear();
   for (Slot& s : robots_) {
     std::span<const Vec2> ahead;
@@ -375,10 +376,45 @@ void FleetCoordinator::coordinate(const Fleet& fleet, const PlanningGrid& grid, 
     inputs_.push_back(TrafficRobot{position, ahead, s.route_since_ns, stable_hash(s.id)});
   }
   rules_.decide(grid, inputs_, now_ns, decisions_);
+  replan_around_stopped(fleet, grid, now_ns);
   for (size_t i = 0; i < decisions_.size(); ++i) {
     if (decisions_[i].waiting_since_ns >= 0)
       longest_wait_seen_s_ =
           std::max(longest_wait_seen_s_, static_cast<double>(now_ns - decisions_[i].waiting_since_ns) * 1e-9);
+  }
+}
+
+void FleetCoordinator::replan_around_stopped(Fleet& fleet, const PlanningGrid& grid, int64_t now_ns) {
+  const auto after = static_cast<int64_t>(config_.replan_after_s * 1e9);
+  bool drawn = false;
+  for (size_t i = 0; i < decisions_.size(); ++i) {
+    const TrafficDecision& d = decisions_[i];
+    Slot& s = robots_[i];
+    if (d.order != TrafficOrder::Wait || d.waiting_since_ns < 0 || now_ns - d.waiting_since_ns < after ||
+        s.replanned_wait_ns == d.waiting_since_ns || d.blocker < 0 || !fleet.owns(s.id))
+      continue;
+    const auto b = static_cast<size_t>(d.blocker);
+    if (!inputs_[b].ahead.empty() || decisions_[b].order == TrafficOrder::Yield) continue;
+    s.replanned_wait_ns = d.waiting_since_ns;  // once per wait
+    if (!drawn) {
+      // Every stopped robot as a disc no robot centre may enter.
+      obstacles_ = grid;
+      const double reach = 2.0 * config_.robot_radius_m + config_.clearance_m;
+      const auto cells = static_cast<int32_t>(std::ceil(reach / grid.resolution()));
+      for (const TrafficRobot& stopped : inputs_) {
+        if (!stopped.ahead.empty()) continue;
+        const auto centre = grid.cell_at(stopped.position);
+        if (!centre) continue;
+        for (int32_t dy = -cells; dy <= cells; ++dy)
+          for (int32_t dx = -cells; dx <= cells; ++dx) {
+            const Cell c{centre->x + dx, centre->y + dy};
+            if (grid.contains(c) && distance(grid.centre(c), stopped.position) < reach)
+              obstacles_.set(c, static_cast<uint8_t>(obstacles_.at(c) | kCellObstructed));
+          }
+      }
+      drawn = true;
+    }
+    if (fleet.replan_around(s.id, obstacles_)) ++replans_;
   }
 }
 

@@ -36,6 +36,8 @@ struct CoordinationConfig {
   double body_lookahead_m = 0.8;  // how far ahead another robot's body stops this one
   double yield_search_m = 3.0;    // how far a robot looks for a place to step aside
   double yield_step_m = 1.0;      // a yielding robot is sent at most this far at a time
+  // A robot kept waiting this long by a stopped robot that cannot step aside plans a way around it.
+  double replan_after_s = 4.0;
 };
 
 Status validate(const CoordinationConfig& config);
@@ -116,8 +118,9 @@ class FleetCoordinator {
   void observe(const std::string& robot_id, Vec2 position);
   // A robot of another planner: the waypoints it still drives to (empty when it has none).
   void report_path(const std::string& robot_id, std::span<const Vec2> ahead);
-  // Decides for every robot from the fleet's routes; call after Fleet::tick.
-  void coordinate(const Fleet& fleet, const PlanningGrid& grid, int64_t now_ns);
+  // Decides for every robot from the fleet's routes; call after Fleet::tick. A robot of this planner
+  // kept waiting by a stopped robot gets a route around it (Fleet::replan_around) when one exists.
+  void coordinate(Fleet& fleet, const PlanningGrid& grid, int64_t now_ns);
   // Rewrites `due` (Fleet::due_waypoints) for robots owned here: a waiting robot is sent where it
   // stays, a yielding one where it steps aside, and a robot whose order changed gets its command at
   // once (a released one its route's waypoint again).
@@ -128,6 +131,7 @@ class FleetCoordinator {
   double longest_wait_s(int64_t now_ns) const;
   double longest_wait_seen_s() const { return longest_wait_seen_s_; }
   uint64_t deadlocks() const { return rules_.deadlocks(); }
+  uint64_t replans() const { return replans_; }
   // The order for a robot (Go for one never seen).
   TrafficOrder order(const std::string& robot_id) const;
 
@@ -143,8 +147,12 @@ class FleetCoordinator {
     int64_t route_since_ns = 0;
     TrafficOrder sent_order = TrafficOrder::Go;
     Vec2 sent_hold;
+    int64_t replanned_wait_ns = -1;  // the wait (its start) a way around was last looked for in
   };
   size_t slot(const std::string& robot_id);
+  // Re-plans the robots of this planner held too long by a stopped robot, on a copy of the grid with
+  // every stopped robot drawn in.
+  void replan_around_stopped(Fleet& fleet, const PlanningGrid& grid, int64_t now_ns);
 
   CoordinationConfig config_;
   TrafficRules rules_;
@@ -152,6 +160,8 @@ class FleetCoordinator {
   std::vector<Slot> robots_;
   std::vector<TrafficRobot> inputs_;
   std::vector<TrafficDecision> decisions_;
+  PlanningGrid obstacles_;  // the grid with stopped robots in it (a copy, reused)
+  uint64_t replans_ = 0;
   double longest_wait_seen_s_ = 0.0;
 };
 

@@ -59,6 +59,7 @@ PlannerNode::Metrics::Metrics(Counters& c)
       planners_live(c.get("planners_live")),
       robots_held(c.get("robots_held")),
       deadlocks_broken(c.get("deadlocks_broken")),
+      replans_around_robots(c.get("replans_around_robots")),
       longest_wait_ms(c.get("longest_wait_ms")) {
   for (size_t i = 0; i < replies.size(); ++i) replies[i] = &c.get(counter_name(static_cast<PlanStatus>(i)));
 }
@@ -407,6 +408,8 @@ void PlannerNode::coordinate(int64_t now_ns) {
   coordinator_.coordinate(fleet_, grid_, now_ns);
   metrics_.robots_held.store(static_cast<int64_t>(coordinator_.held()), std::memory_order_relaxed);
   metrics_.deadlocks_broken.store(static_cast<int64_t>(coordinator_.deadlocks()), std::memory_order_relaxed);
+  metrics_.replans_around_robots.store(static_cast<int64_t>(coordinator_.replans()),
+                                       std::memory_order_relaxed);
   metrics_.longest_wait_ms.store(std::llround(coordinator_.longest_wait_seen_s() * 1000.0),
                                  std::memory_order_relaxed);
 }

@@ -78,7 +78,8 @@ class PlannerNode {
     std::atomic<int64_t>& planners_live;
     std::atomic<int64_t>& robots_held;  // told to wait or step aside by the coordinator
     std::atomic<int64_t>& deadlocks_broken;
-    std::atomic<int64_t>& longest_wait_ms;  // the longest wait of any robot so far
+    std::atomic<int64_t>& replans_around_robots;  // routes planned around a stopped robot
+    std::atomic<int64_t>& longest_wait_ms;        // the longest wait of any robot so far
   };
 
   PlannerNode(const PlannerOptions& options, Counters& counters);

@@ -52,23 +52,27 @@ class Tap {
     auto participant = dds::Participant::create(domain, "eval-coordination");
     if (!participant) return Error{"DDS participant: " + participant.message()};
     tap->participant_ = std::move(*participant);
-    auto states = dds::make_reader(*tap->participant_, dds::kRobotState, [t = tap.get()](const RobotState& s, const auto&) {
-      std::lock_guard lock(t->mutex_);
-      t->positions_[s.robot_id().to_string()] = Vec2{s.pose().x(), s.pose().y()};
-    });
+    auto states = dds::make_reader(
+        *tap->participant_, dds::kRobotState, [t = tap.get()](const RobotState& s, const auto&) {
+          std::lock_guard lock(t->mutex_);
+          t->positions_[s.robot_id().to_string()] = Vec2{s.pose().x(), s.pose().y()};
+        });
     if (!states) return states.error();
     tap->states_ = std::move(*states);
-    auto paths = dds::make_reader(*tap->participant_, dds::kRobotPath, [t = tap.get()](const RobotPath& p, const auto&) {
-      std::lock_guard lock(t->mutex_);
-      t->status_[p.robot_id().to_string()] = {p.goal_id(), p.status()};
-    });
+    auto paths = dds::make_reader(*tap->participant_, dds::kRobotPath,
+                                  [t = tap.get()](const RobotPath& p, const auto&) {
+                                    std::lock_guard lock(t->mutex_);
+                                    t->status_[p.robot_id().to_string()] = {p.goal_id(), p.status()};
+                                  });
     if (!paths) return paths.error();
     tap->paths_ = std::move(*paths);
-    auto beats = dds::make_reader(*tap->participant_, dds::kHeartbeat, [t = tap.get()](const Heartbeat& h, const auto&) {
-      std::lock_guard lock(t->mutex_);
-      auto& counters = t->counters_[h.service().to_string()];
-      for (const Counter& c : h.counters()) counters[c.name().to_string()] = c.value();
-    });
+    auto beats = dds::make_reader(*tap->participant_, dds::kHeartbeat,
+                                  [t = tap.get()](const Heartbeat& h, const auto&) {
+                                    std::lock_guard lock(t->mutex_);
+                                    auto& counters = t->counters_[h.service().to_string()];
+                                    for (const Counter& c : h.counters())
+                                      counters[c.name().to_string()] = c.value();
+                                  });
     if (!beats) return beats.error();
     tap->heartbeats_ = std::move(*beats);
     auto goals = dds::make_writer(*tap->participant_, dds::kNavGoal);
@@ -114,8 +118,11 @@ class Tap {
 std::vector<Vec2> reachable_places(const sim::World& world, Vec2 from, double clearance) {
   constexpr double kStep = 0.2;
   const sim::Bounds& b = world.bounds();
-  const auto w = static_cast<int>((b.max.x - b.min.x) / kStep), h = static_cast<int>((b.max.y - b.min.y) / kStep);
-  const auto at = [&](int x, int y) { return Vec2{b.min.x + (x + 0.5) * kStep, b.min.y + (y + 0.5) * kStep}; };
+  const auto w = static_cast<int>((b.max.x - b.min.x) / kStep),
+             h = static_cast<int>((b.max.y - b.min.y) / kStep);
+  const auto at = [&](int x, int y) {
+    return Vec2{b.min.x + (x + 0.5) * kStep, b.min.y + (y + 0.5) * kStep};
+  };
   std::vector<uint8_t> seen(static_cast<size_t>(w) * static_cast<size_t>(h), 0);
   std::vector<std::pair<int, int>> queue;
   int sx = std::clamp(static_cast<int>((from.x - b.min.x) / kStep), 0, w - 1);
@@ -161,7 +168,8 @@ class Evaluation {
              tap_->counter("simulator", "steps") >= 0 && tap_->counter("planner", "goals_accepted") >= 0 &&
              tap_->goals().wait_for_readers(10ms);
     };
-    if (!testkit::wait_until(ready, 90s)) return Error{"the robots, the simulator or the planner did not show up in 90 s"};
+    if (!testkit::wait_until(ready, 90s))
+      return Error{"the robots, the simulator or the planner did not show up in 90 s"};
     const auto start_positions = tap_->positions();
     places_ = reachable_places(*world, start_positions.begin()->second, o_.clearance_m);
     if (places_.empty()) return Error{"no reachable place in world " + o_.world};
@@ -178,7 +186,8 @@ class Evaluation {
     while (sim_s < o_.duration_s) {
       for (const char* p : {"mosquitto", "gateway", "mapper", "planner", "simulator"})
         if (!group_.running(p)) return Error{fmt::format("{} exited; log in {}", p, group_.dir())};
-      if (Clock::now() - t0 > budget) return Error{fmt::format("simulator fell behind: {:.0f} s simulated", sim_s)};
+      if (Clock::now() - t0 > budget)
+        return Error{fmt::format("simulator fell behind: {:.0f} s simulated", sim_s)};
       std::this_thread::sleep_for(100ms);
       sim_s = static_cast<double>(tap_->counter("simulator", "steps") - steps0) * step_s;
       for (const auto& [id, position] : tap_->positions()) {
@@ -241,27 +250,40 @@ class Evaluation {
     const std::string broker = "tcp://127.0.0.1:" + std::to_string(group_.start_mosquitto());
     group_.start("gateway", {testkit::bin_path("slam-gateway"), "--domain", domain, "--broker", broker,
                              "--no-share", "--log-level", "warn"});
-    group_.start("mapper", {testkit::bin_path("slam-mapper"), "--domain", domain, "--store",
-                            group_.dir() + "/map.db", "--grid-origin-x", fmt::format("{}", bounds.min.x - 1.0),
-                            "--grid-origin-y", fmt::format("{}", bounds.min.y - 1.0), "--grid-width-m",
-                            fmt::format("{}", bounds.max.x - bounds.min.x + 2.0), "--grid-height-m",
-                            fmt::format("{}", bounds.max.y - bounds.min.y + 2.0), "--log-level", "warn"});
+    group_.start("mapper",
+                 {testkit::bin_path("slam-mapper"), "--domain", domain, "--store", group_.dir() + "/map.db",
+                  "--grid-origin-x", fmt::format("{}", bounds.min.x - 1.0), "--grid-origin-y",
+                  fmt::format("{}", bounds.min.y - 1.0), "--grid-width-m",
+                  fmt::format("{}", bounds.max.x - bounds.min.x + 2.0), "--grid-height-m",
+                  fmt::format("{}", bounds.max.y - bounds.min.y + 2.0), "--log-level", "warn"});
     // The planner's loop keeps its real-time pace in simulated time: 20 Hz times the speed.
-    std::vector<std::string> planner = {testkit::bin_path("slam-planner"), "--domain", domain, "--goal-store", "",
-                                        "--no-share", "--planner-unknown", "allowed", "--coordination",
-                                        o_.coordination, "--loop-rate-hz",
-                                        fmt::format("{}", std::min(1000.0, 20.0 * o_.speed)), "--log-level", "warn"};
+    std::vector<std::string> planner = {testkit::bin_path("slam-planner"),
+                                        "--domain",
+                                        domain,
+                                        "--goal-store",
+                                        "",
+                                        "--no-share",
+                                        "--planner-unknown",
+                                        "allowed",
+                                        "--coordination",
+                                        o_.coordination,
+                                        "--loop-rate-hz",
+                                        fmt::format("{}", std::min(1000.0, 20.0 * o_.speed)),
+                                        "--log-level",
+                                        "warn"};
     planner.insert(planner.end(), o_.planner_args.begin(), o_.planner_args.end());
     group_.start("planner", planner);
-    group_.start("simulator", {testkit::bin_path("slam-simulator"), "--domain", domain, "--broker", broker, "--world",
-                               o_.world, "--robots", std::to_string(o_.robots), "--speed", fmt::format("{}", o_.speed),
-                               "--seed", std::to_string(o_.seed), "--log-level", "warn"});
+    group_.start("simulator",
+                 {testkit::bin_path("slam-simulator"), "--domain", domain, "--broker", broker, "--world",
+                  o_.world, "--robots", std::to_string(o_.robots), "--speed", fmt::format("{}", o_.speed),
+                  "--seed", std::to_string(o_.seed), "--log-level", "warn"});
   }
 
   Vec2 pick_target(Vec2 from) {
     std::uniform_int_distribution<size_t> pick(0, places_.size() - 1);
     Vec2 best = places_[pick(rng_)];
-    for (int attempt = 0; attempt < 20 && distance(best, from) < o_.min_trip_m; ++attempt) best = places_[pick(rng_)];
+    for (int attempt = 0; attempt < 20 && distance(best, from) < o_.min_trip_m; ++attempt)
+      best = places_[pick(rng_)];
     return best;
   }
 

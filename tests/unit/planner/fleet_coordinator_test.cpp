@@ -223,6 +223,53 @@ TEST(TrafficRules, TenRobotsCrossingARoomNeverMeet) {
   EXPECT_GE(r.closest, 2.0 * CoordinationConfig{}.robot_radius_m);
 }
 
+// Two corridors along y = 5 m and y = 7 m joined at both ends: a loop.
+PlanningGrid two_corridors() {
+  std::vector<std::string> rows(100, std::string(100, '#'));
+  for (int r = 0; r < 100; ++r) {
+    const double y = (99 - r + 0.5) * 0.1;
+    for (int c = 0; c < 100; ++c) {
+      const double x = (c + 0.5) * 0.1;
+      const bool lower = y > 4.6 && y < 5.4 && x > 1.0 && x < 9.0;
+      const bool upper = y > 6.6 && y < 7.4 && x > 1.0 && x < 9.0;
+      const bool ends = y > 4.6 && y < 7.4 && ((x > 1.0 && x < 1.8) || (x > 8.2 && x < 9.0));
+      if (lower || upper || ends) rows[static_cast<size_t>(r)][static_cast<size_t>(c)] = '.';
+    }
+  }
+  return test::grid_from_art(rows, 0.1);
+}
+
+TEST(FleetCoordinator, RobotHeldByAStoppedRobotThatCannotMovePlansAroundIt) {
+  const PlanningGrid grid = two_corridors();
+  Fleet fleet{FleetConfig{}};
+  fleet.observe("a", {4.0, 5.0});
+  fleet.observe("b", {5.0, 5.0});  // no goal: it stands in the lower corridor
+  ASSERT_TRUE(fleet.set_goal("a", Goal{1, GoalMode::Planned, {8.5, 5.0}}));
+  fleet.tick(grid, 0);
+  ASSERT_FALSE(fleet.tracker("a")->remaining().empty());
+  CoordinationConfig config;
+  config.yield_search_m = 0.3;  // b finds no place to step aside to
+  config.replan_after_s = 1.0;
+  FleetCoordinator coordinator(config);
+  coordinator.observe("a", {4.0, 5.0});
+  coordinator.observe("b", {5.0, 5.0});
+  coordinator.coordinate(fleet, grid, 0);
+  EXPECT_EQ(coordinator.order("a"), TrafficOrder::Wait);
+  EXPECT_EQ(coordinator.replans(), 0u);
+  coordinator.coordinate(fleet, grid, 1'500'000'000);
+  EXPECT_EQ(coordinator.replans(), 1u);
+  // The new route keeps clear of b: through the upper corridor.
+  const auto rest = fleet.tracker("a")->remaining();
+  ASSERT_FALSE(rest.empty());
+  Vec2 from{4.0, 5.0};
+  for (const Vec2& p : rest) {
+    EXPECT_GE(distance_to_segment({5.0, 5.0}, from, p), 2.0 * config.robot_radius_m);
+    from = p;
+  }
+  coordinator.coordinate(fleet, grid, 1'600'000'000);
+  EXPECT_EQ(coordinator.order("a"), TrafficOrder::Go);
+}
+
 TEST(CoordinationConfig, ValidationNamesTheKey) {
   CoordinationConfig c;
   EXPECT_TRUE(validate(c));
