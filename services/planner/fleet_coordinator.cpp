@@ -124,9 +124,6 @@ void TrafficRules::decide(const PlanningGrid& grid, std::span<const TrafficRobot
     return std::tie(robots[a].route_since_ns, robots[a].tie, a) <
            std::tie(robots[b].route_since_ns, robots[b].tie, b);
   });
-  // Robots without a route rank below every moving one.
-  rank_.assign(n, static_cast<uint32_t>(n));
-  for (size_t r = 0; r < order_.size(); ++r) rank_[order_[r]] = static_cast<uint32_t>(r);
 
   claim_points_.clear();
   claim_at_.resize(2 * n);
@@ -217,9 +214,11 @@ void TrafficRules::resolve_deadlocks(const PlanningGrid& grid, std::span<const T
         k = static_cast<size_t>(decisions[k].blocker);
       } while (k != cur);
       // The one already stepping aside for this cycle carries on (switching roles midway would send
-      // them past each other); otherwise the lowest priority first.
+      // them past each other); otherwise the highest tie number first: a number every planner gives
+      // the robot alike, so planners that each drive one robot of the cycle agree on who moves.
       std::sort(cycle_.begin(), cycle_.end(), [&](uint32_t a, uint32_t b) {
-        return std::tuple(was_deadlocked_[a], rank_[a]) > std::tuple(was_deadlocked_[b], rank_[b]);
+        return std::tuple(was_deadlocked_[a], robots[a].tie, a) >
+               std::tuple(was_deadlocked_[b], robots[b].tie, b);
       });
       // The same cycle stays until the yielding robot is out of the way: counted once.
       if (std::none_of(cycle_.begin(), cycle_.end(), [&](uint32_t m) { return was_deadlocked_[m] != 0; }))

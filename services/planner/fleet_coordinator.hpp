@@ -4,9 +4,10 @@
 // whose stretch would come too close to a higher-priority robot's reservation, or to another robot's
 // body, waits where it is; one standing on the reservation it gives way to steps aside (yields) to
 // the nearest free place off it. Waits form a wait-for graph: a cycle (two robots nose to nose in
-// a corridor) is a deadlock and its lowest-priority robot yields; a robot waited on that has no
-// route (it stopped) yields too. Priority: the earlier route first (ties by id), so a waiting robot
-// only rises and none waits forever while the others keep arriving.
+// a corridor) is a deadlock and one of its robots yields (the next one when it has nowhere to go);
+// a robot waited on that has no route (it stopped) yields too, and one held by a stopped robot
+// that cannot move plans a way around it. Priority: the earlier route first (ties by a hash of the
+// id), so a waiting robot only rises and none waits forever while the others keep arriving.
 //
 // Plain C++: TrafficRules decides from plain inputs; FleetCoordinator feeds it from the Fleet and
 // rewrites the due waypoint commands of the robots owned here. With several planners each one
@@ -92,7 +93,6 @@ class TrafficRules {
 
   CoordinationConfig config_;
   std::vector<uint32_t> order_;  // robots by priority, highest first
-  std::vector<uint32_t> rank_;   // position of each robot in order_
   std::vector<Vec2> claim_points_;
   std::vector<uint32_t> claim_at_;       // claim i is claim_points_[claim_at_[2i], claim_at_[2i+1])
   std::vector<Vec2> long_points_;        // a longer claim for yield searches
