@@ -117,21 +117,25 @@ TEST(CoordinationTest, TwoRobotsThroughOneDoorInOppositeDirectionsArriveWithoutC
   auto control = dds::make_writer(**participant, dds::kSimControl);
   ASSERT_TRUE(control) << control.message();
   ASSERT_TRUE((*control)->wait_for_readers(30s));
-  uint64_t command_id = 1;
-  for (const Robot& r : {kWest, kEast}) {
-    SimControl spawn;
-    spawn.command_id(command_id++);
-    spawn.kind(SIM_SPAWN);
-    Pose2 pose;
-    pose.x(r.x);
-    pose.y(r.y);
-    pose.theta(r.theta);
-    spawn.poses().push_back(pose);
-    spawn.robot_id(r.id);
-    ASSERT_TRUE((*control)->write(spawn));
-  }
-  ASSERT_TRUE(wait_until([&] { return seen.seen(kWest.id) && seen.seen(kEast.id); }, 30s))
-      << "the robots' states did not reach DDS";
+  // Sent again (same ids: the simulator applies each once) until both robots report: a command
+  // written while discovery still settles may be missed.
+  const auto spawn_both = [&] {
+    uint64_t command_id = 1;
+    for (const Robot& r : {kWest, kEast}) {
+      SimControl spawn;
+      spawn.command_id(command_id++);
+      spawn.kind(SIM_SPAWN);
+      Pose2 pose;
+      pose.x(r.x);
+      pose.y(r.y);
+      pose.theta(r.theta);
+      spawn.poses().push_back(pose);
+      spawn.robot_id(r.id);
+      (*control)->write(spawn);
+    }
+    return wait_until([&] { return seen.seen(kWest.id) && seen.seen(kEast.id); }, 3s);
+  };
+  ASSERT_TRUE(wait_until(spawn_both, 60s, 0ms)) << "the robots' states did not reach DDS";
   // A moment of scans first, so the wall and the door are in the map when the planner plans.
   std::this_thread::sleep_for(2s);
 
