@@ -375,7 +375,7 @@ void FleetCoordinator::coordinate(Fleet& fleet, const PlanningGrid& grid, int64_
     inputs_.push_back(TrafficRobot{position, ahead, s.route_since_ns, stable_hash(s.id)});
   }
   rules_.decide(grid, inputs_, now_ns, decisions_);
-  replan_around_stopped(fleet, grid, now_ns);
+  replan_held(fleet, grid, now_ns);
   for (size_t i = 0; i < decisions_.size(); ++i) {
     if (decisions_[i].waiting_since_ns >= 0)
       longest_wait_seen_s_ =
@@ -383,35 +383,30 @@ void FleetCoordinator::coordinate(Fleet& fleet, const PlanningGrid& grid, int64_
   }
 }
 
-void FleetCoordinator::replan_around_stopped(Fleet& fleet, const PlanningGrid& grid, int64_t now_ns) {
+void FleetCoordinator::replan_held(Fleet& fleet, const PlanningGrid& grid, int64_t now_ns) {
   const auto after = static_cast<int64_t>(config_.replan_after_s * 1e9);
-  bool drawn = false;
+  const double reach = 2.0 * config_.robot_radius_m + config_.clearance_m;
+  const auto cells = static_cast<int32_t>(std::ceil(reach / grid.resolution()));
   for (size_t i = 0; i < decisions_.size(); ++i) {
     const TrafficDecision& d = decisions_[i];
     Slot& s = robots_[i];
     if (d.order != TrafficOrder::Wait || d.waiting_since_ns < 0 || now_ns - d.waiting_since_ns < after ||
-        s.replanned_wait_ns == d.waiting_since_ns || d.blocker < 0 || !fleet.owns(s.id))
+        now_ns - s.replanned_ns < after || !fleet.owns(s.id))
       continue;
-    const auto b = static_cast<size_t>(d.blocker);
-    if (!inputs_[b].ahead.empty() || decisions_[b].order == TrafficOrder::Yield) continue;
-    s.replanned_wait_ns = d.waiting_since_ns;  // once per wait
-    if (!drawn) {
-      // Every stopped robot as a disc no robot centre may enter.
-      obstacles_ = grid;
-      const double reach = 2.0 * config_.robot_radius_m + config_.clearance_m;
-      const auto cells = static_cast<int32_t>(std::ceil(reach / grid.resolution()));
-      for (const TrafficRobot& stopped : inputs_) {
-        if (!stopped.ahead.empty()) continue;
-        const auto centre = grid.cell_at(stopped.position);
-        if (!centre) continue;
-        for (int32_t dy = -cells; dy <= cells; ++dy)
-          for (int32_t dx = -cells; dx <= cells; ++dx) {
-            const Cell c{centre->x + dx, centre->y + dy};
-            if (grid.contains(c) && distance(grid.centre(c), stopped.position) < reach)
-              obstacles_.set(c, static_cast<uint8_t>(obstacles_.at(c) | kCellObstructed));
-          }
-      }
-      drawn = true;
+    s.replanned_ns = now_ns;
+    // Every other robot as a disc no robot centre may enter: a way around them, if there is one.
+    obstacles_ = grid;
+    for (size_t k = 0; k < inputs_.size(); ++k) {
+      if (k == i || !robots_[k].seen) continue;
+      const Vec2 at = inputs_[k].position;
+      const auto centre = grid.cell_at(at);
+      if (!centre) continue;
+      for (int32_t dy = -cells; dy <= cells; ++dy)
+        for (int32_t dx = -cells; dx <= cells; ++dx) {
+          const Cell c{centre->x + dx, centre->y + dy};
+          if (grid.contains(c) && distance(grid.centre(c), at) < reach)
+            obstacles_.set(c, static_cast<uint8_t>(obstacles_.at(c) | kCellObstructed));
+        }
     }
     if (fleet.replan_around(s.id, obstacles_)) ++replans_;
   }

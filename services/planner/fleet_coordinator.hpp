@@ -18,6 +18,7 @@
 // O(moving robots^2) distance checks (pairs further apart than two reservations are skipped at
 // once) plus a bounded search per yielding robot, whatever the history.
 #include <cstdint>
+#include <limits>
 #include <map>
 #include <span>
 #include <string>
@@ -37,7 +38,8 @@ struct CoordinationConfig {
   double body_lookahead_m = 0.8;  // how far ahead another robot's body stops this one
   double yield_search_m = 3.0;    // how far a robot looks for a place to step aside
   double yield_step_m = 1.0;      // a yielding robot is sent at most this far at a time
-  // A robot kept waiting this long by a stopped robot that cannot step aside plans a way around it.
+  // A robot kept waiting this long (a stopped robot, a jam no one can step out of) plans a way
+  // around the robots in its way, and again as often while it waits.
   double replan_after_s = 4.0;
 };
 
@@ -119,7 +121,7 @@ class FleetCoordinator {
   // A robot of another planner: the waypoints it still drives to (empty when it has none).
   void report_path(const std::string& robot_id, std::span<const Vec2> ahead);
   // Decides for every robot from the fleet's routes; call after Fleet::tick. A robot of this planner
-  // kept waiting by a stopped robot gets a route around it (Fleet::replan_around) when one exists.
+  // kept waiting gets a route around the other robots (Fleet::replan_around) when one exists.
   void coordinate(Fleet& fleet, const PlanningGrid& grid, int64_t now_ns);
   // Rewrites `due` (Fleet::due_waypoints) for robots owned here: a waiting robot is sent where it
   // stays, a yielding one where it steps aside, and a robot whose order changed gets its command at
@@ -147,12 +149,12 @@ class FleetCoordinator {
     int64_t route_since_ns = 0;
     TrafficOrder sent_order = TrafficOrder::Go;
     Vec2 sent_hold;
-    int64_t replanned_wait_ns = -1;  // the wait (its start) a way around was last looked for in
+    int64_t replanned_ns = std::numeric_limits<int64_t>::min() / 2;  // a way around last looked for
   };
   size_t slot(const std::string& robot_id);
-  // Re-plans the robots of this planner held too long by a stopped robot, on a copy of the grid with
-  // every stopped robot drawn in.
-  void replan_around_stopped(Fleet& fleet, const PlanningGrid& grid, int64_t now_ns);
+  // Re-plans the robots of this planner held longer than replan_after_s (and again as often), on a
+  // copy of the grid with every other robot drawn in; a robot keeps its route when there is no other.
+  void replan_held(Fleet& fleet, const PlanningGrid& grid, int64_t now_ns);
 
   CoordinationConfig config_;
   TrafficRules rules_;
