@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "grid_builder.hpp"
+#include "planner/planner_options.hpp"
 
 namespace slam::planner {
 namespace {
@@ -278,6 +279,26 @@ TEST(CoordinationConfig, ValidationNamesTheKey) {
   c = CoordinationConfig{};
   c.body_lookahead_m = c.lookahead_m + 1.0;
   EXPECT_NE(validate(c).message().find("body_lookahead_m"), std::string::npos);
+}
+
+TEST(CoordinationOptions, OnByDefaultOffKeepsEveryRobotOnItsRoute) {
+  PlannerOptions defaults;
+  EXPECT_TRUE(defaults.coordination.enabled);
+  for (const auto& [value, enabled] : {std::pair{"off", false}, std::pair{"on", true}}) {
+    PlannerOptions o;
+    CLI::App app{"test"};
+    add_planner_options(app, o);
+    // CLI11 takes the arguments reversed.
+    ASSERT_NO_THROW(
+        app.parse(std::vector<std::string>{"3.0", "--coordination-lookahead-m", value, "--coordination"}));
+    EXPECT_EQ(o.coordination.enabled, enabled);
+    EXPECT_DOUBLE_EQ(o.coordination.lookahead_m, 3.0);
+    EXPECT_TRUE(validate(o));
+  }
+  PlannerOptions bad;
+  CLI::App app{"test"};
+  add_planner_options(app, bad);
+  EXPECT_ANY_THROW(app.parse(std::vector<std::string>{"maybe", "--coordination"}));
 }
 
 }  // namespace
