@@ -344,6 +344,13 @@ void FleetCoordinator::observe(const std::string& robot_id, Vec2 position) {
   s.seen = true;
 }
 
+void FleetCoordinator::forget(const std::string& robot_id) {
+  const auto it = slots_.find(robot_id);
+  if (it == slots_.end()) return;
+  robots_[it->second].seen = false;
+  robots_[it->second].reported.clear();
+}
+
 void FleetCoordinator::report_path(const std::string& robot_id, std::span<const Vec2> ahead) {
   Slot& s = robots_[slot(robot_id)];
   s.reported.assign(ahead.begin(), ahead.end());

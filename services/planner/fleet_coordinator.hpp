@@ -118,6 +118,9 @@ class FleetCoordinator {
   bool enabled() const { return config_.enabled; }
   // Every robot's latest position (owned or not).
   void observe(const std::string& robot_id, Vec2 position);
+  // A robot dropped from the fleet (forgotten): no longer an obstacle for the others. A robot that
+  // only went silent stays one, where it was last seen.
+  void forget(const std::string& robot_id);
   // A robot of another planner: the waypoints it still drives to (empty when it has none).
   void report_path(const std::string& robot_id, std::span<const Vec2> ahead);
   // Decides for every robot from the fleet's routes; call after Fleet::tick. A robot of this planner

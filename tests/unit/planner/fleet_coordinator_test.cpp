@@ -271,6 +271,23 @@ TEST(FleetCoordinator, RobotHeldByAStoppedRobotThatCannotMovePlansAroundIt) {
   EXPECT_EQ(coordinator.order("a"), TrafficOrder::Go);
 }
 
+TEST(FleetCoordinator, AForgottenRobotNoLongerHoldsAnyone) {
+  const PlanningGrid grid = two_corridors();
+  Fleet fleet{FleetConfig{}};
+  fleet.observe("a", {4.0, 5.0});
+  fleet.observe("b", {5.0, 5.0});
+  ASSERT_TRUE(fleet.set_goal("a", Goal{1, GoalMode::Planned, {8.5, 5.0}}));
+  fleet.tick(grid, 0);
+  FleetCoordinator coordinator{CoordinationConfig{}};
+  coordinator.observe("a", {4.0, 5.0});
+  coordinator.observe("b", {5.0, 5.0});
+  coordinator.coordinate(fleet, grid, 0);
+  EXPECT_NE(coordinator.order("a"), TrafficOrder::Go);
+  coordinator.forget("b");
+  coordinator.coordinate(fleet, grid, 100'000'000);
+  EXPECT_EQ(coordinator.order("a"), TrafficOrder::Go);
+}
+
 TEST(CoordinationConfig, ValidationNamesTheKey) {
   CoordinationConfig c;
   EXPECT_TRUE(validate(c));
