@@ -392,7 +392,9 @@ void FleetCoordinator::coordinate(Fleet& fleet, const PlanningGrid& grid, int64_
 
 void FleetCoordinator::replan_held(Fleet& fleet, const PlanningGrid& grid, int64_t now_ns) {
   const auto after = static_cast<int64_t>(config_.replan_after_s * 1e9);
-  const double reach = 2.0 * config_.robot_radius_m + config_.clearance_m;
+  // A cell more than the reach: the reduced path's straight legs between cell centres stay clear of
+  // the body rule too (a leg that grazes it would be held again at once).
+  const double reach = 2.0 * config_.robot_radius_m + config_.clearance_m + grid.resolution();
   const auto cells = static_cast<int32_t>(std::ceil(reach / grid.resolution()));
   for (size_t i = 0; i < decisions_.size(); ++i) {
     const TrafficDecision& d = decisions_[i];

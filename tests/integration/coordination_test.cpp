@@ -1,7 +1,7 @@
 // Fleet coordination end to end: mosquitto, gateway, mapper, planner and the simulator in a room
 // split by a wall with one 0.7 m door. Two robots stand on one line through the door, facing each
-// other, and are sent past each other through it; their planned paths overlap on that line, so
-// robots that ignore each other meet nose to nose. With coordination (the planner's default) both
+// other, and are sent past each other through it; their planned paths overlap up to and through the
+// door, so robots that ignore each other meet nose to nose. With coordination (the planner's default) both
 // must reach their goals and the simulator's robot_contacts counter must stay 0.
 // COORDINATION_TEST_MODE=off runs the same scene with --coordination off (the test then fails:
 // that is how the scene was checked to be a real test).
@@ -41,8 +41,9 @@ struct Robot {
   double goal_x, goal_y;
   uint64_t goal_id;
 };
-constexpr Robot kWest{"west", 1.5, 3.0, 0.0, 8.0, 3.0, 101};
-constexpr Robot kEast{"east", 8.5, 3.0, std::numbers::pi, 2.0, 3.0, 102};
+// Each goal lies off the other robot's start, so the first to arrive does not park in the way.
+constexpr Robot kWest{"west", 1.5, 3.0, 0.0, 7.5, 4.2, 101};
+constexpr Robot kEast{"east", 8.5, 3.0, std::numbers::pi, 2.5, 1.8, 102};
 
 class Observer {
  public:
