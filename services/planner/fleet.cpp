@@ -240,6 +240,22 @@ void Fleet::settle_idle(const std::vector<std::string>& idle, bool frontiers_res
   if (!still_exploring) exploration_complete_ = true;
 }
 
+bool Fleet::replan_around(const std::string& robot_id, const PlanningGrid& grid) {
+  const auto it = robots_.find(robot_id);
+  if (it == robots_.end() || !it->second.owned) return false;
+  Robot& robot = it->second;
+  GoalTracker& t = robot.tracker;
+  const bool routed =
+      t.mode() == GoalMode::Planned || t.mode() == GoalMode::Home || t.has_frontier() || t.homing();
+  if (t.status() != GoalStatus::Active || !routed || grid.empty()) return false;
+  const bool snap_goal = t.mode() == GoalMode::Home || t.homing();
+  const PlanResult result =
+      planner_.plan_for_robot(grid, robot.position, t.plan_target(), policy(robot), snap_goal);
+  if (!result.ok()) return false;
+  t.set_path(result.path);
+  return true;
+}
+
 void Fleet::due_waypoints(int64_t now_ns, std::vector<DueWaypoint>& out) {
   out.clear();
   for (auto& [id, robot] : robots_) {

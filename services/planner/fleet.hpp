@@ -67,6 +67,9 @@ class Fleet {
   void grid_changed(const PlanningGrid& grid, std::optional<std::span<const CellBox>> changed);
   // Plans what needs planning and assigns frontiers; call after observations and grid changes.
   void tick(const PlanningGrid& grid, int64_t now_ns);
+  // Plans robot_id's route again on `grid` (the map with stopped robots drawn in as obstacles, see
+  // FleetCoordinator) and takes the new path only when one is found. False when it is not.
+  bool replan_around(const std::string& robot_id, const PlanningGrid& grid);
   // Waypoint commands due at now_ns (see GoalTracker::should_send).
   void due_waypoints(int64_t now_ns, std::vector<DueWaypoint>& out);
   // Robots owned here whose path or status changed since the last call (or that were just taken

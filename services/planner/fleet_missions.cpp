@@ -38,6 +38,11 @@ Result<FleetMissions::Receipt> FleetMissions::receive(const ReceivedMission& rec
   return Receipt::Started;
 }
 
+void FleetMissions::forget(const std::string& robot_id) {
+  runner_.forget(robot_id);
+  sent_ns_.erase(robot_id);
+}
+
 void FleetMissions::goal_accepted(const std::string& robot_id) {
   if (robot_id == kAllRobots) {
     runner_.cancel_all();

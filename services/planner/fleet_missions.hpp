@@ -46,6 +46,8 @@ class FleetMissions {
   Result<Receipt> receive(const ReceivedMission& received, Fleet& fleet, GoalStore& store);
   // A goal was accepted for robot_id (or "*"): the missions it replaced are cancelled.
   void goal_accepted(const std::string& robot_id);
+  // The operator forgot the robot (ForgetRobot): its mission goes, unreported.
+  void forget(const std::string& robot_id);
   // For robots owned here: a leg that ended (its tracker reached or failed it) starts the next one.
   // Returns the robots whose mission skipped a waypoint in this pass.
   std::vector<std::string> step(Fleet& fleet);

@@ -303,7 +303,8 @@ void GoalStore::finish(const std::string& robot_id, uint64_t goal_id) {
 }
 
 void GoalStore::forget(const std::string& robot_id) {
-  if (record_.goals.erase(robot_id) + record_.homes.erase(robot_id) > 0) dirty_ = true;
+  if (record_.goals.erase(robot_id) + record_.homes.erase(robot_id) + record_.missions.erase(robot_id) > 0)
+    dirty_ = true;
 }
 
 void GoalStore::put_home(const std::string& robot_id, Vec2 home) {

@@ -35,6 +35,7 @@ class MissionEdge {
   Status connect(dds::Participant& participant);
   // A goal was accepted for robot_id (or "*"): it cancels the missions it replaced.
   void goal_accepted(const std::string& robot_id) { missions_.goal_accepted(robot_id); }
+  void forget(const std::string& robot_id) { missions_.forget(robot_id); }
   // One loop pass, after goals were applied: received missions, legs ended, progress written and kept.
   void run(Fleet& fleet, GoalStore& store);
 

@@ -50,6 +50,11 @@ bool MissionRunner::cancel(const std::string& robot_id) {
   return true;
 }
 
+void MissionRunner::forget(const std::string& robot_id) {
+  missions_.erase(robot_id);
+  changed_.erase(robot_id);
+}
+
 std::vector<std::string> MissionRunner::cancel_all() {
   std::vector<std::string> out;
   for (const auto& [id, r] : missions_)

@@ -65,6 +65,8 @@ class MissionRunner {
   bool cancel(const std::string& robot_id);
   // Cancels every running mission (a goal for the whole fleet); returns the robots that had one.
   std::vector<std::string> cancel_all();
+  // The operator forgot the robot: its mission is dropped without a report.
+  void forget(const std::string& robot_id);
   // The current leg ended: reached, or failed with `reason`. Returns the next leg's goal, or nullopt
   // when the mission is over (done or failed).
   std::optional<Goal> leg_ended(const std::string& robot_id, bool reached, const std::string& reason);

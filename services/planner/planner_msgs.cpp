@@ -102,6 +102,10 @@ PathReport to_report(const slam::RobotPath& sample) {
       !sample.waypoints().empty()) {
     out.frontier = to_vec2(sample.target());
   }
+  if (sample.status() == slam::GOAL_STATUS_ACTIVE) {
+    const auto& w = sample.waypoints();
+    for (size_t i = sample.current(); i < w.size(); ++i) out.ahead.push_back(to_vec2(w[i]));
+  }
   return out;
 }
 

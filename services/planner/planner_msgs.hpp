@@ -53,7 +53,8 @@ void fill_path(const std::string& robot_id, const GoalTracker& tracker, slam::Ro
 struct PathReport {
   std::optional<Vec2> frontier;  // where an exploring robot drives (home too, when homing)
   uint64_t goal_id = 0;
-  bool finished = false;  // the goal was reached or failed
+  bool finished = false;    // the goal was reached or failed
+  std::vector<Vec2> ahead;  // waypoints still to drive to while the goal is active (coordination)
 };
 PathReport to_report(const slam::RobotPath& sample);
 

@@ -56,7 +56,11 @@ PlannerNode::Metrics::Metrics(Counters& c)
       write_failures(c.get("write_failures")),
       path_requests_not_owned(c.get("path_requests_not_owned")),
       robots_owned(c.get("robots_owned")),
-      planners_live(c.get("planners_live")) {
+      planners_live(c.get("planners_live")),
+      robots_held(c.get("robots_held")),
+      deadlocks_broken(c.get("deadlocks_broken")),
+      replans_around_robots(c.get("replans_around_robots")),
+      longest_wait_ms(c.get("longest_wait_ms")) {
   for (size_t i = 0; i < replies.size(); ++i) replies[i] = &c.get(counter_name(static_cast<PlanStatus>(i)));
 }
 
@@ -67,6 +71,7 @@ PlannerNode::PlannerNode(const PlannerOptions& options, Counters& counters)
       counters_(counters),
       robots_forgotten_(counters.get("robots_forgotten")),
       fleet_(options.fleet),
+      coordinator_(options.coordination),
       // The instance id this process's heartbeats carry (host:pid), so peers and self agree.
       ownership_(ServiceIdentity::of("planner").instance_id, monotonic_ns(), ownership_config(options)),
       missions_(counters) {}
@@ -180,6 +185,7 @@ void PlannerNode::run_once() {
   submit_requests(batch_.requests);
   count_replans();
   fleet_.tick(grid_, now);
+  coordinate(now);
   publish_paths();
   stream_waypoints(now);
   flush_store();
@@ -276,6 +282,7 @@ void PlannerNode::apply_states(const std::vector<slam::RobotState>& states) {
     bump(metrics_.robot_states);
     const bool first = robots_.insert(id).second;
     fleet_.observe(id, position);
+    coordinator_.observe(id, position);
     if (!first) continue;
     if (const auto home = fleet_.home(id)) goal_store_.put_home(id, *home);
     const GoalTracker* t = fleet_.tracker(id);
@@ -418,8 +425,20 @@ void PlannerNode::publish_paths() {
   }
 }
 
+void PlannerNode::coordinate(int64_t now_ns) {
+  if (!coordinator_.enabled()) return;
+  coordinator_.coordinate(fleet_, grid_, now_ns);
+  metrics_.robots_held.store(static_cast<int64_t>(coordinator_.held()), std::memory_order_relaxed);
+  metrics_.deadlocks_broken.store(static_cast<int64_t>(coordinator_.deadlocks()), std::memory_order_relaxed);
+  metrics_.replans_around_robots.store(static_cast<int64_t>(coordinator_.replans()),
+                                       std::memory_order_relaxed);
+  metrics_.longest_wait_ms.store(std::llround(coordinator_.longest_wait_seen_s() * 1000.0),
+                                 std::memory_order_relaxed);
+}
+
 void PlannerNode::stream_waypoints(int64_t now_ns) {
   fleet_.due_waypoints(now_ns, due_);
+  if (coordinator_.enabled()) coordinator_.dispatch(fleet_, due_);
   for (const DueWaypoint& d : due_) {
     command_.robot_id(d.robot_id);
     // Ids follow the wall clock (ms) and grow per robot, so a planner taking a robot over continues
@@ -479,6 +498,7 @@ void PlannerNode::apply_reports() {
   for (const auto& [id, report] : reports_taken_) {
     // This planner's own reports come back too: the fleet ignores claims of robots it owns.
     fleet_.claim(id, report.frontier);
+    coordinator_.report_path(id, report.ahead);
     // Finished under another owner: not resumed from this planner's file after a restart.
     if (report.finished && !fleet_.owns(id)) goal_store_.finish(id, report.goal_id);
   }
@@ -494,6 +514,8 @@ void PlannerNode::apply_forgets() {
     if (id.empty() || id == kAllRobots) continue;
     const bool known = robots_.erase(id) > 0;
     fleet_.forget(id);
+    coordinator_.forget(id);
+    missions_.forget(id);
     goal_store_.forget(id);
     waypoint_seq_.erase(id);
     reported_status_.erase(id);

@@ -25,6 +25,7 @@
 #include "common/fastdds/fast_topics.hpp"
 #include "planner/alert_node.hpp"
 #include "planner/fleet.hpp"
+#include "planner/fleet_coordinator.hpp"
 #include "planner/goal_store.hpp"
 #include "planner/mission_edge.hpp"
 #include "planner/planner_intake.hpp"
@@ -77,6 +78,10 @@ class PlannerNode {
     std::atomic<int64_t>& path_requests_not_owned;  // left to the planner that owns them
     std::atomic<int64_t>& robots_owned;
     std::atomic<int64_t>& planners_live;
+    std::atomic<int64_t>& robots_held;  // told to wait or step aside by the coordinator
+    std::atomic<int64_t>& deadlocks_broken;
+    std::atomic<int64_t>& replans_around_robots;  // routes planned around a stopped robot
+    std::atomic<int64_t>& longest_wait_ms;        // the longest wait of any robot so far
   };
 
   PlannerNode(const PlannerOptions& options, Counters& counters);
@@ -95,6 +100,8 @@ class PlannerNode {
   void submit_requests(const std::vector<slam::PathRequest>& requests);
   void count_replans();
   void publish_paths();
+  // Traffic orders for every robot (FleetCoordinator), applied in stream_waypoints.
+  void coordinate(int64_t now_ns);
   void stream_waypoints(int64_t now_ns);
   // Heartbeat reader thread.
   void on_heartbeat(const slam::Heartbeat& heartbeat);
@@ -121,6 +128,7 @@ class PlannerNode {
   PlanningGrid grid_;
   std::vector<CellBox> changed_tiles_;  // the patch being applied, reused
   Fleet fleet_;
+  FleetCoordinator coordinator_;
   GoalStore goal_store_;
   bool awaiting_snapshot_ = false;
   uint64_t handed_revision_ = 0;  // grid revision the request workers have

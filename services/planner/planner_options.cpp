@@ -92,6 +92,25 @@ void add_planner_options(CLI::App& app, PlannerOptions& o) {
                  "a robot without a reachable frontier looks again this often (s)")
       ->capture_default_str();
 
+  CoordinationConfig& coordination = o.coordination;
+  app.add_option_function<std::string>(
+         "--coordination", [&coordination](const std::string& v) { coordination.enabled = v == "on"; },
+         "keep robots from meeting (reservations ahead, waiting, yielding, deadlock breaking): on or off")
+      ->check(CLI::IsMember({"on", "off"}))
+      ->default_str("on");
+  app.add_option("--coordination-robot-radius-m", coordination.robot_radius_m,
+                 "a robot's radius plus its pose error (m), for coordination")
+      ->capture_default_str();
+  app.add_option("--coordination-clearance-m", coordination.clearance_m,
+                 "free space kept between two robots (m)")
+      ->capture_default_str();
+  app.add_option("--coordination-lookahead-m", coordination.lookahead_m,
+                 "path reserved ahead of each moving robot (m)")
+      ->capture_default_str();
+  app.add_option("--coordination-yield-search-m", coordination.yield_search_m,
+                 "how far (m) a robot in another's way looks for a place to step aside")
+      ->capture_default_str();
+
   app.add_option("--loop-rate-hz", o.loop_rate_hz, "goal and waypoint loop rate")->capture_default_str();
   app.add_option("--request-workers", o.request_workers, "threads answering path requests")
       ->capture_default_str();
@@ -124,6 +143,7 @@ void add_planner_options(CLI::App& app, PlannerOptions& o) {
 Status validate(const PlannerOptions& o) {
   if (auto s = validate(o.fleet); !s) return s;
   if (auto s = validate(o.alerts); !s) return s;
+  if (auto s = validate(o.coordination); !s) return s;
   if (!std::isfinite(o.loop_rate_hz) || o.loop_rate_hz < 1.0 || o.loop_rate_hz > 1000.0) {
     return Error{"loop_rate_hz must be between 1 and 1000"};
   }

@@ -11,15 +11,17 @@
 #include "common/core/service_options.hpp"
 #include "planner/alert_monitor.hpp"
 #include "planner/fleet.hpp"
+#include "planner/fleet_coordinator.hpp"
 
 namespace slam::planner {
 
 struct PlannerOptions {
   ServiceOptions service;
   FleetConfig fleet;
-  double loop_rate_hz = 20.0;    // goal ticks, waypoint streaming and path publishing
-  uint32_t request_workers = 1;  // threads answering PathRequests, each with its own planner
-  uint32_t request_queue = 64;   // queued PathRequests beyond this are answered TIMEOUT at once
+  CoordinationConfig coordination;  // robots kept from meeting (--coordination off: ignored)
+  double loop_rate_hz = 20.0;       // goal ticks, waypoint streaming and path publishing
+  uint32_t request_workers = 1;     // threads answering PathRequests, each with its own planner
+  uint32_t request_queue = 64;      // queued PathRequests beyond this are answered TIMEOUT at once
   std::string goal_store = "run/data/goals.json";  // goals and homes kept across restarts; "" = none
   // Several planners share the robots: each robot's goal tracking and waypoints, and each path
   // request, belong to one of the planners heard within peer_timeout_s (common/core/ownership.hpp).

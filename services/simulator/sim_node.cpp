@@ -36,7 +36,8 @@ SimNode::SimNode(const SimOptions& options, Simulation sim, Counters& counters)
       waypoints_rejected_(counters.get("waypoints_rejected")),
       waypoints_outside_world_(counters.get("waypoints_outside_world")),
       waypoints_unknown_robot_(counters.get("waypoints_unknown_robot")),
-      dds_write_failures_(counters.get("dds_write_failures")) {}
+      dds_write_failures_(counters.get("dds_write_failures")),
+      robot_contacts_(counters.get("robot_contacts")) {}
 
 SimNode::~SimNode() = default;
 
@@ -169,6 +170,7 @@ void SimNode::run_steps(double wall_seconds) {
       links_->publish(r, j < robots.size() && robots[j].waypoint.has_value());
     }
   }
+  robot_contacts_.store(static_cast<int64_t>(sim_.contacts()), std::memory_order_relaxed);
 }
 
 void SimNode::publish_truth() {

@@ -53,6 +53,7 @@ class SimNode {
   std::atomic<int64_t>& waypoints_outside_world_;
   std::atomic<int64_t>& waypoints_unknown_robot_;
   std::atomic<int64_t>& dds_write_failures_;
+  std::atomic<int64_t>& robot_contacts_;  // Simulation::contacts(): robots touching each other
 
   // Declared in set-up order, so teardown runs in reverse: robots go offline, then DDS goes.
   std::unique_ptr<SimDds> dds_;

@@ -294,6 +294,36 @@ void Simulation::move(size_t i) {
   if (norm(*r.waypoint - r.reported_pose.position()) < rc.waypoint_tolerance) r.waypoint.reset();
 }
 
+void Simulation::count_contacts() {
+  const double r = config_.robot.radius;
+  const double reach = 2.0 * r + kContactGap;
+  // The index is from the start of the step; robots moved since by at most one step each.
+  const double margin = reach + config_.robot.max_linear * config_.dt;
+  touching_now_.clear();
+  for (size_t i = 0; i < robots_.size(); ++i) {
+    const Vec2 p = robots_[i].true_pose.position();
+    for_each_cell_in_box(world_.grid(), {p.x - margin, p.y - margin}, {p.x + margin, p.y + margin},
+                         [&](uint32_t cell) {
+                           for (uint32_t j : robot_index_.at(cell)) {
+                             if (j <= i) continue;
+                             const Vec2 d = robots_[j].true_pose.position() - p;
+                             if (dot(d, d) >= reach * reach) continue;
+                             const uint64_t a = robots_[i].serial, b = robots_[j].serial;
+                             touching_now_.emplace_back(std::min(a, b), std::max(a, b));
+                           }
+                         });
+  }
+  // A pair indexed in several cells shows up once per cell.
+  std::sort(touching_now_.begin(), touching_now_.end());
+  touching_now_.erase(std::unique(touching_now_.begin(), touching_now_.end()), touching_now_.end());
+  size_t k = 0;
+  for (const auto& pair : touching_now_) {
+    while (k < touching_.size() && touching_[k] < pair) ++k;
+    if (k == touching_.size() || touching_[k] != pair) ++contacts_;
+  }
+  touching_.swap(touching_now_);
+}
+
 std::span<const RobotReport> Simulation::step() {
   if (paused_) return {};
   rebuild_robot_index();
@@ -316,6 +346,7 @@ std::span<const RobotReport> Simulation::step() {
     if (r.next_report_s <= time_s_) r.next_report_s = time_s_ + config_.report_period;
   }
   for (size_t i = 0; i < robots_.size(); ++i) move(i);
+  count_contacts();
   time_s_ += config_.dt;
   return {reports_.data(), due};
 }

@@ -78,6 +78,11 @@ class Simulation {
   // is ignored); max_range when nothing is closer.
   double cast(Vec2 origin, Vec2 dir, double max_range, size_t self) const;
 
+  // Robot-robot contacts since the start: a pair whose discs come within kContactGap of each other
+  // (motion stops robots at touching, never past it) counts once, and again only after it parted.
+  uint64_t contacts() const { return contacts_; }
+  static constexpr double kContactGap = 0.005;  // m
+
  private:
   Simulation(World world, SimulationConfig config);
   bool pose_free(Vec2 p, size_t ignore) const;
@@ -87,6 +92,7 @@ class Simulation {
   void pick_random_target(Robot& r);
   void move(size_t i);
   bool robots_allow(size_t i, Vec2 from, Vec2 to) const;
+  void count_contacts();
 
   World world_;
   SimulationConfig config_;
@@ -98,6 +104,9 @@ class Simulation {
   double wall_backlog_s_ = 0.0;
   uint64_t next_serial_ = 1;
   bool paused_ = false;
+  // Pairs of robot serials (lower first) in contact after the last step, sorted; reused buffers.
+  std::vector<std::pair<uint64_t, uint64_t>> touching_, touching_now_;
+  uint64_t contacts_ = 0;
 };
 
 }  // namespace slam::sim

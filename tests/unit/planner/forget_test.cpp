@@ -1,5 +1,6 @@
 // Forgetting a robot in the planner's core: the fleet drops its tracker, home and kept goal, the
-// goal store its goal and home; a robot that reports again starts afresh.
+// goal store its goal, home and mission, the mission runner its mission (unreported); a robot that
+// reports again starts afresh.
 #include <gtest/gtest.h>
 
 #include "planner/fleet.hpp"
@@ -34,16 +35,21 @@ TEST(FleetForget, RestoredHomeIsForgottenToo) {
   EXPECT_EQ(*fleet.home("a"), (Vec2{1, 2}));
 }
 
-TEST(GoalStoreForget, DropsGoalAndHome) {
+TEST(GoalStoreForget, DropsGoalHomeAndMission) {
   auto store = GoalStore::open("");
   ASSERT_TRUE(store);
   store->put(StoredGoal{"a", Goal{7, GoalMode::Direct, {5, 5}, 0, {}}, 100, false});
   store->put_home("a", {1, 1});
+  StoredMission mission;
+  mission.robot_id = "a";
+  mission.mission.waypoints = {{1, 1}, {2, 2}};
+  store->put_mission(mission);
   ASSERT_TRUE(store->flush());
   store->forget("a");
   EXPECT_TRUE(store->dirty());
   EXPECT_EQ(store->record().goals.count("a"), 0u);
   EXPECT_EQ(store->record().homes.count("a"), 0u);
+  EXPECT_EQ(store->record().missions.count("a"), 0u);
   EXPECT_FALSE(store->is_stale("a", 50)) << "no goal kept: an older one is new again";
   ASSERT_TRUE(store->flush());
   store->forget("a");

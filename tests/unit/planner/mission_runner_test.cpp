@@ -39,6 +39,15 @@ TEST(MissionRunner, RunsEachWaypointOnceThenIsDone) {
   EXPECT_TRUE(runner.take_changed().empty());
 }
 
+TEST(MissionRunner, AForgottenRobotsMissionGoesUnreported) {
+  MissionRunner runner;
+  runner.start("r", three_points(true));
+  runner.forget("r");
+  EXPECT_EQ(runner.find("r"), nullptr);
+  EXPECT_TRUE(runner.take_changed().empty()) << "nothing to publish for a forgotten robot";
+  EXPECT_FALSE(runner.leg_ended("r", true, ""));
+}
+
 TEST(MissionRunner, ALoopWrapsToTheFirstWaypointAndCountsLaps) {
   MissionRunner runner;
   runner.start("r", three_points(true));

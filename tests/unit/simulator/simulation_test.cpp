@@ -117,6 +117,40 @@ TEST(Simulation, RobotsDoNotOverlap) {
   }
 }
 
+TEST(Simulation, HeadOnMeetingCountsOneContactPerPairUntilTheyPart) {
+  Simulation sim = make(*builtin_world("empty"));
+  ASSERT_TRUE(sim.spawn({2, 5, 0}, "a"));
+  ASSERT_TRUE(sim.spawn({8, 5, 3.14159}, "b"));
+  ASSERT_TRUE(sim.spawn({2, 2, 0}, "c"));  // drives alone: never touches anyone
+  ASSERT_TRUE(sim.set_waypoint("a", {9, 5}));
+  ASSERT_TRUE(sim.set_waypoint("b", {1, 5}));
+  ASSERT_TRUE(sim.set_waypoint("c", {8, 2}));
+  // They stay pressed against each other for many steps: still one contact.
+  for (int i = 0; i < 400; ++i) sim.step();
+  EXPECT_EQ(sim.contacts(), 1u);
+  // Parted and driven together again: a second contact of the same pair.
+  ASSERT_TRUE(sim.set_waypoint("a", {1, 5}));
+  ASSERT_TRUE(sim.set_waypoint("b", {9, 5}));
+  for (int i = 0; i < 100; ++i) sim.step();
+  EXPECT_EQ(sim.contacts(), 1u);
+  ASSERT_TRUE(sim.set_waypoint("a", {9, 5}));
+  ASSERT_TRUE(sim.set_waypoint("b", {1, 5}));
+  for (int i = 0; i < 400; ++i) sim.step();
+  EXPECT_EQ(sim.contacts(), 2u);
+}
+
+TEST(Simulation, RobotsPassingAtADistanceMakeNoContact) {
+  Simulation sim = make(*builtin_world("empty"));
+  ASSERT_TRUE(sim.spawn({2, 5, 0}, "a"));
+  ASSERT_TRUE(sim.spawn({8, 5.4, 3.14159}, "b"));  // lanes 0.4 m apart: 0.1 m between the discs
+  ASSERT_TRUE(sim.set_waypoint("a", {8, 5}));
+  ASSERT_TRUE(sim.set_waypoint("b", {2, 5.4}));
+  for (int i = 0; i < 600; ++i) sim.step();
+  EXPECT_EQ(sim.contacts(), 0u);
+  EXPECT_FALSE(sim.find("a")->waypoint.has_value());  // both arrived: they did pass each other
+  EXPECT_FALSE(sim.find("b")->waypoint.has_value());
+}
+
 TEST(Simulation, ZeroNoiseMeansNoDrift) {
   SimulationConfig c = exact_config();
   c.random_walk = true;

@@ -1,0 +1,483 @@
+// Traffic rules and their application to the fleet's waypoint commands.
+#include "planner/fleet_coordinator.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <tuple>
+
+#include "planner/line_of_sight.hpp"
+
+namespace slam::planner {
+namespace {
+
+constexpr double kYieldMarginM = 0.05;  // a yield place keeps this much more than the bare reach
+constexpr double kResendMoveM = 0.05;   // a hold moved further than this is sent again
+
+bool finite_positive(double v) {
+  return std::isfinite(v) && v > 0.0;
+}
+
+// Distance between segments ab and cd (0 when they cross).
+double segment_gap(Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
+  const auto cross = [](Vec2 o, Vec2 p, Vec2 q) {
+    return (p.x - o.x) * (q.y - o.y) - (p.y - o.y) * (q.x - o.x);
+  };
+  const double d1 = cross(a, b, c), d2 = cross(a, b, d), d3 = cross(c, d, a), d4 = cross(c, d, b);
+  if (((d1 > 0 && d2 < 0) || (d1 < 0 && d2 > 0)) && ((d3 > 0 && d4 < 0) || (d3 < 0 && d4 > 0))) return 0.0;
+  return std::min({distance_to_segment(a, c, d), distance_to_segment(b, c, d), distance_to_segment(c, a, b),
+                   distance_to_segment(d, a, b)});
+}
+
+// Distance from p to the polyline (a single point counts as a polyline).
+double gap_to(std::span<const Vec2> line, Vec2 p) {
+  if (line.size() == 1) return distance(line[0], p);
+  double best = std::numeric_limits<double>::infinity();
+  for (size_t k = 1; k < line.size(); ++k)
+    best = std::min(best, distance_to_segment(p, line[k - 1], line[k]));
+  return best;
+}
+
+// Closest approach of p to the first `length` metres of the polyline.
+double gap_to_prefix(std::span<const Vec2> line, double length, Vec2 p) {
+  double best = distance(line[0], p);
+  double walked = 0.0;
+  for (size_t k = 1; k < line.size() && walked < length; ++k) {
+    const double seg = distance(line[k - 1], line[k]);
+    Vec2 end = line[k];
+    if (walked + seg > length && seg > 0.0)
+      end = line[k - 1] + (line[k] - line[k - 1]) * ((length - walked) / seg);
+    best = std::min(best, distance_to_segment(p, line[k - 1], end));
+    walked += seg;
+  }
+  return best;
+}
+
+// FNV-1a: the same tie-break number for a robot on every planner.
+uint32_t stable_hash(const std::string& s) {
+  uint32_t h = 2166136261u;
+  for (unsigned char c : s) h = (h ^ c) * 16777619u;
+  return h;
+}
+
+}  // namespace
+
+Status validate(const CoordinationConfig& c) {
+  if (!finite_positive(c.robot_radius_m)) return Error{"coordination robot_radius_m must be positive"};
+  if (!std::isfinite(c.clearance_m) || c.clearance_m < 0.0)
+    return Error{"coordination clearance_m must be zero or more"};
+  if (!finite_positive(c.lookahead_m)) return Error{"coordination lookahead_m must be positive"};
+  if (!finite_positive(c.body_lookahead_m) || c.body_lookahead_m > c.lookahead_m)
+    return Error{"coordination body_lookahead_m must be positive and at most lookahead_m"};
+  if (!finite_positive(c.yield_search_m) || c.yield_search_m > 20.0)
+    return Error{"coordination yield_search_m must be in (0, 20]"};
+  if (!finite_positive(c.yield_step_m)) return Error{"coordination yield_step_m must be positive"};
+  if (!finite_positive(c.replan_after_s)) return Error{"coordination replan_after_s must be positive"};
+  return Status::ok();
+}
+
+// --- TrafficRules ---
+
+void TrafficRules::append_way(const TrafficRobot& robot, double length, std::vector<Vec2>& out) {
+  out.push_back(robot.position);
+  double walked = 0.0;
+  Vec2 last = robot.position;
+  for (const Vec2& p : robot.ahead) {
+    const double seg = distance(last, p);
+    if (walked + seg >= length) {
+      if (seg > 0.0) out.push_back(last + (p - last) * ((length - walked) / seg));
+      return;
+    }
+    out.push_back(p);
+    walked += seg;
+    last = p;
+  }
+}
+
+void TrafficRules::build_claim(size_t i, const TrafficRobot& robot, double length) {
+  claim_at_[2 * i] = static_cast<uint32_t>(claim_points_.size());
+  append_way(robot, length, claim_points_);
+  claim_at_[2 * i + 1] = static_cast<uint32_t>(claim_points_.size());
+}
+
+std::span<const Vec2> TrafficRules::claim(size_t i) const {
+  return {claim_points_.data() + claim_at_[2 * i], claim_at_[2 * i + 1] - claim_at_[2 * i]};
+}
+
+bool TrafficRules::near(std::span<const Vec2> a, std::span<const Vec2> b, double gap) {
+  if (a.size() == 1) return gap_to(b, a[0]) < gap;
+  if (b.size() == 1) return gap_to(a, b[0]) < gap;
+  for (size_t i = 1; i < a.size(); ++i)
+    for (size_t j = 1; j < b.size(); ++j)
+      if (segment_gap(a[i - 1], a[i], b[j - 1], b[j]) < gap) return true;
+  return false;
+}
+
+void TrafficRules::decide(const PlanningGrid& grid, std::span<const TrafficRobot> robots, int64_t now_ns,
+                          std::vector<TrafficDecision>& decisions) {
+  const size_t n = robots.size();
+  decisions.resize(n);
+  order_.clear();
+  for (size_t i = 0; i < n; ++i)
+    if (!robots[i].ahead.empty()) order_.push_back(static_cast<uint32_t>(i));
+  std::sort(order_.begin(), order_.end(), [&](uint32_t a, uint32_t b) {
+    return std::tie(robots[a].route_since_ns, robots[a].tie, a) <
+           std::tie(robots[b].route_since_ns, robots[b].tie, b);
+  });
+
+  claim_points_.clear();
+  claim_at_.resize(2 * n);
+  for (size_t i = 0; i < n; ++i) build_claim(i, robots[i], config_.lookahead_m);
+  granted_.assign(n, 0);
+  const double reach = this->reach();
+  const double far = 2.0 * config_.lookahead_m + reach;  // no two reservations of robots further apart meet
+
+  was_deadlocked_.resize(n);
+  for (size_t i = 0; i < n; ++i) {
+    TrafficDecision& d = decisions[i];
+    const TrafficOrder before = d.order;
+    const Vec2 held = d.hold;
+    was_deadlocked_[i] = d.deadlock ? 1 : 0;
+    d = TrafficDecision{TrafficOrder::Go, robots[i].position, -1, d.waiting_since_ns, false};
+    // Keep the place a waiting robot was told to stay at, so it does not creep.
+    if (before == TrafficOrder::Wait) d.hold = held;
+  }
+
+  for (const uint32_t i : order_) {
+    const TrafficRobot& me = robots[i];
+    const auto mine = claim(i);
+    int32_t blocker = -1;
+    for (size_t k = 0; k < n && blocker < 0; ++k) {
+      if (k == i || distance(me.position, robots[k].position) > far) continue;
+      if (granted_[k] && near(mine, claim(k), reach)) {
+        blocker = static_cast<int32_t>(k);
+        continue;
+      }
+      // A body ahead stops the robot; one it moves away from does not (they part).
+      const double now_gap = distance(me.position, robots[k].position);
+      const double gap = gap_to_prefix(mine, config_.body_lookahead_m, robots[k].position);
+      if (gap < reach && gap < now_gap - 1e-6) blocker = static_cast<int32_t>(k);
+    }
+    TrafficDecision& d = decisions[i];
+    if (blocker < 0) {
+      granted_[i] = 1;
+      d.order = TrafficOrder::Go;
+      continue;
+    }
+    d.blocker = blocker;
+    if (granted_[static_cast<size_t>(blocker)] &&
+        gap_to(claim(static_cast<size_t>(blocker)), me.position) < reach) {
+      // Standing on the way of a robot that goes first: step aside.
+      yield(grid, robots, i, static_cast<size_t>(blocker), decisions);
+    } else {
+      d.order = TrafficOrder::Wait;
+    }
+  }
+  resolve_deadlocks(grid, robots, decisions);
+
+  for (size_t i = 0; i < n; ++i) {
+    TrafficDecision& d = decisions[i];
+    const bool waiting = d.order != TrafficOrder::Go && !robots[i].ahead.empty();
+    if (!waiting) {
+      d.waiting_since_ns = -1;
+    } else if (d.waiting_since_ns < 0) {
+      d.waiting_since_ns = now_ns;
+    }
+  }
+}
+
+void TrafficRules::resolve_deadlocks(const PlanningGrid& grid, std::span<const TrafficRobot> robots,
+                                     std::vector<TrafficDecision>& decisions) {
+  const size_t n = robots.size();
+  visit_.assign(n, 0);
+  uint32_t walk = 0;
+  for (size_t s = 0; s < n; ++s) {
+    if (decisions[s].order != TrafficOrder::Wait || visit_[s] != 0) continue;
+    ++walk;
+    size_t cur = s, prev = s;
+    // Follow who waits for whom until the chain ends, meets an earlier walk or closes on itself.
+    while (visit_[cur] == 0) {
+      visit_[cur] = walk;
+      if (decisions[cur].order != TrafficOrder::Wait || decisions[cur].blocker < 0) break;
+      prev = cur;
+      cur = static_cast<size_t>(decisions[cur].blocker);
+    }
+    if (visit_[cur] != walk) continue;  // joined a chain already handled
+    if (decisions[cur].order == TrafficOrder::Wait && decisions[cur].blocker >= 0 &&
+        visit_[static_cast<size_t>(decisions[cur].blocker)] == walk && cur != prev) {
+      // A cycle through cur: its lowest-priority member gives way to the robot it waits for; when it
+      // has nowhere to go, the next lowest does.
+      cycle_.clear();
+      size_t k = cur;
+      do {
+        cycle_.push_back(static_cast<uint32_t>(k));
+        k = static_cast<size_t>(decisions[k].blocker);
+      } while (k != cur);
+      // The one already stepping aside for this cycle carries on (switching roles midway would send
+      // them past each other); otherwise the highest tie number first: a number every planner gives
+      // the robot alike, so planners that each drive one robot of the cycle agree on who moves.
+      std::sort(cycle_.begin(), cycle_.end(), [&](uint32_t a, uint32_t b) {
+        return std::tuple(was_deadlocked_[a], robots[a].tie, a) >
+               std::tuple(was_deadlocked_[b], robots[b].tie, b);
+      });
+      // The same cycle stays until the yielding robot is out of the way: counted once.
+      if (std::none_of(cycle_.begin(), cycle_.end(), [&](uint32_t m) { return was_deadlocked_[m] != 0; }))
+        ++deadlocks_;
+      for (const uint32_t m : cycle_) {
+        yield(grid, robots, m, static_cast<size_t>(decisions[m].blocker), decisions);
+        decisions[m].deadlock = true;
+        if (decisions[m].order == TrafficOrder::Yield) break;
+      }
+    } else if (robots[cur].ahead.empty() && cur != prev && decisions[cur].order == TrafficOrder::Go) {
+      // The chain ends at a stopped robot: it steps off the way of the one waiting for it.
+      yield(grid, robots, cur, prev, decisions);
+    }
+  }
+}
+
+void TrafficRules::yield(const PlanningGrid& grid, std::span<const TrafficRobot> robots, size_t i, size_t to,
+                         std::vector<TrafficDecision>& decisions) {
+  // Off the way the other robot will drive, somewhat beyond its reservation.
+  long_points_.clear();
+  append_way(robots[to], config_.lookahead_m + config_.yield_search_m, long_points_);
+  TrafficDecision& d = decisions[i];
+  d.blocker = static_cast<int32_t>(to);
+  Vec2 step;
+  if (find_yield(grid, robots, i, long_points_, step)) {
+    d.order = TrafficOrder::Yield;
+    d.hold = step;
+  } else {
+    d.order = TrafficOrder::Wait;  // nowhere to go: it stays and the other one waits for it
+    d.hold = robots[i].position;
+  }
+}
+
+bool TrafficRules::find_yield(const PlanningGrid& grid, std::span<const TrafficRobot> robots, size_t i,
+                              std::span<const Vec2> away, Vec2& step) {
+  if (grid.empty()) return false;
+  const Vec2 start = robots[i].position;
+  const auto start_cell = grid.cell_at(start);
+  if (!start_cell) return false;
+  const double reach = this->reach();
+  const double body = 2.0 * config_.robot_radius_m;
+  const auto clear_of_bodies = [&](Vec2 p, double gap) {
+    for (size_t k = 0; k < robots.size(); ++k)
+      if (k != i && distance(robots[k].position, start) < config_.yield_search_m + 2.0 * reach &&
+          distance(robots[k].position, p) < gap)
+        return false;
+    return true;
+  };
+  const size_t cells = grid.geometry().cells();
+  if (seen_stamp_.size() != cells) {
+    seen_stamp_.assign(cells, 0);
+    parent_.assign(cells, 0);
+    stamp_ = 0;
+  }
+  if (++stamp_ == 0) {
+    std::fill(seen_stamp_.begin(), seen_stamp_.end(), 0);
+    stamp_ = 1;
+  }
+  queue_.clear();
+  const auto first = static_cast<uint32_t>(grid.index(*start_cell));
+  seen_stamp_[first] = stamp_;
+  parent_[first] = first;
+  queue_.push_back(first);
+  uint32_t found = std::numeric_limits<uint32_t>::max();
+  for (size_t head = 0; head < queue_.size(); ++head) {
+    const uint32_t at = queue_[head];
+    const Cell c = grid.cell_of(at);
+    const Vec2 centre = grid.centre(c);
+    if (gap_to(away, centre) >= reach + kYieldMarginM && clear_of_bodies(centre, reach)) {
+      found = at;
+      break;
+    }
+    constexpr int kDx[4] = {1, -1, 0, 0}, kDy[4] = {0, 0, 1, -1};
+    for (int k = 0; k < 4; ++k) {
+      const Cell nb{c.x + kDx[k], c.y + kDy[k]};
+      if (!grid.contains(nb)) continue;
+      const auto idx = static_cast<uint32_t>(grid.index(nb));
+      if (seen_stamp_[idx] == stamp_ || grid.impassable(nb, UnknownPolicy::Blocked)) continue;
+      const Vec2 p = grid.centre(nb);
+      // Never squeeze past another robot on the way.
+      if (distance(p, start) > config_.yield_search_m || !clear_of_bodies(p, reach)) continue;
+      seen_stamp_[idx] = stamp_;
+      parent_[idx] = at;
+      queue_.push_back(idx);
+    }
+  }
+  if (found == std::numeric_limits<uint32_t>::max()) return false;
+  // The furthest cell of the way there that is in sight and within one yield step.
+  step = grid.centre(grid.cell_of(found));
+  for (uint32_t at = found;; at = parent_[at]) {
+    const Vec2 p = grid.centre(grid.cell_of(at));
+    const bool passes_clear = [&] {
+      for (size_t k = 0; k < robots.size(); ++k)
+        if (k != i && distance_to_segment(robots[k].position, start, p) < body) return false;
+      return true;
+    }();
+    if (distance(p, start) <= config_.yield_step_m && passes_clear &&
+        segment_clear_leaving(grid, start, p, UnknownPolicy::Blocked)) {
+      step = p;
+      return true;
+    }
+    if (parent_[at] == at) break;
+  }
+  return true;
+}
+
+// --- FleetCoordinator ---
+
+FleetCoordinator::FleetCoordinator(const CoordinationConfig& config) : config_(config), rules_(config) {}
+
+size_t FleetCoordinator::slot(const std::string& robot_id) {
+  const auto [it, inserted] = slots_.try_emplace(robot_id, robots_.size());
+  if (inserted) {
+    robots_.emplace_back();
+    robots_.back().id = robot_id;
+  }
+  return it->second;
+}
+
+void FleetCoordinator::observe(const std::string& robot_id, Vec2 position) {
+  Slot& s = robots_[slot(robot_id)];
+  s.position = position;
+  s.seen = true;
+}
+
+void FleetCoordinator::forget(const std::string& robot_id) {
+  const auto it = slots_.find(robot_id);
+  if (it == slots_.end()) return;
+  robots_[it->second].seen = false;
+  robots_[it->second].reported.clear();
+}
+
+void FleetCoordinator::report_path(const std::string& robot_id, std::span<const Vec2> ahead) {
+  Slot& s = robots_[slot(robot_id)];
+  s.reported.assign(ahead.begin(), ahead.end());
+}
+
+void FleetCoordinator::coordinate(Fleet& fleet, const PlanningGrid& grid, int64_t now_ns) {
+  inputs_.clear();
+  for (Slot& s : robots_) {
+    std::span<const Vec2> ahead;
+    uint64_t goal_id = 0;
+    if (const GoalTracker* t = fleet.tracker(s.id); t != nullptr && s.seen) {
+      goal_id = t->goal().goal_id;
+      if (fleet.owns(s.id)) {
+        if (t->status() == GoalStatus::Active && t->current_waypoint()) ahead = t->remaining();
+      } else {
+        ahead = s.reported;
+      }
+    }
+    // A route starts when the robot gets one, or another goal or destination: it queues anew.
+    const Vec2 target = ahead.empty() ? Vec2{} : ahead.back();
+    const bool active = !ahead.empty();
+    if (active && (!s.active || goal_id != s.goal_id || distance(target, s.target) > 1e-6))
+      s.route_since_ns = now_ns;
+    s.active = active;
+    s.goal_id = goal_id;
+    s.target = target;
+    // A robot not seen yet stands nowhere: far off, without a route, it meets no one.
+    const Vec2 position = s.seen ? s.position : Vec2{std::numeric_limits<double>::max() / 4, 0.0};
+    inputs_.push_back(TrafficRobot{position, ahead, s.route_since_ns, stable_hash(s.id)});
+  }
+  rules_.decide(grid, inputs_, now_ns, decisions_);
+  replan_held(fleet, grid, now_ns);
+  for (size_t i = 0; i < decisions_.size(); ++i) {
+    if (decisions_[i].waiting_since_ns >= 0)
+      longest_wait_seen_s_ =
+          std::max(longest_wait_seen_s_, static_cast<double>(now_ns - decisions_[i].waiting_since_ns) * 1e-9);
+  }
+}
+
+void FleetCoordinator::replan_held(Fleet& fleet, const PlanningGrid& grid, int64_t now_ns) {
+  const auto after = static_cast<int64_t>(config_.replan_after_s * 1e9);
+  // A cell more than the reach: the reduced path's straight legs between cell centres stay clear of
+  // the body rule too (a leg that grazes it would be held again at once).
+  const double reach = 2.0 * config_.robot_radius_m + config_.clearance_m + grid.resolution();
+  const auto cells = static_cast<int32_t>(std::ceil(reach / grid.resolution()));
+  for (size_t i = 0; i < decisions_.size(); ++i) {
+    const TrafficDecision& d = decisions_[i];
+    Slot& s = robots_[i];
+    if (d.order != TrafficOrder::Wait || d.waiting_since_ns < 0 || now_ns - d.waiting_since_ns < after ||
+        now_ns - s.replanned_ns < after || !fleet.owns(s.id))
+      continue;
+    s.replanned_ns = now_ns;
+    // Every other robot as a disc no robot centre may enter: a way around them, if there is one.
+    obstacles_ = grid;
+    for (size_t k = 0; k < inputs_.size(); ++k) {
+      if (k == i || !robots_[k].seen) continue;
+      const Vec2 at = inputs_[k].position;
+      const auto centre = grid.cell_at(at);
+      if (!centre) continue;
+      for (int32_t dy = -cells; dy <= cells; ++dy)
+        for (int32_t dx = -cells; dx <= cells; ++dx) {
+          const Cell c{centre->x + dx, centre->y + dy};
+          if (grid.contains(c) && distance(grid.centre(c), at) < reach)
+            obstacles_.set(c, static_cast<uint8_t>(obstacles_.at(c) | kCellObstructed));
+        }
+    }
+    if (fleet.replan_around(s.id, obstacles_)) ++replans_;
+  }
+}
+
+void FleetCoordinator::dispatch(const Fleet& fleet, std::vector<DueWaypoint>& due) {
+  const auto held_command = [](DueWaypoint& out, Vec2 hold) {
+    out.waypoint = hold;
+    out.remaining.assign(1, hold);
+  };
+  for (DueWaypoint& d : due) {
+    const auto it = slots_.find(d.robot_id);
+    if (it == slots_.end() || it->second >= decisions_.size()) continue;
+    const TrafficDecision& decision = decisions_[it->second];
+    if (decision.order != TrafficOrder::Go) held_command(d, decision.hold);
+    robots_[it->second].sent_order = decision.order;
+    robots_[it->second].sent_hold = decision.hold;
+  }
+  for (size_t i = 0; i < decisions_.size(); ++i) {
+    Slot& s = robots_[i];
+    const TrafficDecision& decision = decisions_[i];
+    const bool changed =
+        decision.order != s.sent_order ||
+        (decision.order != TrafficOrder::Go && distance(decision.hold, s.sent_hold) > kResendMoveM);
+    if (!changed || !fleet.owns(s.id)) continue;
+    const bool listed =
+        std::any_of(due.begin(), due.end(), [&](const DueWaypoint& d) { return d.robot_id == s.id; });
+    s.sent_order = decision.order;
+    s.sent_hold = decision.hold;
+    if (listed) continue;
+    if (decision.order != TrafficOrder::Go) {
+      due.push_back(DueWaypoint{s.id, decision.hold, {decision.hold}});
+      continue;
+    }
+    // Released: its route's waypoint again (a robot without a route just stays where it stepped to).
+    const GoalTracker* t = fleet.tracker(s.id);
+    if (t == nullptr || t->status() != GoalStatus::Active) continue;
+    if (const auto wp = t->current_waypoint()) {
+      const auto rest = t->remaining();
+      due.push_back(DueWaypoint{s.id, *wp, std::vector<Vec2>(rest.begin(), rest.end())});
+    }
+  }
+}
+
+size_t FleetCoordinator::held() const {
+  return static_cast<size_t>(
+      std::count_if(decisions_.begin(), decisions_.end(),
+                    [](const TrafficDecision& d) { return d.order != TrafficOrder::Go; }));
+}
+
+double FleetCoordinator::longest_wait_s(int64_t now_ns) const {
+  double longest = 0.0;
+  for (const TrafficDecision& d : decisions_)
+    if (d.waiting_since_ns >= 0)
+      longest = std::max(longest, static_cast<double>(now_ns - d.waiting_since_ns) * 1e-9);
+  return longest;
+}
+
+TrafficOrder FleetCoordinator::order(const std::string& robot_id) const {
+  const auto it = slots_.find(robot_id);
+  if (it == slots_.end() || it->second >= decisions_.size()) return TrafficOrder::Go;
+  return decisions_[it->second].order;
+}
+
+}  // namespace slam::planner

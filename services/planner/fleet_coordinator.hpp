@@ -1,0 +1,173 @@
+#pragma once
+// Keeps robots from meeting: every tick each moving robot reserves the stretch of its path ahead
+// (a polyline `lookahead_m` long, as wide as two robots plus a clearance), in priority order. A robot
+// whose stretch would come too close to a higher-priority robot's reservation, or to another robot's
+// body, waits where it is; one standing on the reservation it gives way to steps aside (yields) to
+// the nearest free place off it. Waits form a wait-for graph: a cycle (two robots nose to nose in
+// a corridor) is a deadlock and one of its robots yields (the next one when it has nowhere to go);
+// a robot waited on that has no route (it stopped) yields too, and one held by a stopped robot
+// that cannot move plans a way around it. Priority: the earlier route first (ties by a hash of the
+// id), so a waiting robot only rises and none waits forever while the others keep arriving.
+//
+// Plain C++: TrafficRules decides from plain inputs; FleetCoordinator feeds it from the Fleet and
+// rewrites the due waypoint commands of the robots owned here. With several planners each one
+// decides for every robot from what it sees (RobotState positions, RobotPath paths of the other
+// planners' robots, the goals every planner reads) and applies only its own robots' orders.
+//
+// Steady state allocates nothing: buffers are kept per robot slot and reused; a tick costs
+// O(moving robots^2) distance checks (pairs further apart than two reservations are skipped at
+// once) plus a bounded search per yielding robot, whatever the history.
+#include <cstdint>
+#include <limits>
+#include <map>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "common/core/result.hpp"
+#include "planner/fleet.hpp"
+#include "planner/planning_grid.hpp"
+
+namespace slam::planner {
+
+struct CoordinationConfig {
+  bool enabled = true;
+  double robot_radius_m = 0.2;    // a robot's body plus its pose error
+  double clearance_m = 0.15;      // kept free between two bodies
+  double lookahead_m = 2.0;       // path reserved ahead of a moving robot
+  double body_lookahead_m = 0.8;  // how far ahead another robot's body stops this one
+  double yield_search_m = 3.0;    // how far a robot looks for a place to step aside
+  double yield_step_m = 1.0;      // a yielding robot is sent at most this far at a time
+  // A robot kept waiting this long (a stopped robot, a jam no one can step out of) plans a way
+  // around the robots in its way, and again as often while it waits.
+  double replan_after_s = 4.0;
+};
+
+Status validate(const CoordinationConfig& config);
+
+enum class TrafficOrder : uint8_t { Go, Wait, Yield };
+
+// One robot as the rules see it.
+struct TrafficRobot {
+  Vec2 position;
+  std::span<const Vec2> ahead;  // waypoints still to drive to; empty: no route (stopped)
+  int64_t route_since_ns = 0;   // when its route started: earlier is higher priority
+  uint32_t tie = 0;             // breaks equal route_since_ns (same on every planner)
+};
+
+struct TrafficDecision {
+  TrafficOrder order = TrafficOrder::Go;
+  Vec2 hold;             // Wait: where to stay; Yield: where to drive to now
+  int32_t blocker = -1;  // the robot it waits for or gives way to
+  int64_t waiting_since_ns = -1;
+  bool deadlock = false;  // yields to break a wait-for cycle
+};
+
+class TrafficRules {
+ public:
+  explicit TrafficRules(const CoordinationConfig& config) : config_(config) {}
+
+  // Decides for every robot; `decisions` keeps one entry per robot between calls (same indices),
+  // which carries when each robot started waiting.
+  void decide(const PlanningGrid& grid, std::span<const TrafficRobot> robots, int64_t now_ns,
+              std::vector<TrafficDecision>& decisions);
+
+  // Deadlocks broken since the start.
+  uint64_t deadlocks() const { return deadlocks_; }
+
+ private:
+  double reach() const { return 2.0 * config_.robot_radius_m + config_.clearance_m; }
+  // The robot's way from where it is, cut at `length` metres, appended to `out`.
+  static void append_way(const TrafficRobot& robot, double length, std::vector<Vec2>& out);
+  // The same as claim i (offsets in claim_at_).
+  void build_claim(size_t i, const TrafficRobot& robot, double length);
+  std::span<const Vec2> claim(size_t i) const;
+  // True when the two polylines come closer than `distance` anywhere.
+  static bool near(std::span<const Vec2> a, std::span<const Vec2> b, double distance);
+  // Where robot i should drive to leave `away` (a polyline) and every other body clear; false when no
+  // such place is within yield_search_m.
+  bool find_yield(const PlanningGrid& grid, std::span<const TrafficRobot> robots, size_t i,
+                  std::span<const Vec2> away, Vec2& step);
+  void resolve_deadlocks(const PlanningGrid& grid, std::span<const TrafficRobot> robots,
+                         std::vector<TrafficDecision>& decisions);
+  void yield(const PlanningGrid& grid, std::span<const TrafficRobot> robots, size_t i, size_t to,
+             std::vector<TrafficDecision>& decisions);
+
+  CoordinationConfig config_;
+  std::vector<uint32_t> order_;  // robots by priority, highest first
+  std::vector<Vec2> claim_points_;
+  std::vector<uint32_t> claim_at_;       // claim i is claim_points_[claim_at_[2i], claim_at_[2i+1])
+  std::vector<Vec2> long_points_;        // a longer claim for yield searches
+  std::vector<uint8_t> granted_;         // claim reserved this tick
+  std::vector<uint8_t> was_deadlocked_;  // yielded to break a cycle on the last tick
+  std::vector<uint32_t> visit_;          // wait-for graph walk stamps
+  std::vector<uint32_t> cycle_;          // the robots of one wait-for cycle
+  std::vector<uint32_t> seen_stamp_;     // yield search: grid cells seen, by query stamp
+  std::vector<uint32_t> parent_;         // yield search: the cell each was reached from
+  std::vector<uint32_t> queue_;
+  uint32_t stamp_ = 0;
+  uint64_t deadlocks_ = 0;
+};
+
+// The Fleet's side: which robot has which slot, the other planners' paths, and the due waypoint
+// commands rewritten for the robots told to wait or yield.
+class FleetCoordinator {
+ public:
+  explicit FleetCoordinator(const CoordinationConfig& config);
+
+  bool enabled() const { return config_.enabled; }
+  // Every robot's latest position (owned or not).
+  void observe(const std::string& robot_id, Vec2 position);
+  // A robot dropped from the fleet (forgotten): no longer an obstacle for the others. A robot that
+  // only went silent stays one, where it was last seen.
+  void forget(const std::string& robot_id);
+  // A robot of another planner: the waypoints it still drives to (empty when it has none).
+  void report_path(const std::string& robot_id, std::span<const Vec2> ahead);
+  // Decides for every robot from the fleet's routes; call after Fleet::tick. A robot of this planner
+  // kept waiting gets a route around the other robots (Fleet::replan_around) when one exists.
+  void coordinate(Fleet& fleet, const PlanningGrid& grid, int64_t now_ns);
+  // Rewrites `due` (Fleet::due_waypoints) for robots owned here: a waiting robot is sent where it
+  // stays, a yielding one where it steps aside, and a robot whose order changed gets its command at
+  // once (a released one its route's waypoint again).
+  void dispatch(const Fleet& fleet, std::vector<DueWaypoint>& due);
+
+  // Robots told to wait or yield now, the longest current wait (s) and the longest seen so far.
+  size_t held() const;
+  double longest_wait_s(int64_t now_ns) const;
+  double longest_wait_seen_s() const { return longest_wait_seen_s_; }
+  uint64_t deadlocks() const { return rules_.deadlocks(); }
+  uint64_t replans() const { return replans_; }
+  // The order for a robot (Go for one never seen).
+  TrafficOrder order(const std::string& robot_id) const;
+
+ private:
+  struct Slot {
+    std::string id;
+    Vec2 position;
+    bool seen = false;
+    std::vector<Vec2> reported;  // another planner's robot: its RobotPath's remaining waypoints
+    uint64_t goal_id = 0;
+    Vec2 target;
+    bool active = false;
+    int64_t route_since_ns = 0;
+    TrafficOrder sent_order = TrafficOrder::Go;
+    Vec2 sent_hold;
+    int64_t replanned_ns = std::numeric_limits<int64_t>::min() / 2;  // a way around last looked for
+  };
+  size_t slot(const std::string& robot_id);
+  // Re-plans the robots of this planner held longer than replan_after_s (and again as often), on a
+  // copy of the grid with every other robot drawn in; a robot keeps its route when there is no other.
+  void replan_held(Fleet& fleet, const PlanningGrid& grid, int64_t now_ns);
+
+  CoordinationConfig config_;
+  TrafficRules rules_;
+  std::map<std::string, size_t> slots_;
+  std::vector<Slot> robots_;
+  std::vector<TrafficRobot> inputs_;
+  std::vector<TrafficDecision> decisions_;
+  PlanningGrid obstacles_;  // the grid with stopped robots in it (a copy, reused)
+  uint64_t replans_ = 0;
+  double longest_wait_seen_s_ = 0.0;
+};
+
+}  // namespace slam::planner
