@@ -129,6 +129,11 @@ Result<std::unique_ptr<BridgeNode>> BridgeNode::create(const BridgeOptions& opti
   if (!requester) return Error{"requester on PathReply: " + requester.message()};
   node->path_requester_ = std::move(*requester);
   SLAM_TRY(node->create_readers());
+  if (options.ros) {
+    auto ros = RosEdge::create(p, options, *node, counters);
+    if (!ros) return ros.error();
+    node->ros_ = std::move(*ros);
+  }
 
   auto bind = parse_bind(options.bind);
   if (!bind) return bind.error();
@@ -251,7 +256,9 @@ void BridgeNode::run_once() {
     }
   }
   drain_intake();
-  face_->publish(fleet_, map_, monotonic_ns(), now_ns());
+  const int64_t now_mono = monotonic_ns(), stamp = now_ns();
+  face_->publish(fleet_, map_, now_mono, stamp);
+  if (ros_) ros_->run_once(fleet_, map_, now_mono, stamp);
 }
 
 void BridgeNode::send_goal(const GoalCommand& goal) {

@@ -46,8 +46,9 @@ TEST(SlamctlSubcommands, NamesAreUniqueAndEachHasAHandler) {
     EXPECT_TRUE(names.insert(sub.name).second) << sub.name;
     EXPECT_FALSE(sub.help.empty()) << sub.name;
   }
-  for (const char* name : {"status", "robots", "alerts", "forget", "mission", "missions", "record", "replay", "goal", "path", "map", "grid", "obstruct",
-                           "unobstruct", "reset", "pose", "sim", "echo"})
+  for (const char* name :
+       {"status", "robots", "alerts", "forget", "mission", "missions", "record", "replay", "goal", "path",
+        "map", "grid", "obstruct", "unobstruct", "reset", "pose", "sim", "echo"})
     EXPECT_TRUE(names.contains(name)) << name;
   for (const auto& [cli, run] : line.handlers) EXPECT_TRUE(run) << cli->get_name();
 }
