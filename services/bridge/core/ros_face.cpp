@@ -37,7 +37,8 @@ double yaw_of(const Quaternion& q) {
   return std::atan2(2.0 * (q.w * q.z + q.x * q.y), 1.0 - 2.0 * (q.y * q.y + q.z * q.z));
 }
 
-OccupancyGridOut occupancy_grid(const GridGeometry& geometry, std::span<const uint8_t> cells, int64_t stamp_ns) {
+OccupancyGridOut occupancy_grid(const GridGeometry& geometry, std::span<const uint8_t> cells,
+                                int64_t stamp_ns) {
   OccupancyGridOut out;
   out.stamp = ros_time(stamp_ns);
   out.resolution = static_cast<float>(geometry.resolution);

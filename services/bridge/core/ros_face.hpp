@@ -38,10 +38,11 @@ struct OccupancyGridOut {
   float resolution = 0.0f;
   uint32_t width = 0;
   uint32_t height = 0;
-  Vec2 origin;                // cell (0, 0)'s lower-left corner; no rotation
-  std::vector<int8_t> data;   // row-major: -1 unknown, 0 free, 50 inflated, 100 occupied
+  Vec2 origin;               // cell (0, 0)'s lower-left corner; no rotation
+  std::vector<int8_t> data;  // row-major: -1 unknown, 0 free, 50 inflated, 100 occupied
 };
-OccupancyGridOut occupancy_grid(const GridGeometry& geometry, std::span<const uint8_t> cells, int64_t stamp_ns);
+OccupancyGridOut occupancy_grid(const GridGeometry& geometry, std::span<const uint8_t> cells,
+                                int64_t stamp_ns);
 
 // geometry_msgs/TransformStamped's fields: map -> one robot.
 struct TransformOut {

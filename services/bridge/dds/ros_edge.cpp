@@ -60,8 +60,8 @@ Result<std::unique_ptr<RosEdge>> RosEdge::create(dds::Participant& p, const Brid
   edge->initial_pose_writer_ = std::move(*initial);
 
   RosEdge& e = *edge;
-  auto goal_reader = dds::make_reader(
-      p, dds::kRosGoalPose, [&e](const gm::PoseStamped_& s, const dds::fdds::SampleInfo&) {
+  auto goal_reader =
+      dds::make_reader(p, dds::kRosGoalPose, [&e](const gm::PoseStamped_& s, const dds::fdds::SampleInfo&) {
         std::lock_guard lock(e.mutex_);
         e.goal_poses_.push_back(pose_input(s.header(), s.pose()));
       });

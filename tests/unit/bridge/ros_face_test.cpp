@@ -40,11 +40,13 @@ MapView map_of(std::vector<uint8_t> cells, int32_t width, int32_t height) {
 }
 
 TEST(RosFace, GridCellsBecomeRosOccupancy) {
-  const std::vector<uint8_t> cells = {kCellUnknown, kCellFree, kCellOccupied,
-                                      kCellFree | kCellInflated, kCellFree | kCellObstructed,
+  const std::vector<uint8_t> cells = {kCellUnknown,
+                                      kCellFree,
+                                      kCellOccupied,
+                                      kCellFree | kCellInflated,
+                                      kCellFree | kCellObstructed,
                                       kCellOccupied | kCellInflated};
-  const OccupancyGridOut grid =
-      occupancy_grid(GridGeometry{{-2.0, 3.0}, 0.25, 3, 2}, cells, 7 * kSecond + 5);
+  const OccupancyGridOut grid = occupancy_grid(GridGeometry{{-2.0, 3.0}, 0.25, 3, 2}, cells, 7 * kSecond + 5);
   EXPECT_EQ(grid.data, (std::vector<int8_t>{-1, 0, 100, 50, 100, 100}));
   EXPECT_EQ(grid.width, 3u);
   EXPECT_EQ(grid.height, 2u);
@@ -56,7 +58,8 @@ TEST(RosFace, GridCellsBecomeRosOccupancy) {
 }
 
 TEST(RosFace, EveryRobotIsAFrameUnderTheMap) {
-  const FleetModel fleet = fleet_with({{"r1", Pose{1.0, 2.0, std::numbers::pi / 2}}, {"r2", Pose{-3.0, 0.5, 0.0}}});
+  const FleetModel fleet =
+      fleet_with({{"r1", Pose{1.0, 2.0, std::numbers::pi / 2}}, {"r2", Pose{-3.0, 0.5, 0.0}}});
   const auto transforms = robot_transforms(fleet, 3 * kSecond);
   ASSERT_EQ(transforms.size(), 2u);
   EXPECT_EQ(transforms[0].parent, "map");
@@ -94,10 +97,12 @@ TEST(RosFace, SendsTheWholeMapAtMostOncePerPeriodAndOnlyWhenChanged) {
   EXPECT_EQ(sink.maps[0].data, (std::vector<int8_t>{0, 100}));
   face.publish(fleet, map, 10 * kSecond, 0);  // unchanged: nothing however long it waited
   EXPECT_EQ(sink.maps.size(), 1u);
-  ASSERT_TRUE(map.ingest(GridSnapshotInput{1, 1, 0, GridGeometry{{0.0, 0.0}, 0.25, 2, 1}, {kCellOccupied, kCellOccupied}}));
+  ASSERT_TRUE(map.ingest(
+      GridSnapshotInput{1, 1, 0, GridGeometry{{0.0, 0.0}, 0.25, 2, 1}, {kCellOccupied, kCellOccupied}}));
   face.publish(fleet, map, 10 * kSecond, 0);  // changed: sent at once, the period long passed
   ASSERT_EQ(sink.maps.size(), 2u);
-  ASSERT_TRUE(map.ingest(GridSnapshotInput{1, 2, 0, GridGeometry{{0.0, 0.0}, 0.25, 2, 1}, {kCellFree, kCellFree}}));
+  ASSERT_TRUE(
+      map.ingest(GridSnapshotInput{1, 2, 0, GridGeometry{{0.0, 0.0}, 0.25, 2, 1}, {kCellFree, kCellFree}}));
   face.publish(fleet, map, 14 * kSecond, 0);  // changed, but only 4 s after the last
   EXPECT_EQ(sink.maps.size(), 2u);
   face.publish(fleet, map, 15 * kSecond, 0);
