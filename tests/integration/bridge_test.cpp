@@ -86,7 +86,7 @@ TEST(BridgeTest, FoxgloveClientSeesTheFleetAndDrivesARobot) {
   const std::string broker = "tcp://127.0.0.1:" + std::to_string(mqtt_port);
   const int ws_port = testkit::free_tcp_port();
   group.start("bridge", {testkit::bin_path("slam-bridge"), "--domain", domain, "--bind",
-                         "127.0.0.1:" + std::to_string(ws_port)});
+                         "127.0.0.1:" + std::to_string(ws_port), "--periods-map-full-s", "1"});
   group.start("gateway", {testkit::bin_path("slam-gateway"), "--domain", domain, "--broker", broker});
   group.start("mapper", {testkit::bin_path("slam-mapper"), "--domain", domain, "--store",
                          group.dir() + "/map.db", "--snapshot-period", "1"});

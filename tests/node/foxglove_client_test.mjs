@@ -3,8 +3,8 @@
 // its type (@foxglove/schemas for foxglove.*, the advertised schema otherwise, with ajv), decodes the
 // CDR map channel (nav_msgs/msg/OccupancyGrid) with @foxglove/rosmsg2-serialization from the
 // advertised ros2msg definition, calls the path service, then publishes a goal and waits until the
-// robot drove toward it. With GRID_FILE, the first decoded OccupancyGrid is written there as JSON
-// (stamp, size, cells) for the caller to compare with the mapper's grid.
+// robot drove toward it. With GRID_FILE, the first decoded OccupancyGrid with mapped (free) cells is
+// written there as JSON (stamp, size, cells) for the caller to compare with the mapper's grid.
 // Usage: node foxglove_client_test.mjs ws://127.0.0.1:8765 [timeout_s] [GRID_FILE]
 // Exit 0 when everything held, 1 with one line saying what did not.
 import { writeFileSync } from "node:fs";
@@ -50,7 +50,7 @@ function cdrDecoderFor(channel) {
   return new MessageReader(rosmsg.parse(channel.schema, { ros2: true }));
 }
 
-// Checks a decoded OccupancyGrid; writes the first to GRID_FILE.
+// Checks a decoded OccupancyGrid; writes the first with a free cell to GRID_FILE.
 let gridWritten = false;
 function checkOccupancyGrid(topic, grid) {
   const { width, height } = grid.info;
@@ -58,7 +58,7 @@ function checkOccupancyGrid(topic, grid) {
   if (grid.data.length !== width * height) fail(`${topic}: ${grid.data.length} cells for ${width} x ${height}`);
   for (const cell of grid.data)
     if (![-1, 0, 50, 100].includes(cell)) fail(`${topic}: cell value ${cell}`);
-  if (gridFile && !gridWritten) {
+  if (gridFile && !gridWritten && grid.data.includes(0)) {
     const stampNs = BigInt(grid.header.stamp.sec) * 1000000000n + BigInt(grid.header.stamp.nanosec);
     const o = grid.info.origin.position;
     writeFileSync(gridFile, JSON.stringify({ stamp_ns: stampNs.toString(), width, height,
@@ -144,7 +144,7 @@ const timer = setInterval(() => {
   if ((Date.now() - started) / 1000 > timeoutS) {
     const missing = required.filter((t) => !counts.get(t));
     fail(
-      `timed out: missing ${missing.join(", ") || "nothing"}; path answer ${pathAnswer ? "yes" : "no"}; goal ` +
+      `timed out: missing ${missing.join(", ") || "nothing"}; mapped grid ${gridWritten ? "yes" : "no"}; path answer ${pathAnswer ? "yes" : "no"}; goal ` +
         (goal ? `${goal.robot} now ${distance(robots.get(goal.robot), goal.target).toFixed(2)} m from target ` +
           `(was ${goal.startDistance.toFixed(2)})` : "not sent"),
     );
@@ -167,7 +167,7 @@ const timer = setInterval(() => {
     console.log(`goal: ${robot} from (${at.x.toFixed(2)}, ${at.y.toFixed(2)}) to (${target.x}, ${target.y})`);
   }
   const moved = goal && distance(robots.get(goal.robot), goal.target) < goal.startDistance - 0.5;
-  if (moved && pathAnswer && required.every((t) => counts.get(t) > 0)) {
+  if (moved && pathAnswer && required.every((t) => counts.get(t) > 0) && (gridWritten || !gridFile)) {
     done = true;
     clearInterval(timer);
     console.log(`ok: ${[...counts].map(([t, n]) => `${t} ${n}`).join(", ")}`);

@@ -28,21 +28,21 @@ TEST(RosCdr, OccupancyGridIsPlainLittleEndianCdr) {
   // Offsets below count from the encapsulation header's end (4 bytes: CDR_LE, no options).
   ASSERT_EQ(bytes.substr(0, 4), std::string("\x00\x01\x00\x00", 4));
   const auto body = [&](size_t offset) { return offset + 4; };
-  EXPECT_EQ(at<int32_t>(bytes, body(0)), 12);      // header.stamp.sec
-  EXPECT_EQ(at<uint32_t>(bytes, body(4)), 345u);   // header.stamp.nanosec
-  EXPECT_EQ(at<uint32_t>(bytes, body(8)), 4u);     // frame_id length with its NUL
+  EXPECT_EQ(at<int32_t>(bytes, body(0)), 12);     // header.stamp.sec
+  EXPECT_EQ(at<uint32_t>(bytes, body(4)), 345u);  // header.stamp.nanosec
+  EXPECT_EQ(at<uint32_t>(bytes, body(8)), 4u);    // frame_id length with its NUL
   EXPECT_EQ(std::string(bytes.data() + body(12), 4), std::string("map\0", 4));
-  EXPECT_EQ(at<int32_t>(bytes, body(16)), 12);     // info.map_load_time
+  EXPECT_EQ(at<int32_t>(bytes, body(16)), 12);  // info.map_load_time
   EXPECT_EQ(at<uint32_t>(bytes, body(20)), 345u);
-  EXPECT_EQ(at<float>(bytes, body(24)), 0.25f);    // resolution
-  EXPECT_EQ(at<uint32_t>(bytes, body(28)), 3u);    // width
-  EXPECT_EQ(at<uint32_t>(bytes, body(32)), 1u);    // height
+  EXPECT_EQ(at<float>(bytes, body(24)), 0.25f);  // resolution
+  EXPECT_EQ(at<uint32_t>(bytes, body(28)), 3u);  // width
+  EXPECT_EQ(at<uint32_t>(bytes, body(32)), 1u);  // height
   // origin: 7 doubles aligned to 8 (36 -> 40)
   EXPECT_EQ(at<double>(bytes, body(40)), -2.0);
   EXPECT_EQ(at<double>(bytes, body(48)), 3.5);
   EXPECT_EQ(at<double>(bytes, body(56)), 0.0);
-  EXPECT_EQ(at<double>(bytes, body(88)), 1.0);     // orientation.w
-  EXPECT_EQ(at<uint32_t>(bytes, body(96)), 3u);    // data count
+  EXPECT_EQ(at<double>(bytes, body(88)), 1.0);   // orientation.w
+  EXPECT_EQ(at<uint32_t>(bytes, body(96)), 3u);  // data count
   EXPECT_EQ(at<int8_t>(bytes, body(100)), -1);
   EXPECT_EQ(at<int8_t>(bytes, body(101)), 0);
   EXPECT_EQ(at<int8_t>(bytes, body(102)), 100);
