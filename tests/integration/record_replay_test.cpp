@@ -1,11 +1,15 @@
 // `slamctl record` and `slamctl replay` against real DDS traffic: the test's own writers publish on
 // three topics while slamctl records; the file is read back with the MCAP reader (every topic that
-// had traffic has its channel and omgidl schema, and the samples' bytes decode to what was sent);
+// had traffic has its channel and omgidl schema, and the samples' bytes decode to what was sent; and
+// @mcap/core, Foxglove's own MCAP library, in Node reads it too);
 // then slamctl replays the file into a fresh domain and a reader there receives the same samples.
 // Generous timeouts: CI machines are loaded. No timings are asserted.
 #include <gtest/gtest.h>
 
 #include <csignal>
+#include <cstdlib>
+#include <filesystem>
+#include <iostream>
 #include <map>
 #include <string>
 #include <thread>
@@ -100,6 +104,23 @@ std::vector<T> recorded(const mcap::Contents& c, const std::string& topic) {
   return out;
 }
 
+// The recording read by @mcap/core (tests/node/mcap_reader_test.mjs), the library Foxglove reads
+// MCAP with: it opens, counts and checks the CRCs, and each topic has its cdr channel and schema.
+void expect_mcap_core_reads(ProcessGroup& group, const std::string& file,
+                            const std::map<std::string, std::string>& schema_of) {
+  if (std::system("node --version > /dev/null 2>&1") != 0) {
+    std::cout << "node is not installed (apt-get install nodejs): @mcap/core check skipped\n";
+    return;
+  }
+  const std::string node_dir = SLAM_NODE_TESTS_DIR;
+  ASSERT_TRUE(std::filesystem::exists(node_dir + "/node_modules/@mcap/core"))
+      << "the pinned npm packages are missing: run scripts/setup.sh (npm ci in tests/node)";
+  std::vector<std::string> args = {"node", node_dir + "/mcap_reader_test.mjs", file};
+  for (const auto& [topic, schema] : schema_of) args.push_back(topic + "=" + schema);
+  group.start("mcap_core", args);
+  EXPECT_EQ(group.wait_exit("mcap_core", kExitTimeout), 0) << group.log("mcap_core");
+}
+
 TEST(RecordReplayTest, RecordsEveryTopicWithTrafficAndReplaysItIntoAFreshDomain) {
   TempDir dir("record");
   const std::string file = (dir / "session.mcap").string();
@@ -145,6 +166,7 @@ TEST(RecordReplayTest, RecordsEveryTopicWithTrafficAndReplaysItIntoAFreshDomain)
   EXPECT_EQ((recorded<RobotObservationPubSubType, RobotObservation>(*contents, "slam/robot/observation")),
             observations);
   EXPECT_EQ((recorded<HeartbeatPubSubType, Heartbeat>(*contents, "slam/system/heartbeat")), beats);
+  expect_mcap_core_reads(group, file, schema_of);
 
   DomainLease fresh;
   auto p = participant(fresh.id());

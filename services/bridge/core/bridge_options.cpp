@@ -44,6 +44,10 @@ void add_bridge_options(CLI::App& app, BridgeOptions& o) {
   app.add_option("--client-backlog-bytes", o.client_backlog_bytes,
                  "a client with more unsent bytes than this misses data messages until it catches up")
       ->capture_default_str();
+  app.add_flag("!--no-ros", o.ros, "no ROS 2 face (rt/map, rt/tf, rt/goal_pose, rt/initialpose)");
+  app.add_option(
+      "--ros-robot", o.ros_robot,
+      "the robot RViz2's goals and initial poses are for (default: the robot nearest to the pose)");
 }
 
 Status validate(const BridgeOptions& o) {
@@ -56,6 +60,7 @@ Status validate(const BridgeOptions& o) {
     if (Status s = check_seconds(key, value, 0.01, 3600.0); !s) return s;
   if (Status s = check_seconds("path-timeout-s", o.path_timeout_s, 0.1, 600.0); !s) return s;
   if (o.points_per_robot > 100000) return Error{"points-per-robot must be at most 100000"};
+  if (o.ros_robot.size() > 64) return Error{"ros-robot must be at most 64 characters"};
   if (o.client_backlog_bytes < 65536) return Error{"client-backlog-bytes must be at least 65536"};
   return {};
 }

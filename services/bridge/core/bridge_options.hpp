@@ -1,6 +1,6 @@
 #pragma once
-// slam-bridge's configuration: where the WebSocket face listens and how often each kind of channel
-// may be sent, with defaults, CLI11/YAML binding and one validator.
+// slam-bridge's configuration: where the WebSocket face listens, whether the ROS 2 face runs and how often
+// each kind of channel may be sent, with defaults, CLI11/YAML binding and one validator.
 #include <CLI/CLI.hpp>
 #include <cstdint>
 #include <string>
@@ -29,6 +29,10 @@ struct BridgeOptions {
   double path_timeout_s = 5.0;      // a path service call unanswered this long fails
   // A client whose unsent data exceeds this many bytes misses data messages until it catches up.
   uint32_t client_backlog_bytes = 16u << 20;
+  // The ROS 2 face (rt/map, rt/tf, rt/goal_pose, rt/initialpose); --no-ros turns it off.
+  bool ros = true;
+  // The robot RViz2's goals and initial poses are for; empty: the robot nearest to the pose.
+  std::string ros_robot;
 };
 
 // An address and port parsed from "ADDR:PORT".

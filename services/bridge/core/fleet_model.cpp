@@ -49,4 +49,10 @@ void FleetModel::ingest(const HeartbeatInput& h, int64_t now_mono_ns) {
   ++versions_.health;
 }
 
+void FleetModel::ingest(AlertInput&& a) {
+  std::string id = a.alert_id;
+  alerts_[std::move(id)] = std::move(a);
+  ++versions_.alerts;
+}
+
 }  // namespace slam::bridge

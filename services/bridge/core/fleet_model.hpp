@@ -50,6 +50,18 @@ struct HeartbeatInput {
   double uptime_s = 0.0;
 };
 
+// An operator alert (system.idl Alert): its latest state, active or cleared.
+struct AlertInput {
+  std::string alert_id;
+  std::string kind;  // "robot_offline", "service_silent", "battery_low"
+  std::string subject;
+  bool active = false;
+  int64_t raised_ns = 0;  // Unix epoch
+  int64_t stamp_ns = 0;
+  std::string message;
+  std::string raised_by;
+};
+
 // The last `capacity` points of one robot, oldest overwritten first.
 class PointRing {
  public:
@@ -89,6 +101,7 @@ struct FleetVersions {
   uint64_t paths = 0;
   uint64_t points = 0;
   uint64_t health = 0;
+  uint64_t alerts = 0;
 };
 
 class FleetModel {
@@ -101,11 +114,14 @@ class FleetModel {
   // Points go in through the robot's current correction, so they stay where they were seen.
   void ingest(const ObservationInput& o);
   void ingest(const HeartbeatInput& h, int64_t now_mono_ns);
+  void ingest(AlertInput&& a);
 
   // By robot id (sorted, so every message lists robots in the same order).
   const std::map<std::string, RobotView>& robots() const { return robots_; }
   // By (service, instance id).
   const std::map<std::pair<std::string, std::string>, ServiceView>& services() const { return services_; }
+  // By alert id.
+  const std::map<std::string, AlertInput>& alerts() const { return alerts_; }
   const FleetVersions& versions() const { return versions_; }
 
  private:
@@ -114,6 +130,7 @@ class FleetModel {
   size_t points_per_robot_;
   std::map<std::string, RobotView> robots_;
   std::map<std::pair<std::string, std::string>, ServiceView> services_;
+  std::map<std::string, AlertInput> alerts_;
   FleetVersions versions_;
 };
 

@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 
 #include "bridge/core/foxglove_messages.hpp"
+#include "bridge/core/ros_cdr.hpp"
 #include "bridge/core/schemas.hpp"
 
 namespace slam::bridge {
@@ -29,7 +30,10 @@ const std::vector<foxglove::ChannelInfo>& channel_table() {
       channel(Channel::Transforms, "/tf", "foxglove.FrameTransforms", schemas::kFrameTransforms),
       channel(Channel::Paths, "/paths", "foxglove.SceneUpdate", schemas::kSceneUpdate),
       channel(Channel::Points, "/points", "foxglove.PointCloud", schemas::kPointCloud),
-      channel(Channel::Health, "/health", "slam.ServiceHealth", schemas::kServiceHealth)};
+      channel(Channel::Health, "/health", "slam.ServiceHealth", schemas::kServiceHealth),
+      channel(Channel::Alerts, "/alerts", "slam.Alerts", schemas::kAlerts),
+      {static_cast<uint32_t>(Channel::RosMap), "/ros/map", "cdr", kOccupancyGridType,
+       kOccupancyGridDefinition, "ros2msg"}};
   return table;
 }
 
@@ -50,6 +54,8 @@ FoxgloveFace::FoxgloveFace(const ChannelPeriods& periods, std::string session_id
   channels_[Channel::Paths].period_ns = to_ns(periods.paths_s);
   channels_[Channel::Points].period_ns = to_ns(periods.points_s);
   channels_[Channel::Health].period_ns = to_ns(periods.health_s);
+  channels_[Channel::Alerts].period_ns = to_ns(periods.health_s);
+  channels_[Channel::RosMap].period_ns = to_ns(periods.map_full_s);
 }
 
 void FoxgloveFace::connect(ClientId client) {
@@ -226,6 +232,9 @@ void FoxgloveFace::publish(const FleetModel& fleet, MapView& map, int64_t now_mo
         send(Channel::MapUpdates, grid_message(map.geometry(), map.cells(), changed, map.stamp_ns()),
              now_mono_ns, stamp_ns, map.revision());
     }
+    if (due(Channel::RosMap, map.revision(), now_mono_ns))
+      send(Channel::RosMap, occupancy_grid_cdr(occupancy_grid(map.geometry(), map.cells(), map.stamp_ns())),
+           now_mono_ns, stamp_ns, map.revision());
   }
   if (due(Channel::Robots, v.robots, now_mono_ns))
     send(Channel::Robots, robots_message(fleet, stamp_ns), now_mono_ns, stamp_ns, v.robots);
@@ -235,6 +244,8 @@ void FoxgloveFace::publish(const FleetModel& fleet, MapView& map, int64_t now_mo
     send(Channel::Paths, paths_message(fleet, stamp_ns), now_mono_ns, stamp_ns, v.paths);
   if (due(Channel::Points, v.points, now_mono_ns))
     send(Channel::Points, points_message(fleet, stamp_ns), now_mono_ns, stamp_ns, v.points);
+  if (due(Channel::Alerts, v.alerts, now_mono_ns))
+    send(Channel::Alerts, alerts_message(fleet, stamp_ns), now_mono_ns, stamp_ns, v.alerts);
   // Health changes with time alone (seconds since each service was heard).
   const auto health_version = static_cast<uint64_t>(now_mono_ns);
   if (!fleet.services().empty() && due(Channel::Health, health_version, now_mono_ns))

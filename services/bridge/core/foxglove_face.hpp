@@ -3,8 +3,8 @@
 // and the path service, its subscriptions and the channels it advertises to publish on), and what
 // goes out when (each channel only when it has news, a subscriber, and its period has passed).
 // Plain C++: the WebSocket edge hands in each client's frames and sends what this returns through
-// FrameSink; goals and path calls leave through OperatorSink. A second face (ROS 2 topics) would
-// sit beside this one and read the same FleetModel and MapView.
+// FrameSink; goals and path calls leave through OperatorSink. The ROS 2 face (ros_face.hpp) sits
+// beside this one and reads the same FleetModel and MapView.
 #include <cstdint>
 #include <limits>
 #include <map>
@@ -57,7 +57,8 @@ enum class Channel : uint32_t {
   Paths = 5,       // foxglove.SceneUpdate: paths and targets
   Points = 6,      // foxglove.PointCloud: recent measurement points
   Health = 7,      // slam.ServiceHealth
-  // Alerts: the fleet's Alert topic gets its channel here (next id 8) once it exists.
+  Alerts = 8,      // slam.Alerts: every alert, active or cleared
+  RosMap = 9,      // nav_msgs/msg/OccupancyGrid (cdr, ros2msg): the whole grid, for ROS-minded layouts
 };
 
 // The topic a client advertises to publish goals on (JSON, see operator_requests.hpp).

@@ -354,4 +354,28 @@ std::string health_message(const FleetModel& fleet, int64_t now_mono_ns, int64_t
   return out;
 }
 
+std::string alerts_message(const FleetModel& fleet, int64_t stamp_ns) {
+  std::string out;
+  JsonWriter w(out);
+  w.begin_object();
+  write_time(w, "timestamp", stamp_ns);
+  w.key("alerts").begin_array();
+  for (const auto& [id, a] : fleet.alerts()) {
+    w.begin_object()
+        .key("alert_id")
+        .value(a.alert_id)
+        .key("kind")
+        .value(a.kind)
+        .key("subject")
+        .value(a.subject);
+    w.key("active").value(a.active);
+    write_time(w, "raised", a.raised_ns);
+    write_time(w, "changed", a.stamp_ns);
+    w.key("message").value(a.message).key("raised_by").value(a.raised_by);
+    w.end_object();
+  }
+  w.end_array().end_object();
+  return out;
+}
+
 }  // namespace slam::bridge

@@ -1,6 +1,6 @@
 #pragma once
 // The fleet model as JSON messages of Foxglove's own schemas (foxglove.Grid, foxglove.SceneUpdate,
-// foxglove.FrameTransforms, foxglove.PointCloud) and of the bridge's own (slam.ServiceHealth).
+// foxglove.FrameTransforms, foxglove.PointCloud) and of the bridge's own (slam.ServiceHealth, slam.Alerts).
 // Everything is in the "map" frame; each robot is also a frame named after its id.
 #include <cstdint>
 #include <span>
@@ -45,5 +45,8 @@ std::string points_message(const FleetModel& fleet, int64_t stamp_ns);
 
 // Every service heard in heartbeats, with the seconds since it was last heard.
 std::string health_message(const FleetModel& fleet, int64_t now_mono_ns, int64_t stamp_ns);
+
+// Every alert the planners raised, active or cleared (slam.Alerts).
+std::string alerts_message(const FleetModel& fleet, int64_t stamp_ns);
 
 }  // namespace slam::bridge

@@ -9,6 +9,7 @@ extern const char* const kSceneUpdate;      // foxglove.SceneUpdate
 extern const char* const kFrameTransforms;  // foxglove.FrameTransforms
 extern const char* const kPointCloud;       // foxglove.PointCloud
 extern const char* const kServiceHealth;    // slam.ServiceHealth
+extern const char* const kAlerts;           // slam.Alerts
 extern const char* const kPathRequest;      // slam.PathRequest
 extern const char* const kPathResponse;     // slam.PathResponse
 

@@ -94,6 +94,17 @@ const char* state_name(ServiceState s) {
   }
 }
 
+const char* alert_kind_name(AlertKind k) {
+  switch (k) {
+    case ALERT_ROBOT_OFFLINE:
+      return "robot_offline";
+    case ALERT_SERVICE_SILENT:
+      return "service_silent";
+    default:
+      return "battery_low";
+  }
+}
+
 // Pushes `value` into `queue` under the intake's lock.
 template <class Queue, class Value>
 void queue(BridgeIntake& intake, Queue& q, Value&& value) {
@@ -129,6 +140,11 @@ Result<std::unique_ptr<BridgeNode>> BridgeNode::create(const BridgeOptions& opti
   if (!requester) return Error{"requester on PathReply: " + requester.message()};
   node->path_requester_ = std::move(*requester);
   SLAM_TRY(node->create_readers());
+  if (options.ros) {
+    auto ros = RosEdge::create(p, options, *node, counters);
+    if (!ros) return ros.error();
+    node->ros_ = std::move(*ros);
+  }
 
   auto bind = parse_bind(options.bind);
   if (!bind) return bind.error();
@@ -186,6 +202,11 @@ Status BridgeNode::create_readers() {
           HeartbeatInput{h.service().to_string(), h.instance_id().to_string(), h.host().to_string(), h.pid(),
                          state_name(h.state()), h.uptime_s()});
   }));
+  SLAM_TRY(make(dds::kAlert, alert_reader_, [&in](const Alert& a) {
+    queue(in, in.alerts,
+          AlertInput{a.alert_id().to_string(), alert_kind_name(a.kind()), a.subject().to_string(), a.active(),
+                     a.raised_ns(), a.stamp_ns(), a.message().to_string(), a.raised_by().to_string()});
+  }));
   SLAM_TRY(make(dds::kGridSnapshot, snapshot_reader_, [&in](const GridSnapshot& s) {
     const GridInfo& info = s.info();
     GridSnapshotInput snap{
@@ -212,6 +233,7 @@ void BridgeNode::drain_intake() {
     std::swap(batch.corrections, intake_.corrections);
     std::swap(batch.observations, intake_.observations);
     std::swap(batch.heartbeats, intake_.heartbeats);
+    std::swap(batch.alerts, intake_.alerts);
     std::swap(batch.map, intake_.map);
     std::swap(batch.answers, intake_.answers);
   }
@@ -222,6 +244,7 @@ void BridgeNode::drain_intake() {
   for (auto& p : batch.paths) fleet_.ingest(std::move(p));
   for (const auto& o : batch.observations) fleet_.ingest(o);
   for (const auto& h : batch.heartbeats) fleet_.ingest(h, now);
+  for (auto& a : batch.alerts) fleet_.ingest(std::move(a));
   for (auto& m : batch.map) {
     const Status s = std::visit([this](auto& input) { return map_.ingest(std::move(input)); }, m);
     if (!s) {
@@ -251,7 +274,9 @@ void BridgeNode::run_once() {
     }
   }
   drain_intake();
-  face_->publish(fleet_, map_, monotonic_ns(), now_ns());
+  const int64_t now_mono = monotonic_ns(), stamp = now_ns();
+  face_->publish(fleet_, map_, now_mono, stamp);
+  if (ros_) ros_->run_once(fleet_, map_, now_mono, stamp);
 }
 
 void BridgeNode::send_goal(const GoalCommand& goal) {

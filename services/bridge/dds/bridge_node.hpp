@@ -2,7 +2,8 @@
 // slam-bridge's DDS edge and loop: readers convert samples into the core's inputs and queue them
 // (nothing else on the listener threads); run_once() drains them into the FleetModel and MapView,
 // hands the WebSocket clients' events to the Foxglove face, lets it publish what is due, and turns
-// operator goals and path calls into NavGoal samples and PathRequests (dds::Requester).
+// operator goals and path calls into NavGoal samples and PathRequests (dds::Requester). The ROS 2
+// edge (ros_edge.hpp, unless --no-ros) reads the same model and map on the same loop.
 #include <chrono>
 #include <memory>
 #include <mutex>
@@ -15,6 +16,7 @@
 #include "bridge/core/fleet_model.hpp"
 #include "bridge/core/foxglove_face.hpp"
 #include "bridge/core/map_view.hpp"
+#include "bridge/dds/ros_edge.hpp"
 #include "bridge/ws/ws_server.hpp"
 #include "common/core/counters.hpp"
 #include "common/core/log.hpp"
@@ -32,6 +34,7 @@ struct BridgeIntake {
   std::vector<CorrectionInput> corrections;
   std::vector<ObservationInput> observations;
   std::vector<HeartbeatInput> heartbeats;
+  std::vector<AlertInput> alerts;
   // Snapshots and patches in arrival order (a patch applies only on top of what came before it).
   std::vector<std::variant<GridSnapshotInput, GridTilesInput>> map;
   std::vector<std::pair<PathCall, std::optional<PathAnswer>>> answers;
@@ -78,8 +81,10 @@ class BridgeNode final : public OperatorSink, public FrameSink {
   std::unique_ptr<dds::Reader<PoseCorrection>> correction_reader_;
   std::unique_ptr<dds::Reader<RobotObservation>> observation_reader_;
   std::unique_ptr<dds::Reader<Heartbeat>> heartbeat_reader_;
+  std::unique_ptr<dds::Reader<Alert>> alert_reader_;
   std::unique_ptr<dds::Reader<GridSnapshot>> snapshot_reader_;
   std::unique_ptr<dds::Reader<GridTiles>> tiles_reader_;
+  std::unique_ptr<RosEdge> ros_;  // null with --no-ros
   std::unique_ptr<WsServer> ws_;
   std::unique_ptr<FoxgloveFace> face_;
 };

@@ -58,4 +58,13 @@ inline constexpr TopicInfo kHeartbeat{"slam/system/heartbeat", kHeartbeatQos};
 inline constexpr TopicInfo kAlert{"slam/system/alert", kStateQos};
 inline constexpr TopicInfo kForgetRobot{"slam/robot/forget", kCommandQos};
 
+// ROS 2 topics (idl/ros2.idl; the bridge's ROS 2 face): ROS 2 puts topic /NAME on DDS as "rt/NAME".
+// The map as Nav2's map_server publishes it (reliable, transient-local, keep last 1); frames and
+// the RViz2 tools' goals and poses with ROS 2's default QoS (reliable, volatile, keep last 10).
+inline constexpr QosSpec kRosDefaultQos{true, false, 10, 0};
+inline constexpr TopicInfo kRosMap{"rt/map", kStateQos};
+inline constexpr TopicInfo kRosTf{"rt/tf", kRosDefaultQos};
+inline constexpr TopicInfo kRosGoalPose{"rt/goal_pose", kRosDefaultQos};
+inline constexpr TopicInfo kRosInitialPose{"rt/initialpose", kRosDefaultQos};
+
 }  // namespace slam::topics

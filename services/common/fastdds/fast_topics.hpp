@@ -5,6 +5,7 @@
 #include <slam/fastdds/mqttPubSubTypes.h>
 #include <slam/fastdds/navPubSubTypes.h>
 #include <slam/fastdds/robotPubSubTypes.h>
+#include <slam/fastdds/ros2PubSubTypes.h>
 #include <slam/fastdds/simPubSubTypes.h>
 #include <slam/fastdds/systemPubSubTypes.h>
 
@@ -41,5 +42,15 @@ inline const Topic<SimGroundTruth, SimGroundTruthPubSubType> kSimGroundTruth{top
 inline const Topic<Heartbeat, HeartbeatPubSubType> kHeartbeat{topics::kHeartbeat};
 inline const Topic<Alert, AlertPubSubType> kAlert{topics::kAlert};
 inline const Topic<ForgetRobot, ForgetRobotPubSubType> kForgetRobot{topics::kForgetRobot};
+
+inline const Topic<nav_msgs::msg::dds_::OccupancyGrid_, nav_msgs::msg::dds_::OccupancyGrid_PubSubType>
+    kRosMap{topics::kRosMap};
+inline const Topic<tf2_msgs::msg::dds_::TFMessage_, tf2_msgs::msg::dds_::TFMessage_PubSubType> kRosTf{
+    topics::kRosTf};
+inline const Topic<geometry_msgs::msg::dds_::PoseStamped_, geometry_msgs::msg::dds_::PoseStamped_PubSubType>
+    kRosGoalPose{topics::kRosGoalPose};
+inline const Topic<geometry_msgs::msg::dds_::PoseWithCovarianceStamped_,
+                   geometry_msgs::msg::dds_::PoseWithCovarianceStamped_PubSubType>
+    kRosInitialPose{topics::kRosInitialPose};
 
 }  // namespace slam::dds

@@ -6,6 +6,7 @@
 #include <slam/cyclone/mqtt.h>
 #include <slam/cyclone/nav.h>
 #include <slam/cyclone/robot.h>
+#include <slam/cyclone/ros2.h>
 #include <slam/cyclone/sim.h>
 #include <slam/cyclone/system.h>
 
@@ -53,6 +54,10 @@ const EchoTopic kTopics[] = {
     {&slam_Heartbeat_desc, slam::topics::kHeartbeat},
     {&slam_Alert_desc, slam::topics::kAlert},
     {&slam_ForgetRobot_desc, slam::topics::kForgetRobot},
+    {&nav_msgs_msg_dds__OccupancyGrid__desc, slam::topics::kRosMap},
+    {&tf2_msgs_msg_dds__TFMessage__desc, slam::topics::kRosTf},
+    {&geometry_msgs_msg_dds__PoseStamped__desc, slam::topics::kRosGoalPose},
+    {&geometry_msgs_msg_dds__PoseWithCovarianceStamped__desc, slam::topics::kRosInitialPose},
 };
 
 volatile std::sig_atomic_t g_stop = 0;

@@ -346,4 +346,74 @@ ForgetRobot sample_forget_robot() {
   return s;
 }
 
+namespace gm = geometry_msgs::msg::dds_;
+
+namespace {
+
+std_msgs::msg::dds_::Header_ ros_header(int32_t sec, const std::string& frame) {
+  std_msgs::msg::dds_::Header_ h;
+  h.stamp().sec(sec);
+  h.stamp().nanosec(999'999'999u);
+  h.frame_id(frame);
+  return h;
+}
+
+gm::Pose_ ros_pose(double x, double y, double z) {
+  gm::Pose_ p;
+  p.position().x(x);
+  p.position().y(y);
+  p.position().z(z);
+  p.orientation().x(0.1);
+  p.orientation().y(-0.2);
+  p.orientation().z(0.3);
+  p.orientation().w(0.927);
+  return p;
+}
+
+}  // namespace
+
+nav_msgs::msg::dds_::OccupancyGrid_ sample_ros_occupancy_grid() {
+  nav_msgs::msg::dds_::OccupancyGrid_ s;
+  s.header(ros_header(-5, "map"));
+  s.info().map_load_time().sec(1'700'000'000);
+  s.info().map_load_time().nanosec(7u);
+  s.info().resolution(0.05f);
+  s.info().width(97);  // odd sizes: a misaligned field after the cells shows
+  s.info().height(31);
+  s.info().origin(ros_pose(-12.5, 3.25, 0.0));
+  for (uint32_t i = 0; i < 97u * 31u; ++i)
+    s.data().push_back(static_cast<int8_t>(i % 3 == 0 ? -1 : i % 3 == 1 ? 0 : 100));
+  return s;
+}
+
+tf2_msgs::msg::dds_::TFMessage_ sample_ros_tf_message() {
+  tf2_msgs::msg::dds_::TFMessage_ s;
+  for (int i = 0; i < 5; ++i) {
+    gm::TransformStamped_ t;
+    t.header(ros_header(i, "map"));
+    t.child_frame_id("robot-" + std::to_string(i) + "-ä");
+    t.transform().translation().x(i * 1.5);
+    t.transform().translation().y(-i * 0.25);
+    t.transform().translation().z(0.125);
+    t.transform().rotation(ros_pose(0, 0, 0).orientation());
+    s.transforms().push_back(t);
+  }
+  return s;
+}
+
+gm::PoseStamped_ sample_ros_pose_stamped() {
+  gm::PoseStamped_ s;
+  s.header(ros_header(42, "map"));
+  s.pose(ros_pose(4.5, -1.75, 0.0));
+  return s;
+}
+
+gm::PoseWithCovarianceStamped_ sample_ros_pose_with_covariance_stamped() {
+  gm::PoseWithCovarianceStamped_ s;
+  s.header(ros_header(43, "map"));
+  s.pose().pose(ros_pose(-0.5, 2.0, 0.0));
+  for (size_t i = 0; i < 36; ++i) s.pose().covariance()[i] = 0.01 * static_cast<double>(i) - 0.1;
+  return s;
+}
+
 }  // namespace slam::interop

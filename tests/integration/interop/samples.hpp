@@ -32,5 +32,9 @@ SimGroundTruth sample_sim_ground_truth();
 Heartbeat sample_heartbeat();
 Alert sample_alert();
 ForgetRobot sample_forget_robot();
+nav_msgs::msg::dds_::OccupancyGrid_ sample_ros_occupancy_grid();
+tf2_msgs::msg::dds_::TFMessage_ sample_ros_tf_message();
+geometry_msgs::msg::dds_::PoseStamped_ sample_ros_pose_stamped();
+geometry_msgs::msg::dds_::PoseWithCovarianceStamped_ sample_ros_pose_with_covariance_stamped();
 
 }  // namespace slam::interop

@@ -27,5 +27,20 @@ TEST(BridgeOptions, DefaultsAreValidAndABadPeriodIsNamed) {
   EXPECT_NE(s.message().find("periods-map-full-s"), std::string::npos) << s.message();
 }
 
+TEST(BridgeOptions, TheRosFaceIsOnUnlessTurnedOffAndNamesItsRobot) {
+  BridgeOptions defaults;
+  EXPECT_TRUE(defaults.ros);
+  EXPECT_TRUE(defaults.ros_robot.empty());
+  CLI::App app;
+  BridgeOptions o;
+  add_bridge_options(app, o);
+  app.parse("--no-ros --ros-robot r1", false);
+  EXPECT_FALSE(o.ros);
+  EXPECT_EQ(o.ros_robot, "r1");
+  EXPECT_TRUE(validate(o));
+  o.ros_robot = std::string(65, 'r');
+  EXPECT_FALSE(validate(o));
+}
+
 }  // namespace
 }  // namespace slam::bridge

@@ -5,6 +5,9 @@
 #include <nlohmann/json.hpp>
 #include <vector>
 
+#include "bridge/core/ros_cdr.hpp"
+#include "common/core/cell_class.hpp"
+
 namespace slam::bridge {
 namespace {
 
@@ -114,6 +117,37 @@ TEST_F(FoxgloveFaceTest, UnsubscribedChannelsStopAndDisconnectedClientsGetNothin
   EXPECT_TRUE(sinks_.payloads(5).empty());
   face_.disconnect(1);
   EXPECT_EQ(face_.clients(), 0u);
+}
+
+TEST_F(FoxgloveFaceTest, TheRosMapChannelIsCdrOfTheWholeGridWithItsRos2msgDefinition) {
+  const auto& table = channel_table();
+  const auto ros = std::find_if(table.begin(), table.end(), [](const foxglove::ChannelInfo& c) {
+    return c.id == static_cast<uint32_t>(Channel::RosMap);
+  });
+  ASSERT_NE(ros, table.end());
+  EXPECT_EQ(ros->encoding, "cdr");
+  EXPECT_EQ(ros->schema_encoding, "ros2msg");
+  EXPECT_EQ(ros->schema_name, "nav_msgs/msg/OccupancyGrid");
+  EXPECT_EQ(ros->schema, kOccupancyGridDefinition);
+
+  face_.connect(1);
+  subscribe(1, 3, Channel::RosMap);
+  GridSnapshotInput s{1, 1, 0, GridGeometry{{0, 0}, 0.1, 4, 2}, std::vector<uint8_t>(8, kCellOccupied)};
+  ASSERT_TRUE(map_.ingest(std::move(s)));
+  face_.publish(fleet_, map_, 0, 0);
+  ASSERT_EQ(sinks_.payloads(3).size(), 1u);
+  EXPECT_EQ(sinks_.payloads(3)[0], occupancy_grid_cdr(occupancy_grid(map_.geometry(), map_.cells(), 0)));
+}
+
+TEST_F(FoxgloveFaceTest, SendsAlertsWhenOneChanged) {
+  face_.connect(1);
+  subscribe(1, 4, Channel::Alerts);
+  fleet_.ingest(AlertInput{"offline/r1", "robot_offline", "r1", true, 0, 0, "r1 is offline", "p1"});
+  face_.publish(fleet_, map_, 0, 0);
+  ASSERT_EQ(sinks_.payloads(4).size(), 1u);
+  EXPECT_EQ(json::parse(sinks_.payloads(4)[0])["alerts"][0]["alert_id"], "offline/r1");
+  face_.publish(fleet_, map_, 10 * kSecond, 0);  // nothing changed
+  EXPECT_EQ(sinks_.payloads(4).size(), 1u);
 }
 
 TEST_F(FoxgloveFaceTest, SendsTheWholeMapThenOnlyTheChangedRegion) {

@@ -94,5 +94,25 @@ TEST(FoxgloveMessages, HealthSaysHowLongAgoEachServiceWasHeard) {
   EXPECT_DOUBLE_EQ(j["services"][0]["last_heard_s"].get<double>(), 2.5);
 }
 
+TEST(FoxgloveMessages, AlertsListEachAlertsLatestState) {
+  FleetModel fleet(1);
+  fleet.ingest(AlertInput{"offline/r1", "robot_offline", "r1", true, 2'000'000'000, 2'000'000'000,
+                          "r1 is offline", "p1"});
+  fleet.ingest(AlertInput{"offline/r1", "robot_offline", "r1", false, 2'000'000'000, 5'000'000'000,
+                          "r1 is back", "p1"});
+  fleet.ingest(
+      AlertInput{"battery/r2", "battery_low", "r2", true, 3'000'000'000, 3'000'000'000, "r2 at 9 %", "p1"});
+  const json j = json::parse(alerts_message(fleet, 6'000'000'000));
+  ASSERT_EQ(j["alerts"].size(), 2u);
+  EXPECT_EQ(j["alerts"][0]["alert_id"], "battery/r2");
+  EXPECT_EQ(j["alerts"][0]["active"], true);
+  EXPECT_EQ(j["alerts"][1]["alert_id"], "offline/r1");
+  EXPECT_EQ(j["alerts"][1]["active"], false);
+  EXPECT_EQ(j["alerts"][1]["message"], "r1 is back");
+  EXPECT_EQ(j["alerts"][1]["raised"]["sec"], 2);
+  EXPECT_EQ(j["alerts"][1]["changed"]["sec"], 5);
+  EXPECT_EQ(j["timestamp"]["sec"], 6);
+}
+
 }  // namespace
 }  // namespace slam::bridge
