@@ -110,6 +110,7 @@ class PlannerShareTest : public ::testing::Test {
       RobotState st;
       st.robot_id(robot_id(i));
       st.presence(PRESENCE_ONLINE);
+      st.battery(-1.0f);  // unknown, as a v1 robot's: 0 would be an empty battery (sent home)
       st.pose().x(1.0);
       st.pose().y(1.0 + 0.5 * i);
       ASSERT_TRUE(states->write(st));

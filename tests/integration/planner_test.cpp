@@ -144,6 +144,7 @@ class PlannerTest : public ::testing::Test {
     RobotState s;
     s.robot_id(id);
     s.presence(PRESENCE_ONLINE);
+    s.battery(-1.0f);  // unknown, as a v1 robot's: 0 would be an empty battery (sent home)
     s.pose().x(x);
     s.pose().y(y);
     states_->write(s);

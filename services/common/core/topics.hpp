@@ -1,7 +1,9 @@
 #pragma once
 // The one table of DDS topic names and their QoS, vendor-neutral: the Fast DDS edge (dds.hpp)
 // and the Cyclone edge (simulator, interop test) both translate QosSpec from here.
-// docs/topics.md mirrors this table for readers.
+// docs/topics.md mirrors this table for readers. A new topic also goes into dds::all_topics()
+// (fastdds/any_topic.cpp: slamctl record and replay) and gets a line in
+// compose/security/permissions.rules (SecurityRules checks both agree).
 #include <cstdint>
 
 namespace slam::topics {

@@ -65,7 +65,8 @@ const std::vector<AnyTopic>& all_topics() {
       any(kRobotPath),        any(kWaypointCommand), any(kPathRequest),   any(kPathReply),
       any(kMqttTraffic),      any(kMqttRequest),     any(kMqttReply),     any(kMqttSubscriptions),
       any(kSimControl),       any(kSimReply),        any(kSimWorld),      any(kSimGroundTruth),
-      any(kHeartbeat),
+      any(kHeartbeat),        any(kAlert),           any(kForgetRobot),   any(kNavMission),
+      any(kRosMap),           any(kRosTf),           any(kRosGoalPose),   any(kRosInitialPose),
   };
   return table;
 }
