@@ -32,18 +32,6 @@ Status validate(const AlertConfig& c) {
   return Status::ok();
 }
 
-const char* alert_kind_name(AlertKind kind) {
-  switch (kind) {
-    case AlertKind::RobotOffline:
-      return "robot offline";
-    case AlertKind::ServiceSilent:
-      return "service silent";
-    case AlertKind::BatteryLow:
-      return "battery low";
-  }
-  return "alert";
-}
-
 AlertMonitor::AlertMonitor(AlertConfig config) : config_(config) {}
 
 void AlertMonitor::robot(const std::string& robot_id, bool online, float battery) {

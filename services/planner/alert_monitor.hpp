@@ -13,11 +13,12 @@
 #include <string>
 #include <vector>
 
+#include "common/core/alert_kind.hpp"
 #include "common/core/result.hpp"
 
 namespace slam::planner {
 
-enum class AlertKind : std::uint8_t { RobotOffline, ServiceSilent, BatteryLow };  // idl order
+using AlertKind = alerts::Kind;
 
 struct AlertConfig {
   // A robot reporting a battery below this fraction (0..1) is alerted and sent home; 0 disables.
@@ -98,8 +99,5 @@ class AlertMonitor {
   std::map<std::string, ServiceFacts> services_;  // by SERVICE/INSTANCE
   std::map<std::string, AlertChange> active_;
 };
-
-// "robot offline", "service silent", "battery low".
-const char* alert_kind_name(AlertKind kind);
 
 }  // namespace slam::planner

@@ -7,6 +7,8 @@
 #include <numbers>
 #include <utility>
 
+#include "common/core/alert_kind.hpp"
+
 namespace slam::ctl {
 namespace {
 
@@ -267,29 +269,17 @@ std::string robots_json(const std::vector<RobotSeen>& robots, int64_t now_ns) {
   return out.dump(2) + "\n";
 }
 
-std::string alert_kind_name(AlertKind kind) {
-  switch (kind) {
-    case ALERT_ROBOT_OFFLINE:
-      return "robot offline";
-    case ALERT_SERVICE_SILENT:
-      return "service silent";
-    case ALERT_BATTERY_LOW:
-      return "battery low";
-  }
-  return "kind " + std::to_string(static_cast<int>(kind));
-}
-
 std::string format_alert(const Alert& a, int64_t now_ns) {
   return fmt("%-7s %-14s %-32s raised %6.1f s ago by %s: %s\n", a.active() ? "ACTIVE" : "cleared",
-             alert_kind_name(a.kind()).c_str(), a.subject().c_str(), age_s(a.raised_ns(), now_ns),
-             a.raised_by().c_str(), a.message().c_str());
+             alerts::kind_name(static_cast<alerts::Kind>(a.kind())), a.subject().c_str(),
+             age_s(a.raised_ns(), now_ns), a.raised_by().c_str(), a.message().c_str());
 }
 
 std::string alerts_json(const std::vector<Alert>& alerts, int64_t now_ns) {
   nlohmann::json out = nlohmann::json::array();
   for (const Alert& a : alerts) {
     out.push_back({{"id", a.alert_id().to_string()},
-                   {"kind", alert_kind_name(a.kind())},
+                   {"kind", alerts::kind_name(static_cast<alerts::Kind>(a.kind()))},
                    {"subject", a.subject().to_string()},
                    {"active", a.active()},
                    {"raised_ns", a.raised_ns()},

@@ -46,7 +46,6 @@ struct RobotSeen {
 };
 std::string robots_json(const std::vector<RobotSeen>& robots, int64_t now_ns);
 
-std::string alert_kind_name(AlertKind kind);  // "robot offline", "service silent", "battery low"
 // One line: ACTIVE/cleared, kind, subject, age, who raised it, the message.
 std::string format_alert(const Alert& a, int64_t now_ns);
 std::string alerts_json(const std::vector<Alert>& alerts, int64_t now_ns);

@@ -4,6 +4,7 @@
 #include <spdlog/spdlog.h>
 #include <unistd.h>
 
+#include "common/core/alert_kind.hpp"
 #include "common/core/clock.hpp"
 #include "common/core/shutdown.hpp"
 
@@ -91,17 +92,6 @@ const char* state_name(ServiceState s) {
       return "stopping";
     default:
       return "starting";
-  }
-}
-
-const char* alert_kind_name(AlertKind k) {
-  switch (k) {
-    case ALERT_ROBOT_OFFLINE:
-      return "robot_offline";
-    case ALERT_SERVICE_SILENT:
-      return "service_silent";
-    default:
-      return "battery_low";
   }
 }
 
@@ -204,8 +194,9 @@ Status BridgeNode::create_readers() {
   }));
   SLAM_TRY(make(dds::kAlert, alert_reader_, [&in](const Alert& a) {
     queue(in, in.alerts,
-          AlertInput{a.alert_id().to_string(), alert_kind_name(a.kind()), a.subject().to_string(), a.active(),
-                     a.raised_ns(), a.stamp_ns(), a.message().to_string(), a.raised_by().to_string()});
+          AlertInput{a.alert_id().to_string(), alerts::kind_id(static_cast<alerts::Kind>(a.kind())),
+                     a.subject().to_string(), a.active(), a.raised_ns(), a.stamp_ns(),
+                     a.message().to_string(), a.raised_by().to_string()});
   }));
   SLAM_TRY(make(dds::kGridSnapshot, snapshot_reader_, [&in](const GridSnapshot& s) {
     const GridInfo& info = s.info();

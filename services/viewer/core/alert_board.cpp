@@ -28,7 +28,7 @@ std::size_t AlertBoard::active_count() const {
 std::string describe(const AlertData& a, int64_t now_wall_ns) {
   char age[32];
   std::snprintf(age, sizeof age, "%.0f s ago", static_cast<double>(now_wall_ns - a.raised_ns) * 1e-9);
-  return std::string(alert_kind_name(a.kind)) + "  " + a.subject + "  " + age + ": " + a.message;
+  return std::string(alerts::kind_name(a.kind)) + "  " + a.subject + "  " + age + ": " + a.message;
 }
 
 }  // namespace slam::viewer

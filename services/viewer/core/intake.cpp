@@ -55,18 +55,6 @@ const char* correction_source_name(CorrectionSource s) {
   return "?";
 }
 
-const char* alert_kind_name(AlertKind k) {
-  switch (k) {
-    case AlertKind::RobotOffline:
-      return "robot offline";
-    case AlertKind::ServiceSilent:
-      return "service silent";
-    case AlertKind::BatteryLow:
-      return "battery low";
-  }
-  return "?";
-}
-
 const char* mission_status_name(MissionStatus s) {
   switch (s) {
     case MissionStatus::Active:

@@ -7,6 +7,7 @@
 #include <utility>
 #include <vector>
 
+#include "common/core/alert_kind.hpp"
 #include "viewer/core/view_transform.hpp"
 
 namespace slam::viewer {
@@ -15,13 +16,12 @@ enum class GoalMode : uint8_t { Idle, Direct, Planned, Square, Explore, Home, St
 enum class GoalStatus : uint8_t { None, Active, Reached, Failed };
 enum class ServiceState : uint8_t { Starting, Running, Stopping };
 enum class CorrectionSource : uint8_t { Identity, Match, Loop, Operator, Restored };
-enum class AlertKind : uint8_t { RobotOffline, ServiceSilent, BatteryLow };
+using AlertKind = alerts::Kind;
 enum class MissionStatus : uint8_t { Active, Done, Failed, Cancelled };
 
 const char* goal_mode_name(GoalMode m);
 const char* goal_status_name(GoalStatus s);
 const char* correction_source_name(CorrectionSource s);
-const char* alert_kind_name(AlertKind k);
 const char* mission_status_name(MissionStatus s);
 
 struct GridInfoData {
