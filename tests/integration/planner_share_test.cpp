@@ -38,11 +38,16 @@ constexpr auto kPeriod = 1s;  // commands of one robot within a period must come
 std::string robot_id(int i) {
   return "ps-" + std::to_string(i);
 }
+// Robot i stands in its own lane, 1 m from the next: far enough apart that fleet coordination
+// never holds one robot for another.
+double lane_y(int i) {
+  return 1.0 + i;
+}
 // Each robot's own Direct goal: it stands still, so the target is resent as long as the goal runs.
 Point2 target_of(int i) {
   Point2 p;
   p.x(8.0);
-  p.y(1.0 + 0.5 * i);
+  p.y(lane_y(i));
   return p;
 }
 
@@ -101,10 +106,10 @@ class PlannerShareTest : public ::testing::Test {
     GridSnapshot s;
     s.layout_id(1);
     s.version(1);
-    s.info().width(100);
-    s.info().height(100);
+    s.info().width(200);
+    s.info().height(200);
     s.info().resolution(0.1);
-    s.cells(std::vector<uint8_t>(100 * 100, 1));  // all free
+    s.cells(std::vector<uint8_t>(200 * 200, 1));  // all free, 20 x 20 m
     ASSERT_TRUE(snapshots->write(s));
     for (int i = 0; i < kRobots; ++i) {
       RobotState st;
@@ -112,7 +117,7 @@ class PlannerShareTest : public ::testing::Test {
       st.presence(PRESENCE_ONLINE);
       st.battery(-1.0f);  // unknown, as a v1 robot's: 0 would be an empty battery (sent home)
       st.pose().x(1.0);
-      st.pose().y(1.0 + 0.5 * i);
+      st.pose().y(lane_y(i));
       ASSERT_TRUE(states->write(st));
       NavGoal g;
       g.robot_id(robot_id(i));
