@@ -307,6 +307,14 @@ TEST_F(GatewayTest, MalformedFloodLeavesAValidRobotUnaffected) {
   ASSERT_EQ(attacker.connect(), 0);
   MqttTestClient robot(port, "good");
   ASSERT_EQ(robot.connect(), 0);
+  // The gateway reports its connection before the broker has acknowledged its subscriptions: the
+  // flood starts once a robot message gets through, or the first good messages could go nowhere.
+  ASSERT_TRUE(wait_until(
+      [&] {
+        robot.publish("v1/robot/warmup/adv", hex_bytes("64000000"));
+        return !probe.observations("warmup").empty();
+      },
+      10s, 250ms));
 
   const std::vector<std::pair<std::string, std::string>> bad{
       {"v1/robot/bad/adv", "abc"},                       // bad_length
