@@ -9,24 +9,9 @@
 #include <websocketpp/config/asio_no_tls.hpp>
 #include <websocketpp/server.hpp>
 
+#include "common/core/guarded_callback.hpp"
+
 namespace slam::bridge {
-
-namespace {
-
-// common/core/guarded_callback.hpp needs C++20; this is its C++17 counterpart for the I/O thread's
-// handlers: nothing may unwind into asio.
-template <class F>
-void guarded(const char* where, F&& fn) noexcept {
-  try {
-    fn();
-  } catch (const std::exception& e) {
-    spdlog::error("{} callback failed: {}", where, e.what());
-  } catch (...) {
-    spdlog::error("{} callback failed with a non-standard exception", where);
-  }
-}
-
-}  // namespace
 
 using Server = websocketpp::server<websocketpp::config::asio>;
 using Handle = websocketpp::connection_hdl;
@@ -112,7 +97,7 @@ Result<std::unique_ptr<WsServer>> WsServer::start(const std::string& host, uint1
   // Only clients that speak the protocol get in; the subprotocol is echoed as the spec requires.
   s.set_validate_handler([p](Handle hdl) {
     bool accept = false;
-    guarded("websocket validate", [&] {
+    guarded_callback("websocket validate", [&] {
       auto con = p->server.get_con_from_hdl(hdl);
       for (const std::string& offered : con->get_requested_subprotocols())
         if (offered == p->subprotocol) {
@@ -124,15 +109,17 @@ Result<std::unique_ptr<WsServer>> WsServer::start(const std::string& host, uint1
     });
     return accept;
   });
-  s.set_open_handler(
-      [p](Handle hdl) { guarded("websocket open", [&] { p->push(ClientEvent::Kind::Connected, hdl); }); });
-  s.set_close_handler([p](Handle hdl) {
-    guarded("websocket close", [&] { p->push(ClientEvent::Kind::Disconnected, hdl); });
+  s.set_open_handler([p](Handle hdl) {
+    guarded_callback("websocket open", [&] { p->push(ClientEvent::Kind::Connected, hdl); });
   });
-  s.set_fail_handler(
-      [p](Handle hdl) { guarded("websocket fail", [&] { p->push(ClientEvent::Kind::Disconnected, hdl); }); });
+  s.set_close_handler([p](Handle hdl) {
+    guarded_callback("websocket close", [&] { p->push(ClientEvent::Kind::Disconnected, hdl); });
+  });
+  s.set_fail_handler([p](Handle hdl) {
+    guarded_callback("websocket fail", [&] { p->push(ClientEvent::Kind::Disconnected, hdl); });
+  });
   s.set_message_handler([p](Handle hdl, Server::message_ptr msg) {
-    guarded("websocket message", [&] {
+    guarded_callback("websocket message", [&] {
       const bool text = msg->get_opcode() == websocketpp::frame::opcode::text;
       p->push(text ? ClientEvent::Kind::Text : ClientEvent::Kind::Binary, hdl,
               std::move(msg->get_raw_payload()));
@@ -145,7 +132,7 @@ Result<std::unique_ptr<WsServer>> WsServer::start(const std::string& host, uint1
   if (ec) return Error{"cannot listen on " + host + ":" + std::to_string(port) + ": " + ec.message()};
   s.start_accept(ec);
   if (ec) return Error{"websocket accept: " + ec.message()};
-  p->io = std::thread([p] { guarded("websocket I/O", [&] { p->server.run(); }); });
+  p->io = std::thread([p] { guarded_callback("websocket I/O", [&] { p->server.run(); }); });
   return std::unique_ptr<WsServer>(new WsServer(std::move(impl)));
 }
 

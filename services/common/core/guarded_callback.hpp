@@ -27,9 +27,10 @@ inline void log_callback_failure(const char* where, const char* what) noexcept {
 
 // Runs `fn()` and returns its result; when it throws, logs "<where> callback failed: ..." and
 // returns `safe` instead.
-template <class F, class R = std::invoke_result_t<F&>>
-requires(!std::is_void_v<R>) R guarded_callback(const char* where, R safe, F&& fn)
-noexcept {
+// (enable_if rather than requires: the bridge's WebSocket edge includes this as C++17, since
+// websocketpp 0.8 does not build as C++20.)
+template <class F, class R = std::invoke_result_t<F&>, std::enable_if_t<!std::is_void_v<R>, int> = 0>
+R guarded_callback(const char* where, R safe, F&& fn) noexcept {
   try {
     return fn();
   } catch (const std::exception& e) {
@@ -41,8 +42,7 @@ noexcept {
 }
 
 // Runs `fn()`; when it throws, logs "<where> callback failed: ..." and returns normally.
-template <class F>
-requires std::is_void_v<std::invoke_result_t<F&>>
+template <class F, std::enable_if_t<std::is_void_v<std::invoke_result_t<F&>>, int> = 0>
 void guarded_callback(const char* where, F&& fn) noexcept {
   try {
     fn();
