@@ -11,16 +11,10 @@
 #include "common/core/shutdown.hpp"
 #include "common/fastdds/any_topic.hpp"
 #include "slamctl/recording.hpp"
+#include "slamctl/session_io.hpp"
 
 namespace slam::ctl {
 namespace {
-
-using namespace std::chrono_literals;
-
-int fail(const std::string& why) {
-  report_error("slamctl", why);
-  return kExitFailure;
-}
 
 std::vector<std::string> system_topics() {
   std::vector<std::string> names;
@@ -50,10 +44,7 @@ struct RecordArgs {
 
 int cmd_record(Session& s, const RecordArgs& a) {
   auto selected = select_topics(a.topics, system_topics());
-  if (!selected) {
-    report_error("slamctl", selected.message());
-    return kExitUsage;
-  }
+  if (!selected) return usage_error(selected.message());
   auto recorder = SessionRecorder::create(a.file);
   if (!recorder) return fail(recorder.message());
   SessionRecorder& rec = **recorder;
@@ -104,10 +95,7 @@ struct ReplayArgs {
 
 int cmd_replay(Session& s, const ReplayArgs& a) {
   auto selected = select_topics(a.topics, system_topics());
-  if (!selected) {
-    report_error("slamctl", selected.message());
-    return kExitUsage;
-  }
+  if (!selected) return usage_error(selected.message());
   auto file = mcap::MappedFile::open(a.file);
   if (!file) return fail(file.message());
   auto recording = mcap::parse((*file)->bytes());
