@@ -17,7 +17,6 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
-#include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <memory>
@@ -345,46 +344,16 @@ BENCHMARK(BM_GatewayLatency)->Iterations(1)->Unit(benchmark::kMillisecond)->UseR
 
 }  // namespace
 
-// Loopback UDP drops bursts of small RTPS datagrams once the kernel's default 208 KB socket
-// buffer fills (each datagram is charged ~2 KB), and reliable recovery then stalls the stream.
-// The bench's processes (its DDS reader and the gateway it starts) use 4 MB buffers through the
-// standard Fast DDS profile variable; SLAM_BENCH_DEFAULT_BUFFERS=1 measures the defaults instead.
-// Returns the profile file written, empty when none was.
-std::string use_large_socket_buffers() {
-  if (std::getenv("SLAM_BENCH_DEFAULT_BUFFERS") || std::getenv("FASTRTPS_DEFAULT_PROFILES_FILE")) return {};
-  const std::string path = "/tmp/bench_gateway_fastdds_" + std::to_string(::getpid()) + ".xml";
-  std::ofstream(path) << R"(<?xml version="1.0" encoding="UTF-8" ?>
-<dds xmlns="http://www.eprosima.com/XMLSchemas/fastRTPS_Profiles">
-  <profiles>
-    <transport_descriptors>
-      <transport_descriptor>
-        <transport_id>udp_large_buffers</transport_id>
-        <type>UDPv4</type>
-        <sendBufferSize>4194304</sendBufferSize>
-        <receiveBufferSize>4194304</receiveBufferSize>
-      </transport_descriptor>
-    </transport_descriptors>
-    <participant profile_name="bench_default" is_default_profile="true">
-      <rtps>
-        <userTransports><transport_id>udp_large_buffers</transport_id></userTransports>
-        <useBuiltinTransports>false</useBuiltinTransports>
-      </rtps>
-    </participant>
-  </profiles>
-</dds>
-)";
-  ::setenv("FASTRTPS_DEFAULT_PROFILES_FILE", path.c_str(), 1);
-  return path;
-}
-
+// No Fast DDS XML profile here: the bench's participant and the gateway it starts get the services'
+// own transport (dds::Participant: UDPv4 only, 4 MB socket buffers), the one deployments run. A
+// profile given through FASTRTPS_DEFAULT_PROFILES_FILE replaces it: the one this bench once wrote
+// for larger buffers left Fast DDS's shared-memory transport in use, a path no service takes.
 int main(int argc, char** argv) {
-  const std::string profile = use_large_socket_buffers();
   // Default timer slack (50 us) would stretch the 100 us pacing sleeps of the latency benchmark.
   ::prctl(PR_SET_TIMERSLACK, 1UL, 0UL, 0UL, 0UL);
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();
-  if (!profile.empty()) std::remove(profile.c_str());  // every process that reads it has started
   return 0;
 }

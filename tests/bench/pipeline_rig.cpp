@@ -231,9 +231,14 @@ Status PipelineRig::wait_until_running(std::chrono::seconds timeout) {
     const CounterSample s = latest(service);
     missing += fmt::format(" {}: {}", service, s.stamp_ns > 0 ? "heartbeat seen" : "no heartbeat");
   }
+  // Where the stream stops (broker, gateway or mapper) and what the services said, e.g. a DDS
+  // Security error on a secure domain.
   return Error{fmt::format(
-      "the pipeline did not start within {} s (simulator robots {}, mapper observations {});{}",
-      timeout.count(), latest("simulator").get("robots"), latest("mapper").get("observations"), missing)};
+      "the pipeline did not start within {} s (simulator robots {}, gateway messages in {}, gateway "
+      "observations {}, mapper observations {});{}\ngateway log:\n{}\nmapper log:\n{}",
+      timeout.count(), latest("simulator").get("robots"), latest("gateway").get("messages_in"),
+      latest("gateway").get("observations"), latest("mapper").get("observations"), missing,
+      log_tail("gateway"), log_tail("mapper"))};
 }
 
 Status PipelineRig::check_running() {
