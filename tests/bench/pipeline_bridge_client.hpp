@@ -23,11 +23,11 @@ class BridgeClient {
   BridgeClient& operator=(const BridgeClient&) = delete;
 
   struct Totals {
-    uint32_t channels = 0;       // channels advertised (and subscribed)
-    uint64_t messages = 0;       // binary message frames received
-    uint64_t bytes = 0;          // their bytes
-    uint64_t text_frames = 0;    // JSON ops received (serverInfo, advertise, status, ...)
-    bool open = false;           // the connection is open
+    uint32_t channels = 0;     // channels advertised (and subscribed)
+    uint64_t messages = 0;     // binary message frames received
+    uint64_t bytes = 0;        // their bytes
+    uint64_t text_frames = 0;  // JSON ops received (serverInfo, advertise, status, ...)
+    bool open = false;         // the connection is open
   };
   Totals totals() const;
 
