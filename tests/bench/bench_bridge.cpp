@@ -1,7 +1,8 @@
 // The bridge core's cost per second of fleet input with one Foxglove client subscribed to every
 // channel (target: <= 10 % of a core at 1000 robots x 10 Hz). One iteration is one simulated second:
 // 1000 robots each send 10 states and 10 observations of 16 points, the mapper 10 tile patches
-// (40 changed 32 x 32 tiles each) of a 1024 x 1024 grid, 1000 path and 1000 correction updates,
+// (40 changed 32 x 32 tiles each, scattered over the grid as an exploring fleet's are) of a
+// 1024 x 1024 grid, 1000 path and 1000 correction updates,
 // 8 heartbeats; the service loop runs every 20 ms (50 times) and publishes what is due at the
 // default periods. The frames are built as for a real client and counted, not sent: the
 // WebSocket write and the DDS sample conversion are not in the figure.
@@ -93,8 +94,11 @@ void BM_BridgeOneSecondOfFleetInput(benchmark::State& state) {
       if (loop % (kLoopsPerSecond / kRateHz) == 0) {
         patch.version = ++version;
         patch.tiles.clear();
-        const uint32_t first = static_cast<uint32_t>(rng()) % (tiles_total - kTilesPerPatch);
-        for (int t = 0; t < kTilesPerPatch; ++t) patch.tiles.push_back(first + static_cast<uint32_t>(t));
+        for (int t = 0; t < kTilesPerPatch; ++t)
+          patch.tiles.push_back(static_cast<uint32_t>(rng()) % tiles_total);
+        std::sort(patch.tiles.begin(), patch.tiles.end());
+        patch.tiles.erase(std::unique(patch.tiles.begin(), patch.tiles.end()), patch.tiles.end());
+        patch.data.resize(patch.tiles.size() * 32 * 32, 2);
         if (!map.ingest(patch)) state.SkipWithError("patch refused");
       }
       if (loop % (kLoopsPerSecond / 8) == 0)

@@ -13,6 +13,8 @@
 // It starts mosquitto (free port) and every service (leased DDS domain) itself and stops them.
 // Run: build/bin/bench_pipeline --benchmark_format=json
 //   SLAM_BENCH_PIPELINE_SECONDS=N (window, default 30), SLAM_BENCH_PIPELINE_ROBOTS=N (default 1000)
+//   SLAM_BENCH_PIPELINE_BRIDGE=1: slam-bridge runs too, with one Foxglove WebSocket client
+//   subscribed to every channel (pipeline_bridge_client.hpp); its CPU is cpu_bridge_pct.
 #include <benchmark/benchmark.h>
 #include <fmt/format.h>
 #include <unistd.h>
@@ -28,6 +30,7 @@
 
 #include "common/core/clock.hpp"
 #include "mqtt_test_client.hpp"
+#include "pipeline_bridge_client.hpp"
 #include "pipeline_probe.hpp"
 #include "pipeline_rig.hpp"
 
@@ -70,14 +73,19 @@ struct WindowEdge {
   std::map<std::string, CounterSample> counters;  // by service
   std::map<std::string, double> cpu_s;            // by process, plus "bench" (this process)
   MachineCpu machine;
-  uint64_t patch_bytes = 0;     // GridTiles bytes (CDR) this process received so far
-  uint64_t patch_cells = 0;     // cells in those tiles (the raw size, before run-length coding)
-  int64_t broker_dropped = -1;  // mosquitto's dropped count so far (-1: not reported yet)
+  uint64_t patch_bytes = 0;            // GridTiles bytes (CDR) this process received so far
+  uint64_t patch_cells = 0;            // cells in those tiles (the raw size, before run-length coding)
+  int64_t broker_dropped = -1;         // mosquitto's dropped count so far (-1: not reported yet)
+  BridgeClient::Totals bridge_client;  // what the bench's Foxglove client received so far
 };
 
 WindowEdge sample_edge(const PipelineRig& rig, const ProbeSet& probes,
-                       const testkit::MqttTestClient& broker_sys) {
+                       const testkit::MqttTestClient& broker_sys, const BridgeClient* bridge_client) {
   WindowEdge e;
+  if (bridge_client) {
+    e.bridge_client = bridge_client->totals();
+    e.counters["bridge"] = rig.latest("bridge");
+  }
   e.broker_dropped = broker_dropped(broker_sys);
   e.patch_bytes = probes.patch_bytes();
   e.patch_cells = probes.patch_cells();
@@ -147,6 +155,26 @@ bool g_failed = false;  // main's exit code: an error in the run fails the progr
 void fail(benchmark::State& state, const std::string& message) {
   g_failed = true;
   state.SkipWithError(message.c_str());
+}
+
+// The bridge's figures (SLAM_BENCH_PIPELINE_BRIDGE=1): its samples taken from DDS, what its one
+// client received, and what it dropped for that client. Its CPU is reported with the others.
+void report_bridge(benchmark::State& state, WindowEdge& start, WindowEdge& end, double window_s) {
+  auto& c = state.counters;
+  const BridgeClient::Totals &from = start.bridge_client, &to = end.bridge_client;
+  c["bridge_samples_per_s"] =
+      rate_between(start.counters["bridge"], end.counters["bridge"], "samples_received");
+  c["bridge_dropped"] = static_cast<double>(end.counters["bridge"].get("messages_dropped") -
+                                            start.counters["bridge"].get("messages_dropped"));
+  c["bridge_client_channels"] = to.channels;
+  c["bridge_client_msgs_per_s"] = static_cast<double>(to.messages - from.messages) / window_s;
+  c["bridge_client_mb_per_s"] = static_cast<double>(to.bytes - from.bytes) / 1e6 / window_s;
+  std::fprintf(stderr,
+               "  bridge: %.1f %% of one core; took %.0f DDS samples/s; its client (%u channels%s) received "
+               "%.1f messages/s, %.2f MB/s; %.0f messages dropped for it\n",
+               c["cpu_bridge_pct"].value, c["bridge_samples_per_s"].value, to.channels,
+               to.open ? "" : ", connection closed", c["bridge_client_msgs_per_s"].value,
+               c["bridge_client_mb_per_s"].value, c["bridge_dropped"].value);
 }
 
 // Window figures as benchmark counters (JSON) and as a few readable lines on stderr.
@@ -238,6 +266,7 @@ void report(benchmark::State& state, const PipelineSettings& settings, WindowEdg
       probe.max_ms, probe.seen, probe.sent, v("cpu_mosquitto_pct"), v("cpu_gateway_pct"), v("cpu_mapper_pct"),
       v("cpu_planner_pct"), v("cpu_simulator_pct"), v("cpu_bench_pct"), v("cpu_others_pct"),
       v("cpu_machine_busy_pct"));
+  if (end.counters.contains("bridge")) report_bridge(state, start, end, window_s);
 }
 
 void BM_Pipeline(benchmark::State& state) {
@@ -260,6 +289,14 @@ void BM_Pipeline(benchmark::State& state) {
   if (!(*broker_sys)->subscribe(kBrokerDroppedTopic, 0))
     return fail(state, "bench-pipeline-sys: subscribe failed");
   if (Status s = (*rig)->wait_until_running(120s); !s) return fail(state, s.message());
+  std::unique_ptr<BridgeClient> bridge_client;
+  if (settings->bridge) {
+    auto client = BridgeClient::connect(static_cast<uint16_t>((*rig)->bridge_port()));
+    if (!client) return fail(state, client.message());
+    bridge_client = std::move(*client);
+    if (!bridge_client->wait_subscribed(1, 10s))
+      return fail(state, "the bench's Foxglove client got no channels from the bridge");
+  }
   std::this_thread::sleep_for(std::chrono::duration<double>(settings->warmup_s));
   // What went missing while the services were still matching each other, so it is not counted.
   if (Status s = (*rig)->control_simulator(SIM_PAUSE); !s) return fail(state, s.message());
@@ -271,7 +308,7 @@ void BM_Pipeline(benchmark::State& state) {
   ProbeSet::Summary probe;
   Drain drained;
   for (auto _ : state) {
-    start = sample_edge(**rig, probes, **broker_sys);
+    start = sample_edge(**rig, probes, **broker_sys, bridge_client.get());
     const int64_t window_ns = static_cast<int64_t>(settings->seconds * 1e9);
     for (size_t k = 0; k < probes.size(); ++k) {
       const int64_t due =
@@ -285,7 +322,7 @@ void BM_Pipeline(benchmark::State& state) {
     }
     if (const int64_t rest = start.monotonic_ns + window_ns - monotonic_ns(); rest > 0)
       std::this_thread::sleep_for(std::chrono::nanoseconds(rest));
-    end = sample_edge(**rig, probes, **broker_sys);
+    end = sample_edge(**rig, probes, **broker_sys, bridge_client.get());
     if (Status s = (*rig)->control_simulator(SIM_PAUSE); !s) return fail(state, s.message());
     const int64_t paused_at = monotonic_ns();
     // Probes still in flight get 5 s more; unseen ones then count with their age.

@@ -47,6 +47,11 @@ Result<PipelineSettings> pipeline_settings_from_env() {
       return Error{fmt::format("SLAM_BENCH_PIPELINE_SLAM='{}': must be on or off", slam)};
     s.slam = std::string_view(slam) == "on";
   }
+  if (const char* bridge = std::getenv("SLAM_BENCH_PIPELINE_BRIDGE")) {
+    if (std::string_view(bridge) != "0" && std::string_view(bridge) != "1")
+      return Error{fmt::format("SLAM_BENCH_PIPELINE_BRIDGE='{}': must be 0 or 1", bridge)};
+    s.bridge = std::string_view(bridge) == "1";
+  }
   return s;
 }
 
@@ -146,6 +151,12 @@ Status PipelineRig::launch(const PipelineSettings& s) {
                testkit::with_dds_identity(
                    "planner", {testkit::bin_path("slam-planner"), "--domain", domain, "--log-level", "warn",
                                "--goal-store", group_.dir() + "/goals.json"}));
+  if (s.bridge) {
+    bridge_port_ = testkit::free_tcp_port();
+    group_.start("bridge", testkit::with_dds_identity(
+                               "bridge", {testkit::bin_path("slam-bridge"), "--domain", domain, "--bind",
+                                          fmt::format("127.0.0.1:{}", bridge_port_), "--log-level", "warn"}));
+  }
   group_.start("simulator", {testkit::bin_path("slam-simulator"),
                              "--domain",
                              sim_domain,
@@ -258,6 +269,7 @@ std::vector<std::pair<std::string, pid_t>> PipelineRig::processes() const {
   std::vector<std::pair<std::string, pid_t>> out;
   for (const char* name : {"mosquitto", "gateway", "mapper", "planner", "simulator"})
     out.emplace_back(name, group_.pid(name));
+  if (bridge_port_ != 0) out.emplace_back("bridge", group_.pid("bridge"));
   return out;
 }
 

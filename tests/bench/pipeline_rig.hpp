@@ -31,6 +31,8 @@ struct PipelineSettings {
   int robots = 1000;           // SLAM_BENCH_PIPELINE_ROBOTS
   double seconds = 30.0;       // SLAM_BENCH_PIPELINE_SECONDS: the measured window
   bool slam = true;            // SLAM_BENCH_PIPELINE_SLAM=off: the mapper runs with --slam off
+  bool bridge = false;         // SLAM_BENCH_PIPELINE_BRIDGE=1: slam-bridge runs too (one client, see
+                               // pipeline_bridge_client.hpp)
   double warmup_s = 5.0;       // after every robot reports, before the window
   int beams = 9;               // 9 obstacle points + the position = 10 v1 pairs per message
   double max_range_m = 12.0;   // longer than a room's diagonal: nearly every beam hits a wall
@@ -86,8 +88,11 @@ class PipelineRig {
   CounterSample latest(const std::string& service) const;
 
   int broker_port() const { return port_; }
+  // The bridge's WebSocket port; 0 when the bridge does not run.
+  int bridge_port() const { return bridge_port_; }
   dds::Participant& participant() { return *participant_; }
-  // Name and pid of every process started (mosquitto, gateway, mapper, planner, simulator).
+  // Name and pid of every process started (mosquitto, gateway, mapper, planner, simulator, and
+  // bridge when it runs).
   std::vector<std::pair<std::string, pid_t>> processes() const;
   // Tail of a process's log, for error messages.
   std::string log_tail(const std::string& name) const;
@@ -100,6 +105,7 @@ class PipelineRig {
   testkit::DomainLease sim_domain_;  // the simulator's own plain domain when DDS Security is on
   testkit::ProcessGroup group_;
   int port_ = 0;
+  int bridge_port_ = 0;
   int robots_ = 0;
   std::unique_ptr<dds::Participant> participant_;
   std::unique_ptr<dds::Participant> sim_participant_;  // DDS Security on: on sim_domain_, plain

@@ -226,7 +226,9 @@ void FoxgloveFace::publish(const FleetModel& fleet, MapView& map, int64_t now_mo
       const GridGeometry& g = map.geometry();
       send(Channel::Map, grid_message(g, map.cells(), CellBox{0, 0, g.width, g.height}, map.stamp_ns()),
            now_mono_ns, stamp_ns, map.revision());
-    } else if (due(Channel::MapUpdates, map.revision(), now_mono_ns)) {
+    } else if (static_cast<double>(map.changed().cells()) <=
+                   kMaxUpdateShare * static_cast<double>(map.geometry().cells()) &&
+               due(Channel::MapUpdates, map.revision(), now_mono_ns)) {
       const CellBox changed = map.take_changed();
       if (!changed.empty())
         send(Channel::MapUpdates, grid_message(map.geometry(), map.cells(), changed, map.stamp_ns()),

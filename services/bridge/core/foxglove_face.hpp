@@ -72,6 +72,12 @@ const std::vector<foxglove::ChannelInfo>& channel_table();
 
 class FoxgloveFace {
  public:
+  // A changed region larger than this share of the grid is not sent on /map/updates: it waits for
+  // the next whole grid (at most map_full_s away). A fleet exploring all over the map changes tiles
+  // everywhere, and their bounding box is then nearly the whole grid: sent every map_updates_s it
+  // cost the bridge more than everything else together (docs/performance.md, Bridge).
+  static constexpr double kMaxUpdateShare = 0.25;
+
   FoxgloveFace(const ChannelPeriods& periods, std::string session_id, FrameSink& frames,
                OperatorSink& operators, Counters& counters);
 

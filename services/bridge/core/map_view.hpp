@@ -44,7 +44,9 @@ class MapView {
   // Bumped by every snapshot and applied patch.
   uint64_t revision() const { return revision_; }
 
-  // The box of every cell changed since the last call (empty when nothing changed); clears it.
+  // The box of every cell changed since the last take_changed() (empty when nothing changed).
+  const CellBox& changed() const { return changed_; }
+  // That box; clears it.
   CellBox take_changed();
 
  private:

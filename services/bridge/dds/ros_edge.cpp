@@ -122,6 +122,8 @@ void RosEdge::publish_map(const OccupancyGridOut& grid) {
 }
 
 void RosEdge::publish_tf(const std::vector<TransformOut>& transforms) {
+  // rt/tf is volatile: with no reader the message would be serialized for no one.
+  if (tf_writer_->matched_readers() == 0) return;
   tf2_msgs::msg::dds_::TFMessage_ msg;
   msg.transforms().reserve(transforms.size());
   for (const TransformOut& t : transforms) {

@@ -132,7 +132,10 @@ Result<std::unique_ptr<WsServer>> WsServer::start(const std::string& host, uint1
   if (ec) return Error{"cannot listen on " + host + ":" + std::to_string(port) + ": " + ec.message()};
   s.start_accept(ec);
   if (ec) return Error{"websocket accept: " + ec.message()};
-  p->io = std::thread([p] { guarded_callback("websocket I/O", [&] { p->server.run(); }); });
+  p->io = std::thread([p] {
+    guarded_callback("websocket I/O", [&] { p->server.run(); });
+    p->io_done = true;  // the destructor stops waiting for closing handshakes
+  });
   return std::unique_ptr<WsServer>(new WsServer(std::move(impl)));
 }
 

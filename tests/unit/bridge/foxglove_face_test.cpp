@@ -60,6 +60,18 @@ class FoxgloveFaceTest : public ::testing::Test {
   }
   void robot_at(double x) { fleet_.ingest(RobotStateInput{"r1", Pose{x, 0, 0}, true, true, 0}); }
 
+  // A kSide x kSide grid of 4 x 4 tiles, every cell `cell`.
+  static constexpr int32_t kSide = 128, kTile = 32;
+  static GridSnapshotInput snapshot(uint64_t version, uint8_t cell) {
+    return {1, version, 0, GridGeometry{{0, 0}, 0.1, kSide, kSide},
+            std::vector<uint8_t>(static_cast<size_t>(kSide) * kSide, cell)};
+  }
+  // A patch of whole raw tiles (numbered row by row), every cell occupied.
+  static GridTilesInput tiles(uint64_t version, std::vector<uint32_t> numbers) {
+    std::vector<uint8_t> data(numbers.size() * kTile * kTile, kCellOccupied);
+    return {1, version, 0, kTile, 0, std::move(numbers), std::move(data)};
+  }
+
   Counters counters_;
   RecordingSinks sinks_;
   FoxgloveFace face_;
@@ -154,18 +166,38 @@ TEST_F(FoxgloveFaceTest, SendsTheWholeMapThenOnlyTheChangedRegion) {
   face_.connect(1);
   subscribe(1, 1, Channel::Map);
   subscribe(1, 2, Channel::MapUpdates);
-  GridSnapshotInput s{1, 1, 0, GridGeometry{{0, 0}, 0.1, 64, 64}, std::vector<uint8_t>(64 * 64, 0)};
-  ASSERT_TRUE(map_.ingest(std::move(s)));
+  ASSERT_TRUE(map_.ingest(snapshot(1, 0)));
   face_.publish(fleet_, map_, 0, 0);
   ASSERT_EQ(sinks_.payloads(1).size(), 1u);
-  EXPECT_EQ(json::parse(sinks_.payloads(1)[0])["column_count"], 64);
+  EXPECT_EQ(json::parse(sinks_.payloads(1)[0])["column_count"], kSide);
   EXPECT_TRUE(sinks_.payloads(2).empty());  // the whole grid covered the change
 
-  GridSnapshotInput again{1, 2, 0, GridGeometry{{0, 0}, 0.1, 64, 64}, std::vector<uint8_t>(64 * 64, 1)};
-  ASSERT_TRUE(map_.ingest(std::move(again)));
+  ASSERT_TRUE(map_.ingest(tiles(2, {5})));
   face_.publish(fleet_, map_, 1 * kSecond, 0);  // the whole grid is not due for 5 s: the region goes
   EXPECT_EQ(sinks_.payloads(1).size(), 1u);
-  EXPECT_EQ(sinks_.payloads(2).size(), 1u);
+  ASSERT_EQ(sinks_.payloads(2).size(), 1u);
+  EXPECT_EQ(json::parse(sinks_.payloads(2)[0])["column_count"], kTile);
+}
+
+TEST_F(FoxgloveFaceTest, AChangedRegionOverAQuarterOfTheGridWaitsForTheWholeGrid) {
+  face_.connect(1);
+  subscribe(1, 1, Channel::Map);
+  subscribe(1, 2, Channel::MapUpdates);
+  ASSERT_TRUE(map_.ingest(snapshot(1, 0)));
+  face_.publish(fleet_, map_, 0, 0);
+  ASSERT_EQ(sinks_.payloads(1).size(), 1u);
+
+  // Two tiles in opposite corners: their bounding box is the whole grid.
+  ASSERT_TRUE(map_.ingest(tiles(2, {0, 15})));
+  face_.publish(fleet_, map_, 1 * kSecond, 0);
+  face_.publish(fleet_, map_, 2 * kSecond, 0);
+  EXPECT_TRUE(sinks_.payloads(2).empty());
+  EXPECT_EQ(sinks_.payloads(1).size(), 1u);
+
+  face_.publish(fleet_, map_, 5 * kSecond, 0);  // the whole grid is due: it carries the change
+  ASSERT_EQ(sinks_.payloads(1).size(), 2u);
+  EXPECT_TRUE(sinks_.payloads(2).empty());
+  EXPECT_TRUE(map_.changed().empty());
 }
 
 TEST_F(FoxgloveFaceTest, AGoalPublishedOnTheGoalChannelReachesTheFleet) {
