@@ -18,13 +18,13 @@
 namespace slam::correction {
 
 struct ScheduleOptions {
-  int max_keyframes_per_pass = 64;  // keyframes handed to matching per process() call
-  size_t load_backlog = 64;         // closed keyframes waiting (or in matching): extras degrade
-  size_t shed_backlog = 512;        // ...tracking only
-  size_t max_backlog = 4096;        // ...beyond this many, place by odometry alone
-  int ties_every = 4;               // loaded: a robot ties every k-th keyframe
-  double wide_interval_s = 10.0;    // loaded: a robot's wide searches at least this far apart
-  double wide_per_s = 20.0;         // loaded: wide searches per second, whole fleet
+  int max_keyframes_per_pass = 256;  // keyframes handed to matching per process() call
+  size_t load_backlog = 64;          // closed keyframes waiting (or in matching): extras degrade
+  size_t shed_backlog = 512;         // ...tracking only
+  size_t max_backlog = 4096;         // ...beyond this many, place by odometry alone
+  int ties_every = 4;                // loaded: a robot ties every k-th keyframe
+  double wide_interval_s = 10.0;     // loaded: a robot's wide searches at least this far apart
+  double wide_per_s = 20.0;          // loaded: wide searches per second, whole fleet
 };
 
 enum class Load : uint8_t { Normal, Loaded, Shedding };

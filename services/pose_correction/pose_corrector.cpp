@@ -79,9 +79,12 @@ Result<uint64_t> PoseCorrector::add(std::string_view robot, int64_t stamp_ns, co
 
 void PoseCorrector::process(const GridView& grid, int64_t now_ns, std::vector<KeyframeCorrection>& out) {
   land(out);
+  int64_t open_messages = 0;
   for (Robot& rb : robots_) {
     if (rb.builder.stale(now_ns)) closed_.push_back(rb.builder.take());
+    open_messages += rb.builder.open_messages();
   }
+  stats_.open_messages = open_messages;
   schedule_.begin_pass(closed_.size() + in_flight_, now_ns);
   stats_.load = static_cast<int64_t>(schedule_.load());
   size_t overflow = schedule_.overflow(closed_.size());
