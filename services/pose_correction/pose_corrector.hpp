@@ -229,6 +229,8 @@ class PoseCorrector {
   double pending_shift_ = 0.0;
   std::unique_ptr<GraphOptimizer> optimizer_;
   std::vector<Pose> submitted_estimates_;  // node estimates when the running optimisation started
+  int64_t last_process_ns_ = 0;            // now_ns of the latest process()
+  int64_t submitted_ns_ = 0;               // ...when the running optimisation started
   size_t submitted_nodes_ = 0;
   CorrectorStats stats_;
   size_t removed_nodes_ = 0;
