@@ -78,10 +78,12 @@ struct Message {
 class Fleet {
  public:
   Fleet(const SyntheticWorld& world, int robots, uint32_t seed) : world_(world), rng_(seed) {
-    std::uniform_real_distribution<double> in_room(1.0, kRoom_m - 1.0), heading(-std::numbers::pi, std::numbers::pi);
+    std::uniform_real_distribution<double> in_room(1.0, kRoom_m - 1.0),
+        heading(-std::numbers::pi, std::numbers::pi);
     std::uniform_int_distribution<int> room(0, kRooms - 1);
     for (int r = 0; r < robots; ++r) {
-      poses_.push_back({kRoom_m * room(rng_) + in_room(rng_), kRoom_m * room(rng_) + in_room(rng_), heading(rng_)});
+      poses_.push_back(
+          {kRoom_m * room(rng_) + in_room(rng_), kRoom_m * room(rng_) + in_room(rng_), heading(rng_)});
       names_.push_back("robot" + std::to_string(r));
     }
     sensor_.beams = 9;
@@ -201,16 +203,17 @@ void BM_MapLoopFleet(benchmark::State& state) {
     c["backlog_keyframes_end"] = static_cast<double>(st.backlog);
     c["held_end"] = static_cast<double>(stage.held_observations());
     c["held_open_end"] = static_cast<double>(st.open_messages);
-    std::fprintf(stderr,
-                 "bench_slam_fleet: %d robots, slam %s, %d s%s: loop thread %.0f %% of a core, process %.0f %%, "
-                 "wall/sim %.2f; %.0f obs/s integrated, %.0f keyframes/s (%.0f matched/s), %.0f placed by "
-                 "odometry, %.0f optimisations, %.0f rebuilds; at the end %.0f keyframes closed and not "
-                 "finalised, %.0f observations held (%.0f in open keyframes, %.0f waiting for a match)\n",
-                 robots, slam ? "on" : "off", seconds, paced ? "" : " (unpaced)", c["loop_cpu_pct"].value, c["process_cpu_pct"].value,
-                 c["wall_over_sim"].value, c["observations_per_s"].value, c["keyframes_per_s"].value,
-                 c["matched_per_s"].value, c["placed_by_odometry"].value, c["optimisations"].value,
-                 c["rebuilds"].value, c["backlog_keyframes_end"].value, c["held_end"].value,
-                 c["held_open_end"].value, c["held_end"].value - c["held_open_end"].value);
+    std::fprintf(
+        stderr,
+        "bench_slam_fleet: %d robots, slam %s, %d s%s: loop thread %.0f %% of a core, process %.0f %%, "
+        "wall/sim %.2f; %.0f obs/s integrated, %.0f keyframes/s (%.0f matched/s), %.0f placed by "
+        "odometry, %.0f optimisations, %.0f rebuilds; at the end %.0f keyframes closed and not "
+        "finalised, %.0f observations held (%.0f in open keyframes, %.0f waiting for a match)\n",
+        robots, slam ? "on" : "off", seconds, paced ? "" : " (unpaced)", c["loop_cpu_pct"].value,
+        c["process_cpu_pct"].value, c["wall_over_sim"].value, c["observations_per_s"].value,
+        c["keyframes_per_s"].value, c["matched_per_s"].value, c["placed_by_odometry"].value,
+        c["optimisations"].value, c["rebuilds"].value, c["backlog_keyframes_end"].value, c["held_end"].value,
+        c["held_open_end"].value, c["held_end"].value - c["held_open_end"].value);
   }
 }
 BENCHMARK(BM_MapLoopFleet)->Arg(1)->Arg(0)->Iterations(1)->Unit(benchmark::kSecond)->UseRealTime();
