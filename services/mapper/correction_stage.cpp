@@ -6,7 +6,8 @@
 namespace slam::mapper {
 
 namespace {
-constexpr size_t kMaxSpare = 4096;  // recycled observation records kept for reuse
+constexpr size_t kMaxSpare = 4096;          // recycled observation records kept for reuse
+constexpr int64_t kRerenderDutyFactor = 4;  // idle time after a re-render, in multiples of its duration
 }  // namespace
 
 CorrectionStage::CorrectionStage(bool enabled, const correction::CorrectorOptions& options)
@@ -48,6 +49,7 @@ void CorrectionStage::add(Mapper& mapper, const RobotScan& scan, int64_t now_mon
   held.hits.assign(v.hits.begin(), v.hits.end());
   held.misses.assign(v.misses.begin(), v.misses.end());
   held_[*keyframe].push_back(std::move(held));
+  ++held_observations_;
 }
 
 void CorrectionStage::save(Mapper& mapper, std::span<const correction::KeyframeCorrection> keyframes) {
@@ -71,6 +73,7 @@ void CorrectionStage::step(Mapper& mapper, int64_t now_ns, int64_t now_mono_ns) 
         const ObservationView view{h.x, h.y, h.theta, h.has_heading, h.hits, h.misses};
         mapper.integrate(RobotScan{h.robot_id, h.seq, h.stamp_ns, view, k.id, k.correction}, now_mono_ns);
       }
+      held_observations_ -= static_cast<int64_t>(it->second.size());
       for (Held& h : it->second) {
         if (spare_.size() < kMaxSpare) spare_.push_back(std::move(h));
       }
@@ -83,11 +86,28 @@ void CorrectionStage::step(Mapper& mapper, int64_t now_ns, int64_t now_mono_ns) 
     save(mapper, moved_);
     if (shift >= rerender_shift_m_) {
       spdlog::info(
-          "pose correction: graph optimised, {} keyframes moved (up to {:.3f} m): re-rendering the map",
+          "pose correction: graph optimised, {} keyframes moved (up to {:.3f} m): the map is re-rendered",
           moved_.size(), shift);
-      mapper.rerender();
+      rerender_due_ = true;
     }
   }
+  rerender_when_due(mapper, now_mono_ns);
+}
+
+void CorrectionStage::rerender_when_due(Mapper& mapper, int64_t now_mono_ns) {
+  // A re-render rebuilds the whole grid from the store, so it costs more the longer the mapper
+  // runs, while with hundreds of robots optimisations land every few hundred milliseconds. One
+  // starts only after the last one took a fifth of the time since it started: re-rendering takes
+  // at most a fifth of a core, and the keyframes moved meanwhile join the next one (their
+  // corrections are stored at once; only the grid waits).
+  if (rerender_started_ns_ && !mapper.rebuilding()) {
+    next_rerender_ns_ = now_mono_ns + kRerenderDutyFactor * (now_mono_ns - *rerender_started_ns_);
+    rerender_started_ns_.reset();
+  }
+  if (!rerender_due_ || rerender_started_ns_ || now_mono_ns < next_rerender_ns_) return;
+  rerender_due_ = false;
+  rerender_started_ns_ = now_mono_ns;
+  mapper.rerender();
 }
 
 Status CorrectionStage::set_initial_pose(const Mapper& mapper, std::string_view robot, const Pose& map_pose) {
@@ -108,6 +128,7 @@ size_t CorrectionStage::reset_robot(std::string_view robot) {
   if (!enabled_) return 0;
   for (auto it = held_.begin(); it != held_.end();) {
     if (!it->second.empty() && it->second.front().robot_id == robot) {
+      held_observations_ -= static_cast<int64_t>(it->second.size());
       for (Held& h : it->second) {
         if (spare_.size() < kMaxSpare) spare_.push_back(std::move(h));
       }

@@ -9,6 +9,8 @@
 // Plain C++; the mapper's loop thread calls everything (the corrector may match on its own worker:
 // a keyframe's observations then reach the grid at a later step()).
 #include <cstdint>
+#include <limits>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <unordered_map>
@@ -45,6 +47,9 @@ class CorrectionStage {
   bool enabled() const { return enabled_; }
   bool knows(std::string_view robot) const { return corrector_.knows(robot); }
   const correction::CorrectorStats& stats() const { return corrector_.stats(); }
+  // Observations held back until their keyframe is finalised (stats().open_messages of them wait
+  // for their keyframe to close; the rest for its match).
+  int64_t held_observations() const { return held_observations_; }
 
  private:
   // An observation waiting for its keyframe.
@@ -59,12 +64,18 @@ class CorrectionStage {
   };
 
   void save(Mapper& mapper, std::span<const correction::KeyframeCorrection> keyframes);
+  // Starts the re-render an optimisation asked for, once the last one is far enough behind.
+  void rerender_when_due(Mapper& mapper, int64_t now_mono_ns);
 
   bool enabled_;
   double rerender_shift_m_;
   correction::PoseCorrector corrector_;
   std::unordered_map<uint64_t, std::vector<Held>> held_;  // keyframe id -> its observations, in order
   std::vector<Held> spare_;                               // records to reuse
+  int64_t held_observations_ = 0;                         // in held_
+  bool rerender_due_ = false;                             // keyframes moved since the last re-render
+  std::optional<int64_t> rerender_started_ns_;            // the running re-render's start (monotonic)
+  int64_t next_rerender_ns_ = std::numeric_limits<int64_t>::min();
   std::vector<correction::KeyframeCorrection> finalised_;
   std::vector<correction::KeyframeCorrection> moved_;
   std::vector<Keyframe> keyframes_;

@@ -277,6 +277,8 @@ void MapperNode::update_periodic_counters() {
   counters_.get("slam_placed_by_odometry").store(st.placed_by_odometry, std::memory_order_relaxed);
   counters_.get("slam_backlog").store(st.backlog, std::memory_order_relaxed);
   counters_.get("slam_load").store(st.load, std::memory_order_relaxed);
+  counters_.get("slam_held").store(corrections_->held_observations(), std::memory_order_relaxed);
+  counters_.get("slam_held_open").store(st.open_messages, std::memory_order_relaxed);
 
   if (observation_reader_)
     metrics_.observations_lost.store(observation_reader_->samples_lost(), std::memory_order_relaxed);

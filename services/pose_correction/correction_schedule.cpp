@@ -40,4 +40,9 @@ bool CorrectionSchedule::allow_wide(RobotState& robot, int64_t stamp_ns) {
   return true;
 }
 
+void CorrectionSchedule::optimisation_landed(int64_t submitted_ns, int64_t landed_ns) {
+  next_optimisation_ns_ =
+      landed_ns + options_.optimise_idle_factor * std::max<int64_t>(0, landed_ns - submitted_ns);
+}
+
 }  // namespace slam::correction

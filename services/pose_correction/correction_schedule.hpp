@@ -10,6 +10,9 @@
 //  - shedding (backlog >= shed_backlog): tracking only;
 //  - overflow (backlog > max_backlog): the oldest keyframes are placed by odometry alone, so the
 //    observations they hold reach the map and memory stays bounded.
+// Optimisations, whatever the load, keep a duty cycle: a solve costs more the larger the graph (a
+// fleet adds a thousand keyframes a second), so the next one starts only after the last one's
+// duration times optimise_idle_factor has passed since it landed.
 // Plain data, no clock of its own: the caller passes the observations' time. Deterministic.
 #include <cstddef>
 #include <cstdint>
@@ -18,13 +21,14 @@
 namespace slam::correction {
 
 struct ScheduleOptions {
-  int max_keyframes_per_pass = 64;  // keyframes handed to matching per process() call
-  size_t load_backlog = 64;         // closed keyframes waiting (or in matching): extras degrade
-  size_t shed_backlog = 512;        // ...tracking only
-  size_t max_backlog = 4096;        // ...beyond this many, place by odometry alone
-  int ties_every = 4;               // loaded: a robot ties every k-th keyframe
-  double wide_interval_s = 10.0;    // loaded: a robot's wide searches at least this far apart
-  double wide_per_s = 20.0;         // loaded: wide searches per second, whole fleet
+  int max_keyframes_per_pass = 256;  // keyframes handed to matching per process() call
+  size_t load_backlog = 64;          // closed keyframes waiting (or in matching): extras degrade
+  size_t shed_backlog = 512;         // ...tracking only
+  size_t max_backlog = 4096;         // ...beyond this many, place by odometry alone
+  int ties_every = 4;                // loaded: a robot ties every k-th keyframe
+  double wide_interval_s = 10.0;     // loaded: a robot's wide searches at least this far apart
+  double wide_per_s = 20.0;          // loaded: wide searches per second, whole fleet
+  int optimise_idle_factor = 4;      // after an optimisation, none for this many times its duration
 };
 
 enum class Load : uint8_t { Normal, Loaded, Shedding };
@@ -54,12 +58,16 @@ class CorrectionSchedule {
   // Whether a keyframe (of time `stamp_ns`) that needs a wide search may have one; takes the
   // allowance when it may.
   bool allow_wide(RobotState& robot, int64_t stamp_ns);
+  // An optimisation submitted at `submitted_ns` landed at `landed_ns`; whether one may start now.
+  void optimisation_landed(int64_t submitted_ns, int64_t landed_ns);
+  bool allow_optimisation(int64_t now_ns) const { return now_ns >= next_optimisation_ns_; }
 
  private:
   ScheduleOptions options_;
   Load load_ = Load::Normal;
   double wide_tokens_ = 0.0;
   int64_t last_refill_ns_ = std::numeric_limits<int64_t>::min();
+  int64_t next_optimisation_ns_ = std::numeric_limits<int64_t>::min();
 };
 
 }  // namespace slam::correction

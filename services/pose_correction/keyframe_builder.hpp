@@ -57,6 +57,8 @@ class KeyframeBuilder {
   // Whether the open keyframe's last message is older than max_span_ns at `now_ns` (a silent robot).
   bool stale(int64_t now_ns) const;
   uint64_t open_id() const { return keyframe_.id; }
+  // Messages in the open keyframe (0 when none is open).
+  int open_messages() const { return open_ ? keyframe_.messages : 0; }
   uint32_t segment() const { return segment_; }
   const Pose& last_odom() const { return last_pose_; }
   bool has_last() const { return has_last_; }

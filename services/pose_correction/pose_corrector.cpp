@@ -78,10 +78,14 @@ Result<uint64_t> PoseCorrector::add(std::string_view robot, int64_t stamp_ns, co
 }
 
 void PoseCorrector::process(const GridView& grid, int64_t now_ns, std::vector<KeyframeCorrection>& out) {
+  last_process_ns_ = now_ns;
   land(out);
+  int64_t open_messages = 0;
   for (Robot& rb : robots_) {
     if (rb.builder.stale(now_ns)) closed_.push_back(rb.builder.take());
+    open_messages += rb.builder.open_messages();
   }
+  stats_.open_messages = open_messages;
   schedule_.begin_pass(closed_.size() + in_flight_, now_ns);
   stats_.load = static_cast<int64_t>(schedule_.load());
   size_t overflow = schedule_.overflow(closed_.size());
@@ -107,7 +111,9 @@ void PoseCorrector::process(const GridView& grid, int64_t now_ns, std::vector<Ke
   }
   closed_.resize(kept);
   stats_.backlog = static_cast<int64_t>(closed_.size() + in_flight_);
-  if (closure_since_optimise_ || tied_since_optimise_ >= options_.optimise_every) start_optimisation();
+  if ((closure_since_optimise_ || tied_since_optimise_ >= options_.optimise_every) &&
+      schedule_.allow_optimisation(now_ns))
+    start_optimisation();
 }
 
 std::unique_ptr<MatchJob> PoseCorrector::take_job() {

@@ -101,6 +101,7 @@ struct CorrectorStats {
   int64_t wide_skipped = 0;        // a wide search was needed but rate-limited
   int64_t placed_by_odometry = 0;  // backlog overflow: finalised without any matching
   int64_t backlog = 0;             // keyframes closed and not yet finalised (now)
+  int64_t open_messages = 0;       // observations in the robots' open keyframes (now)
   int64_t load = 0;                // the schedule's load now: 0 normal, 1 loaded, 2 shedding
   int64_t robots_reset = 0;
 };
@@ -228,6 +229,8 @@ class PoseCorrector {
   double pending_shift_ = 0.0;
   std::unique_ptr<GraphOptimizer> optimizer_;
   std::vector<Pose> submitted_estimates_;  // node estimates when the running optimisation started
+  int64_t last_process_ns_ = 0;            // now_ns of the latest process()
+  int64_t submitted_ns_ = 0;               // ...when the running optimisation started
   size_t submitted_nodes_ = 0;
   CorrectorStats stats_;
   size_t removed_nodes_ = 0;

@@ -71,6 +71,7 @@ void PoseCorrector::start_optimisation() {
   solve.loop_closure_loss_scale = kClosureLossScale;
   optimizer_->submit(std::move(graph), solve);
   submitted_epoch_ = epoch_;
+  submitted_ns_ = last_process_ns_;
   optimising_ = true;
   ++stats_.optimisations;
   tied_since_optimise_ = 0;
@@ -87,6 +88,7 @@ double PoseCorrector::take_optimised(std::vector<KeyframeCorrection>& moved) {
   auto landed = optimizer_->take_result();
   if (!landed) return max_shift;
   optimising_ = false;
+  schedule_.optimisation_landed(submitted_ns_, last_process_ns_);
   if (!landed->status) {
     ++stats_.failed_optimisations;
     return max_shift;

@@ -205,6 +205,14 @@ void report(benchmark::State& state, const PipelineSettings& settings, WindowEdg
   c["mapper_backlog_start"] =
       mapper_backlog(start.counters["gateway"], start.counters["mapper"], gateway_obs);
   c["mapper_backlog_end"] = mapper_backlog(end.counters["gateway"], end.counters["mapper"], gateway_obs);
+  // Of the backlog, what pose correction holds back at the window's end (observations wait, unrendered,
+  // until their keyframe is matched): in open keyframes is by design (a keyframe closes after 0.4 m of
+  // travel), in closed ones is matching not keeping up. Counted once a second by the mapper.
+  c["mapper_held_open_end"] = static_cast<double>(end.counters["mapper"].get("slam_held_open"));
+  c["mapper_held_matching_end"] = static_cast<double>(end.counters["mapper"].get("slam_held") -
+                                                      end.counters["mapper"].get("slam_held_open"));
+  c["slam_keyframes_per_s"] = rate("mapper", "slam_keyframes");
+  c["slam_placed_by_odometry"] = delta("mapper", "slam_placed_by_odometry");
   c["mapper_dropped"] = delta("mapper", "dropped");
   c["mapper_dds_lost"] = delta("mapper", "observations_lost");
   // -1 when mosquitto never reported: unknown, not zero.
@@ -251,6 +259,9 @@ void report(benchmark::State& state, const PipelineSettings& settings, WindowEdg
       "(%.3f of the gateway's), %.1f points per observation; gateway RobotState %.0f/s\n"
       "  queues: mapper backlog %.0f -> %.0f observations; dropped: mapper %.0f, simulator %.0f, "
       "broker %.0f; lost by DDS before the mapper %.0f; simulator loop overruns %.0f\n"
+      "  pose correction at the end: %.0f observations in open keyframes (by design), %.0f in closed "
+      "keyframes "
+      "not yet matched; %.0f keyframes/s, %.0f placed by odometry alone in the window\n"
       "  after pausing the fleet: %s %.1f s; %s: %.0f at the gateway, %.0f at the mapper\n"
       "  map stream: %.1f patches/s, %.2f MB/s of patches to each reader (%.2f MB/s of tile cells uncoded)\n"
       "  delay robot message -> patch: p50 %.0f ms, p99 %.0f ms, max %.0f ms (%zu of %zu probes seen)\n"
@@ -259,7 +270,8 @@ void report(benchmark::State& state, const PipelineSettings& settings, WindowEdg
       settings.robots, window_s, sent, gateway_in, v("gateway_over_sim"), mapper_obs,
       v("mapper_over_gateway"), v("points_per_obs"), v("gateway_states_per_s"), v("mapper_backlog_start"),
       v("mapper_backlog_end"), v("mapper_dropped"), v("sim_reports_dropped"), v("broker_dropped"),
-      v("mapper_dds_lost"), v("sim_loop_overruns"),
+      v("mapper_dds_lost"), v("sim_loop_overruns"), v("mapper_held_open_end"), v("mapper_held_matching_end"),
+      v("slam_keyframes_per_s"), v("slam_placed_by_odometry"),
       drained.settled ? "queues drained in" : "still draining after", drained.seconds,
       drained.settled ? "never arrived" : "not arrived yet", v("lost_to_gateway"), v("lost_to_mapper"),
       v("mapper_patches_per_s"), v("patch_mb_per_s"), v("patch_cells_mb_per_s"), probe.p50_ms, probe.p99_ms,

@@ -4,3 +4,10 @@
 add_executable(bench_slam ${CMAKE_CURRENT_LIST_DIR}/bench_slam.cpp ${CMAKE_CURRENT_LIST_DIR}/bench_slam_graph.cpp)
 target_link_libraries(bench_slam PRIVATE slam_pose_correction slam_testkit benchmark::benchmark)
 slam_warnings(bench_slam)
+
+# bench_slam_fleet: the mapper's map loop with pose correction at fleet load (1000 robots x 10 Hz),
+# without DDS: CPU of the loop thread and the process, and what correction holds back.
+# Run: build/bin/bench_slam_fleet   (SLAM_BENCH_FLEET_ROBOTS, SLAM_BENCH_FLEET_SECONDS)
+add_executable(bench_slam_fleet ${CMAKE_CURRENT_LIST_DIR}/bench_slam_fleet.cpp)
+target_link_libraries(bench_slam_fleet PRIVATE mapper_core slam_testkit benchmark::benchmark)
+slam_warnings(bench_slam_fleet)

@@ -106,11 +106,16 @@ TEST_F(CorrectionStageTest, HoldsObservationsUntilTheirKeyframeIsFinalised) {
   step(stage, *mapper, 4);
   EXPECT_FALSE(touched(*mapper, first_wall)) << "an observation reached the grid before its keyframe closed";
   EXPECT_EQ(stage.stats().keyframes, 0);
+  EXPECT_EQ(stage.held_observations(), 4);  // all of them wait for their keyframe to close
+  EXPECT_EQ(stage.stats().open_messages, 4);
 
   drive(stage, *mapper, "r1", 4, 6);  // past 0.4 m of travel: the keyframe closes
   step(stage, *mapper, 10);
   EXPECT_TRUE(touched(*mapper, first_wall)) << "the finalised keyframe's observations are not in the grid";
   EXPECT_GE(stage.stats().keyframes, 1);
+  EXPECT_LT(stage.held_observations(), 10);
+  EXPECT_EQ(stage.held_observations(), stage.stats().open_messages)
+      << "held back past their keyframe's match";
 
   // A robot that goes silent: its open keyframe is finalised once it is stale.
   observe(stage, *mapper, "r2", 10, 0.0, 0.5);
@@ -122,6 +127,7 @@ TEST_F(CorrectionStageTest, HoldsObservationsUntilTheirKeyframeIsFinalised) {
   EXPECT_FALSE(touched(*mapper, r2_wall));
   step(stage, *mapper, 12 + 60);  // 6 s later: longer than the keyframe's time span
   EXPECT_TRUE(touched(*mapper, r2_wall)) << "a silent robot's keyframe was never finalised";
+  EXPECT_EQ(stage.held_observations(), 0);
 
   mapper->commit();
   mapper.reset();

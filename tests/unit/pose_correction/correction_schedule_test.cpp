@@ -94,5 +94,18 @@ TEST(CorrectionSchedule, OnlyTheBacklogBeyondTheCapOverflows) {
   EXPECT_EQ(schedule.overflow(1250), 250u);
 }
 
+TEST(CorrectionSchedule, AnOptimisationIsFollowedByIdleTimeInProportionToItsDuration) {
+  ScheduleOptions o = options();
+  o.optimise_idle_factor = 4;
+  CorrectionSchedule schedule(o);
+  EXPECT_TRUE(schedule.allow_optimisation(0));               // none ran yet
+  schedule.optimisation_landed(10 * kSecond, 12 * kSecond);  // took 2 s: none for 8 s after it landed
+  EXPECT_FALSE(schedule.allow_optimisation(12 * kSecond));
+  EXPECT_FALSE(schedule.allow_optimisation(20 * kSecond - 1));
+  EXPECT_TRUE(schedule.allow_optimisation(20 * kSecond));
+  schedule.optimisation_landed(20 * kSecond, 20 * kSecond);  // instant: the next may start at once
+  EXPECT_TRUE(schedule.allow_optimisation(20 * kSecond));
+}
+
 }  // namespace
 }  // namespace slam::correction

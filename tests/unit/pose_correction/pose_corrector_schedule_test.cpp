@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <chrono>
 #include <set>
 #include <string>
 #include <thread>
@@ -143,7 +144,8 @@ TEST(PoseCorrectorSchedule, OnTheWorkerEveryKeyframeIsFinalisedInOrderPerRobot) 
   for (int pass = 0; pass < 100000 && (finalised.size() < ids.size() || corrector.stats().backlog > 0);
        ++pass) {
     corrector.process(map.view(), later, finalised);
-    std::this_thread::yield();
+    // Sleep rather than yield: on a loaded machine the worker may need far longer than 100 000 yields.
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
   }
   ASSERT_EQ(finalised.size(), ids.size());
   for (const std::string robot : {"r0", "r1", "r2", "r3"}) {
