@@ -30,7 +30,8 @@ void TrafficPublisher::run() {
   slam::MqttTraffic sample;
   while (!stop_.load()) {
     guarded_callback("MQTT traffic worker", [&] {
-      const size_t n = queue_.pop(batch, std::chrono::milliseconds(200));
+      // The viewer's log need not be fresher than this; records come in batches of up to 64.
+      const size_t n = queue_.pop(batch, std::chrono::milliseconds(50));
       for (size_t i = 0; i < n; ++i) {
         fill_traffic(batch[i], sample);
         if (!writer_->write(sample)) bump(write_failures_);

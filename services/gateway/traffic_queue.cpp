@@ -56,7 +56,7 @@ bool TrafficQueue::push(TrafficDirection direction, std::string_view topic,
     const std::size_t kept = std::min(payload.size(), kTrafficPayloadBytes);
     r.payload.assign(payload.begin(), payload.begin() + static_cast<std::ptrdiff_t>(kept));
     r.payload_size = static_cast<std::uint32_t>(std::min<std::size_t>(payload.size(), UINT32_MAX));
-    ++count_;
+    if (++count_ != wake_at_) return true;
   }
   ready_.notify_one();
   return true;
@@ -64,7 +64,8 @@ bool TrafficQueue::push(TrafficDirection direction, std::string_view topic,
 
 std::size_t TrafficQueue::pop(std::vector<TrafficRecord>& batch, std::chrono::milliseconds timeout) {
   std::unique_lock lock(mutex_);
-  ready_.wait_for(lock, timeout, [&] { return count_ > 0 || closed_; });
+  wake_at_ = std::max<std::size_t>(1, std::min(batch.size(), ring_.size()));
+  ready_.wait_for(lock, timeout, [&] { return count_ >= wake_at_ || closed_; });
   const std::size_t n = std::min(count_, batch.size());
   for (std::size_t i = 0; i < n; ++i) {
     std::swap(batch[i], ring_[head_]);

@@ -51,8 +51,10 @@ class TrafficQueue {
   // Copies one message in; false when it was dropped (over the rate, or the ring is full).
   bool push(TrafficDirection direction, std::string_view topic, std::span<const std::uint8_t> payload,
             std::int64_t stamp_ns, std::int64_t mono_ns);
-  // Waits up to `timeout` for records, then swaps up to batch.size() of them into `batch` (whose
-  // buffers go back into the ring, so neither side allocates). Returns how many were taken.
+  // Waits up to `timeout` for a full batch (batch.size() records), then swaps up to that many
+  // into `batch` (whose buffers go back into the ring, so neither side allocates). Returns how
+  // many were taken. Only a full batch wakes the waiting worker early: a wake per record would
+  // cost the gateway a thread switch per MQTT message.
   std::size_t pop(std::vector<TrafficRecord>& batch, std::chrono::milliseconds timeout);
   // A batch sized and reserved like the ring's slots.
   std::vector<TrafficRecord> make_batch(std::size_t size) const;
@@ -65,6 +67,7 @@ class TrafficQueue {
   std::vector<TrafficRecord> ring_;
   std::size_t head_ = 0;  // oldest record
   std::size_t count_ = 0;
+  std::size_t wake_at_ = 1;  // records that wake a waiting pop(): its batch size
   std::uint64_t next_seq_ = 1;
   TokenBucket bucket_;
   bool closed_ = false;

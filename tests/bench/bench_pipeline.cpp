@@ -12,7 +12,9 @@
 //     publish to the first GridTiles patch showing the probe's cell occupied; p50/p99 over the window.
 // It starts mosquitto (free port) and every service (leased DDS domain) itself and stops them.
 // Run: build/bin/bench_pipeline --benchmark_format=json
-//   SLAM_BENCH_PIPELINE_SECONDS=N (window, default 30), SLAM_BENCH_PIPELINE_ROBOTS=N (default 1000)
+//   SLAM_BENCH_PIPELINE_SECONDS=N (window, default 30), SLAM_BENCH_PIPELINE_ROBOTS=N (default 1000),
+//   SLAM_BENCH_PIPELINE_GATEWAYS=N / SLAM_BENCH_PIPELINE_PLANNERS=N (instances sharing the work,
+//   default 1), SLAM_BENCH_PIPELINE_BIN_DIR=DIR (the services of another build), SLAM_BENCH_PIPELINE_SLAM=off
 //   SLAM_BENCH_PIPELINE_BRIDGE=1: slam-bridge runs too, with one Foxglove WebSocket client
 //   subscribed to every channel (pipeline_bridge_client.hpp); its CPU is cpu_bridge_pct.
 #include <benchmark/benchmark.h>
@@ -70,8 +72,10 @@ int64_t broker_dropped(const testkit::MqttTestClient& sys) {
 // Everything sampled at one end of the window.
 struct WindowEdge {
   int64_t monotonic_ns = 0;
-  std::map<std::string, CounterSample> counters;  // by service
-  std::map<std::string, double> cpu_s;            // by process, plus "bench" (this process)
+  std::map<std::string, CounterSample> counters;  // by service, summed over its instances
+  std::map<std::string, std::map<std::string, CounterSample>> instances;  // by service, then instance
+  std::map<std::string, double> cpu_s;   // by process, plus "bench" (this process)
+  std::map<std::string, int64_t> waits;  // voluntary context switches, by process
   MachineCpu machine;
   uint64_t patch_bytes = 0;            // GridTiles bytes (CDR) this process received so far
   uint64_t patch_cells = 0;            // cells in those tiles (the raw size, before run-length coding)
@@ -90,9 +94,14 @@ WindowEdge sample_edge(const PipelineRig& rig, const ProbeSet& probes,
   e.patch_bytes = probes.patch_bytes();
   e.patch_cells = probes.patch_cells();
   e.monotonic_ns = monotonic_ns();
-  for (const char* service : {"gateway", "mapper", "planner", "simulator"})
+  for (const char* service : {"gateway", "mapper", "planner", "simulator"}) {
     e.counters[service] = rig.latest(service);
-  for (const auto& [name, pid] : rig.processes()) e.cpu_s[name] = process_cpu_s(pid);
+    e.instances[service] = rig.instances(service);
+  }
+  for (const auto& [name, pid] : rig.processes()) {
+    e.cpu_s[name] = process_cpu_s(pid);
+    e.waits[name] = process_waits(pid);
+  }
   e.cpu_s["bench"] = process_cpu_s(::getpid());
   e.machine = machine_cpu();
   return e;
@@ -181,8 +190,14 @@ void report_bridge(benchmark::State& state, WindowEdge& start, WindowEdge& end, 
 void report(benchmark::State& state, const PipelineSettings& settings, WindowEdge& start, WindowEdge& end,
             const ProbeSet::Summary& probe, const Drain& before, const Drain& drained) {
   const double window_s = static_cast<double>(end.monotonic_ns - start.monotonic_ns) / 1e9;
+  // Summed over a service's instances, each over its own heartbeats' interval.
   auto rate = [&](const char* service, const char* counter) {
-    return rate_between(start.counters[service], end.counters[service], counter);
+    double total = 0.0;
+    for (const auto& [instance, last] : end.instances[service]) {
+      const auto first = start.instances[service].find(instance);
+      if (first != start.instances[service].end()) total += rate_between(first->second, last, counter);
+    }
+    return total;
   };
   auto delta = [&](const char* service, const char* counter) {
     return static_cast<double>(end.counters[service].get(counter) - start.counters[service].get(counter));
@@ -193,6 +208,8 @@ void report(benchmark::State& state, const PipelineSettings& settings, WindowEdg
   const double mapper_obs = rate("mapper", "observations");
   auto& c = state.counters;
   c["robots"] = settings.robots;
+  c["gateways"] = settings.gateways;
+  c["planners"] = settings.planners;
   c["window_s"] = window_s;
   c["sim_sent_per_s"] = sent;
   c["gateway_in_per_s"] = gateway_in;
@@ -234,11 +251,47 @@ void report(benchmark::State& state, const PipelineSettings& settings, WindowEdg
   c["drain_settled"] = drained.settled ? 1.0 : 0.0;
   c["lost_to_gateway"] = drained.gateway_gap - before.gateway_gap;
   c["lost_to_mapper"] = drained.mapper_gap - before.mapper_gap;
-  double ours = 0.0;
+  // The whole pipeline's CPU per robot message: every service process (not this bench), summed,
+  // per message the gateways took in (the same as sent when the pipeline keeps up; on an
+  // overloaded machine the messages still queued at the broker cost nothing yet).
+  double ours = 0.0, services = 0.0;
+  std::map<std::string, double> by_service;  // gateway2 counted under gateway
   for (const auto& [name, cpu] : end.cpu_s) {
     const double share = 100.0 * (cpu - start.cpu_s[name]) / window_s;
     c["cpu_" + name + "_pct"] = share;
     ours += share;
+    if (name == "bench") continue;
+    services += share;
+    by_service[PipelineRig::service_of(name)] += share;
+  }
+  double waits = 0.0;
+  for (const auto& [name, count] : end.waits) {
+    const double n = static_cast<double>(count - start.waits[name]);
+    c["waits_" + name + "_per_s"] = n / window_s;
+    waits += n;
+  }
+  c["cpu_services_pct"] = services;
+  c["waits_per_message"] = gateway_in > 0 ? waits / window_s / gateway_in : 0.0;
+  c["cpu_us_per_message"] = gateway_in > 0 ? services / 100.0 / gateway_in * 1e6 : 0.0;
+  std::string per_service;
+  for (const char* service : {"mosquitto", "gateway", "mapper", "planner", "simulator", "bridge"})
+    if (by_service.contains(service)) per_service += fmt::format("{} {:.0f}, ", service, by_service[service]);
+  // Each gateway's share of the messages, and the planners' CPU one by one, when there are several.
+  std::string shares;
+  if (settings.gateways > 1 || settings.planners > 1) {
+    shares = "  instances:";
+    for (const auto& [instance, last] : end.instances["gateway"]) {
+      const auto first = start.instances["gateway"].find(instance);
+      if (first != start.instances["gateway"].end())
+        shares += fmt::format(" gateway {} {:.0f} msg/s;", instance,
+                              rate_between(first->second, last, "messages_in"));
+    }
+    for (const auto& [name, cpu] : end.cpu_s) {
+      const std::string service = PipelineRig::service_of(name);
+      if ((service == "gateway" && settings.gateways > 1) || (service == "planner" && settings.planners > 1))
+        shares += fmt::format(" {} {:.0f} % CPU;", name, c["cpu_" + name + "_pct"].value);
+    }
+    shares += "\n";
   }
   const double machine_total = end.machine.total_s - start.machine.total_s;
   const double machine_busy =
@@ -254,7 +307,7 @@ void report(benchmark::State& state, const PipelineSettings& settings, WindowEdg
   auto v = [&](const char* name) { return c[name].value; };
   std::fprintf(
       stderr,
-      "bench_pipeline: %d robots, %.1f s window\n"
+      "bench_pipeline: %d robots, %d gateway(s), %d planner(s), %.1f s window\n"
       "  rate: simulator sent %.0f msg/s, gateway received %.0f msg/s (%.3f), mapper integrated %.0f obs/s "
       "(%.3f of the gateway's), %.1f points per observation; gateway RobotState %.0f/s\n"
       "  queues: mapper backlog %.0f -> %.0f observations; dropped: mapper %.0f, simulator %.0f, "
@@ -265,19 +318,20 @@ void report(benchmark::State& state, const PipelineSettings& settings, WindowEdg
       "  after pausing the fleet: %s %.1f s; %s: %.0f at the gateway, %.0f at the mapper\n"
       "  map stream: %.1f patches/s, %.2f MB/s of patches to each reader (%.2f MB/s of tile cells uncoded)\n"
       "  delay robot message -> patch: p50 %.0f ms, p99 %.0f ms, max %.0f ms (%zu of %zu probes seen)\n"
-      "  CPU %% of one core: mosquitto %.0f, gateway %.0f, mapper %.0f, planner %.0f, simulator %.0f, "
-      "bench %.0f; other processes %.0f; machine %.0f %% busy\n",
-      settings.robots, window_s, sent, gateway_in, v("gateway_over_sim"), mapper_obs,
-      v("mapper_over_gateway"), v("points_per_obs"), v("gateway_states_per_s"), v("mapper_backlog_start"),
-      v("mapper_backlog_end"), v("mapper_dropped"), v("sim_reports_dropped"), v("broker_dropped"),
-      v("mapper_dds_lost"), v("sim_loop_overruns"), v("mapper_held_open_end"), v("mapper_held_matching_end"),
-      v("slam_keyframes_per_s"), v("slam_placed_by_odometry"),
-      drained.settled ? "queues drained in" : "still draining after", drained.seconds,
-      drained.settled ? "never arrived" : "not arrived yet", v("lost_to_gateway"), v("lost_to_mapper"),
-      v("mapper_patches_per_s"), v("patch_mb_per_s"), v("patch_cells_mb_per_s"), probe.p50_ms, probe.p99_ms,
-      probe.max_ms, probe.seen, probe.sent, v("cpu_mosquitto_pct"), v("cpu_gateway_pct"), v("cpu_mapper_pct"),
-      v("cpu_planner_pct"), v("cpu_simulator_pct"), v("cpu_bench_pct"), v("cpu_others_pct"),
-      v("cpu_machine_busy_pct"));
+      "  CPU %% of one core: %sbench %.0f; other processes %.0f; machine %.0f %% busy\n"
+      "  whole pipeline (services summed): %.0f %% of a core, %.1f us CPU and %.2f thread waits per robot "
+      "message\n%s",
+      settings.robots, settings.gateways, settings.planners, window_s, sent, gateway_in,
+      v("gateway_over_sim"), mapper_obs, v("mapper_over_gateway"), v("points_per_obs"),
+      v("gateway_states_per_s"), v("mapper_backlog_start"), v("mapper_backlog_end"), v("mapper_dropped"),
+      v("sim_reports_dropped"), v("broker_dropped"), v("mapper_dds_lost"), v("sim_loop_overruns"),
+      v("mapper_held_open_end"), v("mapper_held_matching_end"), v("slam_keyframes_per_s"),
+      v("slam_placed_by_odometry"), drained.settled ? "queues drained in" : "still draining after",
+      drained.seconds, drained.settled ? "never arrived" : "not arrived yet", v("lost_to_gateway"),
+      v("lost_to_mapper"), v("mapper_patches_per_s"), v("patch_mb_per_s"), v("patch_cells_mb_per_s"),
+      probe.p50_ms, probe.p99_ms, probe.max_ms, probe.seen, probe.sent, per_service.c_str(),
+      v("cpu_bench_pct"), v("cpu_others_pct"), v("cpu_machine_busy_pct"), services, v("cpu_us_per_message"),
+      v("waits_per_message"), shares.c_str());
   if (end.counters.contains("bridge")) report_bridge(state, start, end, window_s);
 }
 

@@ -4,8 +4,10 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <sstream>
@@ -34,14 +36,30 @@ int cm(double metres) {
   return static_cast<int>(std::lround(metres * 100.0));
 }
 
+// "gateway", "gateway2", "gateway3", ...: the first instance keeps the service's name.
+std::string instance_name(const std::string& service, int index) {
+  return index == 0 ? service : service + std::to_string(index + 1);
+}
+
 }  // namespace
 
 Result<PipelineSettings> pipeline_settings_from_env() {
   PipelineSettings s;
   double robots = s.robots;
+  double gateways = s.gateways;
+  double planners = s.planners;
   SLAM_TRY(env_number("SLAM_BENCH_PIPELINE_ROBOTS", 1, 5000, robots));
   if (auto st = env_number("SLAM_BENCH_PIPELINE_SECONDS", 2, 3600, s.seconds); !st) return st.error();
+  SLAM_TRY(env_number("SLAM_BENCH_PIPELINE_GATEWAYS", 1, 8, gateways));
+  SLAM_TRY(env_number("SLAM_BENCH_PIPELINE_PLANNERS", 1, 8, planners));
   s.robots = static_cast<int>(robots);
+  s.gateways = static_cast<int>(gateways);
+  s.planners = static_cast<int>(planners);
+  if (const char* dir = std::getenv("SLAM_BENCH_PIPELINE_BIN_DIR")) {
+    s.bin_dir = dir;
+    if (::access((s.bin_dir + "/slam-gateway").c_str(), X_OK) != 0)
+      return Error{fmt::format("SLAM_BENCH_PIPELINE_BIN_DIR='{}': no slam-gateway there", dir)};
+  }
   if (const char* slam = std::getenv("SLAM_BENCH_PIPELINE_SLAM")) {
     if (std::string_view(slam) != "on" && std::string_view(slam) != "off")
       return Error{fmt::format("SLAM_BENCH_PIPELINE_SLAM='{}': must be on or off", slam)};
@@ -106,6 +124,21 @@ double process_cpu_s(pid_t pid) {
   return static_cast<double>(utime + stime) / static_cast<double>(::sysconf(_SC_CLK_TCK));
 }
 
+int64_t process_waits(pid_t pid) {
+  int64_t total = 0;
+  std::error_code error;
+  const std::filesystem::path tasks = "/proc/" + std::to_string(pid) + "/task";
+  for (const auto& task : std::filesystem::directory_iterator(tasks, error)) {
+    std::ifstream status(task.path() / "status");
+    std::string line;
+    constexpr std::string_view kKey = "voluntary_ctxt_switches:";
+    while (std::getline(status, line)) {
+      if (line.starts_with(kKey)) total += std::strtoll(line.c_str() + kKey.size(), nullptr, 10);
+    }
+  }
+  return total;
+}
+
 MachineCpu machine_cpu() {
   std::ifstream file("/proc/stat");
   std::string label;
@@ -125,6 +158,11 @@ Result<std::unique_ptr<PipelineRig>> PipelineRig::start(const PipelineSettings& 
 
 Status PipelineRig::launch(const PipelineSettings& s) {
   robots_ = s.robots;
+  gateways_ = s.gateways;
+  planners_ = s.planners;
+  const auto program = [&](const std::string& name) {
+    return s.bin_dir.empty() ? testkit::bin_path(name) : s.bin_dir + "/" + name;
+  };
   const std::string world = group_.dir() + "/rooms.txt";
   std::ofstream(world) << rooms_world_text(s.world_side_m, s.room_m);
 
@@ -136,28 +174,33 @@ Status PipelineRig::launch(const PipelineSettings& s) {
   // simulator keeps its DDS side on a plain domain of its own, as run.sh --secure does.
   const bool secure = testkit::dds_security_on();
   const std::string sim_domain = std::to_string(secure ? sim_domain_.id() : domain_.id());
-  group_.start("gateway",
-               testkit::with_dds_identity("gateway", {testkit::bin_path("slam-gateway"), "--domain", domain,
-                                                      "--broker", broker, "--log-level", "warn"}));
-  group_.start("mapper",
-               testkit::with_dds_identity(
-                   "mapper",
-                   {testkit::bin_path("slam-mapper"), "--domain", domain, "--store", group_.dir() + "/map.db",
-                    "--grid-resolution", fmt::format("{}", g.resolution), "--grid-origin-x",
-                    fmt::format("{}", g.origin_x), "--grid-origin-y", fmt::format("{}", g.origin_y),
-                    "--grid-width-m", fmt::format("{}", g.side_m), "--grid-height-m",
-                    fmt::format("{}", g.side_m), "--slam", s.slam ? "on" : "off", "--log-level", "warn"}));
-  group_.start("planner",
-               testkit::with_dds_identity(
-                   "planner", {testkit::bin_path("slam-planner"), "--domain", domain, "--log-level", "warn",
-                               "--goal-store", group_.dir() + "/goals.json"}));
+  // Several gateways share the robots through the broker's shared subscription (their default).
+  for (int i = 0; i < s.gateways; ++i) {
+    group_.start(instance_name("gateway", i),
+                 testkit::with_dds_identity("gateway", {program("slam-gateway"), "--domain", domain,
+                                                        "--broker", broker, "--log-level", "warn"}));
+  }
+  group_.start(
+      "mapper",
+      testkit::with_dds_identity(
+          "mapper", {program("slam-mapper"), "--domain", domain, "--store", group_.dir() + "/map.db",
+                     "--grid-resolution", fmt::format("{}", g.resolution), "--grid-origin-x",
+                     fmt::format("{}", g.origin_x), "--grid-origin-y", fmt::format("{}", g.origin_y),
+                     "--grid-width-m", fmt::format("{}", g.side_m), "--grid-height-m",
+                     fmt::format("{}", g.side_m), "--slam", s.slam ? "on" : "off", "--log-level", "warn"}));
+  for (int i = 0; i < s.planners; ++i) {
+    const std::string name = instance_name("planner", i);
+    group_.start(name, testkit::with_dds_identity(
+                           "planner", {program("slam-planner"), "--domain", domain, "--log-level", "warn",
+                                       "--goal-store", group_.dir() + "/goals-" + name + ".json"}));
+  }
   if (s.bridge) {
     bridge_port_ = testkit::free_tcp_port();
     group_.start("bridge", testkit::with_dds_identity(
-                               "bridge", {testkit::bin_path("slam-bridge"), "--domain", domain, "--bind",
+                               "bridge", {program("slam-bridge"), "--domain", domain, "--bind",
                                           fmt::format("127.0.0.1:{}", bridge_port_), "--log-level", "warn"}));
   }
-  group_.start("simulator", {testkit::bin_path("slam-simulator"),
+  group_.start("simulator", {program("slam-simulator"),
                              "--domain",
                              sim_domain,
                              "--broker",
@@ -195,7 +238,7 @@ Status PipelineRig::launch(const PipelineSettings& s) {
     sample.stamp_ns = h.stamp_ns();
     for (const Counter& c : h.counters()) sample.values[c.name().to_string()] = c.value();
     std::lock_guard lock(mutex_);
-    latest_[h.service().to_string()] = std::move(sample);
+    latest_[h.service().to_string()][h.instance_id().to_string()] = std::move(sample);
   };
   auto reader = dds::make_reader(*participant_, dds::kHeartbeat, heartbeat);
   if (!reader) return Error{"heartbeat reader: " + reader.message()};
@@ -227,9 +270,9 @@ Status PipelineRig::wait_until_running(std::chrono::seconds timeout) {
   int64_t first_observations = -1;
   while (std::chrono::steady_clock::now() < until) {
     if (Status s = check_running(); !s) return s;
-    bool all = true;
-    for (const char* service : {"gateway", "mapper", "planner", "simulator"})
-      all = all && latest(service).stamp_ns > 0;
+    bool all = instances("gateway").size() == static_cast<size_t>(gateways_) &&
+               instances("planner").size() == static_cast<size_t>(planners_);
+    for (const char* service : {"mapper", "simulator"}) all = all && latest(service).stamp_ns > 0;
     const int64_t observations = latest("mapper").get("observations");
     if (all && latest("simulator").get("robots") >= robots_ && observations > 0) {
       if (first_observations < 0) first_observations = observations;
@@ -238,10 +281,8 @@ Status PipelineRig::wait_until_running(std::chrono::seconds timeout) {
     std::this_thread::sleep_for(std::chrono::milliseconds(200));
   }
   std::string missing;
-  for (const char* service : {"gateway", "mapper", "planner", "simulator"}) {
-    const CounterSample s = latest(service);
-    missing += fmt::format(" {}: {}", service, s.stamp_ns > 0 ? "heartbeat seen" : "no heartbeat");
-  }
+  for (const char* service : {"gateway", "mapper", "planner", "simulator"})
+    missing += fmt::format(" {}: {} heartbeating", service, instances(service).size());
   // Where the stream stops (broker, gateway or mapper) and what the services said, e.g. a DDS
   // Security error on a secure domain.
   return Error{fmt::format(
@@ -260,17 +301,34 @@ Status PipelineRig::check_running() {
 }
 
 CounterSample PipelineRig::latest(const std::string& service) const {
+  CounterSample total;
+  for (const auto& [instance, sample] : instances(service)) {
+    total.stamp_ns = std::max(total.stamp_ns, sample.stamp_ns);
+    for (const auto& [name, value] : sample.values) total.values[name] += value;
+  }
+  return total;
+}
+
+std::map<std::string, CounterSample> PipelineRig::instances(const std::string& service) const {
   std::lock_guard lock(mutex_);
   const auto it = latest_.find(service);
-  return it == latest_.end() ? CounterSample{} : it->second;
+  return it == latest_.end() ? std::map<std::string, CounterSample>{} : it->second;
 }
 
 std::vector<std::pair<std::string, pid_t>> PipelineRig::processes() const {
   std::vector<std::pair<std::string, pid_t>> out;
-  for (const char* name : {"mosquitto", "gateway", "mapper", "planner", "simulator"})
-    out.emplace_back(name, group_.pid(name));
-  if (bridge_port_ != 0) out.emplace_back("bridge", group_.pid("bridge"));
+  out.emplace_back("mosquitto", group_.pid("mosquitto"));
+  for (int i = 0; i < gateways_; ++i) out.emplace_back(instance_name("gateway", i), 0);
+  out.emplace_back("mapper", 0);
+  for (int i = 0; i < planners_; ++i) out.emplace_back(instance_name("planner", i), 0);
+  out.emplace_back("simulator", 0);
+  if (bridge_port_ != 0) out.emplace_back("bridge", 0);
+  for (auto& [name, pid] : out) pid = group_.pid(name);
   return out;
+}
+
+std::string PipelineRig::service_of(const std::string& process) {
+  return process.substr(0, process.find_last_not_of("0123456789") + 1);
 }
 
 std::string PipelineRig::log_tail(const std::string& name) const {

@@ -28,11 +28,16 @@ struct GridLayout {
 };
 
 struct PipelineSettings {
-  int robots = 1000;           // SLAM_BENCH_PIPELINE_ROBOTS
-  double seconds = 30.0;       // SLAM_BENCH_PIPELINE_SECONDS: the measured window
-  bool slam = true;            // SLAM_BENCH_PIPELINE_SLAM=off: the mapper runs with --slam off
-  bool bridge = false;         // SLAM_BENCH_PIPELINE_BRIDGE=1: slam-bridge runs too (one client, see
-                               // pipeline_bridge_client.hpp)
+  int robots = 1000;      // SLAM_BENCH_PIPELINE_ROBOTS
+  double seconds = 30.0;  // SLAM_BENCH_PIPELINE_SECONDS: the measured window
+  bool slam = true;       // SLAM_BENCH_PIPELINE_SLAM=off: the mapper runs with --slam off
+  bool bridge = false;    // SLAM_BENCH_PIPELINE_BRIDGE=1: slam-bridge runs too (one client, see
+                          // pipeline_bridge_client.hpp)
+  int gateways = 1;       // SLAM_BENCH_PIPELINE_GATEWAYS: gateways sharing the robots
+  int planners = 1;       // SLAM_BENCH_PIPELINE_PLANNERS: planners sharing the work
+  // SLAM_BENCH_PIPELINE_BIN_DIR: the services' directory (default: this build's), so one bench
+  // can measure the services of another build, e.g. before and after a change, interleaved.
+  std::string bin_dir;
   double warmup_s = 5.0;       // after every robot reports, before the window
   int beams = 9;               // 9 obstacle points + the position = 10 v1 pairs per message
   double max_range_m = 12.0;   // longer than a room's diagonal: nearly every beam hits a wall
@@ -62,6 +67,10 @@ double rate_between(const CounterSample& from, const CounterSample& to, const st
 // CPU seconds (user + system) a process used so far, all threads; negative if it is gone.
 double process_cpu_s(pid_t pid);
 
+// Times the threads of a process went to sleep waiting (voluntary context switches: a blocking
+// receive, a futex wait), summed over its live threads; each is later paid for by a wake-up.
+int64_t process_waits(pid_t pid);
+
 // Busy and total CPU seconds of the whole machine so far (all cores), from /proc/stat.
 struct MachineCpu {
   double busy_s = 0.0;
@@ -84,16 +93,21 @@ class PipelineRig {
   // An error naming the first process that exited, with the end of its log.
   Status check_running();
 
-  // Latest heartbeat counters of `service`; empty values when none arrived yet.
+  // Latest heartbeat counters of `service`, summed over its instances (several gateways or
+  // planners), stamped with the newest of them; empty values when none arrived yet.
   CounterSample latest(const std::string& service) const;
+  // Latest heartbeat counters of each instance of `service`, by instance id.
+  std::map<std::string, CounterSample> instances(const std::string& service) const;
 
   int broker_port() const { return port_; }
   // The bridge's WebSocket port; 0 when the bridge does not run.
   int bridge_port() const { return bridge_port_; }
   dds::Participant& participant() { return *participant_; }
-  // Name and pid of every process started (mosquitto, gateway, mapper, planner, simulator, and
-  // bridge when it runs).
+  // Name and pid of every process started: mosquitto, gateway (gateway2, ... when several),
+  // mapper, planner (planner2, ...), simulator, and bridge when it runs.
   std::vector<std::pair<std::string, pid_t>> processes() const;
+  // The service a process name belongs to: "gateway2" -> "gateway".
+  static std::string service_of(const std::string& process);
   // Tail of a process's log, for error messages.
   std::string log_tail(const std::string& name) const;
 
@@ -107,6 +121,8 @@ class PipelineRig {
   int port_ = 0;
   int bridge_port_ = 0;
   int robots_ = 0;
+  int gateways_ = 1;
+  int planners_ = 1;
   std::unique_ptr<dds::Participant> participant_;
   std::unique_ptr<dds::Participant> sim_participant_;  // DDS Security on: on sim_domain_, plain
   std::unique_ptr<dds::Reader<Heartbeat>> heartbeats_;
@@ -114,7 +130,7 @@ class PipelineRig {
   std::unique_ptr<dds::Writer<SimControl>> sim_control_;
   uint64_t commands_sent_ = 0;
   mutable std::mutex mutex_;
-  std::map<std::string, CounterSample> latest_;  // by service name
+  std::map<std::string, std::map<std::string, CounterSample>> latest_;  // by service, then instance
 };
 
 }  // namespace slam::bench

@@ -59,7 +59,7 @@ struct Map {
 };
 
 inline std::optional<Map> assemble(const std::vector<GridSnapshot>& snapshots,
-                            const std::vector<GridTiles>& patches) {
+                                   const std::vector<GridTiles>& patches) {
   if (snapshots.empty()) return std::nullopt;
   const GridSnapshot& s = snapshots.back();
   Map m{s.layout_id(), s.version(), s.info(), s.cells()};
@@ -78,7 +78,7 @@ inline std::optional<Map> assemble(const std::vector<GridSnapshot>& snapshots,
 }
 
 inline RobotObservation observation(const std::string& robot, uint64_t seq, Point2 pose,
-                             const std::vector<Point2>& hits) {
+                                    const std::vector<Point2>& hits) {
   RobotObservation o;
   o.robot_id(robot);
   o.seq(seq);

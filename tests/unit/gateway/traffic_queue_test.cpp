@@ -69,15 +69,22 @@ TEST(TrafficQueue, ZeroRateTurnsTheLogOff) {
   EXPECT_FALSE(queue.push(TrafficDirection::Inbound, "t", {}, 0, 0));
 }
 
-TEST(TrafficQueue, PopWaitsForAPushAndCloseWakesIt) {
-  TrafficQueue queue(4, 1000.0);
+TEST(TrafficQueue, PopWaitsForAFullBatchAndCloseWakesIt) {
+  TrafficQueue queue(8, 1000.0);
   auto batch = queue.make_batch(4);
+  queue.push(TrafficDirection::Inbound, "early", {}, 0, 0);
+  EXPECT_EQ(queue.pop(batch, 10ms), 1u);  // less than a batch: taken when the wait times out
   std::thread producer([&] {
     std::this_thread::sleep_for(20ms);
-    queue.push(TrafficDirection::Inbound, "late", {}, 0, 0);
+    for (int i = 0; i < 5; ++i) queue.push(TrafficDirection::Inbound, "late", {}, 0, 0);
   });
-  EXPECT_EQ(queue.pop(batch, 5s), 1u);
+  // The fourth record wakes the waiting pop, which takes one batch (the fifth waits for the next).
+  const auto waiting_since = std::chrono::steady_clock::now();
+  const size_t taken = queue.pop(batch, 5s);
+  EXPECT_EQ(taken, 4u);
+  EXPECT_LT(std::chrono::steady_clock::now() - waiting_since, 4s);  // woken, not timed out
   producer.join();
+  EXPECT_EQ(taken + queue.pop(batch, 0ms), 5u);
   std::thread closer([&] {
     std::this_thread::sleep_for(20ms);
     queue.close();
