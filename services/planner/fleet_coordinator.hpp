@@ -9,6 +9,21 @@
 // that cannot move plans a way around it. Priority: the earlier route first (ties by a hash of the
 // id), so a waiting robot only rises and none waits forever while the others keep arriving.
 //
+// One-way narrow stretches: where the path runs through a passage in which no robot can stand clear
+// of another's way (no free room `reach` to either side of the path: a door, a single-lane corridor),
+// the whole stretch ahead, up to `section_horizon_m`, is reserved as one section once its entry is
+// within `lookahead_m`. A robot does not enter a section that a robot inside it, or a robot of higher
+// priority waiting to enter it, travels in the opposite direction: it waits before the mouth, where
+// there is room, instead of meeting the other one inside where neither can step aside (the queues
+// from both ends that filled a maze corridor). Why this cannot deadlock and how long a robot waits:
+// a section wait points from a robot outside the stretch to one inside it or to one of higher
+// priority, and robots inside never wait for a section, so section waits alone form no cycle; every
+// chain ends at robots inside that all drive one way and leave the stretch (a cycle through a body
+// or reservation wait at the mouth is broken as any other). A waiting robot lets through only robots
+// already inside and robots of higher priority, and priority never falls while it waits (a new
+// route ranks last): it waits at most for the robots that rank above it, each crossing the stretch
+// once — (robots - 1) x (stretch + lookahead) / speed plus the deadlock breaks on the way.
+//
 // Plain C++: TrafficRules decides from plain inputs; FleetCoordinator feeds it from the Fleet and
 // rewrites the due waypoint commands of the robots owned here. With several planners each one
 // decides for every robot from what it sees (RobotState positions, RobotPath paths of the other
@@ -41,6 +56,8 @@ struct CoordinationConfig {
   // A robot kept waiting this long (a stopped robot, a jam no one can step out of) plans a way
   // around the robots in its way, and again as often while it waits.
   double replan_after_s = 4.0;
+  // How much of a narrow stretch ahead is reserved one way at most (a long corridor in parts).
+  double section_horizon_m = 12.0;
 };
 
 Status validate(const CoordinationConfig& config);
@@ -61,6 +78,7 @@ struct TrafficDecision {
   int32_t blocker = -1;  // the robot it waits for or gives way to
   int64_t waiting_since_ns = -1;
   bool deadlock = false;  // yields to break a wait-for cycle
+  bool section = false;   // waits before a narrow stretch another robot uses the other way
 };
 
 class TrafficRules {
@@ -79,6 +97,19 @@ class TrafficRules {
   double reach() const { return 2.0 * config_.robot_radius_m + config_.clearance_m; }
   // The robot's way from where it is, cut at `length` metres, appended to `out`.
   static void append_way(const TrafficRobot& robot, double length, std::vector<Vec2>& out);
+  // The point `length` metres along the robot's way (its destination when the way is shorter).
+  static Vec2 point_along(const TrafficRobot& robot, double length);
+  // True when a robot at p driving along `along` (a unit vector) has no free room `reach` plus a
+  // margin to either side: another robot cannot stand clear of its way there.
+  bool narrow_at(const PlanningGrid& grid, Vec2 p, Vec2 along) const;
+  // Section i: the narrow stretch of the robot's way that begins within lookahead_m (none: empty),
+  // with entry_m_[i] how far along the way it begins.
+  void build_section(const PlanningGrid& grid, size_t i, const TrafficRobot& robot);
+  std::span<const Vec2> section(size_t i) const;
+  // True when the polylines come closer than `gap` somewhere they run in opposite directions.
+  static bool opposed(std::span<const Vec2> a, std::span<const Vec2> b, double gap);
+  // Decides section_blocker_: robots inside a section first, then by priority.
+  void grant_sections(std::span<const TrafficRobot> robots);
   // The same as claim i (offsets in claim_at_).
   void build_claim(size_t i, const TrafficRobot& robot, double length);
   std::span<const Vec2> claim(size_t i) const;
@@ -105,6 +136,14 @@ class TrafficRules {
   std::vector<uint32_t> seen_stamp_;     // yield search: grid cells seen, by query stamp
   std::vector<uint32_t> parent_;         // yield search: the cell each was reached from
   std::vector<uint32_t> queue_;
+  std::vector<Vec2> section_points_;
+  std::vector<uint32_t> section_at_;      // section i is section_points_[section_at_[2i], section_at_[2i+1])
+  std::vector<double> entry_m_;           // way to section i's entry
+  std::vector<int32_t> section_blocker_;  // the robot whose section robot i may not enter against
+  std::vector<uint8_t> section_held_;     // robot i had its section granted on the last tick
+  std::vector<uint32_t> rank_;            // robot i's place in order_
+  std::vector<uint32_t> section_order_;   // robots with a section, in the order they are granted
+  std::vector<TrafficDecision> prior_;    // each robot's decision on the last tick
   uint32_t stamp_ = 0;
   uint64_t deadlocks_ = 0;
 };
