@@ -110,7 +110,7 @@ Vec2 TrafficRules::point_along(const TrafficRobot& robot, double length) {
 bool TrafficRules::narrow_at(const PlanningGrid& grid, Vec2 p, Vec2 along) const {
   const Vec2 side{-along.y, along.x};
   const double room = reach() + kYieldMarginM;
-  const double step = 0.5 * grid.resolution();
+  const double step = grid.resolution();
   for (const double sign : {1.0, -1.0}) {
     bool open = true;
     for (double t = step; t <= room && open; t += step) {
@@ -126,9 +126,9 @@ void TrafficRules::build_section(const PlanningGrid& grid, size_t i, const Traff
   section_at_[2 * i] = section_at_[2 * i + 1] = static_cast<uint32_t>(section_points_.size());
   entry_m_[i] = std::numeric_limits<double>::infinity();
   if (robot.ahead.empty() || grid.empty()) return;
-  // Samples every half cell along the way: the first narrow one within the lookahead opens the
-  // section, the first open one after it (or the horizon) closes it.
-  const double step = 0.5 * grid.resolution();
+  // Samples every cell along the way: the first narrow one within the lookahead opens the section,
+  // the first open one after it (or the horizon) closes it.
+  const double step = grid.resolution();
   double walked = 0.0, next_sample = 0.0;
   bool inside = false;
   Vec2 from = robot.position;
@@ -181,8 +181,6 @@ bool TrafficRules::opposed(std::span<const Vec2> a, std::span<const Vec2> b, dou
 void TrafficRules::grant_sections(std::span<const TrafficRobot> robots) {
   const size_t n = robots.size();
   const double reach = this->reach();
-  rank_.assign(n, std::numeric_limits<uint32_t>::max());
-  for (size_t r = 0; r < order_.size(); ++r) rank_[order_[r]] = static_cast<uint32_t>(r);
   // Inside: on the narrow stretch already, or at its mouth with the section granted (it may be
   // entering). Such a robot cannot turn back, so it keeps the section whatever its priority.
   const auto inside = [&](uint32_t i) {
@@ -190,8 +188,9 @@ void TrafficRules::grant_sections(std::span<const TrafficRobot> robots) {
   };
   section_order_.clear();
   for (const uint32_t i : order_)
-    if (section(i).size() >= 2) section_order_.push_back(i);
-  std::stable_partition(section_order_.begin(), section_order_.end(), inside);
+    if (section(i).size() >= 2 && inside(i)) section_order_.push_back(i);
+  for (const uint32_t i : order_)
+    if (section(i).size() >= 2 && !inside(i)) section_order_.push_back(i);
   section_blocker_.assign(n, -1);
   for (size_t at = 0; at < section_order_.size(); ++at) {
     const uint32_t i = section_order_[at];
@@ -332,6 +331,7 @@ void TrafficRules::resolve_deadlocks(const PlanningGrid& grid, std::span<const T
                                      std::vector<TrafficDecision>& decisions) {
   const size_t n = robots.size();
   visit_.assign(n, 0);
+  waited_by_.resize(n);
   uint32_t walk = 0;
   for (size_t s = 0; s < n; ++s) {
     if (decisions[s].order != TrafficOrder::Wait || visit_[s] != 0) continue;
@@ -356,23 +356,55 @@ void TrafficRules::resolve_deadlocks(const PlanningGrid& grid, std::span<const T
         k = static_cast<size_t>(decisions[k].blocker);
       } while (k != cur);
       // The one already stepping aside for this cycle carries on (switching roles midway would send
-      // them past each other); otherwise the highest tie number first: a number every planner gives
-      // the robot alike, so planners that each drive one robot of the cycle agree on who moves.
+      // them past each other); then a robot waiting before a section: it stands where there is room,
+      // and the one inside it cannot clear the section by stepping aside (the section stays its
+      // own); otherwise the highest tie number first: a number every planner gives the robot alike,
+      // so planners that each drive one robot of the cycle agree on who moves.
+      for (const uint32_t m : cycle_) waited_by_[static_cast<size_t>(decisions[m].blocker)] = m;
       std::sort(cycle_.begin(), cycle_.end(), [&](uint32_t a, uint32_t b) {
-        return std::tuple(was_deadlocked_[a], robots[a].tie, a) >
-               std::tuple(was_deadlocked_[b], robots[b].tie, b);
+        return std::tuple(was_deadlocked_[a], decisions[a].section, robots[a].tie, a) >
+               std::tuple(was_deadlocked_[b], decisions[b].section, robots[b].tie, b);
       });
       // The same cycle stays until the yielding robot is out of the way: counted once.
       if (std::none_of(cycle_.begin(), cycle_.end(), [&](uint32_t m) { return was_deadlocked_[m] != 0; }))
         ++deadlocks_;
+      // A member steps off the way of the robot waiting for it: that breaks the cycle's edge into
+      // it (off the way of the one it waits for would not, unless the two wait for each other).
+      bool moved = false;
       for (const uint32_t m : cycle_) {
-        yield(grid, robots, m, static_cast<size_t>(decisions[m].blocker), decisions);
+        yield(grid, robots, m, waited_by_[m], decisions);
         decisions[m].deadlock = true;
-        if (decisions[m].order == TrafficOrder::Yield) break;
+        moved = decisions[m].order == TrafficOrder::Yield;
+        if (moved) break;
       }
+      if (!moved) back_off(grid, robots, decisions);
     } else if (robots[cur].ahead.empty() && cur != prev && decisions[cur].order == TrafficOrder::Go) {
       // The chain ends at a stopped robot: it steps off the way of the one waiting for it.
       yield(grid, robots, cur, prev, decisions);
+    }
+  }
+}
+
+void TrafficRules::back_off(const PlanningGrid& grid, std::span<const TrafficRobot> robots,
+                            std::vector<TrafficDecision>& decisions) {
+  // No member of the cycle has room to step aside: the robots queued behind them fill the way
+  // back. The robots queued behind a member step off the way of the robot that member gives way
+  // to, the nearest first, then the ones behind them: room opens behind the member from the end of
+  // its queue, and the member backs into it on a later tick.
+  constexpr size_t kMaxBackOff = 16;  // robots tried per cycle and tick
+  back_off_.clear();
+  for (const uint32_t m : cycle_) back_off_.emplace_back(m, waited_by_[m]);
+  for (size_t at = 0; at < back_off_.size() && at < kMaxBackOff; ++at) {
+    const auto [front, away] = back_off_[at];
+    for (size_t q = 0; q < robots.size(); ++q) {
+      if (q == away || decisions[q].order != TrafficOrder::Wait ||
+          decisions[q].blocker != static_cast<int32_t>(front) ||
+          std::find(cycle_.begin(), cycle_.end(), static_cast<uint32_t>(q)) != cycle_.end())
+        continue;
+      yield(grid, robots, q, away, decisions);
+      decisions[q].deadlock = true;
+      if (decisions[q].order == TrafficOrder::Yield) return;
+      back_off_.emplace_back(static_cast<uint32_t>(q), away);
     }
   }
 }

@@ -37,6 +37,7 @@
 #include <map>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "common/core/result.hpp"
@@ -123,6 +124,9 @@ class TrafficRules {
                          std::vector<TrafficDecision>& decisions);
   void yield(const PlanningGrid& grid, std::span<const TrafficRobot> robots, size_t i, size_t to,
              std::vector<TrafficDecision>& decisions);
+  // The cascading back-off of the queues behind the cycle in cycle_ when none of it can yield.
+  void back_off(const PlanningGrid& grid, std::span<const TrafficRobot> robots,
+                std::vector<TrafficDecision>& decisions);
 
   CoordinationConfig config_;
   std::vector<uint32_t> order_;  // robots by priority, highest first
@@ -133,15 +137,16 @@ class TrafficRules {
   std::vector<uint8_t> was_deadlocked_;  // yielded to break a cycle on the last tick
   std::vector<uint32_t> visit_;          // wait-for graph walk stamps
   std::vector<uint32_t> cycle_;          // the robots of one wait-for cycle
-  std::vector<uint32_t> seen_stamp_;     // yield search: grid cells seen, by query stamp
-  std::vector<uint32_t> parent_;         // yield search: the cell each was reached from
+  std::vector<uint32_t> waited_by_;      // cycle member -> the member waiting for it
+  std::vector<std::pair<uint32_t, uint32_t>> back_off_;  // (robot, the robot whose way to clear)
+  std::vector<uint32_t> seen_stamp_;                     // yield search: grid cells seen, by query stamp
+  std::vector<uint32_t> parent_;                         // yield search: the cell each was reached from
   std::vector<uint32_t> queue_;
   std::vector<Vec2> section_points_;
   std::vector<uint32_t> section_at_;      // section i is section_points_[section_at_[2i], section_at_[2i+1])
   std::vector<double> entry_m_;           // way to section i's entry
   std::vector<int32_t> section_blocker_;  // the robot whose section robot i may not enter against
   std::vector<uint8_t> section_held_;     // robot i had its section granted on the last tick
-  std::vector<uint32_t> rank_;            // robot i's place in order_
   std::vector<uint32_t> section_order_;   // robots with a section, in the order they are granted
   std::vector<TrafficDecision> prior_;    // each robot's decision on the last tick
   uint32_t stamp_ = 0;

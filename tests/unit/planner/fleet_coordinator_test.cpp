@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <functional>
 #include <limits>
 #include <string>
 #include <vector>
@@ -47,7 +48,9 @@ std::vector<TrafficRobot> inputs(const std::vector<Bot>& bots) {
   return out;
 }
 
-RunResult run(const PlanningGrid& grid, std::vector<Bot>& bots, const CoordinationConfig& config, int steps) {
+// `each_step` (if given) sees the robots after every step.
+RunResult run(const PlanningGrid& grid, std::vector<Bot>& bots, const CoordinationConfig& config, int steps,
+              const std::function<void(const std::vector<Bot>&)>& each_step = {}) {
   TrafficRules rules(config);
   std::vector<TrafficDecision> decisions;
   RunResult result;
@@ -68,6 +71,7 @@ RunResult run(const PlanningGrid& grid, std::vector<Bot>& bots, const Coordinati
       b.position = gap <= kSpeed * kDt ? target : b.position + (target - b.position) * (kSpeed * kDt / gap);
       if (d.order == TrafficOrder::Go && distance(b.position, b.path[b.next]) < kArrive) ++b.next;
     }
+    if (each_step) each_step(bots);
     for (size_t i = 0; i < bots.size(); ++i)
       for (size_t j = i + 1; j < bots.size(); ++j)
         result.closest = std::min(result.closest, distance(bots[i].position, bots[j].position));
@@ -244,7 +248,7 @@ TEST(TrafficRules, RobotWaitsBeforeACorridorUsedTheOtherWayEvenWithHigherPriorit
   EXPECT_EQ(decisions[1].blocker, 0);
   // It waits outside, clear of the mouth: a reach (two radii and the clearance) before it.
   const CoordinationConfig c;
-  EXPECT_GE(decisions[1].hold.x, 11.0 + 2.0 * c.robot_radius_m + c.clearance_m - 0.1);
+  EXPECT_GE(decisions[1].hold.x, 11.0 + 2.0 * c.robot_radius_m + c.clearance_m - 0.15);
   EXPECT_LE(decisions[1].hold.x, 12.2);
 }
 
@@ -292,7 +296,19 @@ TEST(TrafficRules, QueuesFromBothEndsOfACorridorAllGetThroughWithinTheBound) {
         {11.6 + 0.8 * k, 4.0}, {{11.0, 4.0}, {5.0, 4.0}, left_targets[static_cast<size_t>(k)]}, 2 * k + 1});
   }
   const CoordinationConfig config;
-  const RunResult r = run(grid, bots, config, 12000);
+  // The corridor is one-way at any time: never a robot inside it heading right while another heads
+  // left (the fronts of the two queues would meet there with no way back).
+  int both_ways = 0;
+  const auto one_way = [&](const std::vector<Bot>& now) {
+    bool right = false, left = false;
+    for (const Bot& b : now) {
+      if (b.arrived() || b.position.x < 5.0 || b.position.x > 11.0) continue;
+      (b.path.back().x > b.position.x ? right : left) = true;
+    }
+    if (right && left) ++both_ways;
+  };
+  const RunResult r = run(grid, bots, config, 12000, one_way);
+  EXPECT_EQ(both_ways, 0);
   EXPECT_TRUE(r.all_arrived);
   EXPECT_GE(r.closest, 2.0 * config.robot_radius_m);
   // The header's bound: the robots ranked above one each cross the stretch once.
