@@ -125,7 +125,7 @@ bool TrafficRules::narrow_at(const PlanningGrid& grid, Vec2 p, Vec2 along) const
 void TrafficRules::build_section(const PlanningGrid& grid, size_t i, const TrafficRobot& robot) {
   section_at_[2 * i] = section_at_[2 * i + 1] = static_cast<uint32_t>(section_points_.size());
   entry_m_[i] = std::numeric_limits<double>::infinity();
-  if (robot.ahead.empty() || grid.empty()) return;
+  if (!config_.one_way_sections || robot.ahead.empty() || grid.empty()) return;
   // Samples every cell along the way: the first narrow one within the lookahead opens the section,
   // the first open one after it (or the horizon) closes it.
   const double step = grid.resolution();

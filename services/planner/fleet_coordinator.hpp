@@ -9,20 +9,24 @@
 // that cannot move plans a way around it. Priority: the earlier route first (ties by a hash of the
 // id), so a waiting robot only rises and none waits forever while the others keep arriving.
 //
-// One-way narrow stretches: where the path runs through a passage in which no robot can stand clear
-// of another's way (no free room `reach` to either side of the path: a door, a single-lane corridor),
-// the whole stretch ahead, up to `section_horizon_m`, is reserved as one section once its entry is
+// One-way narrow stretches (`one_way_sections`): where the path runs through a passage in which no robot can
+// stand clear of another's way (no free room `reach` to either side of the path: a door, a single-lane
+// corridor), the whole stretch ahead, up to `section_horizon_m`, is reserved as one section once its entry is
 // within `lookahead_m`. A robot does not enter a section that a robot inside it, or a robot of higher
-// priority waiting to enter it, travels in the opposite direction: it waits before the mouth, where
-// there is room, instead of meeting the other one inside where neither can step aside (the queues
-// from both ends that filled a maze corridor). Why this cannot deadlock and how long a robot waits:
-// a section wait points from a robot outside the stretch to one inside it or to one of higher
-// priority, and robots inside never wait for a section, so section waits alone form no cycle; every
-// chain ends at robots inside that all drive one way and leave the stretch (a cycle through a body
-// or reservation wait at the mouth is broken as any other). A waiting robot lets through only robots
-// already inside and robots of higher priority, and priority never falls while it waits (a new
-// route ranks last): it waits at most for the robots that rank above it, each crossing the stretch
-// once — (robots - 1) x (stretch + lookahead) / speed plus the deadlock breaks on the way.
+// priority waiting to enter it, travels in the opposite direction: it waits `reach` before the mouth
+// instead of meeting the other one inside where neither can step aside (the queues from both ends
+// that filled a maze corridor). Section waits alone form no cycle: one points from a robot outside
+// the stretch to one inside it or to one of higher priority, and robots inside never wait for a
+// section. A waiting robot lets through only robots already inside and robots ranked above it, and
+// its rank never falls while it waits (a new route ranks last), so a section wait lasts at most
+// while the robots ranked above it cross once each, (robots - 1) x (stretch + lookahead) / speed,
+// provided the robots inside move. That proviso is not guaranteed: a robot inside can be held by a
+// body at the far mouth, and that cycle is broken by yielding, which needs room (below). So this is
+// a bound on section waits, not on every wait (docs/performance.md has the measured waits).
+//
+// Breaking a cycle: a member steps off the way of the robot waiting for it (that removes the
+// cycle's edge into it); when no member has room, the robots queued behind the members step off
+// the way first, nearest first (a cascading back-off), so a member can back into the room made.
 //
 // Plain C++: TrafficRules decides from plain inputs; FleetCoordinator feeds it from the Fleet and
 // rewrites the due waypoint commands of the robots owned here. With several planners each one
@@ -57,6 +61,9 @@ struct CoordinationConfig {
   // A robot kept waiting this long (a stopped robot, a jam no one can step out of) plans a way
   // around the robots in its way, and again as often while it waits.
   double replan_after_s = 4.0;
+  // One-way narrow stretches (below). Off by default: measured in the maze they did not shorten
+  // the longest wait and in an offline model they halved the targets reached (docs/performance.md).
+  bool one_way_sections = false;
   // How much of a narrow stretch ahead is reserved one way at most (a long corridor in parts).
   double section_horizon_m = 12.0;
 };

@@ -220,6 +220,12 @@ TEST(TrafficRules, WhenTheLowerPriorityCannotStepAsideTheOtherOneDoes) {
 
 // Two rooms (x 0.5..5 m and 11..15.5 m, y 0.5..7.5 m) joined by a single-lane corridor 0.6 m wide
 // and 6 m long along y = 4 m.
+CoordinationConfig with_sections() {
+  CoordinationConfig c;
+  c.one_way_sections = true;
+  return c;
+}
+
 PlanningGrid rooms_and_corridor() {
   std::vector<std::string> rows(80, std::string(160, '#'));
   for (int r = 0; r < 80; ++r) {
@@ -239,7 +245,7 @@ TEST(TrafficRules, RobotWaitsBeforeACorridorUsedTheOtherWayEvenWithHigherPriorit
   // a is in the corridor going right; b, the earlier route, is about to enter it going left.
   std::vector<Bot> bots{{{7.0, 4.0}, {{11.0, 4.0}, {13.0, 4.0}}, 10},
                         {{12.2, 4.0}, {{11.0, 4.0}, {5.0, 4.0}, {2.0, 4.0}}, 0}};
-  TrafficRules rules{CoordinationConfig{}};
+  TrafficRules rules{with_sections()};
   std::vector<TrafficDecision> decisions;
   rules.decide(grid, inputs(bots), 0, decisions);
   EXPECT_EQ(decisions[0].order, TrafficOrder::Go);
@@ -247,7 +253,7 @@ TEST(TrafficRules, RobotWaitsBeforeACorridorUsedTheOtherWayEvenWithHigherPriorit
   EXPECT_TRUE(decisions[1].section);
   EXPECT_EQ(decisions[1].blocker, 0);
   // It waits outside, clear of the mouth: a reach (two radii and the clearance) before it.
-  const CoordinationConfig c;
+  const CoordinationConfig c = with_sections();
   EXPECT_GE(decisions[1].hold.x, 11.0 + 2.0 * c.robot_radius_m + c.clearance_m - 0.15);
   EXPECT_LE(decisions[1].hold.x, 12.2);
 }
@@ -256,7 +262,7 @@ TEST(TrafficRules, BothOutsideTheEarlierRouteTakesTheCorridorTheOtherWaits) {
   const PlanningGrid grid = rooms_and_corridor();
   std::vector<Bot> bots{{{4.0, 4.0}, {{5.0, 4.0}, {11.0, 4.0}, {13.0, 4.0}}, 10},
                         {{12.0, 4.0}, {{11.0, 4.0}, {5.0, 4.0}, {2.0, 4.0}}, 0}};
-  TrafficRules rules{CoordinationConfig{}};
+  TrafficRules rules{with_sections()};
   std::vector<TrafficDecision> decisions;
   rules.decide(grid, inputs(bots), 0, decisions);
   EXPECT_EQ(decisions[0].order, TrafficOrder::Wait);
@@ -271,7 +277,7 @@ TEST(TrafficRules, AStreamOneWayDoesNotStarveAnEarlierRouteWaitingTheOtherWay) {
   std::vector<Bot> bots{{{8.0, 4.0}, {{11.0, 4.0}, {13.0, 4.0}}, 5},
                         {{12.2, 4.0}, {{11.0, 4.0}, {5.0, 4.0}, {2.0, 4.0}}, 0},
                         {{4.0, 4.0}, {{5.0, 4.0}, {11.0, 4.0}, {14.0, 6.0}}, 10}};
-  TrafficRules rules{CoordinationConfig{}};
+  TrafficRules rules{with_sections()};
   std::vector<TrafficDecision> decisions;
   rules.decide(grid, inputs(bots), 0, decisions);
   EXPECT_EQ(decisions[0].order, TrafficOrder::Go);
@@ -282,9 +288,16 @@ TEST(TrafficRules, AStreamOneWayDoesNotStarveAnEarlierRouteWaitingTheOtherWay) {
   EXPECT_EQ(decisions[2].blocker, 1);
 }
 
-TEST(TrafficRules, QueuesFromBothEndsOfACorridorAllGetThroughWithinTheBound) {
-  // Three robots queue into the corridor from each end (the maze jam: with 2 m reservations alone
-  // the two fronts meet inside and the queues behind them leave neither a way back).
+// Three robots queue into the corridor from each end (the maze jam: with 2 m reservations alone the
+// two fronts meet inside and the queues behind them leave neither a way back). Counts the steps in
+// which robots inside the corridor head both ways.
+struct QueueRun {
+  RunResult result;
+  int both_ways = 0;
+  size_t robots = 0;
+};
+
+QueueRun queues_from_both_ends(const CoordinationConfig& config) {
   const PlanningGrid grid = rooms_and_corridor();
   std::vector<Bot> bots;
   const std::vector<Vec2> right_targets{{12.5, 6.5}, {13.5, 1.5}, {15.0, 4.0}};
@@ -295,26 +308,35 @@ TEST(TrafficRules, QueuesFromBothEndsOfACorridorAllGetThroughWithinTheBound) {
     bots.push_back(Bot{
         {11.6 + 0.8 * k, 4.0}, {{11.0, 4.0}, {5.0, 4.0}, left_targets[static_cast<size_t>(k)]}, 2 * k + 1});
   }
-  const CoordinationConfig config;
-  // The corridor is one-way at any time: never a robot inside it heading right while another heads
-  // left (the fronts of the two queues would meet there with no way back).
-  int both_ways = 0;
-  const auto one_way = [&](const std::vector<Bot>& now) {
+  QueueRun out;
+  out.robots = bots.size();
+  const auto count_both_ways = [&](const std::vector<Bot>& now) {
     bool right = false, left = false;
     for (const Bot& b : now) {
       if (b.arrived() || b.position.x < 5.0 || b.position.x > 11.0) continue;
       (b.path.back().x > b.position.x ? right : left) = true;
     }
-    if (right && left) ++both_ways;
+    if (right && left) ++out.both_ways;
   };
-  const RunResult r = run(grid, bots, config, 12000, one_way);
-  EXPECT_EQ(both_ways, 0);
-  EXPECT_TRUE(r.all_arrived);
-  EXPECT_GE(r.closest, 2.0 * config.robot_radius_m);
+  out.result = run(grid, bots, config, 12000, count_both_ways);
+  return out;
+}
+
+TEST(TrafficRules, QueuesFromBothEndsOfACorridorAllGetThroughWithinTheBound) {
+  const CoordinationConfig config = with_sections();
+  const QueueRun q = queues_from_both_ends(config);
+  EXPECT_EQ(q.both_ways, 0);  // the corridor is one-way at any time
+  EXPECT_TRUE(q.result.all_arrived);
+  EXPECT_GE(q.result.closest, 2.0 * config.robot_radius_m);
   // The header's bound: the robots ranked above one each cross the stretch once.
   const double stretch_m = 6.0;
-  const double bound_s = (static_cast<double>(bots.size()) - 1.0) * (stretch_m + config.lookahead_m) / kSpeed;
-  EXPECT_LE(r.longest_wait_s, bound_s);
+  const double bound_s = (static_cast<double>(q.robots) - 1.0) * (stretch_m + config.lookahead_m) / kSpeed;
+  EXPECT_LE(q.result.longest_wait_s, bound_s);
+}
+
+TEST(TrafficRules, WithoutSectionsTheQueuesMeetInsideTheCorridor) {
+  // The scenario above is a real test of the sections: without them robots enter from both ends.
+  EXPECT_GT(queues_from_both_ends(CoordinationConfig{}).both_ways, 0);
 }
 
 TEST(TrafficRules, TenRobotsCrossingARoomNeverMeet) {
@@ -417,8 +439,14 @@ TEST(CoordinationOptions, OnByDefaultOffKeepsEveryRobotOnItsRoute) {
         app.parse(std::vector<std::string>{"3.0", "--coordination-lookahead-m", value, "--coordination"}));
     EXPECT_EQ(o.coordination.enabled, enabled);
     EXPECT_DOUBLE_EQ(o.coordination.lookahead_m, 3.0);
+    EXPECT_FALSE(o.coordination.one_way_sections);
     EXPECT_TRUE(validate(o));
   }
+  PlannerOptions sections;
+  CLI::App sections_app{"test"};
+  add_planner_options(sections_app, sections);
+  ASSERT_NO_THROW(sections_app.parse(std::vector<std::string>{"on", "--coordination-sections"}));
+  EXPECT_TRUE(sections.coordination.one_way_sections);
   PlannerOptions bad;
   CLI::App app{"test"};
   add_planner_options(app, bad);
