@@ -275,6 +275,7 @@ void BM_Coordinate100Robots(benchmark::State& state) {
   Fleet fleet{FleetConfig{}};
   CoordinationConfig config;
   config.replan_after_s = 1e6;  // re-planning around robots is an event, not the steady state
+  config.one_way_sections = state.range(0) != 0;
   FleetCoordinator coordinator(config);
   for (int i = 0; i < 100; ++i) {
     const std::string id = "robot-" + std::to_string(i);
@@ -322,7 +323,8 @@ BENCHMARK(BM_FrontierExtraction)->Unit(benchmark::kMillisecond)->Repetitions(5)-
 BENCHMARK(BM_FrontierPatchUpdate)->Unit(benchmark::kMillisecond);
 // Legs up to 10 m (typical goal and frontier trips) and anywhere on the map (worst case).
 BENCHMARK(BM_Replans100Robots)->Arg(10)->Arg(0)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_Coordinate100Robots)->Unit(benchmark::kMicrosecond);
+// Argument: one-way sections off (the default) or on.
+BENCHMARK(BM_Coordinate100Robots)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 }  // namespace slam::planner
