@@ -73,6 +73,7 @@ Status validate(const CoordinationConfig& c) {
     return Error{"coordination yield_search_m must be in (0, 20]"};
   if (!finite_positive(c.yield_step_m)) return Error{"coordination yield_step_m must be positive"};
   if (!finite_positive(c.replan_after_s)) return Error{"coordination replan_after_s must be positive"};
+  if (!finite_positive(c.section_horizon_m)) return Error{"coordination section_horizon_m must be positive"};
   return Status::ok();
 }
 
@@ -92,6 +93,120 @@ void TrafficRules::append_way(const TrafficRobot& robot, double length, std::vec
     walked += seg;
     last = p;
   }
+}
+
+Vec2 TrafficRules::point_along(const TrafficRobot& robot, double length) {
+  double walked = 0.0;
+  Vec2 last = robot.position;
+  for (const Vec2& p : robot.ahead) {
+    const double seg = distance(last, p);
+    if (walked + seg >= length) return seg > 0.0 ? last + (p - last) * ((length - walked) / seg) : p;
+    walked += seg;
+    last = p;
+  }
+  return last;
+}
+
+bool TrafficRules::narrow_at(const PlanningGrid& grid, Vec2 p, Vec2 along) const {
+  const Vec2 side{-along.y, along.x};
+  const double room = reach() + kYieldMarginM;
+  const double step = grid.resolution();
+  for (const double sign : {1.0, -1.0}) {
+    bool open = true;
+    for (double t = step; t <= room && open; t += step) {
+      const auto c = grid.cell_at(p + side * (sign * t));
+      open = c && !grid.blocked(*c);
+    }
+    if (open) return false;
+  }
+  return true;
+}
+
+void TrafficRules::build_section(const PlanningGrid& grid, size_t i, const TrafficRobot& robot) {
+  section_at_[2 * i] = section_at_[2 * i + 1] = static_cast<uint32_t>(section_points_.size());
+  entry_m_[i] = std::numeric_limits<double>::infinity();
+  if (!config_.one_way_sections || robot.ahead.empty() || grid.empty()) return;
+  // Samples every cell along the way: the first narrow one within the lookahead opens the section,
+  // the first open one after it (or the horizon) closes it.
+  const double step = grid.resolution();
+  double walked = 0.0, next_sample = 0.0;
+  bool inside = false;
+  Vec2 from = robot.position;
+  for (const Vec2& to : robot.ahead) {
+    const double seg = distance(from, to);
+    if (seg <= 0.0) continue;
+    const Vec2 along = (to - from) * (1.0 / seg);
+    for (; next_sample <= walked + seg; next_sample += step) {
+      const Vec2 p = from + along * (next_sample - walked);
+      if (!inside) {
+        if (next_sample > config_.lookahead_m) return;
+        if (!narrow_at(grid, p, along)) continue;
+        inside = true;
+        entry_m_[i] = next_sample;
+        section_points_.push_back(p);
+      } else if (!narrow_at(grid, p, along) || next_sample - entry_m_[i] > config_.section_horizon_m) {
+        section_points_.push_back(p);
+        section_at_[2 * i + 1] = static_cast<uint32_t>(section_points_.size());
+        return;
+      }
+    }
+    if (inside) section_points_.push_back(to);
+    walked += seg;
+    from = to;
+  }
+  section_at_[2 * i + 1] = static_cast<uint32_t>(section_points_.size());
+}
+
+std::span<const Vec2> TrafficRules::section(size_t i) const {
+  return {section_points_.data() + section_at_[2 * i], section_at_[2 * i + 1] - section_at_[2 * i]};
+}
+
+bool TrafficRules::opposed(std::span<const Vec2> a, std::span<const Vec2> b, double gap) {
+  constexpr double kOppositeCos = -0.5;  // headings more than 120 degrees apart
+  for (size_t i = 1; i < a.size(); ++i) {
+    const Vec2 da = a[i] - a[i - 1];
+    const double la = norm(da);
+    if (la <= 0.0) continue;
+    for (size_t j = 1; j < b.size(); ++j) {
+      const Vec2 db = b[j] - b[j - 1];
+      const double lb = norm(db);
+      if (lb > 0.0 && dot(da, db) < kOppositeCos * la * lb &&
+          segment_gap(a[i - 1], a[i], b[j - 1], b[j]) < gap)
+        return true;
+    }
+  }
+  return false;
+}
+
+void TrafficRules::grant_sections(std::span<const TrafficRobot> robots) {
+  const size_t n = robots.size();
+  const double reach = this->reach();
+  // Inside: on the narrow stretch already, or at its mouth with the section granted (it may be
+  // entering). Such a robot cannot turn back, so it keeps the section whatever its priority.
+  const auto inside = [&](uint32_t i) {
+    return entry_m_[i] <= 0.0 || (section_held_[i] && entry_m_[i] <= reach);
+  };
+  section_order_.clear();
+  for (const uint32_t i : order_)
+    if (section(i).size() >= 2 && inside(i)) section_order_.push_back(i);
+  for (const uint32_t i : order_)
+    if (section(i).size() >= 2 && !inside(i)) section_order_.push_back(i);
+  section_blocker_.assign(n, -1);
+  for (size_t at = 0; at < section_order_.size(); ++at) {
+    const uint32_t i = section_order_[at];
+    if (inside(i)) continue;
+    // Against every robot granted before it, and every higher-priority one still waiting to enter:
+    // a stream one way does not starve a robot waiting to go the other way.
+    for (size_t before = 0; before < at; ++before) {
+      const uint32_t k = section_order_[before];
+      if (opposed(section(i), section(k), reach)) {
+        section_blocker_[i] = static_cast<int32_t>(k);
+        break;
+      }
+    }
+  }
+  section_held_.assign(n, 0);
+  for (const uint32_t i : section_order_) section_held_[i] = section_blocker_[i] < 0 ? 1 : 0;
 }
 
 void TrafficRules::build_claim(size_t i, const TrafficRobot& robot, double length) {
@@ -125,22 +240,35 @@ void TrafficRules::decide(const PlanningGrid& grid, std::span<const TrafficRobot
            std::tie(robots[b].route_since_ns, robots[b].tie, b);
   });
 
+  section_points_.clear();
+  section_at_.resize(2 * n);
+  entry_m_.resize(n);
+  section_held_.resize(n, 0);
+  for (size_t i = 0; i < n; ++i) build_section(grid, i, robots[i]);
+  grant_sections(robots);
+  const double reach = this->reach();
+
+  // A robot kept out of a section reserves its way only up to where it waits, `reach` before the
+  // mouth, leaving the mouth to the robots coming out.
+  const auto wait_at = [&](size_t i) { return std::max(0.0, entry_m_[i] - reach); };
   claim_points_.clear();
   claim_at_.resize(2 * n);
-  for (size_t i = 0; i < n; ++i) build_claim(i, robots[i], config_.lookahead_m);
+  for (size_t i = 0; i < n; ++i)
+    build_claim(i, robots[i],
+                section_blocker_[i] < 0 ? config_.lookahead_m : std::min(config_.lookahead_m, wait_at(i)));
   granted_.assign(n, 0);
-  const double reach = this->reach();
   const double far = 2.0 * config_.lookahead_m + reach;  // no two reservations of robots further apart meet
 
   was_deadlocked_.resize(n);
+  prior_.resize(n);
   for (size_t i = 0; i < n; ++i) {
     TrafficDecision& d = decisions[i];
-    const TrafficOrder before = d.order;
-    const Vec2 held = d.hold;
+    prior_[i] = d;
     was_deadlocked_[i] = d.deadlock ? 1 : 0;
-    d = TrafficDecision{TrafficOrder::Go, robots[i].position, -1, d.waiting_since_ns, false};
-    // Keep the place a waiting robot was told to stay at, so it does not creep.
-    if (before == TrafficOrder::Wait) d.hold = held;
+    d = TrafficDecision{TrafficOrder::Go, robots[i].position, -1, d.waiting_since_ns, false, false};
+    // Keep the place a waiting robot was told to stay at, so it does not creep (one that was driving
+    // up to a section's mouth stops where it is when something else holds it).
+    if (prior_[i].order == TrafficOrder::Wait && !prior_[i].section) d.hold = prior_[i].hold;
   }
 
   for (const uint32_t i : order_) {
@@ -162,6 +290,19 @@ void TrafficRules::decide(const PlanningGrid& grid, std::span<const TrafficRobot
     if (blocker < 0) {
       granted_[i] = 1;
       d.order = TrafficOrder::Go;
+      if (section_blocker_[i] >= 0) {
+        // Kept out of the section: drives up to its waiting place; one already held (waiting, or
+        // stepped aside for someone) stays where it was told.
+        d.order = TrafficOrder::Wait;
+        d.section = true;
+        d.blocker = section_blocker_[i];
+        const TrafficDecision& prior = prior_[i];
+        if (prior.order == TrafficOrder::Go) {
+          d.hold = point_along(me, wait_at(i));
+        } else if (prior.order == TrafficOrder::Wait && prior.section) {
+          d.hold = prior.hold;
+        }
+      }
       continue;
     }
     d.blocker = blocker;
@@ -190,6 +331,7 @@ void TrafficRules::resolve_deadlocks(const PlanningGrid& grid, std::span<const T
                                      std::vector<TrafficDecision>& decisions) {
   const size_t n = robots.size();
   visit_.assign(n, 0);
+  waited_by_.resize(n);
   uint32_t walk = 0;
   for (size_t s = 0; s < n; ++s) {
     if (decisions[s].order != TrafficOrder::Wait || visit_[s] != 0) continue;
@@ -214,23 +356,55 @@ void TrafficRules::resolve_deadlocks(const PlanningGrid& grid, std::span<const T
         k = static_cast<size_t>(decisions[k].blocker);
       } while (k != cur);
       // The one already stepping aside for this cycle carries on (switching roles midway would send
-      // them past each other); otherwise the highest tie number first: a number every planner gives
-      // the robot alike, so planners that each drive one robot of the cycle agree on who moves.
+      // them past each other); then a robot waiting before a section: it stands where there is room,
+      // and the one inside it cannot clear the section by stepping aside (the section stays its
+      // own); otherwise the highest tie number first: a number every planner gives the robot alike,
+      // so planners that each drive one robot of the cycle agree on who moves.
+      for (const uint32_t m : cycle_) waited_by_[static_cast<size_t>(decisions[m].blocker)] = m;
       std::sort(cycle_.begin(), cycle_.end(), [&](uint32_t a, uint32_t b) {
-        return std::tuple(was_deadlocked_[a], robots[a].tie, a) >
-               std::tuple(was_deadlocked_[b], robots[b].tie, b);
+        return std::tuple(was_deadlocked_[a], decisions[a].section, robots[a].tie, a) >
+               std::tuple(was_deadlocked_[b], decisions[b].section, robots[b].tie, b);
       });
       // The same cycle stays until the yielding robot is out of the way: counted once.
       if (std::none_of(cycle_.begin(), cycle_.end(), [&](uint32_t m) { return was_deadlocked_[m] != 0; }))
         ++deadlocks_;
+      // A member steps off the way of the robot waiting for it: that breaks the cycle's edge into
+      // it (off the way of the one it waits for would not, unless the two wait for each other).
+      bool moved = false;
       for (const uint32_t m : cycle_) {
-        yield(grid, robots, m, static_cast<size_t>(decisions[m].blocker), decisions);
+        yield(grid, robots, m, waited_by_[m], decisions);
         decisions[m].deadlock = true;
-        if (decisions[m].order == TrafficOrder::Yield) break;
+        moved = decisions[m].order == TrafficOrder::Yield;
+        if (moved) break;
       }
+      if (!moved) back_off(grid, robots, decisions);
     } else if (robots[cur].ahead.empty() && cur != prev && decisions[cur].order == TrafficOrder::Go) {
       // The chain ends at a stopped robot: it steps off the way of the one waiting for it.
       yield(grid, robots, cur, prev, decisions);
+    }
+  }
+}
+
+void TrafficRules::back_off(const PlanningGrid& grid, std::span<const TrafficRobot> robots,
+                            std::vector<TrafficDecision>& decisions) {
+  // No member of the cycle has room to step aside: the robots queued behind them fill the way
+  // back. The robots queued behind a member step off the way of the robot that member gives way
+  // to, the nearest first, then the ones behind them: room opens behind the member from the end of
+  // its queue, and the member backs into it on a later tick.
+  constexpr size_t kMaxBackOff = 16;  // robots tried per cycle and tick
+  back_off_.clear();
+  for (const uint32_t m : cycle_) back_off_.emplace_back(m, waited_by_[m]);
+  for (size_t at = 0; at < back_off_.size() && at < kMaxBackOff; ++at) {
+    const auto [front, away] = back_off_[at];
+    for (size_t q = 0; q < robots.size(); ++q) {
+      if (q == away || decisions[q].order != TrafficOrder::Wait ||
+          decisions[q].blocker != static_cast<int32_t>(front) ||
+          std::find(cycle_.begin(), cycle_.end(), static_cast<uint32_t>(q)) != cycle_.end())
+        continue;
+      yield(grid, robots, q, away, decisions);
+      decisions[q].deadlock = true;
+      if (decisions[q].order == TrafficOrder::Yield) return;
+      back_off_.emplace_back(static_cast<uint32_t>(q), away);
     }
   }
 }

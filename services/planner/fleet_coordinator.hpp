@@ -9,6 +9,25 @@
 // that cannot move plans a way around it. Priority: the earlier route first (ties by a hash of the
 // id), so a waiting robot only rises and none waits forever while the others keep arriving.
 //
+// One-way narrow stretches (`one_way_sections`): where the path runs through a passage in which no robot can
+// stand clear of another's way (no free room `reach` to either side of the path: a door, a single-lane
+// corridor), the whole stretch ahead, up to `section_horizon_m`, is reserved as one section once its entry is
+// within `lookahead_m`. A robot does not enter a section that a robot inside it, or a robot of higher
+// priority waiting to enter it, travels in the opposite direction: it waits `reach` before the mouth
+// instead of meeting the other one inside where neither can step aside (the queues from both ends
+// that filled a maze corridor). Section waits alone form no cycle: one points from a robot outside
+// the stretch to one inside it or to one of higher priority, and robots inside never wait for a
+// section. A waiting robot lets through only robots already inside and robots ranked above it, and
+// its rank never falls while it waits (a new route ranks last), so a section wait lasts at most
+// while the robots ranked above it cross once each, (robots - 1) x (stretch + lookahead) / speed,
+// provided the robots inside move. That proviso is not guaranteed: a robot inside can be held by a
+// body at the far mouth, and that cycle is broken by yielding, which needs room (below). So this is
+// a bound on section waits, not on every wait (docs/performance.md has the measured waits).
+//
+// Breaking a cycle: a member steps off the way of the robot waiting for it (that removes the
+// cycle's edge into it); when no member has room, the robots queued behind the members step off
+// the way first, nearest first (a cascading back-off), so a member can back into the room made.
+//
 // Plain C++: TrafficRules decides from plain inputs; FleetCoordinator feeds it from the Fleet and
 // rewrites the due waypoint commands of the robots owned here. With several planners each one
 // decides for every robot from what it sees (RobotState positions, RobotPath paths of the other
@@ -22,6 +41,7 @@
 #include <map>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "common/core/result.hpp"
@@ -41,6 +61,11 @@ struct CoordinationConfig {
   // A robot kept waiting this long (a stopped robot, a jam no one can step out of) plans a way
   // around the robots in its way, and again as often while it waits.
   double replan_after_s = 4.0;
+  // One-way narrow stretches (below). Off by default: measured in the maze they did not shorten
+  // the longest wait and in an offline model they halved the targets reached (docs/performance.md).
+  bool one_way_sections = false;
+  // How much of a narrow stretch ahead is reserved one way at most (a long corridor in parts).
+  double section_horizon_m = 12.0;
 };
 
 Status validate(const CoordinationConfig& config);
@@ -61,6 +86,7 @@ struct TrafficDecision {
   int32_t blocker = -1;  // the robot it waits for or gives way to
   int64_t waiting_since_ns = -1;
   bool deadlock = false;  // yields to break a wait-for cycle
+  bool section = false;   // waits before a narrow stretch another robot uses the other way
 };
 
 class TrafficRules {
@@ -79,6 +105,19 @@ class TrafficRules {
   double reach() const { return 2.0 * config_.robot_radius_m + config_.clearance_m; }
   // The robot's way from where it is, cut at `length` metres, appended to `out`.
   static void append_way(const TrafficRobot& robot, double length, std::vector<Vec2>& out);
+  // The point `length` metres along the robot's way (its destination when the way is shorter).
+  static Vec2 point_along(const TrafficRobot& robot, double length);
+  // True when a robot at p driving along `along` (a unit vector) has no free room `reach` plus a
+  // margin to either side: another robot cannot stand clear of its way there.
+  bool narrow_at(const PlanningGrid& grid, Vec2 p, Vec2 along) const;
+  // Section i: the narrow stretch of the robot's way that begins within lookahead_m (none: empty),
+  // with entry_m_[i] how far along the way it begins.
+  void build_section(const PlanningGrid& grid, size_t i, const TrafficRobot& robot);
+  std::span<const Vec2> section(size_t i) const;
+  // True when the polylines come closer than `gap` somewhere they run in opposite directions.
+  static bool opposed(std::span<const Vec2> a, std::span<const Vec2> b, double gap);
+  // Decides section_blocker_: robots inside a section first, then by priority.
+  void grant_sections(std::span<const TrafficRobot> robots);
   // The same as claim i (offsets in claim_at_).
   void build_claim(size_t i, const TrafficRobot& robot, double length);
   std::span<const Vec2> claim(size_t i) const;
@@ -92,6 +131,9 @@ class TrafficRules {
                          std::vector<TrafficDecision>& decisions);
   void yield(const PlanningGrid& grid, std::span<const TrafficRobot> robots, size_t i, size_t to,
              std::vector<TrafficDecision>& decisions);
+  // The cascading back-off of the queues behind the cycle in cycle_ when none of it can yield.
+  void back_off(const PlanningGrid& grid, std::span<const TrafficRobot> robots,
+                std::vector<TrafficDecision>& decisions);
 
   CoordinationConfig config_;
   std::vector<uint32_t> order_;  // robots by priority, highest first
@@ -102,9 +144,18 @@ class TrafficRules {
   std::vector<uint8_t> was_deadlocked_;  // yielded to break a cycle on the last tick
   std::vector<uint32_t> visit_;          // wait-for graph walk stamps
   std::vector<uint32_t> cycle_;          // the robots of one wait-for cycle
-  std::vector<uint32_t> seen_stamp_;     // yield search: grid cells seen, by query stamp
-  std::vector<uint32_t> parent_;         // yield search: the cell each was reached from
+  std::vector<uint32_t> waited_by_;      // cycle member -> the member waiting for it
+  std::vector<std::pair<uint32_t, uint32_t>> back_off_;  // (robot, the robot whose way to clear)
+  std::vector<uint32_t> seen_stamp_;                     // yield search: grid cells seen, by query stamp
+  std::vector<uint32_t> parent_;                         // yield search: the cell each was reached from
   std::vector<uint32_t> queue_;
+  std::vector<Vec2> section_points_;
+  std::vector<uint32_t> section_at_;      // section i is section_points_[section_at_[2i], section_at_[2i+1])
+  std::vector<double> entry_m_;           // way to section i's entry
+  std::vector<int32_t> section_blocker_;  // the robot whose section robot i may not enter against
+  std::vector<uint8_t> section_held_;     // robot i had its section granted on the last tick
+  std::vector<uint32_t> section_order_;   // robots with a section, in the order they are granted
+  std::vector<TrafficDecision> prior_;    // each robot's decision on the last tick
   uint32_t stamp_ = 0;
   uint64_t deadlocks_ = 0;
 };

@@ -110,6 +110,12 @@ void add_planner_options(CLI::App& app, PlannerOptions& o) {
   app.add_option("--coordination-yield-search-m", coordination.yield_search_m,
                  "how far (m) a robot in another's way looks for a place to step aside")
       ->capture_default_str();
+  app.add_option_function<std::string>(
+         "--coordination-sections",
+         [&coordination](const std::string& v) { coordination.one_way_sections = v == "on"; },
+         "reserve single-lane stretches one way (a robot waits before one used the other way): on or off")
+      ->check(CLI::IsMember({"on", "off"}))
+      ->default_str("off");
 
   app.add_option("--loop-rate-hz", o.loop_rate_hz, "goal and waypoint loop rate")->capture_default_str();
   app.add_option("--request-workers", o.request_workers, "threads answering path requests")

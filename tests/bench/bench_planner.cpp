@@ -1,15 +1,40 @@
 // bench_planner: the planner's speed targets on one deterministic 1024x1024 map (0.05 m cells):
 // A* corner to corner (<= 20 ms), a sampling planner (FMT* + shortcutting: <= 50 ms, length within
-// 10% of A*; RRTConnect and PRM* for comparison), frontier extraction (<= 5 ms), and re-plans per
-// second for a fleet of 100 robots.
+// 10% of A*; RRTConnect and PRM* for comparison), frontier extraction (<= 5 ms), re-plans per
+// second for a fleet of 100 robots, and one fleet coordination tick for 100 robots with the heap
+// allocations it makes (counted by the operator new below: the steady state must make none).
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
+#include <atomic>
+#include <cstdlib>
+#include <new>
 #include <random>
+#include <string>
 
+#include "planner/fleet.hpp"
+#include "planner/fleet_coordinator.hpp"
 #include "planner/frontiers.hpp"
 #include "planner/grid_astar.hpp"
 #include "planner/path_planner.hpp"
+
+namespace {
+std::atomic<uint64_t> g_allocations{0};
+}  // namespace
+
+// Every heap allocation of the process is counted (the benchmarks read the count around the code
+// they measure). Kept out of line: inlined, GCC pairs malloc() and free() with new and delete and warns.
+[[gnu::noinline]] void* operator new(std::size_t size) {
+  g_allocations.fetch_add(1, std::memory_order_relaxed);
+  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
+  throw std::bad_alloc();
+}
+[[gnu::noinline]] void operator delete(void* p) noexcept {
+  std::free(p);
+}
+[[gnu::noinline]] void operator delete(void* p, std::size_t) noexcept {
+  std::free(p);
+}
 
 namespace slam::planner {
 namespace {
@@ -230,6 +255,53 @@ void BM_Replans100Robots(benchmark::State& state) {
   state.counters["ok_fraction"] = static_cast<double>(ok) / (static_cast<double>(state.iterations()) * 100.0);
 }
 
+// One coordination tick (FleetCoordinator::coordinate) for 100 robots on random routes of up to
+// 10 m in the map's 25 m x 25 m lower-left quarter (close enough to hold each other up, with narrow
+// stretches between the blocks). The robots stand still, so every tick decides the same: the
+// steady state. Counts the heap allocations made inside coordinate() after a warm-up tick.
+void BM_Coordinate100Robots(benchmark::State& state) {
+  const PlanningGrid& g = bench_map();
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> any(0.5, 25.0);
+  const auto free_point = [&](Vec2 near, double radius) {
+    for (;;) {
+      const Vec2 p = radius > 0 ? Vec2{near.x + (any(rng) / 25.0 * 2 - 1) * radius,
+                                       near.y + (any(rng) / 25.0 * 2 - 1) * radius}
+                                : Vec2{any(rng), any(rng)};
+      const auto c = g.cell_at(p);
+      if (c && !g.blocked(*c)) return p;
+    }
+  };
+  Fleet fleet{FleetConfig{}};
+  CoordinationConfig config;
+  config.replan_after_s = 1e6;  // re-planning around robots is an event, not the steady state
+  config.one_way_sections = state.range(0) != 0;
+  FleetCoordinator coordinator(config);
+  for (int i = 0; i < 100; ++i) {
+    const std::string id = "robot-" + std::to_string(i);
+    const Vec2 at = free_point({}, 0.0);
+    fleet.observe(id, at);
+    coordinator.observe(id, at);
+    if (!fleet.set_goal(id, Goal{static_cast<uint64_t>(i + 1), GoalMode::Planned, free_point(at, 10.0)})) {
+      state.SkipWithError("goal refused");
+      return;
+    }
+  }
+  fleet.tick(g, 0);
+  int64_t now = 0;
+  coordinator.coordinate(fleet, g, now);  // warm-up: the buffers grow to their size here
+  uint64_t allocations = 0;
+  for (auto _ : state) {
+    now += 50'000'000;
+    const uint64_t before = g_allocations.load(std::memory_order_relaxed);
+    coordinator.coordinate(fleet, g, now);
+    allocations += g_allocations.load(std::memory_order_relaxed) - before;
+  }
+  state.counters["allocations_per_tick"] =
+      static_cast<double>(allocations) / static_cast<double>(std::max<int64_t>(1, state.iterations()));
+  state.counters["held"] = static_cast<double>(coordinator.held());
+}
+
 BENCHMARK(BM_AstarCornerToCorner)->Unit(benchmark::kMillisecond)->Repetitions(5)->ReportAggregatesOnly(true);
 BENCHMARK(BM_AstarSearchOnly)->Unit(benchmark::kMillisecond)->Repetitions(5)->ReportAggregatesOnly(true);
 BENCHMARK_CAPTURE(BM_OmplCornerToCorner, rrtconnect, "rrtconnect", 1.0)
@@ -251,6 +323,8 @@ BENCHMARK(BM_FrontierExtraction)->Unit(benchmark::kMillisecond)->Repetitions(5)-
 BENCHMARK(BM_FrontierPatchUpdate)->Unit(benchmark::kMillisecond);
 // Legs up to 10 m (typical goal and frontier trips) and anywhere on the map (worst case).
 BENCHMARK(BM_Replans100Robots)->Arg(10)->Arg(0)->Unit(benchmark::kMillisecond);
+// Argument: one-way sections off (the default) or on.
+BENCHMARK(BM_Coordinate100Robots)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 }  // namespace slam::planner

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <functional>
 #include <limits>
 #include <string>
 #include <vector>
@@ -33,6 +34,7 @@ struct RunResult {
   bool all_arrived = false;
   uint64_t deadlocks = 0;
   size_t yields = 0;  // robot-steps spent yielding
+  double longest_wait_s = 0.0;
 };
 
 std::vector<TrafficRobot> inputs(const std::vector<Bot>& bots) {
@@ -46,7 +48,9 @@ std::vector<TrafficRobot> inputs(const std::vector<Bot>& bots) {
   return out;
 }
 
-RunResult run(const PlanningGrid& grid, std::vector<Bot>& bots, const CoordinationConfig& config, int steps) {
+// `each_step` (if given) sees the robots after every step.
+RunResult run(const PlanningGrid& grid, std::vector<Bot>& bots, const CoordinationConfig& config, int steps,
+              const std::function<void(const std::vector<Bot>&)>& each_step = {}) {
   TrafficRules rules(config);
   std::vector<TrafficDecision> decisions;
   RunResult result;
@@ -58,12 +62,16 @@ RunResult run(const PlanningGrid& grid, std::vector<Bot>& bots, const Coordinati
       Bot& b = bots[i];
       const TrafficDecision& d = decisions[i];
       if (d.order == TrafficOrder::Yield) ++result.yields;
+      if (d.waiting_since_ns >= 0)
+        result.longest_wait_s =
+            std::max(result.longest_wait_s, static_cast<double>(now - d.waiting_since_ns) * 1e-9);
       if (d.order == TrafficOrder::Go && b.arrived()) continue;
       const Vec2 target = d.order == TrafficOrder::Go ? b.path[b.next] : d.hold;
       const double gap = distance(b.position, target);
       b.position = gap <= kSpeed * kDt ? target : b.position + (target - b.position) * (kSpeed * kDt / gap);
       if (d.order == TrafficOrder::Go && distance(b.position, b.path[b.next]) < kArrive) ++b.next;
     }
+    if (each_step) each_step(bots);
     for (size_t i = 0; i < bots.size(); ++i)
       for (size_t j = i + 1; j < bots.size(); ++j)
         result.closest = std::min(result.closest, distance(bots[i].position, bots[j].position));
@@ -210,6 +218,127 @@ TEST(TrafficRules, WhenTheLowerPriorityCannotStepAsideTheOtherOneDoes) {
   EXPECT_EQ(r.deadlocks, 1u);  // one cycle, counted once however long it takes to clear
 }
 
+// Two rooms (x 0.5..5 m and 11..15.5 m, y 0.5..7.5 m) joined by a single-lane corridor 0.6 m wide
+// and 6 m long along y = 4 m.
+CoordinationConfig with_sections() {
+  CoordinationConfig c;
+  c.one_way_sections = true;
+  return c;
+}
+
+PlanningGrid rooms_and_corridor() {
+  std::vector<std::string> rows(80, std::string(160, '#'));
+  for (int r = 0; r < 80; ++r) {
+    const double y = (79 - r + 0.5) * 0.1;
+    for (int c = 0; c < 160; ++c) {
+      const double x = (c + 0.5) * 0.1;
+      const bool room = y > 0.5 && y < 7.5 && ((x > 0.5 && x < 5.0) || (x > 11.0 && x < 15.5));
+      const bool corridor = y > 3.7 && y < 4.3 && x >= 5.0 && x <= 11.0;
+      if (room || corridor) rows[static_cast<size_t>(r)][static_cast<size_t>(c)] = '.';
+    }
+  }
+  return test::grid_from_art(rows, 0.1);
+}
+
+TEST(TrafficRules, RobotWaitsBeforeACorridorUsedTheOtherWayEvenWithHigherPriority) {
+  const PlanningGrid grid = rooms_and_corridor();
+  // a is in the corridor going right; b, the earlier route, is about to enter it going left.
+  std::vector<Bot> bots{{{7.0, 4.0}, {{11.0, 4.0}, {13.0, 4.0}}, 10},
+                        {{12.2, 4.0}, {{11.0, 4.0}, {5.0, 4.0}, {2.0, 4.0}}, 0}};
+  TrafficRules rules{with_sections()};
+  std::vector<TrafficDecision> decisions;
+  rules.decide(grid, inputs(bots), 0, decisions);
+  EXPECT_EQ(decisions[0].order, TrafficOrder::Go);
+  EXPECT_EQ(decisions[1].order, TrafficOrder::Wait);
+  EXPECT_TRUE(decisions[1].section);
+  EXPECT_EQ(decisions[1].blocker, 0);
+  // It waits outside, clear of the mouth: a reach (two radii and the clearance) before it.
+  const CoordinationConfig c = with_sections();
+  EXPECT_GE(decisions[1].hold.x, 11.0 + 2.0 * c.robot_radius_m + c.clearance_m - 0.15);
+  EXPECT_LE(decisions[1].hold.x, 12.2);
+}
+
+TEST(TrafficRules, BothOutsideTheEarlierRouteTakesTheCorridorTheOtherWaits) {
+  const PlanningGrid grid = rooms_and_corridor();
+  std::vector<Bot> bots{{{4.0, 4.0}, {{5.0, 4.0}, {11.0, 4.0}, {13.0, 4.0}}, 10},
+                        {{12.0, 4.0}, {{11.0, 4.0}, {5.0, 4.0}, {2.0, 4.0}}, 0}};
+  TrafficRules rules{with_sections()};
+  std::vector<TrafficDecision> decisions;
+  rules.decide(grid, inputs(bots), 0, decisions);
+  EXPECT_EQ(decisions[0].order, TrafficOrder::Wait);
+  EXPECT_TRUE(decisions[0].section);
+  EXPECT_EQ(decisions[1].order, TrafficOrder::Go);
+}
+
+TEST(TrafficRules, AStreamOneWayDoesNotStarveAnEarlierRouteWaitingTheOtherWay) {
+  const PlanningGrid grid = rooms_and_corridor();
+  // a is inside going right; b (earliest route) waits at the right end; c (latest) comes to the left
+  // end going right, the way a goes: it waits for b instead of following a in.
+  std::vector<Bot> bots{{{8.0, 4.0}, {{11.0, 4.0}, {13.0, 4.0}}, 5},
+                        {{12.2, 4.0}, {{11.0, 4.0}, {5.0, 4.0}, {2.0, 4.0}}, 0},
+                        {{4.0, 4.0}, {{5.0, 4.0}, {11.0, 4.0}, {14.0, 6.0}}, 10}};
+  TrafficRules rules{with_sections()};
+  std::vector<TrafficDecision> decisions;
+  rules.decide(grid, inputs(bots), 0, decisions);
+  EXPECT_EQ(decisions[0].order, TrafficOrder::Go);
+  EXPECT_EQ(decisions[1].order, TrafficOrder::Wait);
+  EXPECT_EQ(decisions[1].blocker, 0);
+  EXPECT_EQ(decisions[2].order, TrafficOrder::Wait);
+  EXPECT_TRUE(decisions[2].section);
+  EXPECT_EQ(decisions[2].blocker, 1);
+}
+
+// Three robots queue into the corridor from each end (the maze jam: with 2 m reservations alone the
+// two fronts meet inside and the queues behind them leave neither a way back). Counts the steps in
+// which robots inside the corridor head both ways.
+struct QueueRun {
+  RunResult result;
+  int both_ways = 0;
+  size_t robots = 0;
+};
+
+QueueRun queues_from_both_ends(const CoordinationConfig& config) {
+  const PlanningGrid grid = rooms_and_corridor();
+  std::vector<Bot> bots;
+  const std::vector<Vec2> right_targets{{12.5, 6.5}, {13.5, 1.5}, {15.0, 4.0}};
+  const std::vector<Vec2> left_targets{{3.5, 6.5}, {2.5, 1.5}, {1.0, 4.0}};
+  for (int k = 0; k < 3; ++k) {
+    bots.push_back(
+        Bot{{4.4 - 0.8 * k, 4.0}, {{5.0, 4.0}, {11.0, 4.0}, right_targets[static_cast<size_t>(k)]}, 2 * k});
+    bots.push_back(Bot{
+        {11.6 + 0.8 * k, 4.0}, {{11.0, 4.0}, {5.0, 4.0}, left_targets[static_cast<size_t>(k)]}, 2 * k + 1});
+  }
+  QueueRun out;
+  out.robots = bots.size();
+  const auto count_both_ways = [&](const std::vector<Bot>& now) {
+    bool right = false, left = false;
+    for (const Bot& b : now) {
+      if (b.arrived() || b.position.x < 5.0 || b.position.x > 11.0) continue;
+      (b.path.back().x > b.position.x ? right : left) = true;
+    }
+    if (right && left) ++out.both_ways;
+  };
+  out.result = run(grid, bots, config, 12000, count_both_ways);
+  return out;
+}
+
+TEST(TrafficRules, QueuesFromBothEndsOfACorridorAllGetThroughWithinTheBound) {
+  const CoordinationConfig config = with_sections();
+  const QueueRun q = queues_from_both_ends(config);
+  EXPECT_EQ(q.both_ways, 0);  // the corridor is one-way at any time
+  EXPECT_TRUE(q.result.all_arrived);
+  EXPECT_GE(q.result.closest, 2.0 * config.robot_radius_m);
+  // The header's bound: the robots ranked above one each cross the stretch once.
+  const double stretch_m = 6.0;
+  const double bound_s = (static_cast<double>(q.robots) - 1.0) * (stretch_m + config.lookahead_m) / kSpeed;
+  EXPECT_LE(q.result.longest_wait_s, bound_s);
+}
+
+TEST(TrafficRules, WithoutSectionsTheQueuesMeetInsideTheCorridor) {
+  // The scenario above is a real test of the sections: without them robots enter from both ends.
+  EXPECT_GT(queues_from_both_ends(CoordinationConfig{}).both_ways, 0);
+}
+
 TEST(TrafficRules, TenRobotsCrossingARoomNeverMeet) {
   const PlanningGrid grid = test::uniform_grid(120, 120, kCellFree, 0.1);
   std::vector<Bot> bots;
@@ -310,8 +439,14 @@ TEST(CoordinationOptions, OnByDefaultOffKeepsEveryRobotOnItsRoute) {
         app.parse(std::vector<std::string>{"3.0", "--coordination-lookahead-m", value, "--coordination"}));
     EXPECT_EQ(o.coordination.enabled, enabled);
     EXPECT_DOUBLE_EQ(o.coordination.lookahead_m, 3.0);
+    EXPECT_FALSE(o.coordination.one_way_sections);
     EXPECT_TRUE(validate(o));
   }
+  PlannerOptions sections;
+  CLI::App sections_app{"test"};
+  add_planner_options(sections_app, sections);
+  ASSERT_NO_THROW(sections_app.parse(std::vector<std::string>{"on", "--coordination-sections"}));
+  EXPECT_TRUE(sections.coordination.one_way_sections);
   PlannerOptions bad;
   CLI::App app{"test"};
   add_planner_options(app, bad);
