@@ -20,10 +20,11 @@ class OdometryTrust {
   static constexpr double kMaxScale = 10.0;
   // Weight of one keyframe in the running mean: about the last ten keyframes (4 m of travel).
   static constexpr double kRate = 0.1;
-  // A match spread wider than this (a corridor, a flat direction) does not tell odometry error
-  // from match error and teaches nothing.
-  static constexpr double kMaxMatchSigma_m = 0.05;
-  static constexpr double kMaxMatchSigma_rad = 0.035;
+  // A match spread as wide as the tracking window along some direction (a corridor, a ring) does
+  // not tell odometry error from match error there and teaches nothing (the corrector also leaves
+  // out matches with a flat direction). A narrower spread stays in: its noise errs towards distrust.
+  static constexpr double kMaxMatchSigma_m = 0.15;
+  static constexpr double kMaxMatchSigma_rad = 0.08;
 
   // A tracking match that differs from the odometry prediction by `innovation` (x, y, theta; the
   // prediction being the previous keyframe's estimate moved by the odometry since), with the

@@ -195,7 +195,7 @@ void PoseCorrector::apply(MatchJob& job, std::vector<KeyframeCorrection>& out) {
     source = CorrectionSource::Match;
     ++stats_.matched;
     // How far the match moved the odometry prediction teaches how far this robot's odometry holds.
-    if (previous) {
+    if (previous && narrow->flat_directions == 0) {
       const Eigen::Vector3d innovation(narrow->pose.x - job.predicted.x, narrow->pose.y - job.predicted.y,
                                        wrap_angle(narrow->pose.theta - job.predicted.theta));
       rb.odometry_trust.learn(innovation, job.cov, odometry_covariance(odom_relative));

@@ -267,7 +267,8 @@ Result<MatchResult> ScanMatcher::match(const GridView& grid, std::span<const Vec
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> spread(second / weight_sum - mean * mean.transpose());
   // A direction whose spread comes near that of a response flat over the whole window (uniform:
   // a third of the squared half-width along it) is not pinned by the map at all: the window, not
-  // the map, bounded it. Reported as unbounded, so a fusion leaves it to odometry.
+  // the map, bounded it. Counted, so a closure is refused; its variance is the window's own
+  // (uniform) one, so tracking takes the best candidate there only weakly.
   const Eigen::Vector3d half_width(linear_steps * step_m, linear_steps * step_m,
                                    rms_range * angular_steps * angular_step);
   Eigen::Vector3d variances = spread.eigenvalues().cwiseMax(0.0);
@@ -275,7 +276,7 @@ Result<MatchResult> ScanMatcher::match(const GridView& grid, std::span<const Vec
   for (int k = 0; k < 3; ++k) {
     const double window_variance = spread.eigenvectors().col(k).cwiseProduct(half_width).squaredNorm() / 3.0;
     if (window_variance > 0.0 && variances[k] >= kFlatShare * window_variance) {
-      variances[k] = kUnboundedSigma_m * kUnboundedSigma_m;
+      variances[k] = std::max(variances[k], window_variance);
       ++flat_directions;
     }
   }

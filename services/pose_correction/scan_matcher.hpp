@@ -5,7 +5,7 @@
 // candidate. The covariance comes from the whole search response (every candidate weighed by its
 // likelihood), so an ambiguous match (a corridor, one wall, a ring) reports a large uncertainty along
 // the ambiguous direction; a direction along which the response stays flat to the window's edge is
-// reported as unbounded. A second good peak far from the best one is reported as `ambiguity`.
+// counted as flat. A second good peak far from the best one is reported as `ambiguity`.
 #include <Eigen/Core>
 #include <cstdint>
 #include <span>
@@ -43,7 +43,7 @@ struct MatcherOptions {
 
 struct MatchResult {
   Pose pose;                   // the keyframe's pose in the grid's frame
-  Eigen::Matrix3d covariance;  // of (x, y, theta); kUnboundedSigma_m along a flat direction
+  Eigen::Matrix3d covariance;  // of (x, y, theta); a flat direction: the window's uniform spread
   double score = 0.0;          // mean likelihood of the points at `pose`, 0..1
   int points_used = 0;         // points that fell inside the grid
   // Directions (of x, y, theta) along which the response stayed flat to the window's edge: the map
@@ -54,10 +54,6 @@ struct MatchResult {
   // ridge) as good as the best, so the best is a guess among equals.
   double ambiguity = 0.0;
 };
-
-// The standard deviation reported along a flat direction (metres; heading: this arc at the points'
-// RMS range): far beyond any search window, so a fusion leaves that direction to the other source.
-inline constexpr double kUnboundedSigma_m = 1.0;
 
 // Whether a match pins one pose, as a loop closure must (a wrong closure is worse than none): no
 // flat direction, no second peak or ridge scoring close to the best away from it (a ring, a corridor,

@@ -167,7 +167,10 @@ TEST(ScanMatcher, CorridorCovarianceIsLargeAlongAndSmallAcross) {
   EXPECT_GT(r->covariance(0, 0), 10.0 * r->covariance(1, 1));
   // Along the corridor the whole +-0.15 m window scores alike: the map does not bound x at all.
   EXPECT_EQ(r->flat_directions, 1);
-  EXPECT_NEAR(r->covariance(0, 0), kUnboundedSigma_m * kUnboundedSigma_m, 0.01);
+  // Reported as spread uniformly over the window (+-0.15 m rounded out to whole cells, plus the
+  // floor): tracking takes the best candidate along it only weakly.
+  EXPECT_GT(r->covariance(0, 0), 0.15 * 0.15 / 3.0);
+  EXPECT_LT(r->covariance(0, 0), 0.2 * 0.2 / 3.0 + 0.001);
   EXPECT_LT(r->covariance(1, 1), (1.5 * kResolution) * (1.5 * kResolution));
 }
 
@@ -199,7 +202,7 @@ TEST(ScanMatcher, RingCovarianceIsUnboundedAlongTheRingAndTightAcrossIt) {
   EXPECT_LT(r->covariance(0, 0), (1.5 * kResolution) * (1.5 * kResolution));
   // Along it (y, with the heading turning with it: a rotation about the ring's centre) they do not.
   EXPECT_EQ(r->flat_directions, 1);
-  EXPECT_GT(r->covariance(1, 1), 0.1);
+  EXPECT_GT(r->covariance(1, 1), 0.005);
   const double along_heading = r->covariance(1, 2) / std::sqrt(r->covariance(1, 1) * r->covariance(2, 2));
   EXPECT_GT(along_heading, 0.9) << "moving along the ring turns the robot with it";
 }
