@@ -25,8 +25,6 @@ constexpr double kStartSigma_m = 0.05;  // a robot's first keyframe: its start p
 constexpr double kStartSigma_rad = 0.02;
 constexpr double kOperatorSigma_m = 0.02;
 constexpr double kOperatorSigma_rad = 0.01;
-constexpr double kClosureMaxSigma_m = 0.05;  // a closure match more spread than this is ambiguous
-constexpr double kClosureMaxSigma_rad = 0.035;
 
 }  // namespace
 
@@ -202,6 +200,12 @@ void PoseCorrector::apply(MatchJob& job, std::vector<KeyframeCorrection>& out) {
   if (narrow) {
     source = CorrectionSource::Match;
     ++stats_.matched;
+    // How far the match moved the odometry prediction teaches how far this robot's odometry holds.
+    if (previous && narrow->flat_directions == 0) {
+      const Eigen::Vector3d innovation(narrow->pose.x - job.predicted.x, narrow->pose.y - job.predicted.y,
+                                       wrap_angle(narrow->pose.theta - job.predicted.theta));
+      rb.odometry_trust.learn(innovation, job.cov, odometry_covariance(odom_relative));
+    }
   } else {
     ++stats_.unmatched;
   }
@@ -221,12 +225,10 @@ void PoseCorrector::apply(MatchJob& job, std::vector<KeyframeCorrection>& out) {
     if (tie && tie->score >= options_.closure_min_score) {
       const Eigen::Matrix3d tie_cov = with_floor(tie->covariance, 0.02, 0.01);
       const ConsistencyCheck check;
-      // A closure must be unambiguous (one clear peak: a corridor or a row of identical rooms
-      // spreads the candidates) and agree with the uncertainty accumulated since the last tie.
-      const bool distinct = tie->covariance(0, 0) <= kClosureMaxSigma_m * kClosureMaxSigma_m &&
-                            tie->covariance(1, 1) <= kClosureMaxSigma_m * kClosureMaxSigma_m &&
-                            tie->covariance(2, 2) <= kClosureMaxSigma_rad * kClosureMaxSigma_rad;
-      if (!wide || (distinct && check.accepts(estimate, tie->pose, rb.chain_cov + tie_cov))) {
+      // A closure must be unambiguous (one clear peak: not a ring, a corridor or a row of identical
+      // rooms) and agree with the uncertainty accumulated since the last tie.
+      if (!wide ||
+          (DistinctMatch{}.accepts(*tie) && check.accepts(estimate, tie->pose, rb.chain_cov + tie_cov))) {
         anchor = job.anchor;
         anchored_estimate = tie->pose;
         anchored_cov = tie_cov;

@@ -38,6 +38,7 @@
 #include "pose_correction/keyframe_builder.hpp"
 #include "pose_correction/keyframe_index.hpp"
 #include "pose_correction/match_worker.hpp"
+#include "pose_correction/odometry_trust.hpp"
 #include "pose_correction/pose_graph.hpp"
 #include "pose_correction/scan_matcher.hpp"
 
@@ -160,6 +161,7 @@ class PoseCorrector {
     KeyframeBuilder builder;
     RobotCorrection state;
     Eigen::Matrix3d chain_cov = Eigen::Matrix3d::Zero();  // uncertainty since last tied to old map
+    OdometryTrust odometry_trust;                         // scales its odometry covariance
     std::optional<uint32_t> last_node;                    // slot of its previous keyframe
     std::optional<uint32_t> last_tied;                    // slot of its last keyframe tied to the map
     std::optional<Pose> operator_pose;  // correction set by an operator, for its next keyframe

@@ -91,7 +91,7 @@ void PoseCorrector::prepare(Keyframe&& keyframe, const GridView& grid, bool matc
   job.odom_cov = diagonal(kSegmentSigma_m, kSegmentSigma_m, kSegmentSigma_rad);
   if (job.previous) {
     job.odom_relative = nodes_[*job.previous].odom.inverse().compose(keyframe.odom);
-    job.odom_cov = odometry_covariance(job.odom_relative);
+    job.odom_cov = rb.odometry_trust.scaled(odometry_covariance(job.odom_relative));
     const double d = norm(job.odom_relative.position());
     rb.chain_cov += job.odom_cov;
     rb.chain_cov(0, 0) += rb.chain_cov(2, 2) * d * d;  // heading uncertainty swings the position

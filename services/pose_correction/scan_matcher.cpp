@@ -3,6 +3,7 @@
 #include <ceres/ceres.h>
 #include <ceres/cubic_interpolation.h>
 
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -23,8 +24,13 @@ constexpr int32_t kInterpolationMargin = 2;
 constexpr double kKernelReachSigmas = 3.0;
 // A keyframe whose search would need a larger field is refused rather than matched slowly.
 constexpr size_t kMaxFieldCells = size_t{1} << 22;
-// Candidates weighing less than this relative to the best do not change the covariance.
-constexpr double kNegligibleWeight = 1e-9;
+// Candidates weighing less than this relative to the best do not change the covariance. The summed
+// likelihood saturates (a point far from any wall scores 0, not minus its squared distance), so the
+// many poor candidates of a wide window would otherwise outweigh the peak together.
+constexpr double kNegligibleWeight = 0.05;
+// Share of a window-wide uniform spread above which a direction counts as flat: a Gaussian response
+// whose sigma reaches half the window's half-width already spreads this much once truncated.
+constexpr double kFlatShare = 0.55;
 
 bool is_occupied(uint8_t cell_class) {
   return (cell_class & kCellStateMask) == kCellOccupied || (cell_class & kCellObstructed) != 0;
@@ -83,12 +89,19 @@ double mean_likelihood(const FieldInterpolator& field, const FieldFrame& frame, 
 Status check_options(const MatcherOptions& o) {
   if (!(o.field_sigma_m > 0.0) || !std::isfinite(o.field_sigma_m)) return Error{"field_sigma_m must be > 0"};
   if (!(o.linear_step_m >= 0.0) || !(o.angular_step_rad >= 0.0)) return Error{"search steps must be >= 0"};
-  if (!(o.covariance_temperature > 0.0)) return Error{"covariance_temperature must be > 0"};
+  if (!(o.independent_points > 0.0)) return Error{"independent_points must be > 0"};
+  if (!(o.distinct_separation_m > 0.0)) return Error{"distinct_separation_m must be > 0"};
   if (o.min_points < 1) return Error{"min_points must be >= 1"};
   return {};
 }
 
 }  // namespace
+
+bool DistinctMatch::accepts(const MatchResult& m) const {
+  return m.flat_directions == 0 && m.ambiguity <= max_ambiguity &&
+         m.covariance(0, 0) <= max_sigma_m * max_sigma_m && m.covariance(1, 1) <= max_sigma_m * max_sigma_m &&
+         m.covariance(2, 2) <= max_sigma_rad * max_sigma_rad;
+}
 
 ScanMatcher::ScanMatcher(const MatcherOptions& options) : options_(options) {}
 
@@ -226,22 +239,50 @@ Result<MatchResult> ScanMatcher::match(const GridView& grid, std::span<const Vec
   const Pose best{predicted.x + best_offset.x(), predicted.y + best_offset.y(),
                   wrap_angle(predicted.theta + best_offset.z())};
 
-  // Covariance (Olson 2009): the weighted second moment of the candidates, each weighted by its
-  // likelihood relative to the best; ambiguous directions keep many heavy candidates.
-  double weight_sum = 0.0;
+  // Covariance (Olson 2009): the weighted second moment of every candidate, each weighted by its
+  // likelihood relative to the best read as a log-likelihood; ambiguous directions keep many heavy
+  // candidates. Worked in metres, heading counted as the arc it swings at the points' RMS range,
+  // so a flat direction mixing position and heading (a ring) is found as one eigenvector.
+  double squared_range = 0.0;
+  for (const Vec2& p : points) squared_range += p.x * p.x + p.y * p.y;
+  const double rms_range = std::max(res, std::sqrt(squared_range / static_cast<double>(n)));
+  const Eigen::Vector3d scale(1.0, 1.0, rms_range);
+  const double temperature = std::max(1.0, static_cast<double>(n) / options_.independent_points);
+  const Eigen::Vector3d best_scaled = best_offset.cwiseProduct(scale);
+  double weight_sum = 0.0, distinct_sum = 0.0;
   Eigen::Vector3d first = Eigen::Vector3d::Zero();
   Eigen::Matrix3d second = Eigen::Matrix3d::Zero();
-  const double min_sum = best_sum + options_.covariance_temperature * std::log(kNegligibleWeight);
+  const double min_sum = best_sum + temperature * std::log(kNegligibleWeight);
   for (size_t index = 0; index < sums_.size(); ++index) {
+    const Eigen::Vector3d v = offset_of(index).cwiseProduct(scale);
+    if ((v - best_scaled).norm() >= options_.distinct_separation_m)
+      distinct_sum = std::max(distinct_sum, static_cast<double>(sums_[index]));
     if (sums_[index] < min_sum) continue;
-    const double w = std::exp((sums_[index] - best_sum) / options_.covariance_temperature);
-    const Eigen::Vector3d v = offset_of(index);
+    const double w = std::exp((sums_[index] - best_sum) / temperature);
     weight_sum += w;
     first += w * v;
     second += w * v * v.transpose();
   }
   const Eigen::Vector3d mean = first / weight_sum;
-  Eigen::Matrix3d covariance = second / weight_sum - mean * mean.transpose();
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> spread(second / weight_sum - mean * mean.transpose());
+  // A direction whose spread comes near that of a response flat over the whole window (uniform:
+  // a third of the squared half-width along it) is not pinned by the map at all: the window, not
+  // the map, bounded it. Counted, so a closure is refused; its variance is the window's own
+  // (uniform) one, so tracking takes the best candidate there only weakly.
+  const Eigen::Vector3d half_width(linear_steps * step_m, linear_steps * step_m,
+                                   rms_range * angular_steps * angular_step);
+  Eigen::Vector3d variances = spread.eigenvalues().cwiseMax(0.0);
+  int flat_directions = 0;
+  for (int k = 0; k < 3; ++k) {
+    const double window_variance = spread.eigenvectors().col(k).cwiseProduct(half_width).squaredNorm() / 3.0;
+    if (window_variance > 0.0 && variances[k] >= kFlatShare * window_variance) {
+      variances[k] = std::max(variances[k], window_variance);
+      ++flat_directions;
+    }
+  }
+  const Eigen::Matrix3d unscale = scale.cwiseInverse().asDiagonal();
+  Eigen::Matrix3d covariance =
+      unscale * spread.eigenvectors() * variances.asDiagonal() * spread.eigenvectors().transpose() * unscale;
   covariance.diagonal() +=
       Eigen::Vector3d(kFloorLinearCells * res * kFloorLinearCells * res,
                       kFloorLinearCells * res * kFloorLinearCells * res, kFloorAngularRad * kFloorAngularRad);
@@ -279,6 +320,8 @@ Result<MatchResult> ScanMatcher::match(const GridView& grid, std::span<const Vec
   result.pose = use_refined ? refined : best;
   result.score = use_refined ? refined_score : best_score;
   result.covariance = covariance;
+  result.flat_directions = flat_directions;
+  result.ambiguity = best_sum > 0.0 ? distinct_sum / best_sum : 0.0;
   for (const Vec2& p : points) result.points_used += geo.cell_at(result.pose.transform(p)) ? 1 : 0;
   if (result.score < options_.min_score)
     return Error{"scan match: best score " + std::to_string(result.score) + " below " +

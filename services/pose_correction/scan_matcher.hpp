@@ -2,8 +2,10 @@
 // Matches a keyframe (a few dozen obstacle points in the keyframe's own frame) against an occupancy
 // grid near a predicted pose: a correlative brute-force search over x, y and theta on a smoothed
 // likelihood field of the occupied cells, then a least-squares refinement (Ceres) of the best
-// candidate. The covariance comes from the spread of the well-scoring candidates, so an ambiguous
-// match (a corridor, one wall) reports a large uncertainty along the ambiguous direction.
+// candidate. The covariance comes from the whole search response (every candidate weighed by its
+// likelihood), so an ambiguous match (a corridor, one wall, a ring) reports a large uncertainty along
+// the ambiguous direction; a direction along which the response stays flat to the window's edge is
+// counted as flat. A second good peak far from the best one is reported as `ambiguity`.
 #include <Eigen/Core>
 #include <cstdint>
 #include <span>
@@ -26,17 +28,41 @@ struct MatcherOptions {
   double field_sigma_m = 0.05;    // blur of the likelihood field around occupied cells
   int min_points = 12;            // fewer points: not matchable
   double min_score = 0.45;        // mean likelihood (0..1) of the points at the best pose
-  // How sharply the covariance weighs candidates: a candidate whose summed likelihood lies this much
-  // below the best one's weighs e^-1 of it (Olson's probabilistic reading of the score map).
-  double covariance_temperature = 1.0;
+  // The points of a keyframe are not independent observations: they share its own small drift, the
+  // map's blur and the grid's cells. Each candidate's summed likelihood is read as a log-likelihood
+  // (Olson's probabilistic reading of the score map) of this many independent points, so a candidate
+  // whose mean likelihood lies 1 / independent_points below the best weighs e^-1 of it. 20 (about two
+  // per v1 message): a ring's or a corridor's ridge, which runs between the lattice's cells, stays
+  // in the covariance, while a room's peak stays within a cell and about a degree; 40 loses the ridge.
+  double independent_points = 20.0;
+  // A candidate this far from the best one (metres, with heading counted as the arc it swings at
+  // the points' RMS range) belongs to another peak; the best such candidate gives `ambiguity`.
+  double distinct_separation_m = 0.2;
   int refine_iterations = 10;  // Ceres iterations of the least-squares refinement
 };
 
 struct MatchResult {
   Pose pose;                   // the keyframe's pose in the grid's frame
-  Eigen::Matrix3d covariance;  // of (x, y, theta)
+  Eigen::Matrix3d covariance;  // of (x, y, theta); a flat direction: the window's uniform spread
   double score = 0.0;          // mean likelihood of the points at `pose`, 0..1
   int points_used = 0;         // points that fell inside the grid
+  // Directions (of x, y, theta) along which the response stayed flat to the window's edge: the map
+  // does not pin the pose there (a corridor along its length, a ring around its centre).
+  int flat_directions = 0;
+  // Summed likelihood of the best candidate at least distinct_separation_m from the best, relative
+  // to the best's (0..1; 0 when the window holds no such candidate). Near 1: a second peak (or a
+  // ridge) as good as the best, so the best is a guess among equals.
+  double ambiguity = 0.0;
+};
+
+// Whether a match pins one pose, as a loop closure must (a wrong closure is worse than none): no
+// flat direction, no second peak or ridge scoring close to the best away from it (a ring, a corridor,
+// look-alike rooms within the window), and a small spread.
+struct DistinctMatch {
+  double max_ambiguity = 0.8;
+  double max_sigma_m = 0.05;
+  double max_sigma_rad = 0.035;
+  bool accepts(const MatchResult& match) const;
 };
 
 class ScanMatcher {

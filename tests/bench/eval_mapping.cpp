@@ -45,6 +45,7 @@ struct EvalOptions {
   bool align = false;
   std::string odom_frame;  // passed to the simulator when set
   std::vector<std::string> sim_args, mapper_args, planner_args;
+  std::string mapper_bin;  // default: this build's slam-mapper; another build's, to compare two versions
   std::string out_dir = "build/bench/mapping";
   std::string name;                 // default: from world, protocol, drift and the extra arguments
   double reach_tolerance_m = 0.20;  // the planner's 0.15 m plus motion between its decision and the sample
@@ -269,8 +270,9 @@ class Evaluation {
     };
     group_.start("gateway", {testkit::bin_path("slam-gateway"), "--domain", domain, "--broker", broker,
                              "--log-level", "warn"});
-    group_.start("mapper", with({testkit::bin_path("slam-mapper"), "--domain", domain, "--store",
-                                 group_.dir() + "/map.db", "--log-level", "warn"},
+    const std::string mapper = o_.mapper_bin.empty() ? testkit::bin_path("slam-mapper") : o_.mapper_bin;
+    group_.start("mapper", with({mapper, "--domain", domain, "--store", group_.dir() + "/map.db",
+                                 "--log-level", "warn"},
                                 o_.mapper_args));
     group_.start("planner", with({testkit::bin_path("slam-planner"), "--domain", domain, "--goal-store",
                                   group_.dir() + "/goals.json", "--log-level", "warn"},
@@ -361,6 +363,7 @@ class Evaluation {
     j["drift"] = o_.drift;
     j["sim_args"] = o_.sim_args;
     j["mapper_args"] = o_.mapper_args;
+    if (!o_.mapper_bin.empty()) j["mapper_bin"] = o_.mapper_bin;
     j["planner_args"] = o_.planner_args;
     j["odom_frame"] = o_.odom_frame.empty() ? "world" : o_.odom_frame;
     j["slam"] = slam_label(o_.mapper_args, corrected);
@@ -450,6 +453,8 @@ int main(int argc, char** argv) {
                  "extra simulator argument (repeat: --sim-arg=--heading-drift --sim-arg=0.02)")
       ->allow_extra_args(false);
   app.add_option("--mapper-arg", o.mapper_args, "extra mapper argument (repeat)")->allow_extra_args(false);
+  app.add_option("--mapper-bin", o.mapper_bin,
+                 "slam-mapper executable to run (default: this build's; a saved one compares two versions)");
   app.add_option("--planner-arg", o.planner_args, "extra planner argument (repeat)")->allow_extra_args(false);
   app.add_option("--out", o.out_dir, "directory of the results")->capture_default_str();
   app.add_option("--name", o.name,

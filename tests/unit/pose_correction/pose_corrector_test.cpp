@@ -5,6 +5,7 @@
 #include <cmath>
 #include <numbers>
 #include <optional>
+#include <random>
 #include <vector>
 
 namespace slam::correction {
@@ -33,9 +34,10 @@ std::optional<double> cast(const std::vector<Wall>& walls, Vec2 origin, Vec2 dir
   return best;
 }
 
-// The true map drawn into class octets (occupied = 2) at 5 cm.
+// The true map drawn into class octets (occupied = 2) at 5 cm, cell centres on the walls (the
+// matcher puts a point on the centre of its cell: walls on cell edges would shift the map).
 struct TrueMap {
-  GridGeometry geometry{{-0.5, -0.5}, 0.05, 140, 120};
+  GridGeometry geometry{{-0.525, -0.525}, 0.05, 140, 120};  // walls at whole metres on cell centres
   std::vector<uint8_t> cells;
   explicit TrueMap(const std::vector<Wall>& walls) : cells(geometry.cells(), 0) {
     for (const Wall& w : walls) {
@@ -49,14 +51,18 @@ struct TrueMap {
   GridView view() const { return {geometry, cells}; }
 };
 
-// Sparse sensing: 10 beams over 360 degrees, 4 m range; hits given in `frame` (the robot's belief).
-std::vector<Vec2> sense(const std::vector<Wall>& walls, const Pose& truth, const Pose& belief, int phase) {
+// Sparse sensing: 10 beams over 360 degrees, 4 m range, each range off by `range_noise` (metres, or
+// none); hits given in the robot's belief frame.
+std::vector<Vec2> sense(const std::vector<Wall>& walls, const Pose& truth, const Pose& belief, int phase,
+                        std::normal_distribution<double>* range_noise = nullptr,
+                        std::mt19937* rng = nullptr) {
   std::vector<Vec2> hits;
   for (int i = 0; i < 10; ++i) {
     const double a = truth.theta + 2.0 * std::numbers::pi * (i + 0.37 * phase) / 10.0;
     const Vec2 dir{std::cos(a), std::sin(a)};
     if (auto t = cast(walls, truth.position(), dir, 4.0)) {
-      const Vec2 world = truth.position() + dir * *t;
+      const double range = range_noise ? *t + (*range_noise)(*rng) : *t;
+      const Vec2 world = truth.position() + dir * range;
       // The robot computes its points with its own pose belief.
       hits.push_back(belief.compose(truth.inverse()).transform(world));
     }
@@ -64,18 +70,25 @@ std::vector<Vec2> sense(const std::vector<Wall>& walls, const Pose& truth, const
   return hits;
 }
 
-TEST(PoseCorrector, CorrectionKeepsADriftingRobotOnAKnownMap) {
-  const auto walls = room();
-  const TrueMap map(walls);
-  PoseCorrector corrector;
-  std::vector<KeyframeCorrection> finalised;
+struct Drive {
+  double worst_raw = 0.0;        // m, odometry against the truth
+  double worst_corrected = 0.0;  // m, the corrected pose against the truth (after the first 20 messages)
+  double rms_corrected = 0.0;
+};
 
-  // A rectangle loop around the inner wall, 0.03 m per message, driven twice; the odometry
-  // heading drifts 0.0015 rad per message (about 9 degrees per lap).
+// A rectangle loop around the inner wall, 0.03 m per message, driven twice, on the known map; the
+// odometry heading drifts `heading_drift` rad per message; ranges are off by `range_sigma` (metres).
+Drive drive_two_laps(PoseCorrector& corrector, const TrueMap& map, double heading_drift, double range_sigma,
+                     std::vector<KeyframeCorrection>& finalised) {
+  std::mt19937 rng(11);
+  std::normal_distribution<double> range_noise(0.0, range_sigma);
+  const auto walls = room();
   std::vector<Vec2> corners{{1, 1}, {5, 1}, {5, 4.2}, {2.5, 4.2}, {2.5, 3}, {1, 3}};
   Pose truth{1, 1, 0};
   Pose belief = truth;
-  double worst_raw = 0.0, worst_corrected = 0.0;
+  Drive result;
+  double squared_sum = 0.0;
+  int samples = 0;
   int64_t stamp = 0;
   int step = 0;
   for (int lap = 0; lap < 2; ++lap) {
@@ -89,25 +102,55 @@ TEST(PoseCorrector, CorrectionKeepsADriftingRobotOnAKnownMap) {
         const Pose turned_truth{truth.x, truth.y, heading};
         const Pose relative = Pose{0, 0, wrap_angle(heading - truth.theta)};
         truth = turned_truth.compose(motion);
-        belief = belief.compose(relative).compose(Pose{d, 0.0, 0.0015});
+        belief = belief.compose(relative).compose(Pose{d, 0.0, heading_drift});
         stamp += 100'000'000;
         ++step;
-        const auto hits = sense(walls, truth, belief, step);
-        ASSERT_TRUE(corrector.add("r1", stamp, belief, true, hits));
+        const auto hits = sense(walls, truth, belief, step, range_sigma > 0.0 ? &range_noise : nullptr, &rng);
+        EXPECT_TRUE(corrector.add("r1", stamp, belief, true, hits));
         corrector.process(map.view(), stamp, finalised);
         const Pose corrected = corrector.correction("r1").compose(belief);
-        worst_raw = std::max(worst_raw, distance(belief.position(), truth.position()));
-        if (step > 20)
-          worst_corrected = std::max(worst_corrected, distance(corrected.position(), truth.position()));
+        result.worst_raw = std::max(result.worst_raw, distance(belief.position(), truth.position()));
+        if (step > 20) {
+          const double error = distance(corrected.position(), truth.position());
+          result.worst_corrected = std::max(result.worst_corrected, error);
+          squared_sum += error * error;
+          ++samples;
+        }
       }
     }
   }
-  RecordProperty("worst_raw_mm", static_cast<int>(worst_raw * 1000));
-  RecordProperty("worst_corrected_mm", static_cast<int>(worst_corrected * 1000));
-  EXPECT_GT(worst_raw, 0.5);         // the drift is real...
-  EXPECT_LT(worst_corrected, 0.08);  // ...and the correction holds the robot on the map
+  result.rms_corrected = std::sqrt(squared_sum / samples);
+  return result;
+}
+
+TEST(PoseCorrector, CorrectionKeepsADriftingRobotOnAKnownMap) {
+  const TrueMap map(room());
+  PoseCorrector corrector;
+  std::vector<KeyframeCorrection> finalised;
+  // 0.0015 rad per message: about 9 degrees per lap.
+  const Drive d = drive_two_laps(corrector, map, 0.0015, 0.0, finalised);
+  RecordProperty("worst_raw_mm", static_cast<int>(d.worst_raw * 1000));
+  RecordProperty("worst_corrected_mm", static_cast<int>(d.worst_corrected * 1000));
+  EXPECT_GT(d.worst_raw, 0.5);         // the drift is real...
+  EXPECT_LT(d.worst_corrected, 0.08);  // ...and the correction holds the robot on the map
   EXPECT_GT(corrector.stats().matched, corrector.stats().keyframes / 2);
   EXPECT_FALSE(finalised.empty());
+}
+
+TEST(PoseCorrector, ExactOdometryIsTrustedAndBarelyMovedByMatchNoise) {
+  const TrueMap map(room());
+  PoseCorrector corrector;
+  std::vector<KeyframeCorrection> finalised;
+  const Drive d = drive_two_laps(corrector, map, 0.0, 0.05, finalised);
+  RecordProperty("rms_corrected_um", static_cast<int>(d.rms_corrected * 1e6));
+  RecordProperty("worst_corrected_um", static_cast<int>(d.worst_corrected * 1e6));
+  EXPECT_EQ(d.worst_raw, 0.0);
+  EXPECT_GT(corrector.stats().matched, corrector.stats().keyframes / 2);  // the matches were there...
+  // ...but the robot's odometry, learned to be exact, keeps their noise (5 cm of range noise) out
+  // of its pose: 2.7 / 4.8 mm here, against 3.7 / 9.0 mm when every match is fused at the nominal
+  // odometry model.
+  EXPECT_LT(d.rms_corrected, 0.0032);
+  EXPECT_LT(d.worst_corrected, 0.0065);
 }
 
 TEST(PoseCorrector, EveryObservationBelongsToTheKeyframeThatFinalisesIt) {

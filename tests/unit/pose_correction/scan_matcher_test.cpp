@@ -1,6 +1,7 @@
 // ScanMatcher: recovers known offsets and rotations on synthetic maps (exact and noisy sparse
-// sensors), reports a corridor's ambiguity in its covariance, honours the cell classes, reuses its
-// buffers correctly, and refuses what it cannot match (too few points, off the grid, free space).
+// sensors), reports a corridor's and a ring's ambiguity in its covariance (flat directions) and a
+// second peak as ambiguity, honours the cell classes, reuses its buffers correctly, and refuses what
+// it cannot match (too few points, off the grid, free space). DistinctMatch: what a closure needs.
 #include "pose_correction/scan_matcher.hpp"
 
 #include <gtest/gtest.h>
@@ -164,8 +165,89 @@ TEST(ScanMatcher, CorridorCovarianceIsLargeAlongAndSmallAcross) {
   EXPECT_NEAR(r->pose.y, truth.y, kHalfCell);
   EXPECT_NEAR(wrap_angle(r->pose.theta - truth.theta), 0.0, kHalfDegree);
   EXPECT_GT(r->covariance(0, 0), 10.0 * r->covariance(1, 1));
-  // Along the corridor the whole +-0.15 m window scores alike: variance near 0.15^2 / 3.
-  EXPECT_GT(r->covariance(0, 0), 0.005);
+  // Along the corridor the whole +-0.15 m window scores alike: the map does not bound x at all.
+  EXPECT_EQ(r->flat_directions, 1);
+  // Reported as spread uniformly over the window (+-0.15 m rounded out to whole cells, plus the
+  // floor): tracking takes the best candidate along it only weakly.
+  EXPECT_GT(r->covariance(0, 0), 0.15 * 0.15 / 3.0);
+  EXPECT_LT(r->covariance(0, 0), 0.2 * 0.2 / 3.0 + 0.001);
+  EXPECT_LT(r->covariance(1, 1), (1.5 * kResolution) * (1.5 * kResolution));
+}
+
+// A ring corridor 1 m wide around (0, 0), radii 1.5 and 2.5 m, as the built-in track world.
+SyntheticWorld ring() {
+  SyntheticWorld w;
+  constexpr int kSides = 64;
+  for (double radius : {1.5, 2.5}) {
+    for (int i = 0; i < kSides; ++i) {
+      const double a0 = 2.0 * std::numbers::pi * i / kSides, a1 = 2.0 * std::numbers::pi * (i + 1) / kSides;
+      w.wall({radius * std::cos(a0), radius * std::sin(a0)}, {radius * std::cos(a1), radius * std::sin(a1)});
+    }
+  }
+  return w;
+}
+
+Scene ring_scene() {
+  // The robot drives along the ring (heading +y at (2, 0)), seeing both walls.
+  return scene(ring(), {-3.0, -3.0}, {3.0, 3.0}, {2.0, 0.0, std::numbers::pi / 2});
+}
+
+TEST(ScanMatcher, RingCovarianceIsUnboundedAlongTheRingAndTightAcrossIt) {
+  const Scene s = ring_scene();
+  ScanMatcher matcher;
+  const auto r = matcher.match(s.view(), s.points, offset(s.truth, 0.03, 0.05, degrees(1.0)), {});
+  ASSERT_TRUE(r) << r.message();
+  // Across the ring (radially, x here) the walls pin the robot.
+  EXPECT_NEAR(r->pose.x, s.truth.x, kHalfCell);
+  EXPECT_LT(r->covariance(0, 0), (1.5 * kResolution) * (1.5 * kResolution));
+  // Along it (y, with the heading turning with it: a rotation about the ring's centre) they do not.
+  EXPECT_EQ(r->flat_directions, 1);
+  EXPECT_GT(r->covariance(1, 1), 0.005);
+  const double along_heading = r->covariance(1, 2) / std::sqrt(r->covariance(1, 1) * r->covariance(2, 2));
+  EXPECT_GT(along_heading, 0.9) << "moving along the ring turns the robot with it";
+}
+
+TEST(ScanMatcher, RingClosureWindowIsAmbiguousAndNotDistinct) {
+  const Scene s = ring_scene();
+  ScanMatcher matcher;
+  const auto r = matcher.match(s.view(), s.points, offset(s.truth, 0.1, -0.3, degrees(5.0)), {1.0, 0.3});
+  ASSERT_TRUE(r) << r.message();
+  RecordProperty("ambiguity_percent", static_cast<int>(r->ambiguity * 100));
+  EXPECT_GT(r->ambiguity, 0.95);  // the ring's other stretches score as well as the best
+  EXPECT_FALSE(DistinctMatch{}.accepts(*r));
+}
+
+TEST(ScanMatcher, TwoEqualPeaksAreAmbiguousAndNotDistinct) {
+  // A corridor with a short crossbar every 0.6 m: shifted by one period it looks the same.
+  SyntheticWorld periodic;
+  periodic.wall({-10.0, 0.0}, {10.0, 0.0});
+  periodic.wall({-10.0, 2.0}, {10.0, 2.0});
+  for (int k = -16; k <= 16; ++k) periodic.wall({0.6 * k, 0.0}, {0.6 * k, 0.4});
+  std::mt19937 rng(5);
+  SparseSensor sensor;
+  sensor.beams = 16;
+  sensor.max_range_m = 3.0;
+  const Pose truth{0.3, 1.0, 0.0};
+  const auto points = keyframe_points(periodic, sensor, truth, {0.02, 0.0, 0.0}, 10, rng);
+  const ClassGrid grid = ClassGrid::rasterise(periodic, geometry_over({-11.0, -1.0}, {11.0, 3.0}));
+  ScanMatcher matcher;
+  const auto r =
+      matcher.match({grid.geometry, grid.classes}, points, offset(truth, 0.05, 0.0, 0.0), {1.0, 0.3});
+  ASSERT_TRUE(r) << r.message();
+  EXPECT_GT(r->ambiguity, 0.9);
+  EXPECT_FALSE(DistinctMatch{}.accepts(*r));
+}
+
+TEST(ScanMatcher, DistinctRoomClosureWindowIsAccepted) {
+  const Scene s = scene(l_room(), {-1.0, -1.0}, {7.0, 6.0}, {4.0, 1.2, 0.3});
+  ScanMatcher matcher;
+  const auto r = matcher.match(s.view(), s.points, offset(s.truth, 0.4, -0.3, degrees(8.0)), {1.0, 0.3});
+  ASSERT_TRUE(r) << r.message();
+  expect_near_pose(r->pose, s.truth);
+  RecordProperty("ambiguity_percent", static_cast<int>(r->ambiguity * 100));
+  EXPECT_EQ(r->flat_directions, 0);
+  EXPECT_LT(r->ambiguity, 0.8);
+  EXPECT_TRUE(DistinctMatch{}.accepts(*r));
 }
 
 TEST(ScanMatcher, ObstructedCellsCountAsOccupied) {
