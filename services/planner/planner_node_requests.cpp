@@ -1,7 +1,5 @@
 // PlannerNode: what the loop does with operator input: robot goals (taken, rejected with a reason,
 // kept in the goal file and resumed after a restart) and path requests (planned and answered).
-#include "planner/planner_node.hpp"
-
 #include <cmath>
 #include <memory>
 #include <mutex>
@@ -9,6 +7,7 @@
 #include <vector>
 
 #include "common/core/clock.hpp"
+#include "planner/planner_node.hpp"
 
 namespace slam::planner {
 
