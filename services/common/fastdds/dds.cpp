@@ -102,13 +102,6 @@ fdds::DataWriterQos writer_qos(const topics::QosSpec& spec) {
     // readers acknowledge when a heartbeat asks. With the default 3 s heartbeat a 10 kHz stream
     // piles up ~30 000 samples, and Fast DDS searches its history linearly on every removal.
     q.reliable_writer_qos().times.heartbeatPeriod = eprosima::fastrtps::Duration_t(0, 100000000);
-    // After sending a sample, a writer ignores negative acknowledgements of it for this long (it is
-    // still in flight). Every sample sent re-arms that timer, one per reader, in the participant's
-    // event thread; at Fast DDS's default of 0 it expires at once, so every sample woke that thread
-    // again: one thread wake per sample and reliable reader, most of a fleet gateway's wake-ups.
-    // At 10 ms the timer is armed once per 10 ms however many samples go out; a sample really lost
-    // is still resent on the reader's next acknowledgement (asked for every heartbeat, 100 ms).
-    q.reliable_writer_qos().times.nackSupressionDuration = eprosima::fastrtps::Duration_t(0, 10000000);
   }
   return q;
 }
