@@ -19,11 +19,11 @@
 #include <thread>
 #include <vector>
 
-#include "common/core/grid_tiles.hpp"
 #include "common/core/map_io.hpp"
 #include "common/fastdds/fast_topics.hpp"
 #include "fastdds_inbox.hpp"
 #include "process_group.hpp"
+#include "received_map.hpp"
 
 namespace slam::mapper_test {
 
@@ -42,39 +42,12 @@ inline Point2 pt(double x, double y) {
   return p;
 }
 
-// The grid as a receiver sees it: the latest snapshot plus the consecutive patches after it.
-struct Map {
-  uint32_t layout_id = 0;
-  uint64_t version = 0;
-  GridInfo info;
-  std::vector<uint8_t> cells;
-
-  uint8_t at(double x, double y) const {  // the cell holding map-frame point (x, y); 0xff outside
-    const auto cx = static_cast<int64_t>(std::floor((x - info.origin().x()) / info.resolution()));
-    const auto cy = static_cast<int64_t>(std::floor((y - info.origin().y()) / info.resolution()));
-    if (cx < 0 || cy < 0 || cx >= info.width() || cy >= info.height()) return 0xff;
-    return cells[static_cast<size_t>(cy) * info.width() + static_cast<size_t>(cx)];
-  }
-  uint8_t state(double x, double y) const { return static_cast<uint8_t>(at(x, y) & CELL_STATE_MASK); }
-};
+using Map = testkit::ReceivedMap;
 
 inline std::optional<Map> assemble(const std::vector<GridSnapshot>& snapshots,
                                    const std::vector<GridTiles>& patches) {
   if (snapshots.empty()) return std::nullopt;
-  const GridSnapshot& s = snapshots.back();
-  Map m{s.layout_id(), s.version(), s.info(), s.cells()};
-  std::map<uint64_t, const GridTiles*> later;
-  for (const GridTiles& p : patches)
-    if (p.layout_id() == m.layout_id && p.version() > m.version) later[p.version()] = &p;
-  for (const auto& [version, p] : later) {
-    if (version != m.version + 1) break;
-    const TilePatchView view{p->tile_side(), p->encoding(), p->tiles(), p->data()};
-    if (!apply_tiles(view, m.cells, static_cast<int32_t>(m.info.width()),
-                     static_cast<int32_t>(m.info.height())))
-      break;
-    m.version = version;
-  }
-  return m;
+  return testkit::assemble(snapshots.back(), patches);
 }
 
 inline RobotObservation observation(const std::string& robot, uint64_t seq, Point2 pose,

@@ -17,10 +17,10 @@
 #include <thread>
 #include <vector>
 
-#include "common/core/grid_tiles.hpp"
 #include "common/fastdds/fast_topics.hpp"
 #include "inbox.hpp"
 #include "mqtt_test_client.hpp"
+#include "received_map.hpp"
 
 namespace slam::system_test {
 
@@ -133,37 +133,7 @@ struct Scene {
 
 using testkit::Inbox;
 
-// The grid as a receiver assembles it.
-struct Map {
-  uint32_t layout_id = 0;
-  uint64_t version = 0;
-  GridInfo info;
-  std::vector<uint8_t> cells;
-
-  uint8_t at(Vec p) const {  // 0xff outside
-    const auto cx = static_cast<int64_t>(std::floor((p.x - info.origin().x()) / info.resolution()));
-    const auto cy = static_cast<int64_t>(std::floor((p.y - info.origin().y()) / info.resolution()));
-    if (cx < 0 || cy < 0 || cx >= info.width() || cy >= info.height()) return 0xff;
-    return cells[static_cast<size_t>(cy) * info.width() + static_cast<size_t>(cx)];
-  }
-  uint8_t state(Vec p) const { return static_cast<uint8_t>(at(p) & CELL_STATE_MASK); }
-};
-
-inline Map assemble(const GridSnapshot& s, const std::vector<GridTiles>& patches) {
-  Map m{s.layout_id(), s.version(), s.info(), s.cells()};
-  std::map<uint64_t, const GridTiles*> later;
-  for (const GridTiles& p : patches)
-    if (p.layout_id() == m.layout_id && p.version() > m.version) later[p.version()] = &p;
-  for (const auto& [version, p] : later) {
-    if (version != m.version + 1) break;
-    const TilePatchView view{p->tile_side(), p->encoding(), p->tiles(), p->data()};
-    if (!apply_tiles(view, m.cells, static_cast<int32_t>(m.info.width()),
-                     static_cast<int32_t>(m.info.height())))
-      break;
-    m.version = version;
-  }
-  return m;
-}
+using Map = testkit::ReceivedMap;
 
 template <class T>
 T take(Result<T> r) {
@@ -210,7 +180,7 @@ class Probe {
           std::pair(s.layout_id(), s.version()) >= std::pair(newest->layout_id(), newest->version()))
         newest = &s;
     if (!newest) return std::nullopt;
-    return assemble(*newest, patches_);
+    return testkit::assemble(*newest, patches_);
   }
   size_t snapshot_count() const {
     std::lock_guard lock(mutex_);

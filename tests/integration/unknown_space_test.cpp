@@ -110,9 +110,7 @@ TEST_F(UnknownSpaceTest, AV1RobotSentBehindItsReportedWallIsSteeredAroundIt) {
   // Only the wall and the rays to it are known: the goal behind it is unexplored.
   ASSERT_NO_FATAL_FAILURE(report_until(
       robot, v1_adv(Scene::kStart, Scene::wall()),
-      [](const Map& m) {
-        return m.state(Vec{1.52, 0.03}) == CELL_OCCUPIED && m.state(Vec{1.0, 0.0}) == CELL_FREE;
-      },
+      [](const Map& m) { return m.state(1.52, 0.03) == CELL_OCCUPIED && m.state(1.0, 0.0) == CELL_FREE; },
       "the reported wall"));
   const auto map = probe_.map();
   ASSERT_EQ(map->state(Scene::kGoal), CELL_UNKNOWN) << "the goal must lie in unexplored space";
