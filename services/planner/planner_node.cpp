@@ -53,6 +53,7 @@ PlannerNode::Metrics::Metrics(Counters& c)
       snapshots_rejected(c.get("snapshots_rejected")),
       patches_applied(c.get("patches_applied")),
       patches_skipped(c.get("patches_skipped")),
+      map_version(c.get("map_version")),
       write_failures(c.get("write_failures")),
       path_requests_not_owned(c.get("path_requests_not_owned")),
       robots_owned(c.get("robots_owned")),

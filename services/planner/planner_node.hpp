@@ -74,6 +74,8 @@ class PlannerNode {
     std::atomic<int64_t>& snapshots_rejected;
     std::atomic<int64_t>& patches_applied;
     std::atomic<int64_t>& patches_skipped;
+    std::atomic<int64_t>&
+        map_version;  // the grid version paths are planned on (the mapper's is ahead when lagging)
     std::atomic<int64_t>& write_failures;
     std::atomic<int64_t>& path_requests_not_owned;  // left to the planner that owns them
     std::atomic<int64_t>& robots_owned;

@@ -83,6 +83,7 @@ void PlannerNode::apply_grid(IntakeBatch& batch) {
     bump(metrics_.patches_applied);
     fleet_.grid_changed(grid_, changed_tiles_);
   }
+  metrics_.map_version.store(static_cast<int64_t>(grid_.version()), std::memory_order_relaxed);
 }
 
 void PlannerNode::apply_states(const std::vector<slam::RobotState>& states) {

@@ -114,6 +114,11 @@ TEST_F(UnknownSpaceTest, AV1RobotSentBehindItsReportedWallIsSteeredAroundIt) {
       "the reported wall"));
   const auto map = probe_.map();
   ASSERT_EQ(map->state(Scene::kGoal), CELL_UNKNOWN) << "the goal must lie in unexplored space";
+  // The planner may still hold an older map (a just-joined reader's first snapshot is the stored one);
+  // a goal planned on it would go straight through the wall before the re-plan.
+  ASSERT_TRUE(wait_until(
+      [&] { return probe_.counter("planner", 0, "map_version") >= static_cast<int64_t>(map->version); }, 30s))
+      << "the planner never caught up with map version " << map->version;
 
   const auto since = Clock::now();
   ASSERT_TRUE(probe_.set_goal(kRobot, GOAL_PLANNED, Scene::kGoal));
