@@ -118,6 +118,10 @@ class Latest {
   }
   bool ok() const { return reader_ != nullptr; }
   bool matched() const { return reader_ && reader_->matched_writers() > 0; }
+  bool heard() {
+    std::lock_guard lock(mutex_);
+    return !latest_.empty();
+  }
   std::map<std::string, T> take() {
     reader_.reset();
     std::lock_guard lock(mutex_);
@@ -136,11 +140,13 @@ class Latest {
   std::unique_ptr<dds::Reader<T>> reader_;
 };
 
-// Listens for `listen` once `first` matched a writer (nothing to hear when none did within the
-// timeout): discovery alone can take seconds, and the samples kept for late joiners arrive only after it.
+// Listens for `listen` once `first` matched a writer and heard its first sample (nothing to hear
+// when no writer matched within the timeout): discovery alone can take seconds, and on a loaded
+// machine the samples kept for late joiners arrive seconds after the match.
 template <class T>
-void listen_after_match(Session& s, const Latest<T>& first, std::chrono::milliseconds listen) {
-  if (wait_until([&] { return first.matched(); }, s.timeout())) wait_for_shutdown(listen);
+void listen_after_match(Session& s, Latest<T>& first, std::chrono::milliseconds listen) {
+  if (!wait_until([&] { return first.matched(); }, s.timeout())) return;
+  if (wait_until([&] { return first.heard(); }, s.timeout())) wait_for_shutdown(listen);
 }
 
 }  // namespace slam::ctl
