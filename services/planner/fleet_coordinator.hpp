@@ -31,7 +31,7 @@
 // Clearing the way of the longest-waiting robot (`clear_way`, way_clearing.cpp): the rules above are
 // local (a step aside within yield_search_m), and on a tree-like map (a perfect maze: one way between
 // two places, corridors one robot wide) a jam has no room near it; the passing places are the side
-// branches. So the highest-priority robot kept waiting clear_after_s becomes the leader: its way
+// branches. So the robot waiting longest, once clear_after_s, becomes the leader: its way
 // ahead (clear_horizon_m) is reserved for it alone, robots whose reservation enters that way wait
 // off it, and every robot standing on it is pushed into the nearest side room off it (within
 // clear_search_m, passing no other robot), the robot furthest ahead the deepest so the ones behind it
@@ -39,9 +39,9 @@
 // tree a robot left further along it would be met again. The leader goes whenever no body stands
 // close ahead and every robot on its way has somewhere to go. It stays the leader until its route
 // ends or changes (the window cleared slides with it), or until neither it nor a robot clearing its
-// way has moved for clear_stall_s (then the others are tried first). Priority is the route's age, so
-// a waiting robot only rises and in turn leads: its wait is bounded by the routes of the leaders
-// ranked above it, unless a jam has no side room within clear_search_m (a stall).
+// way has moved for clear_stall_s (then the others are tried first). The longest wait leads, so a
+// robot's wait is bounded by the routes of the leaders that waited longer than it, unless a jam has
+// no side room within clear_search_m (a stall).
 //
 // Plain C++: TrafficRules decides from plain inputs; FleetCoordinator feeds it from the Fleet and
 // rewrites the due waypoint commands of the robots owned here. With several planners each one
@@ -161,6 +161,10 @@ class TrafficRules {
   void clear_way(const PlanningGrid& grid, std::span<const TrafficRobot> robots, int64_t now_ns,
                  std::vector<TrafficDecision>& decisions);
   bool keep_leader(std::span<const TrafficRobot> robots, int64_t now_ns);
+  // True when robot i driving straight to `to` comes no closer to another body than `reach` (or than
+  // it is already), nor within `reach` of a place another robot was sent to this tick: at a
+  // simulated 4x speed a position is some 0.1-0.2 m old by the time a command acts on it.
+  bool keeps_apart(std::span<const TrafficRobot> robots, size_t i, Vec2 to) const;
   void choose_leader(std::span<const TrafficRobot> robots, int64_t now_ns,
                      const std::vector<TrafficDecision>& decisions);
 
@@ -178,7 +182,8 @@ class TrafficRules {
   std::vector<uint32_t> seen_stamp_;                     // yield search: grid cells seen, by query stamp
   std::vector<uint32_t> parent_;                         // yield search: the cell each was reached from
   std::vector<uint32_t> queue_;
-  std::vector<Vec2> nearby_;  // yield search: the bodies near it
+  std::vector<Vec2> nearby_;     // yield search: the bodies near it
+  std::vector<Vec2> committed_;  // where robots pushed off the leader's way were sent this tick
   std::vector<Vec2> section_points_;
   std::vector<uint32_t> section_at_;      // section i is section_points_[section_at_[2i], section_at_[2i+1])
   std::vector<double> entry_m_;           // way to section i's entry
@@ -190,7 +195,7 @@ class TrafficRules {
   int64_t leader_route_ns_ = 0;           // its route_since_ns when it was chosen
   Vec2 leader_progress_at_;               // where it was when it last made progress
   int64_t leader_progress_ns_ = 0;
-  int32_t skip_ = -1;                                    // a leader that stalled: tried after the others
+  std::vector<uint8_t> stalled_;                         // robot i led and its way could not be cleared
   std::vector<Vec2> way_points_;                         // the leader's way ahead
   std::vector<uint8_t> pushed_;                          // robot i clears the leader's way (while it leads)
   std::vector<double> push_depth_;                       // how much further off the way robot i goes

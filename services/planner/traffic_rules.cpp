@@ -401,11 +401,13 @@ bool TrafficRules::find_yield(const PlanningGrid& grid, std::span<const TrafficR
   const double reach = this->reach();
   const double body = 2.0 * config_.robot_radius_m;
   // Only the robots within reach of the search area can be in the way (listed once, not per cell).
-  nearby_.reserve(robots.size());
+  nearby_.reserve(2 * robots.size());
   nearby_.clear();
   for (size_t k = 0; k < robots.size(); ++k)
     if (k != i && distance(robots[k].position, start) < search_m + 2.0 * reach)
       nearby_.push_back(robots[k].position);
+  // Places other robots were sent to this tick count as bodies too (two robots sent the same way).
+  nearby_.insert(nearby_.end(), committed_.begin(), committed_.end());
   const auto clear_of_bodies = [&](Vec2 p, double gap) {
     return std::none_of(nearby_.begin(), nearby_.end(), [&](Vec2 other) { return distance(other, p) < gap; });
   };
@@ -461,11 +463,9 @@ bool TrafficRules::find_yield(const PlanningGrid& grid, std::span<const TrafficR
   step = grid.centre(grid.cell_of(found));
   for (uint32_t at = found;; at = parent_[at]) {
     const Vec2 p = grid.centre(grid.cell_of(at));
-    const bool passes_clear = [&] {
-      for (size_t k = 0; k < robots.size(); ++k)
-        if (k != i && distance_to_segment(robots[k].position, start, p) < body) return false;
-      return true;
-    }();
+    const bool passes_clear = std::none_of(nearby_.begin(), nearby_.end(), [&](Vec2 other) {
+      return distance_to_segment(other, start, p) < body;
+    });
     if (distance(p, start) <= config_.yield_step_m && passes_clear &&
         segment_clear_leaving(grid, start, p, UnknownPolicy::Blocked)) {
       step = p;

@@ -11,11 +11,23 @@
 namespace slam::planner {
 namespace {
 
-constexpr double kProgressM = 0.2;  // the leader moved this far: it makes progress
-constexpr size_t kMaxPushes = 4;    // robots pushed per tick (the others on the way wait)
+constexpr double kProgressM = 0.2;    // the leader moved this far: it makes progress
+constexpr size_t kMaxPushes = 8;      // robots pushed per tick (the others on the way wait)
 constexpr size_t kMaxDepthSlots = 2;  // robots a pushed robot leaves room for behind it
 
 }  // namespace
+
+bool TrafficRules::keeps_apart(std::span<const TrafficRobot> robots, size_t i, Vec2 to) const {
+  const double reach = this->reach();
+  const Vec2 from = robots[i].position;
+  for (size_t k = 0; k < robots.size(); ++k) {
+    if (k == i) continue;
+    const Vec2 other = robots[k].position;
+    if (distance_to_segment(other, from, to) < std::min(reach, distance(other, from)) - 1e-6) return false;
+  }
+  return std::none_of(committed_.begin(), committed_.end(),
+                      [&](Vec2 p) { return distance_to_segment(p, from, to) < reach; });
+}
 
 bool TrafficRules::keep_leader(std::span<const TrafficRobot> robots, int64_t now_ns) {
   const auto l = static_cast<size_t>(leader_);
@@ -27,7 +39,7 @@ bool TrafficRules::keep_leader(std::span<const TrafficRobot> robots, int64_t now
     leader_progress_ns_ = now_ns;
   }
   if (static_cast<double>(now_ns - leader_progress_ns_) * 1e-9 > config_.clear_stall_s) {
-    skip_ = leader_;  // its way could not be cleared: the others first
+    stalled_[l] = 1;  // its way could not be cleared: the others first
     return false;
   }
   return true;
@@ -42,17 +54,21 @@ void TrafficRules::choose_leader(std::span<const TrafficRobot> robots, int64_t n
     return d.order != TrafficOrder::Go && !d.section && d.waiting_since_ns >= 0 &&
            now_ns - d.waiting_since_ns >= after;
   };
+  // The robot waiting longest: its wait counts on across new routes (a robot given a new goal while
+  // held ranks last by route age, but its wait goes on). One whose way could not be cleared is tried
+  // again once every other one due has been tried, or once it has moved.
+  for (size_t i = 0; i < robots.size(); ++i)
+    if (decisions[i].waiting_since_ns < 0) stalled_[i] = 0;
   int32_t chosen = -1;
-  for (const uint32_t i : order_) {
-    if (!due(i)) continue;
-    if (static_cast<int32_t>(i) != skip_) {
-      chosen = static_cast<int32_t>(i);
-      break;
-    }
-    if (chosen < 0) chosen = static_cast<int32_t>(i);  // the stalled one, when no other is due
+  for (int pass = 0; pass < 2 && chosen < 0; ++pass) {
+    for (const uint32_t i : order_)
+      if (due(i) && !stalled_[i] &&
+          (chosen < 0 ||
+           decisions[i].waiting_since_ns < decisions[static_cast<size_t>(chosen)].waiting_since_ns))
+        chosen = static_cast<int32_t>(i);
+    if (chosen < 0) std::fill(stalled_.begin(), stalled_.end(), 0);
   }
   if (chosen < 0) return;
-  if (chosen != skip_) skip_ = -1;
   const TrafficRobot& r = robots[static_cast<size_t>(chosen)];
   leader_ = chosen;
   leader_route_ns_ = r.route_since_ns;
@@ -65,12 +81,15 @@ void TrafficRules::clear_way(const PlanningGrid& grid, std::span<const TrafficRo
                              std::vector<TrafficDecision>& decisions) {
   const size_t n = robots.size();
   pushed_.resize(n, 0);
+  stalled_.resize(n, 0);
   push_depth_.resize(n, 0.0);
   // The longest way the leader can have (reserved here so a new leader allocates nothing).
   size_t longest = 0;
   for (const TrafficRobot& r : robots) longest = std::max(longest, r.ahead.size());
   way_points_.reserve(2 * (longest + 2));
   push_order_.reserve(n);
+  committed_.reserve(n);
+  committed_.clear();
   // With one-way sections the waits before a section are bounded by that rule, and a leader driving
   // into a section against its users would undo it: the two rules are not combined.
   if (!config_.clear_way || config_.one_way_sections) return;
@@ -115,8 +134,9 @@ void TrafficRules::clear_way(const PlanningGrid& grid, std::span<const TrafficRo
     }
   }
   std::sort(push_order_.begin(), push_order_.end(), std::greater<>());
-  size_t on_way_behind = static_cast<size_t>(std::count_if(
-      push_order_.begin(), push_order_.end(), [&](const auto& e) { return e.first <= config_.clear_horizon_m; }));
+  size_t on_way_behind =
+      static_cast<size_t>(std::count_if(push_order_.begin(), push_order_.end(),
+                                        [&](const auto& e) { return e.first <= config_.clear_horizon_m; }));
   bool stuck = false;  // a robot on the way has no room off it
   for (size_t at = 0; at < push_order_.size(); ++at) {
     const auto [s, k] = push_order_[at];
@@ -129,19 +149,36 @@ void TrafficRules::clear_way(const PlanningGrid& grid, std::span<const TrafficRo
       pushed_[k] = 1;
       push_depth_[k] = 2.0 * reach * static_cast<double>(std::min(on_way_behind, kMaxDepthSlots));
     }
+    // After a robot that can go nowhere the rest wait too: a tick searches at most once in vain.
+    const bool searched = at < kMaxPushes && !stuck;
     Vec2 step;
-    // After a robot with no room the rest wait too: a tick searches at most once in vain.
-    if (at < kMaxPushes && !stuck && find_yield(grid, robots, k, route, step, config_.clear_search_m, push_depth_[k])) {
+    bool go = searched && find_yield(grid, robots, k, route, step, config_.clear_search_m, push_depth_[k]) &&
+              keeps_apart(robots, k, step);
+    if (!go && searched && s <= config_.clear_horizon_m) {
+      // No side room within reach: it drives on along the leader's route ahead of it (the "push"),
+      // towards the next branch, unless the route ends there (a dead end: stuck) or a body is in
+      // the way (a robot further on, pushed too: it waits for it to move).
+      step = point_along(leader, traffic::along(route, robots[k].position) + config_.yield_step_m);
+      if (distance(step, robots[k].position) < kProgressM / 4.0) {
+        stuck = true;
+      } else {
+        go = keeps_apart(robots, k, step);
+      }
+    }
+    if (go) {
       d.order = TrafficOrder::Yield;
       d.hold = step;
+      committed_.push_back(step);
       // Clearing is under way: the leader waiting for it is not stalled.
       if (distance(step, robots[k].position) > kProgressM / 4.0) leader_progress_ns_ = now_ns;
     } else {
       d.order = TrafficOrder::Wait;
       d.hold = robots[k].position;
-      stuck = stuck || s <= config_.clear_horizon_m;
+      stuck = stuck || (!searched && s <= config_.clear_horizon_m);
     }
   }
+
+  committed_.clear();  // the local rules' searches (next tick) see bodies only
 
   // The leader goes unless a body stands close ahead of it (the others keep off its way) or a robot
   // on its way has nowhere to go yet (driving up to it would only close the room left).

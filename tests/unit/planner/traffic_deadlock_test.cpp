@@ -87,19 +87,23 @@ TEST(TrafficRules, WhenNoMemberOfACycleHasRoomTheQueueBehindItBacksOffFirst) {
   EXPECT_GE(r.closest, 2.0 * CoordinationConfig{}.robot_radius_m);
 }
 
-// The leader rule. A single-lane corridor (y = 5 m) with one side branch at x 10..10.8 m, over 4 m
-// from the jam: the leader heading east meets three robots heading west. No local step aside
-// (within yield_search_m, 3 m) finds room, so only clearing the leader's way gets anyone through.
+// The leader rule. A single-lane corridor (y = 5 m) from a room at its west end (x < 2.5 m) to
+// x = 14.5 m, with one single-lane side branch at x 12.1..12.7 m: the leader heading east meets three
+// robots heading west into the room. Neither the room (3.5 m behind the leader) nor the branch
+// (3.5 m ahead of the last robot) is within reach of a local step aside (yield_search_m, 3 m), so
+// only clearing the leader's way gets anyone through.
 std::vector<Bot> jam_before_a_branch() {
-  std::vector<Bot> bots{{{1.5, 5}, {{14.0, 5}}, 0}};
-  for (int k = 0; k < 3; ++k)
-    bots.push_back(Bot{{4.0 + 0.8 * k, 5}, {{0.8 + 0.7 * k, 5}}, 1 + k});
+  std::vector<Bot> bots{{{6.0, 5}, {{14.0, 5}}, 0}};
+  const std::vector<Vec2> in_the_room{{1.0, 6.3}, {1.0, 3.7}, {2.0, 5.0}};
+  for (size_t k = 0; k < 3; ++k)
+    bots.push_back(Bot{
+        {7.0 + 0.8 * static_cast<double>(k), 5}, {{2.5, 5}, in_the_room[k]}, 1 + static_cast<int64_t>(k)});
   for (Bot& b : bots) b.retrace = true;
   return bots;
 }
 
 PlanningGrid corridor_with_branch() {
-  return boxes(15.0, {{0.5, 4.7, 14.5, 5.3}, {10.0, 5.2, 10.8, 8.8}});
+  return boxes(15.0, {{0.5, 3.0, 2.6, 7.0}, {2.5, 4.7, 14.5, 5.3}, {12.1, 5.2, 12.7, 8.8}});
 }
 
 TEST(TrafficRules, TheLeaderClearsAJamIntoASideBranchOutOfReachOfAStepAside) {

@@ -48,8 +48,8 @@ inline std::vector<TrafficRobot> inputs(const std::vector<Bot>& bots) {
 }
 
 // `each_step` (if given) sees the robots after every step.
-inline RunResult run(const PlanningGrid& grid, std::vector<Bot>& bots, const CoordinationConfig& config, int steps,
-              const std::function<void(const std::vector<Bot>&)>& each_step = {}) {
+inline RunResult run(const PlanningGrid& grid, std::vector<Bot>& bots, const CoordinationConfig& config,
+                     int steps, const std::function<void(const std::vector<Bot>&)>& each_step = {}) {
   TrafficRules rules(config);
   std::vector<TrafficDecision> decisions;
   RunResult result;
