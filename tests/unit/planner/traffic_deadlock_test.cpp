@@ -106,6 +106,28 @@ PlanningGrid corridor_with_branch() {
   return boxes(15.0, {{0.5, 3.0, 2.6, 7.0}, {2.5, 4.7, 14.5, 5.3}, {12.1, 5.2, 12.7, 8.8}});
 }
 
+TEST(TrafficRules, TheRobotWaitingLongestLeadsAndTheRobotsOnItsWayArePushed) {
+  const PlanningGrid grid = corridor_with_branch();
+  const std::vector<Bot> bots = jam_before_a_branch();
+  const CoordinationConfig config;
+  TrafficRules rules{config};
+  std::vector<TrafficDecision> decisions;
+  rules.decide(grid, inputs(bots), 0, decisions);
+  EXPECT_EQ(rules.clearings(), 0u);
+  // Nobody moved: once the waits pass clear_after_s the earliest route (robot 0) leads.
+  const auto later = static_cast<int64_t>((config.clear_after_s + 1.0) * 1e9);
+  rules.decide(grid, inputs(bots), later, decisions);
+  EXPECT_EQ(rules.clearings(), 1u);
+  // The robot furthest along the leader's way heads for the branch; the ones behind it wait for it.
+  EXPECT_EQ(decisions[3].order, TrafficOrder::Yield);
+  EXPECT_EQ(decisions[3].blocker, 0);
+  EXPECT_GT(decisions[3].hold.x, bots[3].position.x);
+  for (const size_t k : {1u, 2u}) {
+    EXPECT_EQ(decisions[k].order, TrafficOrder::Wait);
+    EXPECT_EQ(decisions[k].blocker, 0);
+  }
+}
+
 TEST(TrafficRules, TheLeaderClearsAJamIntoASideBranchOutOfReachOfAStepAside) {
   const PlanningGrid grid = corridor_with_branch();
   std::vector<Bot> bots = jam_before_a_branch();
