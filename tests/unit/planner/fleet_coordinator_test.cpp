@@ -389,6 +389,14 @@ TEST(CoordinationOptions, OnByDefaultOffKeepsEveryRobotOnItsRoute) {
   add_planner_options(sections_app, sections);
   ASSERT_NO_THROW(sections_app.parse(std::vector<std::string>{"on", "--coordination-sections"}));
   EXPECT_TRUE(sections.coordination.one_way_sections);
+  PlannerOptions clearing;
+  CLI::App clearing_app{"test"};
+  add_planner_options(clearing_app, clearing);
+  const bool by_default = clearing.coordination.clear_way;
+  ASSERT_NO_THROW(clearing_app.parse(std::vector<std::string>{
+      "2.5", "--coordination-clear-after-s", by_default ? "off" : "on", "--coordination-clear-way"}));
+  EXPECT_NE(clearing.coordination.clear_way, by_default);
+  EXPECT_DOUBLE_EQ(clearing.coordination.clear_after_s, 2.5);
   PlannerOptions bad;
   CLI::App app{"test"};
   add_planner_options(app, bad);
