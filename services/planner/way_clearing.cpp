@@ -1,5 +1,5 @@
 // The leader rule of the traffic rules (TrafficRules::clear_way, declared in fleet_coordinator.hpp):
-// the way of the highest-priority robot kept waiting is reserved for it and the robots on it are
+// the way of the robot waiting longest is reserved for it and the robots on it are
 // pushed into side room off it. The local rules (traffic_rules.cpp) decide first; this overrides
 // the decisions of the leader, of the robots on its way and of those about to enter it.
 #include <algorithm>
