@@ -28,6 +28,21 @@
 // cycle's edge into it); when no member has room, the robots queued behind the members step off
 // the way first, nearest first (a cascading back-off), so a member can back into the room made.
 //
+// Clearing the way of the longest-waiting robot (`clear_way`, way_clearing.cpp): the rules above are
+// local (a step aside within yield_search_m), and on a tree-like map (a perfect maze: one way between
+// two places, corridors one robot wide) a jam has no room near it; the passing places are the side
+// branches. So the robot waiting longest, once clear_after_s, becomes the leader: its way
+// ahead (clear_horizon_m) is reserved for it alone, robots whose reservation enters that way wait
+// off it, and every robot standing on it is pushed into the nearest side room off it (within
+// clear_search_m, passing no other robot), the robot furthest ahead the deepest so the ones behind it
+// fit in the same branch; off the whole of the leader's route, not only the part cleared, since on a
+// tree a robot left further along it would be met again. The leader goes whenever no body stands
+// close ahead and every robot on its way has somewhere to go. It stays the leader until its route
+// ends or changes (the window cleared slides with it), or until neither it nor a robot clearing its
+// way has moved for clear_stall_s (then the others are tried first). The longest wait leads, so a
+// robot's wait is bounded by the routes of the leaders that waited longer than it, unless a jam has
+// no side room within clear_search_m (a stall).
+//
 // Plain C++: TrafficRules decides from plain inputs; FleetCoordinator feeds it from the Fleet and
 // rewrites the due waypoint commands of the robots owned here. With several planners each one
 // decides for every robot from what it sees (RobotState positions, RobotPath paths of the other
@@ -66,6 +81,12 @@ struct CoordinationConfig {
   bool one_way_sections = false;
   // How much of a narrow stretch ahead is reserved one way at most (a long corridor in parts).
   double section_horizon_m = 12.0;
+  // Clearing the way of the highest-priority robot kept waiting (the leader; above).
+  bool clear_way = true;
+  double clear_after_s = 5.0;    // a robot waiting this long may lead
+  double clear_horizon_m = 5.0;  // the leader's way reserved and cleared
+  double clear_search_m = 8.0;   // how far a robot on it looks for side room
+  double clear_stall_s = 10.0;   // a leader not moving this long gives the lead up
 };
 
 Status validate(const CoordinationConfig& config);
@@ -100,6 +121,8 @@ class TrafficRules {
 
   // Deadlocks broken since the start.
   uint64_t deadlocks() const { return deadlocks_; }
+  // Leaders whose way was cleared since the start.
+  uint64_t clearings() const { return clearings_; }
 
  private:
   double reach() const { return 2.0 * config_.robot_radius_m + config_.clearance_m; }
@@ -123,10 +146,10 @@ class TrafficRules {
   std::span<const Vec2> claim(size_t i) const;
   // True when the two polylines come closer than `distance` anywhere.
   static bool near(std::span<const Vec2> a, std::span<const Vec2> b, double distance);
-  // Where robot i should drive to leave `away` (a polyline) and every other body clear; false when no
-  // such place is within yield_search_m.
+  // Where robot i should drive to leave `away` (a polyline) and every other body clear, preferring a
+  // place `depth` further off it; false when no such place is within `search_m`.
   bool find_yield(const PlanningGrid& grid, std::span<const TrafficRobot> robots, size_t i,
-                  std::span<const Vec2> away, Vec2& step);
+                  std::span<const Vec2> away, Vec2& step, double search_m, double depth = 0.0);
   void resolve_deadlocks(const PlanningGrid& grid, std::span<const TrafficRobot> robots,
                          std::vector<TrafficDecision>& decisions);
   void yield(const PlanningGrid& grid, std::span<const TrafficRobot> robots, size_t i, size_t to,
@@ -134,6 +157,16 @@ class TrafficRules {
   // The cascading back-off of the queues behind the cycle in cycle_ when none of it can yield.
   void back_off(const PlanningGrid& grid, std::span<const TrafficRobot> robots,
                 std::vector<TrafficDecision>& decisions);
+  // The leader rule (way_clearing.cpp): keeps, releases or chooses the leader, then clears its way.
+  void clear_way(const PlanningGrid& grid, std::span<const TrafficRobot> robots, int64_t now_ns,
+                 std::vector<TrafficDecision>& decisions);
+  bool keep_leader(std::span<const TrafficRobot> robots, int64_t now_ns);
+  // True when robot i driving straight to `to` comes no closer to another body than `reach` (or than
+  // it is already), nor within `reach` of a place another robot was sent to this tick: at a
+  // simulated 4x speed a position is some 0.1-0.2 m old by the time a command acts on it.
+  bool keeps_apart(std::span<const TrafficRobot> robots, size_t i, Vec2 to) const;
+  void choose_leader(std::span<const TrafficRobot> robots, int64_t now_ns,
+                     const std::vector<TrafficDecision>& decisions);
 
   CoordinationConfig config_;
   std::vector<uint32_t> order_;  // robots by priority, highest first
@@ -149,6 +182,8 @@ class TrafficRules {
   std::vector<uint32_t> seen_stamp_;                     // yield search: grid cells seen, by query stamp
   std::vector<uint32_t> parent_;                         // yield search: the cell each was reached from
   std::vector<uint32_t> queue_;
+  std::vector<Vec2> nearby_;     // yield search: the bodies near it
+  std::vector<Vec2> committed_;  // where robots pushed off the leader's way were sent this tick
   std::vector<Vec2> section_points_;
   std::vector<uint32_t> section_at_;      // section i is section_points_[section_at_[2i], section_at_[2i+1])
   std::vector<double> entry_m_;           // way to section i's entry
@@ -156,8 +191,18 @@ class TrafficRules {
   std::vector<uint8_t> section_held_;     // robot i had its section granted on the last tick
   std::vector<uint32_t> section_order_;   // robots with a section, in the order they are granted
   std::vector<TrafficDecision> prior_;    // each robot's decision on the last tick
+  int32_t leader_ = -1;                   // the robot whose way is cleared (-1: none)
+  int64_t leader_route_ns_ = 0;           // its route_since_ns when it was chosen
+  Vec2 leader_progress_at_;               // where it was when it last made progress
+  int64_t leader_progress_ns_ = 0;
+  std::vector<uint8_t> stalled_;                         // robot i led and its way could not be cleared
+  std::vector<Vec2> way_points_;                         // the leader's way ahead
+  std::vector<uint8_t> pushed_;                          // robot i clears the leader's way (while it leads)
+  std::vector<double> push_depth_;                       // how much further off the way robot i goes
+  std::vector<std::pair<double, uint32_t>> push_order_;  // (distance along the way, robot)
   uint32_t stamp_ = 0;
   uint64_t deadlocks_ = 0;
+  uint64_t clearings_ = 0;
 };
 
 // The Fleet's side: which robot has which slot, the other planners' paths, and the due waypoint

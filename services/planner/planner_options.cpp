@@ -116,6 +116,18 @@ void add_planner_options(CLI::App& app, PlannerOptions& o) {
          "reserve single-lane stretches one way (a robot waits before one used the other way): on or off")
       ->check(CLI::IsMember({"on", "off"}))
       ->default_str("off");
+  app.add_option_function<std::string>(
+         "--coordination-clear-way",
+         [&coordination](const std::string& v) { coordination.clear_way = v == "on"; },
+         "clear the way of the robot waiting longest into side room (the leader rule): on or off")
+      ->check(CLI::IsMember({"on", "off"}))
+      ->default_str(coordination.clear_way ? "on" : "off");
+  app.add_option("--coordination-clear-after-s", coordination.clear_after_s,
+                 "how long (s) a robot waits before its way may be cleared")
+      ->capture_default_str();
+  app.add_option("--coordination-clear-stall-s", coordination.clear_stall_s,
+                 "a leader whose way has not moved for this long (s) gives the lead up")
+      ->capture_default_str();
 
   app.add_option("--loop-rate-hz", o.loop_rate_hz, "goal and waypoint loop rate")->capture_default_str();
   app.add_option("--request-workers", o.request_workers, "threads answering path requests")

@@ -7,49 +7,18 @@
 
 #include "planner/fleet_coordinator.hpp"
 #include "planner/line_of_sight.hpp"
+#include "planner/traffic_geometry.hpp"
 
 namespace slam::planner {
 namespace {
 
-constexpr double kYieldMarginM = 0.05;  // a yield place keeps this much more than the bare reach
+using traffic::gap_to;
+using traffic::gap_to_prefix;
+using traffic::kYieldMarginM;
+using traffic::segment_gap;
 
 bool finite_positive(double v) {
   return std::isfinite(v) && v > 0.0;
-}
-
-// Distance between segments ab and cd (0 when they cross).
-double segment_gap(Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
-  const auto cross = [](Vec2 o, Vec2 p, Vec2 q) {
-    return (p.x - o.x) * (q.y - o.y) - (p.y - o.y) * (q.x - o.x);
-  };
-  const double d1 = cross(a, b, c), d2 = cross(a, b, d), d3 = cross(c, d, a), d4 = cross(c, d, b);
-  if (((d1 > 0 && d2 < 0) || (d1 < 0 && d2 > 0)) && ((d3 > 0 && d4 < 0) || (d3 < 0 && d4 > 0))) return 0.0;
-  return std::min({distance_to_segment(a, c, d), distance_to_segment(b, c, d), distance_to_segment(c, a, b),
-                   distance_to_segment(d, a, b)});
-}
-
-// Distance from p to the polyline (a single point counts as a polyline).
-double gap_to(std::span<const Vec2> line, Vec2 p) {
-  if (line.size() == 1) return distance(line[0], p);
-  double best = std::numeric_limits<double>::infinity();
-  for (size_t k = 1; k < line.size(); ++k)
-    best = std::min(best, distance_to_segment(p, line[k - 1], line[k]));
-  return best;
-}
-
-// Closest approach of p to the first `length` metres of the polyline.
-double gap_to_prefix(std::span<const Vec2> line, double length, Vec2 p) {
-  double best = distance(line[0], p);
-  double walked = 0.0;
-  for (size_t k = 1; k < line.size() && walked < length; ++k) {
-    const double seg = distance(line[k - 1], line[k]);
-    Vec2 end = line[k];
-    if (walked + seg > length && seg > 0.0)
-      end = line[k - 1] + (line[k] - line[k - 1]) * ((length - walked) / seg);
-    best = std::min(best, distance_to_segment(p, line[k - 1], end));
-    walked += seg;
-  }
-  return best;
 }
 
 }  // namespace
@@ -66,6 +35,12 @@ Status validate(const CoordinationConfig& c) {
   if (!finite_positive(c.yield_step_m)) return Error{"coordination yield_step_m must be positive"};
   if (!finite_positive(c.replan_after_s)) return Error{"coordination replan_after_s must be positive"};
   if (!finite_positive(c.section_horizon_m)) return Error{"coordination section_horizon_m must be positive"};
+  if (!std::isfinite(c.clear_horizon_m) || c.clear_horizon_m < c.lookahead_m)
+    return Error{"coordination clear_horizon_m must be at least lookahead_m"};
+  if (!finite_positive(c.clear_after_s)) return Error{"coordination clear_after_s must be positive"};
+  if (!finite_positive(c.clear_search_m) || c.clear_search_m > 20.0)
+    return Error{"coordination clear_search_m must be in (0, 20]"};
+  if (!finite_positive(c.clear_stall_s)) return Error{"coordination clear_stall_s must be positive"};
   return Status::ok();
 }
 
@@ -305,6 +280,7 @@ void TrafficRules::decide(const PlanningGrid& grid, std::span<const TrafficRobot
     }
   }
   resolve_deadlocks(grid, robots, decisions);
+  clear_way(grid, robots, now_ns, decisions);
 
   for (size_t i = 0; i < n; ++i) {
     TrafficDecision& d = decisions[i];
@@ -407,7 +383,7 @@ void TrafficRules::yield(const PlanningGrid& grid, std::span<const TrafficRobot>
   TrafficDecision& d = decisions[i];
   d.blocker = static_cast<int32_t>(to);
   Vec2 step;
-  if (find_yield(grid, robots, i, long_points_, step)) {
+  if (find_yield(grid, robots, i, long_points_, step, config_.yield_search_m)) {
     d.order = TrafficOrder::Yield;
     d.hold = step;
   } else {
@@ -417,24 +393,29 @@ void TrafficRules::yield(const PlanningGrid& grid, std::span<const TrafficRobot>
 }
 
 bool TrafficRules::find_yield(const PlanningGrid& grid, std::span<const TrafficRobot> robots, size_t i,
-                              std::span<const Vec2> away, Vec2& step) {
+                              std::span<const Vec2> away, Vec2& step, double search_m, double depth) {
   if (grid.empty()) return false;
   const Vec2 start = robots[i].position;
   const auto start_cell = grid.cell_at(start);
   if (!start_cell) return false;
   const double reach = this->reach();
   const double body = 2.0 * config_.robot_radius_m;
+  // Only the robots within reach of the search area can be in the way (listed once, not per cell).
+  nearby_.reserve(2 * robots.size());
+  nearby_.clear();
+  for (size_t k = 0; k < robots.size(); ++k)
+    if (k != i && distance(robots[k].position, start) < search_m + 2.0 * reach)
+      nearby_.push_back(robots[k].position);
+  // Places other robots were sent to this tick count as bodies too (two robots sent the same way).
+  nearby_.insert(nearby_.end(), committed_.begin(), committed_.end());
   const auto clear_of_bodies = [&](Vec2 p, double gap) {
-    for (size_t k = 0; k < robots.size(); ++k)
-      if (k != i && distance(robots[k].position, start) < config_.yield_search_m + 2.0 * reach &&
-          distance(robots[k].position, p) < gap)
-        return false;
-    return true;
+    return std::none_of(nearby_.begin(), nearby_.end(), [&](Vec2 other) { return distance(other, p) < gap; });
   };
   const size_t cells = grid.geometry().cells();
   if (seen_stamp_.size() != cells) {
     seen_stamp_.assign(cells, 0);
     parent_.assign(cells, 0);
+    queue_.reserve(cells);  // a search of any radius then allocates nothing
     stamp_ = 0;
   }
   if (++stamp_ == 0) {
@@ -446,14 +427,21 @@ bool TrafficRules::find_yield(const PlanningGrid& grid, std::span<const TrafficR
   seen_stamp_[first] = stamp_;
   parent_[first] = first;
   queue_.push_back(first);
-  uint32_t found = std::numeric_limits<uint32_t>::max();
+  // The nearest place `depth` off the way; the nearest one off it at all when there is none.
+  constexpr uint32_t kNone = std::numeric_limits<uint32_t>::max();
+  uint32_t found = kNone, shallow = kNone;
   for (size_t head = 0; head < queue_.size(); ++head) {
     const uint32_t at = queue_[head];
     const Cell c = grid.cell_of(at);
     const Vec2 centre = grid.centre(c);
-    if (gap_to(away, centre) >= reach + kYieldMarginM && clear_of_bodies(centre, reach)) {
-      found = at;
-      break;
+    const double off = gap_to(away, centre);
+    if (off >= reach + kYieldMarginM && (shallow == kNone || off >= reach + kYieldMarginM + depth) &&
+        clear_of_bodies(centre, reach)) {
+      if (shallow == kNone) shallow = at;
+      if (off >= reach + kYieldMarginM + depth) {
+        found = at;
+        break;
+      }
     }
     constexpr int kDx[4] = {1, -1, 0, 0}, kDy[4] = {0, 0, 1, -1};
     for (int k = 0; k < 4; ++k) {
@@ -463,22 +451,21 @@ bool TrafficRules::find_yield(const PlanningGrid& grid, std::span<const TrafficR
       if (seen_stamp_[idx] == stamp_ || grid.impassable(nb, UnknownPolicy::Blocked)) continue;
       const Vec2 p = grid.centre(nb);
       // Never squeeze past another robot on the way.
-      if (distance(p, start) > config_.yield_search_m || !clear_of_bodies(p, reach)) continue;
+      if (distance(p, start) > search_m || !clear_of_bodies(p, reach)) continue;
       seen_stamp_[idx] = stamp_;
       parent_[idx] = at;
       queue_.push_back(idx);
     }
   }
-  if (found == std::numeric_limits<uint32_t>::max()) return false;
+  if (found == kNone) found = shallow;
+  if (found == kNone) return false;
   // The furthest cell of the way there that is in sight and within one yield step.
   step = grid.centre(grid.cell_of(found));
   for (uint32_t at = found;; at = parent_[at]) {
     const Vec2 p = grid.centre(grid.cell_of(at));
-    const bool passes_clear = [&] {
-      for (size_t k = 0; k < robots.size(); ++k)
-        if (k != i && distance_to_segment(robots[k].position, start, p) < body) return false;
-      return true;
-    }();
+    const bool passes_clear = std::none_of(nearby_.begin(), nearby_.end(), [&](Vec2 other) {
+      return distance_to_segment(other, start, p) < body;
+    });
     if (distance(p, start) <= config_.yield_step_m && passes_clear &&
         segment_clear_leaving(grid, start, p, UnknownPolicy::Blocked)) {
       step = p;

@@ -41,7 +41,8 @@ struct EvalOptions {
   double min_trip_m = 2.0;        // targets at least this far (straight line) from the robot
   double clearance_m = 0.35;      // targets keep this far from walls
   std::vector<std::string> planner_args;
-  std::string out;  // JSON file; stdout always gets the JSON
+  std::string planner_bin;  // another build's planner (before/after comparisons); default: this build's
+  std::string out;          // JSON file; stdout always gets the JSON
 };
 
 // What the run hears on DDS; written by listener threads.
@@ -257,20 +258,21 @@ class Evaluation {
                   fmt::format("{}", bounds.max.x - bounds.min.x + 2.0), "--grid-height-m",
                   fmt::format("{}", bounds.max.y - bounds.min.y + 2.0), "--log-level", "warn"});
     // The planner's loop keeps its real-time pace in simulated time: 20 Hz times the speed.
-    std::vector<std::string> planner = {testkit::bin_path("slam-planner"),
-                                        "--domain",
-                                        domain,
-                                        "--goal-store",
-                                        "",
-                                        "--no-share",
-                                        "--planner-unknown",
-                                        "allowed",
-                                        "--coordination",
-                                        o_.coordination,
-                                        "--loop-rate-hz",
-                                        fmt::format("{}", std::min(1000.0, 20.0 * o_.speed)),
-                                        "--log-level",
-                                        "warn"};
+    std::vector<std::string> planner = {
+        o_.planner_bin.empty() ? testkit::bin_path("slam-planner") : o_.planner_bin,
+        "--domain",
+        domain,
+        "--goal-store",
+        "",
+        "--no-share",
+        "--planner-unknown",
+        "allowed",
+        "--coordination",
+        o_.coordination,
+        "--loop-rate-hz",
+        fmt::format("{}", std::min(1000.0, 20.0 * o_.speed)),
+        "--log-level",
+        "warn"};
     planner.insert(planner.end(), o_.planner_args.begin(), o_.planner_args.end());
     group_.start("planner", planner);
     group_.start("simulator",
@@ -324,6 +326,7 @@ int main(int argc, char** argv) {
   app.add_option("--goal-timeout", o.goal_timeout_s, "simulated seconds after which a goal counts as stuck")
       ->capture_default_str();
   app.add_option("--planner-arg", o.planner_args, "extra planner argument (repeat)");
+  app.add_option("--planner-bin", o.planner_bin, "the planner executable to run (default: this build's)");
   app.add_option("--out", o.out, "also write the JSON here");
   CLI11_PARSE(app, argc, argv);
   slam::bench::Evaluation eval(o);

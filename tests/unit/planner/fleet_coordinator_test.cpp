@@ -13,76 +13,18 @@
 
 #include "grid_builder.hpp"
 #include "planner/planner_options.hpp"
+#include "traffic_run.hpp"
 
 namespace slam::planner {
 namespace {
 
-constexpr double kDt = 0.05;      // s
-constexpr double kSpeed = 0.5;    // m/s
-constexpr double kArrive = 0.05;  // m
-
-struct Bot {
-  Vec2 position;
-  std::vector<Vec2> path;  // waypoints; the last one is the destination
-  int64_t since_ns = 0;
-  size_t next = 0;
-  bool arrived() const { return next >= path.size(); }
-};
-
-struct RunResult {
-  double closest = std::numeric_limits<double>::infinity();  // smallest distance between two robots
-  bool all_arrived = false;
-  uint64_t deadlocks = 0;
-  size_t yields = 0;  // robot-steps spent yielding
-  double longest_wait_s = 0.0;
-};
-
-std::vector<TrafficRobot> inputs(const std::vector<Bot>& bots) {
-  std::vector<TrafficRobot> out;
-  for (size_t i = 0; i < bots.size(); ++i) {
-    const Bot& b = bots[i];
-    const std::span<const Vec2> all(b.path);
-    out.push_back(TrafficRobot{b.position, all.subspan(std::min(b.next, b.path.size())), b.since_ns,
-                               static_cast<uint32_t>(i)});
-  }
-  return out;
-}
-
-// `each_step` (if given) sees the robots after every step.
-RunResult run(const PlanningGrid& grid, std::vector<Bot>& bots, const CoordinationConfig& config, int steps,
-              const std::function<void(const std::vector<Bot>&)>& each_step = {}) {
-  TrafficRules rules(config);
-  std::vector<TrafficDecision> decisions;
-  RunResult result;
-  for (int step = 0; step < steps; ++step) {
-    const auto now = static_cast<int64_t>(step) * 50'000'000;
-    const auto in = inputs(bots);
-    rules.decide(grid, in, now, decisions);
-    for (size_t i = 0; i < bots.size(); ++i) {
-      Bot& b = bots[i];
-      const TrafficDecision& d = decisions[i];
-      if (d.order == TrafficOrder::Yield) ++result.yields;
-      if (d.waiting_since_ns >= 0)
-        result.longest_wait_s =
-            std::max(result.longest_wait_s, static_cast<double>(now - d.waiting_since_ns) * 1e-9);
-      if (d.order == TrafficOrder::Go && b.arrived()) continue;
-      const Vec2 target = d.order == TrafficOrder::Go ? b.path[b.next] : d.hold;
-      const double gap = distance(b.position, target);
-      b.position = gap <= kSpeed * kDt ? target : b.position + (target - b.position) * (kSpeed * kDt / gap);
-      if (d.order == TrafficOrder::Go && distance(b.position, b.path[b.next]) < kArrive) ++b.next;
-    }
-    if (each_step) each_step(bots);
-    for (size_t i = 0; i < bots.size(); ++i)
-      for (size_t j = i + 1; j < bots.size(); ++j)
-        result.closest = std::min(result.closest, distance(bots[i].position, bots[j].position));
-    if (std::all_of(bots.begin(), bots.end(), [](const Bot& b) { return b.arrived(); })) {
-      result.all_arrived = true;
-      break;
-    }
-  }
-  result.deadlocks = rules.deadlocks();
-  return result;
-}
+using test::Bot;
+using test::inputs;
+using test::kArrive;
+using test::kDt;
+using test::kSpeed;
+using test::run;
+using test::RunResult;
 
 // A 10 m x 10 m room at 0.1 m with a wall at x = 5 m and a 1 m door at y 4.5..5.5 m.
 PlanningGrid door_room() {
@@ -447,6 +389,14 @@ TEST(CoordinationOptions, OnByDefaultOffKeepsEveryRobotOnItsRoute) {
   add_planner_options(sections_app, sections);
   ASSERT_NO_THROW(sections_app.parse(std::vector<std::string>{"on", "--coordination-sections"}));
   EXPECT_TRUE(sections.coordination.one_way_sections);
+  PlannerOptions clearing;
+  CLI::App clearing_app{"test"};
+  add_planner_options(clearing_app, clearing);
+  const bool by_default = clearing.coordination.clear_way;
+  ASSERT_NO_THROW(clearing_app.parse(std::vector<std::string>{
+      "2.5", "--coordination-clear-after-s", by_default ? "off" : "on", "--coordination-clear-way"}));
+  EXPECT_NE(clearing.coordination.clear_way, by_default);
+  EXPECT_DOUBLE_EQ(clearing.coordination.clear_after_s, 2.5);
   PlannerOptions bad;
   CLI::App app{"test"};
   add_planner_options(app, bad);
