@@ -3,10 +3,12 @@
 // the graph side in pose_corrector_graph.cpp.
 #include "pose_correction/pose_corrector.hpp"
 
+#include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 #include <unordered_set>
 #include <utility>
 
@@ -25,6 +27,16 @@ constexpr double kStartSigma_m = 0.05;  // a robot's first keyframe: its start p
 constexpr double kStartSigma_rad = 0.02;
 constexpr double kOperatorSigma_m = 0.02;
 constexpr double kOperatorSigma_rad = 0.01;
+
+// A closure match's figures for the log: what each gate saw.
+std::string describe(const MatchResult& m, size_t points, const Eigen::Matrix3d& chain_cov) {
+  return fmt::format(
+      "{} points, score {:.2f}, sigma {:.3f} / {:.3f} m, {:.2f} deg, flat {}, ambiguity {:.2f}, chain sigma "
+      "{:.3f} m",
+      points, m.score, std::sqrt(m.covariance(0, 0)), std::sqrt(m.covariance(1, 1)),
+      std::sqrt(m.covariance(2, 2)) * 57.29578, m.flat_directions, m.ambiguity,
+      std::sqrt(std::max(chain_cov(0, 0), chain_cov(1, 1))));
+}
 
 }  // namespace
 
@@ -218,17 +230,21 @@ void PoseCorrector::apply(MatchJob& job, std::vector<KeyframeCorrection>& out) {
   const bool operator_set = rb.operator_pose.has_value();
   if (job.wide_skipped) ++stats_.wide_skipped;
   if (job.tie && !job.wide_skipped && !operator_set && !nodes_[job.anchor].removed) {
-    const bool wide = job.wide;
+    // An ambiguous wide match was refused as a closure on the worker; its tie is a narrow one.
+    const bool wide = job.wide && !job.wide_ambiguous;
     ++stats_.ties_tried;
-    if (wide) ++stats_.closures_tried;
+    if (job.wide) ++stats_.closures_tried;
+    if (job.wide_ambiguous) ++stats_.closures_rejected;
     const auto& tie = job.tie_match;
     if (tie && tie->score >= options_.closure_min_score) {
+      if (job.wide_ambiguous) ++stats_.ambiguous_ties;
       const Eigen::Matrix3d tie_cov = with_floor(tie->covariance, 0.02, 0.01);
       const ConsistencyCheck check;
       // A closure must be unambiguous (one clear peak: not a ring, a corridor or a row of identical
       // rooms) and agree with the uncertainty accumulated since the last tie.
-      if (!wide ||
-          (DistinctMatch{}.accepts(*tie) && check.accepts(estimate, tie->pose, rb.chain_cov + tie_cov))) {
+      const bool distinct = DistinctMatch{}.accepts(*tie);
+      const bool consistent = check.accepts(estimate, tie->pose, rb.chain_cov + tie_cov);
+      if (!wide || (distinct && consistent)) {
         anchor = job.anchor;
         anchored_estimate = tie->pose;
         anchored_cov = tie_cov;
@@ -237,12 +253,16 @@ void PoseCorrector::apply(MatchJob& job, std::vector<KeyframeCorrection>& out) {
                     std::abs(wrap_angle(tie->pose.theta - estimate.theta)) > 0.005;
           ++stats_.closures_accepted;
           spdlog::info(
-              "loop closure: robot {} keyframe {} moved {:.3f} m, {:.2f} deg against {} old keyframes",
+              "loop closure: robot {} keyframe {} moved {:.3f} m, {:.2f} deg against {} old keyframes ({})",
               rb.name, keyframe.id, distance(tie->pose.position(), estimate.position()),
-              wrap_angle(tie->pose.theta - estimate.theta) * 57.29578, job.neighbours);
+              wrap_angle(tie->pose.theta - estimate.theta) * 57.29578, job.neighbours,
+              describe(*tie, keyframe.points.size(), rb.chain_cov));
         }
       } else {
         ++stats_.closures_rejected;
+        spdlog::debug("loop closure refused: robot {} keyframe {}, distinct {}, consistent {} ({})", rb.name,
+                      keyframe.id, distinct, consistent,
+                      describe(*tie, keyframe.points.size(), rb.chain_cov));
       }
     }
   }
@@ -254,12 +274,15 @@ void PoseCorrector::apply(MatchJob& job, std::vector<KeyframeCorrection>& out) {
       closure_since_optimise_ = true;
       estimate = anchored_estimate;
       rb.chain_cov = anchored_cov;
-    } else {
+    } else if (!job.wide_ambiguous) {
       // A tie inside the tracking window: the same update, weighted by what the robot has
       // accumulated since it was last tied.
       estimate = fuse(estimate, rb.chain_cov, anchored_estimate, anchored_cov);
       rb.chain_cov = fused_covariance(rb.chain_cov, anchored_cov);
     }
+    // A tie in an ambiguous place only joins the graph (its edge carries the tie's own pose): fused
+    // at a loose chain's weight, its match noise would move even a robot whose odometry is exact.
+    // The chain stays loose, so the next distinct closure still corrects all of it.
     cov = anchored_cov;
     ++tied_since_optimise_;
   }
@@ -278,15 +301,17 @@ void PoseCorrector::apply(MatchJob& job, std::vector<KeyframeCorrection>& out) {
   if (previous) {
     // Tracking refines the odometry between consecutive keyframes; a tie or closure jump is not a
     // motion, so then the odometry itself is the edge.
-    if (tracked && !anchor) {
+    if (tracked && (!anchor || job.wide_ambiguous)) {
       add_edge(EdgeKind::Sequential, *previous, slot, nodes_[*previous].estimate.inverse().compose(estimate),
-               with_floor(cov, 0.01, 0.005));
+               with_floor(job.cov, 0.01, 0.005));
     } else {
       add_edge(EdgeKind::Sequential, *previous, slot, odom_relative, odom_cov);
     }
   }
   if (anchor) {
-    add_edge(EdgeKind::LoopClosure, *anchor, slot, nodes_[*anchor].estimate.inverse().compose(estimate), cov);
+    add_edge(EdgeKind::LoopClosure, *anchor, slot,
+             nodes_[*anchor].estimate.inverse().compose(job.wide_ambiguous ? anchored_estimate : estimate),
+             cov);
   }
   if (operator_set || !previous) {
     GraphEdge prior;
@@ -302,7 +327,7 @@ void PoseCorrector::apply(MatchJob& job, std::vector<KeyframeCorrection>& out) {
   }
   rb.operator_pose.reset();
   rb.last_node = slot;
-  if (anchor || operator_set || !previous) rb.last_tied = slot;
+  if ((anchor && !job.wide_ambiguous) || operator_set || !previous) rb.last_tied = slot;
 
   const Pose before = rb.state.map_from_odom.compose(keyframe.odom);
   rb.state.map_from_odom = estimate.compose(keyframe.odom.inverse());

@@ -145,7 +145,7 @@ void PoseCorrector::prepare(Keyframe&& keyframe, const GridView& grid, bool matc
 void PoseCorrector::match_keyframe(ScanMatcher& matcher, MatchJob& job) const {
   job.narrow.reset();
   job.tie_match.reset();
-  job.wide = job.wide_skipped = false;
+  job.wide = job.wide_skipped = job.wide_ambiguous = false;
   job.estimate = job.predicted;
   job.cov = Eigen::Matrix3d::Zero();
   if (!job.track) return;
@@ -169,10 +169,20 @@ void PoseCorrector::match_keyframe(ScanMatcher& matcher, MatchJob& job) const {
     return;
   }
   job.wide = wide;
-  if (auto tie = matcher.match(GridView{job.tie_geometry, job.tie_cells}, points, job.estimate,
-                               wide ? options_.closure_window : options_.track_window)) {
-    job.tie_match = *tie;
+  const GridView old_map{job.tie_geometry, job.tie_cells};
+  auto tie =
+      matcher.match(old_map, points, job.estimate, wide ? options_.closure_window : options_.track_window);
+  // A wide match that pins every direction over the window but not to one clear peak (a corridor
+  // with doors: the best and a candidate 0.2 m along it score alike) cannot close a loop, but the
+  // old map still pins the robot in the tracking window: that match is the tie. Only if it pins
+  // every direction there too: a flat direction's best candidate is arbitrary along it, and as an
+  // edge in the graph such ties pulled robots along a ring by half a metre.
+  if (tie && wide && tie->flat_directions == 0 && !DistinctMatch{}.accepts(*tie)) {
+    job.wide_ambiguous = true;
+    tie = matcher.match(old_map, points, job.estimate, options_.track_window);
+    if (tie && tie->flat_directions > 0) tie = Error{"the tracking window's tie has a flat direction"};
   }
+  if (tie) job.tie_match = *tie;
 }
 
 }  // namespace slam::correction
