@@ -268,7 +268,6 @@ void MapperNode::update_periodic_counters() {
   counters_.get("slam_closures_tried").store(st.closures_tried, std::memory_order_relaxed);
   counters_.get("slam_closures_accepted").store(st.closures_accepted, std::memory_order_relaxed);
   counters_.get("slam_closures_rejected").store(st.closures_rejected, std::memory_order_relaxed);
-  counters_.get("slam_ambiguous_ties").store(st.ambiguous_ties, std::memory_order_relaxed);
   counters_.get("slam_optimisations").store(st.optimisations, std::memory_order_relaxed);
   counters_.get("slam_segments").store(st.segments, std::memory_order_relaxed);
   counters_.get("slam_rejected_inputs").store(st.rejected_inputs, std::memory_order_relaxed);

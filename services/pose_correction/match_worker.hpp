@@ -51,9 +51,6 @@ struct MatchJob {
   Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
   bool wide = false;          // the tie searched the wide window
   bool wide_skipped = false;  // a wide search was needed but not permitted
-  // The wide search's best match was not distinct (no flat direction, but a second peak or a wide
-  // spread): no closure; the tie is the tracking window's match against the same old keyframes.
-  bool wide_ambiguous = false;
   std::optional<MatchResult> tie_match;
 };
 

@@ -23,8 +23,6 @@ bool finite(const Pose& p) {
   return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.theta);
 }
 
-constexpr double kStartSigma_m = 0.05;  // a robot's first keyframe: its start pose is trusted
-constexpr double kStartSigma_rad = 0.02;
 constexpr double kOperatorSigma_m = 0.02;
 constexpr double kOperatorSigma_rad = 0.01;
 
@@ -230,14 +228,11 @@ void PoseCorrector::apply(MatchJob& job, std::vector<KeyframeCorrection>& out) {
   const bool operator_set = rb.operator_pose.has_value();
   if (job.wide_skipped) ++stats_.wide_skipped;
   if (job.tie && !job.wide_skipped && !operator_set && !nodes_[job.anchor].removed) {
-    // An ambiguous wide match was refused as a closure on the worker; its tie is a narrow one.
-    const bool wide = job.wide && !job.wide_ambiguous;
+    const bool wide = job.wide;
     ++stats_.ties_tried;
-    if (job.wide) ++stats_.closures_tried;
-    if (job.wide_ambiguous) ++stats_.closures_rejected;
+    if (wide) ++stats_.closures_tried;
     const auto& tie = job.tie_match;
     if (tie && tie->score >= options_.closure_min_score) {
-      if (job.wide_ambiguous) ++stats_.ambiguous_ties;
       const Eigen::Matrix3d tie_cov = with_floor(tie->covariance, 0.02, 0.01);
       const ConsistencyCheck check;
       // A closure must be unambiguous (one clear peak: not a ring, a corridor or a row of identical
@@ -274,15 +269,12 @@ void PoseCorrector::apply(MatchJob& job, std::vector<KeyframeCorrection>& out) {
       closure_since_optimise_ = true;
       estimate = anchored_estimate;
       rb.chain_cov = anchored_cov;
-    } else if (!job.wide_ambiguous) {
+    } else {
       // A tie inside the tracking window: the same update, weighted by what the robot has
       // accumulated since it was last tied.
       estimate = fuse(estimate, rb.chain_cov, anchored_estimate, anchored_cov);
       rb.chain_cov = fused_covariance(rb.chain_cov, anchored_cov);
     }
-    // A tie in an ambiguous place only joins the graph (its edge carries the tie's own pose): fused
-    // at a loose chain's weight, its match noise would move even a robot whose odometry is exact.
-    // The chain stays loose, so the next distinct closure still corrects all of it.
     cov = anchored_cov;
     ++tied_since_optimise_;
   }
@@ -301,17 +293,15 @@ void PoseCorrector::apply(MatchJob& job, std::vector<KeyframeCorrection>& out) {
   if (previous) {
     // Tracking refines the odometry between consecutive keyframes; a tie or closure jump is not a
     // motion, so then the odometry itself is the edge.
-    if (tracked && (!anchor || job.wide_ambiguous)) {
+    if (tracked && !anchor) {
       add_edge(EdgeKind::Sequential, *previous, slot, nodes_[*previous].estimate.inverse().compose(estimate),
-               with_floor(job.cov, 0.01, 0.005));
+               with_floor(cov, 0.01, 0.005));
     } else {
       add_edge(EdgeKind::Sequential, *previous, slot, odom_relative, odom_cov);
     }
   }
   if (anchor) {
-    add_edge(EdgeKind::LoopClosure, *anchor, slot,
-             nodes_[*anchor].estimate.inverse().compose(job.wide_ambiguous ? anchored_estimate : estimate),
-             cov);
+    add_edge(EdgeKind::LoopClosure, *anchor, slot, nodes_[*anchor].estimate.inverse().compose(estimate), cov);
   }
   if (operator_set || !previous) {
     GraphEdge prior;
@@ -327,7 +317,7 @@ void PoseCorrector::apply(MatchJob& job, std::vector<KeyframeCorrection>& out) {
   }
   rb.operator_pose.reset();
   rb.last_node = slot;
-  if ((anchor && !job.wide_ambiguous) || operator_set || !previous) rb.last_tied = slot;
+  if (anchor || operator_set || !previous) rb.last_tied = slot;
 
   const Pose before = rb.state.map_from_odom.compose(keyframe.odom);
   rb.state.map_from_odom = estimate.compose(keyframe.odom.inverse());

@@ -91,8 +91,7 @@ struct CorrectorStats {
   int64_t unmatched = 0;  // keyframes placed by odometry alone (too few points, poor score)
   int64_t closures_tried = 0;
   int64_t closures_accepted = 0;
-  int64_t closures_rejected = 0;  // a match was found but was ambiguous or failed the consistency check
-  int64_t ambiguous_ties = 0;     // of those ambiguous, tied in the tracking window instead
+  int64_t closures_rejected = 0;  // a match was found but failed the consistency check
   int64_t optimisations = 0;
   int64_t failed_optimisations = 0;
   int64_t segments = 0;         // odometry jumps that started a new segment

@@ -96,8 +96,14 @@ void PoseCorrector::prepare(Keyframe&& keyframe, const GridView& grid, bool matc
     rb.chain_cov += job.odom_cov;
     rb.chain_cov(0, 0) += rb.chain_cov(2, 2) * d * d;  // heading uncertainty swings the position
     rb.chain_cov(1, 1) += rb.chain_cov(2, 2) * d * d;
+  } else if (rb.last_node) {
+    rb.chain_cov = job.odom_cov;  // a new segment: where the odometry jumped to is barely known
   } else {
-    rb.chain_cov = job.odom_cov;
+    // A robot's first keyframe is where it is trusted to start (its prior in the graph says so).
+    // At a new segment's 2 m the robot could only be tied by a wide closure: it stayed untied for
+    // hundreds of keyframes where closures were ambiguous, and its first closure was checked
+    // against nothing (a wrong one of 12 cm passed in the office).
+    rb.chain_cov = diagonal(kStartSigma_m, kStartSigma_m, kStartSigma_rad);
   }
 
   job.track = match;
@@ -145,7 +151,7 @@ void PoseCorrector::prepare(Keyframe&& keyframe, const GridView& grid, bool matc
 void PoseCorrector::match_keyframe(ScanMatcher& matcher, MatchJob& job) const {
   job.narrow.reset();
   job.tie_match.reset();
-  job.wide = job.wide_skipped = job.wide_ambiguous = false;
+  job.wide = job.wide_skipped = false;
   job.estimate = job.predicted;
   job.cov = Eigen::Matrix3d::Zero();
   if (!job.track) return;
@@ -169,20 +175,10 @@ void PoseCorrector::match_keyframe(ScanMatcher& matcher, MatchJob& job) const {
     return;
   }
   job.wide = wide;
-  const GridView old_map{job.tie_geometry, job.tie_cells};
-  auto tie =
-      matcher.match(old_map, points, job.estimate, wide ? options_.closure_window : options_.track_window);
-  // A wide match that pins every direction over the window but not to one clear peak (a corridor
-  // with doors: the best and a candidate 0.2 m along it score alike) cannot close a loop, but the
-  // old map still pins the robot in the tracking window: that match is the tie. Only if it pins
-  // every direction there too: a flat direction's best candidate is arbitrary along it, and as an
-  // edge in the graph such ties pulled robots along a ring by half a metre.
-  if (tie && wide && tie->flat_directions == 0 && !DistinctMatch{}.accepts(*tie)) {
-    job.wide_ambiguous = true;
-    tie = matcher.match(old_map, points, job.estimate, options_.track_window);
-    if (tie && tie->flat_directions > 0) tie = Error{"the tracking window's tie has a flat direction"};
+  if (auto tie = matcher.match(GridView{job.tie_geometry, job.tie_cells}, points, job.estimate,
+                               wide ? options_.closure_window : options_.track_window)) {
+    job.tie_match = *tie;
   }
-  if (tie) job.tie_match = *tie;
 }
 
 }  // namespace slam::correction
