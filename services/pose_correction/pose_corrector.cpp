@@ -23,6 +23,8 @@ bool finite(const Pose& p) {
   return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.theta);
 }
 
+constexpr double kStartSigma_m = 0.05;  // a robot's first keyframe: its start pose is trusted
+constexpr double kStartSigma_rad = 0.02;
 constexpr double kOperatorSigma_m = 0.02;
 constexpr double kOperatorSigma_rad = 0.01;
 

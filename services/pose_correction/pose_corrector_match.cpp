@@ -96,14 +96,8 @@ void PoseCorrector::prepare(Keyframe&& keyframe, const GridView& grid, bool matc
     rb.chain_cov += job.odom_cov;
     rb.chain_cov(0, 0) += rb.chain_cov(2, 2) * d * d;  // heading uncertainty swings the position
     rb.chain_cov(1, 1) += rb.chain_cov(2, 2) * d * d;
-  } else if (rb.last_node) {
-    rb.chain_cov = job.odom_cov;  // a new segment: where the odometry jumped to is barely known
   } else {
-    // A robot's first keyframe is where it is trusted to start (its prior in the graph says so).
-    // At a new segment's 2 m the robot could only be tied by a wide closure: it stayed untied for
-    // hundreds of keyframes where closures were ambiguous, and its first closure was checked
-    // against nothing (a wrong one of 12 cm passed in the office).
-    rb.chain_cov = diagonal(kStartSigma_m, kStartSigma_m, kStartSigma_rad);
+    rb.chain_cov = job.odom_cov;
   }
 
   job.track = match;

@@ -6,7 +6,6 @@
 #include <numbers>
 #include <optional>
 #include <random>
-#include <string>
 #include <vector>
 
 namespace slam::correction {
@@ -237,33 +236,6 @@ TEST(PoseCorrector, RestoredKeyframesGiveBackEachRobotsLatestCorrection) {
   auto id = corrector.add("a", 0, {1, 0, 0}, true, {});
   ASSERT_TRUE(id);
   EXPECT_EQ(*id, 4u);
-}
-
-// Drives `robot` along the room's bottom from (1, 1) to (5, 1), 0.03 m per message, exact odometry.
-void drive_bottom(PoseCorrector& corrector, const TrueMap& map, const std::string& robot, int64_t& stamp) {
-  const auto walls = room();
-  std::vector<KeyframeCorrection> finalised;
-  for (int step = 0; step <= 133; ++step) {
-    const Pose pose{1.0 + 0.03 * step, 1.0, 0.0};
-    stamp += 100'000'000;
-    ASSERT_TRUE(corrector.add(robot, stamp, pose, true, sense(walls, pose, pose, step)));
-    corrector.process(map.view(), stamp, finalised);
-  }
-}
-
-TEST(PoseCorrector, ARobotStartsTiedToTheOldMapAsTrustedAsItsStartNotSearchingWide) {
-  const TrueMap map(room());
-  PoseCorrector corrector;
-  int64_t stamp = 0;
-  drive_bottom(corrector, map, "first", stamp);
-  const CorrectorStats after_first = corrector.stats();
-  // The second robot starts where the first did; the first's keyframes are old map to it.
-  drive_bottom(corrector, map, "second", stamp);
-  const CorrectorStats& st = corrector.stats();
-  EXPECT_GT(st.ties_tried, after_first.ties_tried);  // tied all along...
-  // ...in the tracking window: its start is trusted to 5 cm (its prior), so no keyframe needed the
-  // wide search of a robot whose pose is barely known (without: a 2 m chain until a closure).
-  EXPECT_EQ(st.closures_tried, after_first.closures_tried);
 }
 
 }  // namespace
