@@ -9,13 +9,15 @@
 #   tests/bench/eval_mapping_pairs.sh BASE_MAPPER [REPEATS] [OUT]
 #   e.g. tests/bench/eval_mapping_pairs.sh /path/to/main/build/bin/slam-mapper 2 build/bench/pairs
 #
-# EXTRA_WORLDS=twice adds the office at twice the drift (another 5.5 minutes per repeat).
+# EXTRA_WORLDS=twice adds the office at twice the drift (another 5.5 minutes per repeat); DURATION=S
+# runs S simulated seconds instead of 1200.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 
 base=${1:?usage: eval_mapping_pairs.sh BASE_MAPPER [REPEATS] [OUT]}
 repeats=${2:-2}
 out=${3:-build/bench/pairs}
+duration=${DURATION:-1200}  # simulated seconds per run (a short one checks the set-up)
 eval_bin=build/bin/eval_mapping
 [[ -x $eval_bin ]] || { echo "build first: $eval_bin missing" >&2; exit 1; }
 [[ -x $base ]] || { echo "no executable mapper at $base" >&2; exit 1; }
@@ -40,11 +42,11 @@ for ((r = 1; r <= repeats; ++r)); do
   for w in "${worlds[@]}"; do
     echo "== repeat $r: $w ($(uptime | sed 's/.*load average/load/'))"
     # shellcheck disable=SC2086  # each world's arguments are split on purpose
-    $eval_bin $w --protocol v1 --speed 4 --duration 1200 --mapper-bin "$base" --out "$out/base-$r" \
+    $eval_bin $w --protocol v1 --speed 4 --duration "$duration" --mapper-bin "$base" --out "$out/base-$r" \
       >/dev/null 2>"$out.base.log" &
     base_pid=$!
     # shellcheck disable=SC2086
-    $eval_bin $w --protocol v1 --speed 4 --duration 1200 --out "$out/this-$r" >/dev/null 2>"$out.this.log" &
+    $eval_bin $w --protocol v1 --speed 4 --duration "$duration" --out "$out/this-$r" >/dev/null 2>"$out.this.log" &
     this_pid=$!
     wait "$base_pid" || echo "base run failed: $(tail -n 3 "$out.base.log")"
     wait "$this_pid" || echo "this build's run failed: $(tail -n 3 "$out.this.log")"
