@@ -3,10 +3,12 @@
 // the graph side in pose_corrector_graph.cpp.
 #include "pose_correction/pose_corrector.hpp"
 
+#include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 #include <unordered_set>
 #include <utility>
 
@@ -25,6 +27,16 @@ constexpr double kStartSigma_m = 0.05;  // a robot's first keyframe: its start p
 constexpr double kStartSigma_rad = 0.02;
 constexpr double kOperatorSigma_m = 0.02;
 constexpr double kOperatorSigma_rad = 0.01;
+
+// A closure match's figures for the log: what each gate saw.
+std::string describe(const MatchResult& m, size_t points, const Eigen::Matrix3d& chain_cov) {
+  return fmt::format(
+      "{} points, score {:.2f}, sigma {:.3f} / {:.3f} m, {:.2f} deg, flat {}, ambiguity {:.2f}, chain sigma "
+      "{:.3f} m",
+      points, m.score, std::sqrt(m.covariance(0, 0)), std::sqrt(m.covariance(1, 1)),
+      std::sqrt(m.covariance(2, 2)) * 57.29578, m.flat_directions, m.ambiguity,
+      std::sqrt(std::max(chain_cov(0, 0), chain_cov(1, 1))));
+}
 
 }  // namespace
 
@@ -227,8 +239,9 @@ void PoseCorrector::apply(MatchJob& job, std::vector<KeyframeCorrection>& out) {
       const ConsistencyCheck check;
       // A closure must be unambiguous (one clear peak: not a ring, a corridor or a row of identical
       // rooms) and agree with the uncertainty accumulated since the last tie.
-      if (!wide ||
-          (DistinctMatch{}.accepts(*tie) && check.accepts(estimate, tie->pose, rb.chain_cov + tie_cov))) {
+      const bool distinct = DistinctMatch{}.accepts(*tie);
+      const bool consistent = check.accepts(estimate, tie->pose, rb.chain_cov + tie_cov);
+      if (!wide || (distinct && consistent)) {
         anchor = job.anchor;
         anchored_estimate = tie->pose;
         anchored_cov = tie_cov;
@@ -237,12 +250,16 @@ void PoseCorrector::apply(MatchJob& job, std::vector<KeyframeCorrection>& out) {
                     std::abs(wrap_angle(tie->pose.theta - estimate.theta)) > 0.005;
           ++stats_.closures_accepted;
           spdlog::info(
-              "loop closure: robot {} keyframe {} moved {:.3f} m, {:.2f} deg against {} old keyframes",
+              "loop closure: robot {} keyframe {} moved {:.3f} m, {:.2f} deg against {} old keyframes ({})",
               rb.name, keyframe.id, distance(tie->pose.position(), estimate.position()),
-              wrap_angle(tie->pose.theta - estimate.theta) * 57.29578, job.neighbours);
+              wrap_angle(tie->pose.theta - estimate.theta) * 57.29578, job.neighbours,
+              describe(*tie, keyframe.points.size(), rb.chain_cov));
         }
       } else {
         ++stats_.closures_rejected;
+        spdlog::debug("loop closure refused: robot {} keyframe {}, distinct {}, consistent {} ({})", rb.name,
+                      keyframe.id, distinct, consistent,
+                      describe(*tie, keyframe.points.size(), rb.chain_cov));
       }
     }
   }

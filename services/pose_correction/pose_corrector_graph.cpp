@@ -128,10 +128,12 @@ double PoseCorrector::take_optimised(std::vector<KeyframeCorrection>& moved) {
   for (size_t r = 0; r < robots_.size(); ++r) {
     if (!robot_delta[r]) continue;
     Robot& rb = robots_[r];
-    if (const Vec2 at = rb.builder.last_odom().position(), corrected = rb.state.map_from_odom.transform(at);
-        distance(robot_delta[r]->transform(corrected), corrected) > kJumpWarning_m) {
-      spdlog::warn("pose correction: robot {} moved {:.2f} m by a graph optimisation", rb.name,
-                   distance(robot_delta[r]->transform(corrected), corrected));
+    const Vec2 corrected = rb.state.map_from_odom.transform(rb.builder.last_odom().position());
+    const double move = distance(robot_delta[r]->transform(corrected), corrected);
+    if (move > kJumpWarning_m) {
+      spdlog::warn("pose correction: robot {} moved {:.2f} m by a graph optimisation", rb.name, move);
+    } else {
+      spdlog::debug("graph optimisation moved robot {} by {:.3f} m", rb.name, move);
     }
     rb.state.map_from_odom = robot_delta[r]->compose(rb.state.map_from_odom);
     mark_changed(rb, CorrectionSource::Loop);

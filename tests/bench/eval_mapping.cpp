@@ -46,6 +46,9 @@ struct EvalOptions {
   std::string odom_frame;  // passed to the simulator when set
   std::vector<std::string> sim_args, mapper_args, planner_args;
   std::string mapper_bin;  // default: this build's slam-mapper; another build's, to compare two versions
+  // The mapper's log level; its log is kept as <out>/<name>.mapper.log ("info" lists every loop
+  // closure with the match's figures, to find a false closure's gate).
+  std::string mapper_log_level = "warn";
   std::string out_dir = "build/bench/mapping";
   std::string name;                 // default: from world, protocol, drift and the extra arguments
   double reach_tolerance_m = 0.20;  // the planner's 0.15 m plus motion between its decision and the sample
@@ -253,6 +256,7 @@ class Evaluation {
     std::filesystem::create_directories(o_.out_dir);
     const std::string yaml = std::filesystem::absolute(o_.out_dir + "/" + name() + ".yaml").string();
     SLAM_TRY(export_map(yaml));
+    std::ofstream(o_.out_dir + "/" + name() + ".mapper.log") << group_.log("mapper");
     auto map = read_ros_map(yaml);
     if (!map) return Error{"reading the exported map: " + map.message()};
     return score(*map, yaml, simulated_s, wall_s);
@@ -272,7 +276,7 @@ class Evaluation {
                              "--log-level", "warn"});
     const std::string mapper = o_.mapper_bin.empty() ? testkit::bin_path("slam-mapper") : o_.mapper_bin;
     group_.start("mapper", with({mapper, "--domain", domain, "--store", group_.dir() + "/map.db",
-                                 "--log-level", "warn"},
+                                 "--log-level", o_.mapper_log_level},
                                 o_.mapper_args));
     group_.start("planner", with({testkit::bin_path("slam-planner"), "--domain", domain, "--goal-store",
                                   group_.dir() + "/goals.json", "--log-level", "warn"},
@@ -455,6 +459,9 @@ int main(int argc, char** argv) {
   app.add_option("--mapper-arg", o.mapper_args, "extra mapper argument (repeat)")->allow_extra_args(false);
   app.add_option("--mapper-bin", o.mapper_bin,
                  "slam-mapper executable to run (default: this build's; a saved one compares two versions)");
+  app.add_option("--mapper-log-level", o.mapper_log_level,
+                 "the mapper's log level; its log is kept as <out>/<name>.mapper.log")
+      ->capture_default_str();
   app.add_option("--planner-arg", o.planner_args, "extra planner argument (repeat)")->allow_extra_args(false);
   app.add_option("--out", o.out_dir, "directory of the results")->capture_default_str();
   app.add_option("--name", o.name,
