@@ -107,14 +107,23 @@ WindowEdge sample_edge(const PipelineRig& rig, const ProbeSet& probes,
   return e;
 }
 
+// Observations the mapper took in so far: integrated, rejected, dropped at its intake, or held by
+// pose correction until their keyframe is matched (slam_held: taken in, not yet in the grid).
+int64_t mapper_taken_in(const CounterSample& mapper) {
+  return mapper.get("observations") + mapper.get("rejected") + mapper.get("dropped") +
+         mapper.get("slam_held");
+}
+
 // Observations the gateway published that the mapper has not taken in yet, with the gateway's
-// count moved to the mapper heartbeat's time at the gateway's rate (heartbeats are not aligned).
-double mapper_backlog(const CounterSample& gateway, const CounterSample& mapper, double gateway_rate) {
+// count moved to the mapper heartbeat's time at the gateway's rate (heartbeats are not aligned),
+// less `startup_gap`: what the gateway published before the mapper's reader matched it, which the
+// counters (totals since start) carry forever but no queue holds.
+double mapper_backlog(const CounterSample& gateway, const CounterSample& mapper, double gateway_rate,
+                      double startup_gap) {
   const double gateway_at_mapper_time =
       static_cast<double>(gateway.get("observations")) +
       gateway_rate * static_cast<double>(mapper.stamp_ns - gateway.stamp_ns) / 1e9;
-  const int64_t intake = mapper.get("observations") + mapper.get("rejected") + mapper.get("dropped");
-  return gateway_at_mapper_time - static_cast<double>(intake);
+  return gateway_at_mapper_time - static_cast<double>(mapper_taken_in(mapper)) - startup_gap;
 }
 
 // With the fleet paused, lets every queue drain, which tells messages still queued from messages
@@ -141,7 +150,7 @@ Drain drain(PipelineRig& rig, size_t probes_sent, int64_t paused_at_ns, std::chr
                         mapper = rig.latest("mapper");
     const int64_t sent = sim.get("reports_sent") + static_cast<int64_t>(probes_sent);
     const int64_t in = gateway.get("messages_in");
-    const int64_t intake = mapper.get("observations") + mapper.get("rejected") + mapper.get("dropped");
+    const int64_t intake = mapper_taken_in(mapper);
     const int64_t now = monotonic_ns();
     if (in != last_in || intake != last_intake) last_change = now;
     last_in = in;
@@ -220,8 +229,10 @@ void report(benchmark::State& state, const PipelineSettings& settings, WindowEdg
   c["points_per_obs"] =
       delta("mapper", "observations") > 0 ? delta("mapper", "points") / delta("mapper", "observations") : 0.0;
   c["mapper_backlog_start"] =
-      mapper_backlog(start.counters["gateway"], start.counters["mapper"], gateway_obs);
-  c["mapper_backlog_end"] = mapper_backlog(end.counters["gateway"], end.counters["mapper"], gateway_obs);
+      mapper_backlog(start.counters["gateway"], start.counters["mapper"], gateway_obs, before.mapper_gap);
+  c["mapper_backlog_end"] =
+      mapper_backlog(end.counters["gateway"], end.counters["mapper"], gateway_obs, before.mapper_gap);
+  c["mapper_startup_gap"] = before.mapper_gap;
   // Of the backlog, what pose correction holds back at the window's end (observations wait, unrendered,
   // until their keyframe is matched): in open keyframes is by design (a keyframe closes after 0.4 m of
   // travel), in closed ones is matching not keeping up. Counted once a second by the mapper.
@@ -310,7 +321,8 @@ void report(benchmark::State& state, const PipelineSettings& settings, WindowEdg
       "bench_pipeline: %d robots, %d gateway(s), %d planner(s), %.1f s window\n"
       "  rate: simulator sent %.0f msg/s, gateway received %.0f msg/s (%.3f), mapper integrated %.0f obs/s "
       "(%.3f of the gateway's), %.1f points per observation; gateway RobotState %.0f/s\n"
-      "  queues: mapper backlog %.0f -> %.0f observations; dropped: mapper %.0f, simulator %.0f, "
+      "  queues: mapper backlog %.0f -> %.0f observations (%.0f published before the mapper matched left "
+      "out); dropped: mapper %.0f, simulator %.0f, "
       "broker %.0f; lost by DDS before the mapper %.0f; simulator loop overruns %.0f\n"
       "  pose correction at the end: %.0f observations in open keyframes (by design), %.0f in closed "
       "keyframes "
@@ -323,15 +335,15 @@ void report(benchmark::State& state, const PipelineSettings& settings, WindowEdg
       "message\n%s",
       settings.robots, settings.gateways, settings.planners, window_s, sent, gateway_in,
       v("gateway_over_sim"), mapper_obs, v("mapper_over_gateway"), v("points_per_obs"),
-      v("gateway_states_per_s"), v("mapper_backlog_start"), v("mapper_backlog_end"), v("mapper_dropped"),
-      v("sim_reports_dropped"), v("broker_dropped"), v("mapper_dds_lost"), v("sim_loop_overruns"),
-      v("mapper_held_open_end"), v("mapper_held_matching_end"), v("slam_keyframes_per_s"),
-      v("slam_placed_by_odometry"), drained.settled ? "queues drained in" : "still draining after",
-      drained.seconds, drained.settled ? "never arrived" : "not arrived yet", v("lost_to_gateway"),
-      v("lost_to_mapper"), v("mapper_patches_per_s"), v("patch_mb_per_s"), v("patch_cells_mb_per_s"),
-      probe.p50_ms, probe.p99_ms, probe.max_ms, probe.seen, probe.sent, per_service.c_str(),
-      v("cpu_bench_pct"), v("cpu_others_pct"), v("cpu_machine_busy_pct"), services, v("cpu_us_per_message"),
-      v("waits_per_message"), shares.c_str());
+      v("gateway_states_per_s"), v("mapper_backlog_start"), v("mapper_backlog_end"), v("mapper_startup_gap"),
+      v("mapper_dropped"), v("sim_reports_dropped"), v("broker_dropped"), v("mapper_dds_lost"),
+      v("sim_loop_overruns"), v("mapper_held_open_end"), v("mapper_held_matching_end"),
+      v("slam_keyframes_per_s"), v("slam_placed_by_odometry"),
+      drained.settled ? "queues drained in" : "still draining after", drained.seconds,
+      drained.settled ? "never arrived" : "not arrived yet", v("lost_to_gateway"), v("lost_to_mapper"),
+      v("mapper_patches_per_s"), v("patch_mb_per_s"), v("patch_cells_mb_per_s"), probe.p50_ms, probe.p99_ms,
+      probe.max_ms, probe.seen, probe.sent, per_service.c_str(), v("cpu_bench_pct"), v("cpu_others_pct"),
+      v("cpu_machine_busy_pct"), services, v("cpu_us_per_message"), v("waits_per_message"), shares.c_str());
   if (end.counters.contains("bridge")) report_bridge(state, start, end, window_s);
 }
 
