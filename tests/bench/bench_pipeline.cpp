@@ -132,10 +132,11 @@ double mapper_backlog(const CounterSample& gateway, const CounterSample& mapper,
 // are totals since the processes started; the bench drains once before the window too and
 // subtracts, so what was lost while the services were still matching is not counted.
 struct Drain {
-  double seconds = 0.0;      // from the pause until both counts matched or stopped moving (>= 1.5)
-  double gateway_gap = 0.0;  // sent by the simulator or the probe, not received by the gateway
-  double mapper_gap = 0.0;   // published by the gateway, not taken in by the mapper
-  bool settled = false;      // false: still moving at the timeout, so the gaps are still queued in part
+  double seconds = 0.0;         // from the pause until both counts matched or stopped moving (>= 1.5)
+  double gateway_gap = 0.0;     // sent by the simulator or the probe, not received by the gateway
+  double mapper_gap = 0.0;      // published by the gateway, not taken in by the mapper
+  double mapper_counted = 0.0;  // of those, what the mapper counted lost (DDS SAMPLE_LOST) or dropped
+  bool settled = false;         // false: still moving at the timeout, so the gaps are still queued in part
 };
 
 Drain drain(PipelineRig& rig, size_t probes_sent, int64_t paused_at_ns, std::chrono::seconds timeout) {
@@ -157,6 +158,7 @@ Drain drain(PipelineRig& rig, size_t probes_sent, int64_t paused_at_ns, std::chr
     last_intake = intake;
     d.gateway_gap = static_cast<double>(sent - in);
     d.mapper_gap = static_cast<double>(gateway.get("observations") - intake);
+    d.mapper_counted = static_cast<double>(mapper.get("observations_lost") + mapper.get("dropped"));
     const bool complete = d.gateway_gap <= 0 && d.mapper_gap <= 0;
     const bool stalled = static_cast<double>(now - last_change) / 1e9 >= kStallS;
     if (complete || stalled || now - t0 > std::chrono::nanoseconds(timeout).count()) {
@@ -262,6 +264,8 @@ void report(benchmark::State& state, const PipelineSettings& settings, WindowEdg
   c["drain_settled"] = drained.settled ? 1.0 : 0.0;
   c["lost_to_gateway"] = drained.gateway_gap - before.gateway_gap;
   c["lost_to_mapper"] = drained.mapper_gap - before.mapper_gap;
+  // Shedding is visible when the mapper's own counters account for what it lost.
+  c["lost_to_mapper_counted"] = drained.mapper_counted - before.mapper_counted;
   // The whole pipeline's CPU per robot message: every service process (not this bench), summed,
   // per message the gateways took in (the same as sent when the pipeline keeps up; on an
   // overloaded machine the messages still queued at the broker cost nothing yet).
@@ -327,7 +331,8 @@ void report(benchmark::State& state, const PipelineSettings& settings, WindowEdg
       "  pose correction at the end: %.0f observations in open keyframes (by design), %.0f in closed "
       "keyframes "
       "not yet matched; %.0f keyframes/s, %.0f placed by odometry alone in the window\n"
-      "  after pausing the fleet: %s %.1f s; %s: %.0f at the gateway, %.0f at the mapper\n"
+      "  after pausing the fleet: %s %.1f s; %s: %.0f at the gateway, %.0f at the mapper (%.0f of them "
+      "counted lost or dropped by the mapper)\n"
       "  map stream: %.1f patches/s, %.2f MB/s of patches to each reader (%.2f MB/s of tile cells uncoded)\n"
       "  delay robot message -> patch: p50 %.0f ms, p99 %.0f ms, max %.0f ms (%zu of %zu probes seen)\n"
       "  CPU %% of one core: %sbench %.0f; other processes %.0f; machine %.0f %% busy\n"
@@ -341,9 +346,10 @@ void report(benchmark::State& state, const PipelineSettings& settings, WindowEdg
       v("slam_keyframes_per_s"), v("slam_placed_by_odometry"),
       drained.settled ? "queues drained in" : "still draining after", drained.seconds,
       drained.settled ? "never arrived" : "not arrived yet", v("lost_to_gateway"), v("lost_to_mapper"),
-      v("mapper_patches_per_s"), v("patch_mb_per_s"), v("patch_cells_mb_per_s"), probe.p50_ms, probe.p99_ms,
-      probe.max_ms, probe.seen, probe.sent, per_service.c_str(), v("cpu_bench_pct"), v("cpu_others_pct"),
-      v("cpu_machine_busy_pct"), services, v("cpu_us_per_message"), v("waits_per_message"), shares.c_str());
+      v("lost_to_mapper_counted"), v("mapper_patches_per_s"), v("patch_mb_per_s"), v("patch_cells_mb_per_s"),
+      probe.p50_ms, probe.p99_ms, probe.max_ms, probe.seen, probe.sent, per_service.c_str(),
+      v("cpu_bench_pct"), v("cpu_others_pct"), v("cpu_machine_busy_pct"), services, v("cpu_us_per_message"),
+      v("waits_per_message"), shares.c_str());
   if (end.counters.contains("bridge")) report_bridge(state, start, end, window_s);
 }
 

@@ -13,6 +13,10 @@ struct QosSpec {
   bool transient_local;  // late joiners get the last `depth` samples per instance
   int32_t depth;         // keep-last depth per instance
   int32_t lease_ms;      // automatic liveliness lease; 0 = infinite
+  // A Fast DDS reader's keep-last depth when it differs from the writer's (0: `depth`). A reliable
+  // reader holds what arrives after a lost datagram until the gap is repaired, and keep-last
+  // replaces held samples without counting them lost: its depth must cover that wait.
+  int32_t reader_depth = 0;
 };
 
 // Latest value per key, kept for late joiners (robot state, map snapshot, paths, goals).
@@ -25,8 +29,9 @@ inline constexpr QosSpec kStreamQos{true, false, 200, 0};
 // falls further behind loses the older samples (counted: SAMPLE_LOST, the mapper's
 // `observations_lost`) instead of every robot's history growing: Fast DDS keeps a writer's
 // per-reader state in vectors it walks and shifts per sample, so 200 per robot let a lagging reader
-// slow the writer until the pipeline collapsed (docs/performance.md, "Overload").
-inline constexpr QosSpec kObservationQos{true, false, 4, 0};
+// slow the writer until the pipeline collapsed (docs/performance.md, "Overload"). Readers keep
+// 200 per robot: what a slow reader's socket still holds while it waits for a repair.
+inline constexpr QosSpec kObservationQos{true, false, 4, 0, 200};
 // Requests and replies: reliable, volatile, moderate depth.
 inline constexpr QosSpec kCommandQos{true, false, 64, 0};
 // Heartbeats: latest per service, liveliness tells when a service died.
