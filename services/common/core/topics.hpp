@@ -21,7 +21,7 @@ struct QosSpec {
 
 // Latest value per key, kept for late joiners (robot state, map snapshot, paths, goals).
 inline constexpr QosSpec kStateQos{true, true, 1, 0};
-// Reliable data stream with a deep history (per key) so bursts are not lost (observations, patches).
+// Reliable data stream with a deep history (per key) so bursts are not lost (map patches).
 inline constexpr QosSpec kStreamQos{true, false, 200, 0};
 // Robot observations (one writer per gateway, one key per robot, ~10 samples/s each): reliable, but
 // a writer keeps only the last 4 per robot for repair. A lost datagram is repaired within one
