@@ -107,14 +107,23 @@ WindowEdge sample_edge(const PipelineRig& rig, const ProbeSet& probes,
   return e;
 }
 
+// Observations the mapper took in so far: integrated, rejected, dropped at its intake, or held by
+// pose correction until their keyframe is matched (slam_held: taken in, not yet in the grid).
+int64_t mapper_taken_in(const CounterSample& mapper) {
+  return mapper.get("observations") + mapper.get("rejected") + mapper.get("dropped") +
+         mapper.get("slam_held");
+}
+
 // Observations the gateway published that the mapper has not taken in yet, with the gateway's
-// count moved to the mapper heartbeat's time at the gateway's rate (heartbeats are not aligned).
-double mapper_backlog(const CounterSample& gateway, const CounterSample& mapper, double gateway_rate) {
+// count moved to the mapper heartbeat's time at the gateway's rate (heartbeats are not aligned),
+// less `startup_gap`: what the gateway published before the mapper's reader matched it, which the
+// counters (totals since start) carry forever but no queue holds.
+double mapper_backlog(const CounterSample& gateway, const CounterSample& mapper, double gateway_rate,
+                      double startup_gap) {
   const double gateway_at_mapper_time =
       static_cast<double>(gateway.get("observations")) +
       gateway_rate * static_cast<double>(mapper.stamp_ns - gateway.stamp_ns) / 1e9;
-  const int64_t intake = mapper.get("observations") + mapper.get("rejected") + mapper.get("dropped");
-  return gateway_at_mapper_time - static_cast<double>(intake);
+  return gateway_at_mapper_time - static_cast<double>(mapper_taken_in(mapper)) - startup_gap;
 }
 
 // With the fleet paused, lets every queue drain, which tells messages still queued from messages
@@ -123,10 +132,11 @@ double mapper_backlog(const CounterSample& gateway, const CounterSample& mapper,
 // are totals since the processes started; the bench drains once before the window too and
 // subtracts, so what was lost while the services were still matching is not counted.
 struct Drain {
-  double seconds = 0.0;      // from the pause until both counts matched or stopped moving (>= 1.5)
-  double gateway_gap = 0.0;  // sent by the simulator or the probe, not received by the gateway
-  double mapper_gap = 0.0;   // published by the gateway, not taken in by the mapper
-  bool settled = false;      // false: still moving at the timeout, so the gaps are still queued in part
+  double seconds = 0.0;         // from the pause until both counts matched or stopped moving (>= 1.5)
+  double gateway_gap = 0.0;     // sent by the simulator or the probe, not received by the gateway
+  double mapper_gap = 0.0;      // published by the gateway, not taken in by the mapper
+  double mapper_counted = 0.0;  // of those, what the mapper counted lost (DDS SAMPLE_LOST) or dropped
+  bool settled = false;         // false: still moving at the timeout, so the gaps are still queued in part
 };
 
 Drain drain(PipelineRig& rig, size_t probes_sent, int64_t paused_at_ns, std::chrono::seconds timeout) {
@@ -141,13 +151,14 @@ Drain drain(PipelineRig& rig, size_t probes_sent, int64_t paused_at_ns, std::chr
                         mapper = rig.latest("mapper");
     const int64_t sent = sim.get("reports_sent") + static_cast<int64_t>(probes_sent);
     const int64_t in = gateway.get("messages_in");
-    const int64_t intake = mapper.get("observations") + mapper.get("rejected") + mapper.get("dropped");
+    const int64_t intake = mapper_taken_in(mapper);
     const int64_t now = monotonic_ns();
     if (in != last_in || intake != last_intake) last_change = now;
     last_in = in;
     last_intake = intake;
     d.gateway_gap = static_cast<double>(sent - in);
     d.mapper_gap = static_cast<double>(gateway.get("observations") - intake);
+    d.mapper_counted = static_cast<double>(mapper.get("observations_lost") + mapper.get("dropped"));
     const bool complete = d.gateway_gap <= 0 && d.mapper_gap <= 0;
     const bool stalled = static_cast<double>(now - last_change) / 1e9 >= kStallS;
     if (complete || stalled || now - t0 > std::chrono::nanoseconds(timeout).count()) {
@@ -220,8 +231,10 @@ void report(benchmark::State& state, const PipelineSettings& settings, WindowEdg
   c["points_per_obs"] =
       delta("mapper", "observations") > 0 ? delta("mapper", "points") / delta("mapper", "observations") : 0.0;
   c["mapper_backlog_start"] =
-      mapper_backlog(start.counters["gateway"], start.counters["mapper"], gateway_obs);
-  c["mapper_backlog_end"] = mapper_backlog(end.counters["gateway"], end.counters["mapper"], gateway_obs);
+      mapper_backlog(start.counters["gateway"], start.counters["mapper"], gateway_obs, before.mapper_gap);
+  c["mapper_backlog_end"] =
+      mapper_backlog(end.counters["gateway"], end.counters["mapper"], gateway_obs, before.mapper_gap);
+  c["mapper_startup_gap"] = before.mapper_gap;
   // Of the backlog, what pose correction holds back at the window's end (observations wait, unrendered,
   // until their keyframe is matched): in open keyframes is by design (a keyframe closes after 0.4 m of
   // travel), in closed ones is matching not keeping up. Counted once a second by the mapper.
@@ -251,6 +264,8 @@ void report(benchmark::State& state, const PipelineSettings& settings, WindowEdg
   c["drain_settled"] = drained.settled ? 1.0 : 0.0;
   c["lost_to_gateway"] = drained.gateway_gap - before.gateway_gap;
   c["lost_to_mapper"] = drained.mapper_gap - before.mapper_gap;
+  // Shedding is visible when the mapper's own counters account for what it lost.
+  c["lost_to_mapper_counted"] = drained.mapper_counted - before.mapper_counted;
   // The whole pipeline's CPU per robot message: every service process (not this bench), summed,
   // per message the gateways took in (the same as sent when the pipeline keeps up; on an
   // overloaded machine the messages still queued at the broker cost nothing yet).
@@ -310,12 +325,14 @@ void report(benchmark::State& state, const PipelineSettings& settings, WindowEdg
       "bench_pipeline: %d robots, %d gateway(s), %d planner(s), %.1f s window\n"
       "  rate: simulator sent %.0f msg/s, gateway received %.0f msg/s (%.3f), mapper integrated %.0f obs/s "
       "(%.3f of the gateway's), %.1f points per observation; gateway RobotState %.0f/s\n"
-      "  queues: mapper backlog %.0f -> %.0f observations; dropped: mapper %.0f, simulator %.0f, "
+      "  queues: mapper backlog %.0f -> %.0f observations (%.0f published before the mapper matched left "
+      "out); dropped: mapper %.0f, simulator %.0f, "
       "broker %.0f; lost by DDS before the mapper %.0f; simulator loop overruns %.0f\n"
       "  pose correction at the end: %.0f observations in open keyframes (by design), %.0f in closed "
       "keyframes "
       "not yet matched; %.0f keyframes/s, %.0f placed by odometry alone in the window\n"
-      "  after pausing the fleet: %s %.1f s; %s: %.0f at the gateway, %.0f at the mapper\n"
+      "  after pausing the fleet: %s %.1f s; %s: %.0f at the gateway, %.0f at the mapper (%.0f of them "
+      "counted lost or dropped by the mapper)\n"
       "  map stream: %.1f patches/s, %.2f MB/s of patches to each reader (%.2f MB/s of tile cells uncoded)\n"
       "  delay robot message -> patch: p50 %.0f ms, p99 %.0f ms, max %.0f ms (%zu of %zu probes seen)\n"
       "  CPU %% of one core: %sbench %.0f; other processes %.0f; machine %.0f %% busy\n"
@@ -323,12 +340,13 @@ void report(benchmark::State& state, const PipelineSettings& settings, WindowEdg
       "message\n%s",
       settings.robots, settings.gateways, settings.planners, window_s, sent, gateway_in,
       v("gateway_over_sim"), mapper_obs, v("mapper_over_gateway"), v("points_per_obs"),
-      v("gateway_states_per_s"), v("mapper_backlog_start"), v("mapper_backlog_end"), v("mapper_dropped"),
-      v("sim_reports_dropped"), v("broker_dropped"), v("mapper_dds_lost"), v("sim_loop_overruns"),
-      v("mapper_held_open_end"), v("mapper_held_matching_end"), v("slam_keyframes_per_s"),
-      v("slam_placed_by_odometry"), drained.settled ? "queues drained in" : "still draining after",
-      drained.seconds, drained.settled ? "never arrived" : "not arrived yet", v("lost_to_gateway"),
-      v("lost_to_mapper"), v("mapper_patches_per_s"), v("patch_mb_per_s"), v("patch_cells_mb_per_s"),
+      v("gateway_states_per_s"), v("mapper_backlog_start"), v("mapper_backlog_end"), v("mapper_startup_gap"),
+      v("mapper_dropped"), v("sim_reports_dropped"), v("broker_dropped"), v("mapper_dds_lost"),
+      v("sim_loop_overruns"), v("mapper_held_open_end"), v("mapper_held_matching_end"),
+      v("slam_keyframes_per_s"), v("slam_placed_by_odometry"),
+      drained.settled ? "queues drained in" : "still draining after", drained.seconds,
+      drained.settled ? "never arrived" : "not arrived yet", v("lost_to_gateway"), v("lost_to_mapper"),
+      v("lost_to_mapper_counted"), v("mapper_patches_per_s"), v("patch_mb_per_s"), v("patch_cells_mb_per_s"),
       probe.p50_ms, probe.p99_ms, probe.max_ms, probe.seen, probe.sent, per_service.c_str(),
       v("cpu_bench_pct"), v("cpu_others_pct"), v("cpu_machine_busy_pct"), services, v("cpu_us_per_message"),
       v("waits_per_message"), shares.c_str());

@@ -1,8 +1,11 @@
 // The Fast DDS edge of the common library, between two participants: writes report success,
 // a fleet's worth of keyed instances all arrive (Fast DDS's default limit is 10), transient-local
-// state reaches a late joiner, and command streams deliver far more than 10 requests.
+// state reaches a late joiner, command streams deliver far more than 10 requests, and a lagging
+// observation reader costs the writer a bounded history: it loses old samples, counted.
+#include <fastrtps/xmlparser/XMLProfileManager.h>
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <mutex>
 #include <set>
 
@@ -91,6 +94,61 @@ TEST(DdsTest, CommandStreamsCarryManyRequests) {
     }
   }
   EXPECT_TRUE(wait_until([&] { return replies == 200; }, 10s)) << replies;
+}
+
+// Overload: a reader that stops taking samples (its listener blocked, as a starved process would)
+// while the writer goes on. The writer keeps only the last few observations per robot for repair
+// (topics::kObservationQos), so once the reader's socket buffer overflows it cannot get the rest
+// back: it loses them and counts them (SAMPLE_LOST). Every sample ends up received or counted lost,
+// and no write was refused or blocked for the slow reader.
+// Fast DDS hands samples between participants of one process straight to the reader on the
+// writer's thread; services are separate processes and talk over UDP. UDP for the life of this.
+class InterprocessDelivery {
+ public:
+  InterprocessDelivery() : saved_(eprosima::fastrtps::xmlparser::XMLProfileManager::library_settings()) {
+    eprosima::fastrtps::LibrarySettingsAttributes udp = saved_;
+    udp.intraprocess_delivery = eprosima::fastrtps::INTRAPROCESS_OFF;
+    eprosima::fastrtps::xmlparser::XMLProfileManager::library_settings(udp);
+  }
+  ~InterprocessDelivery() { eprosima::fastrtps::xmlparser::XMLProfileManager::library_settings(saved_); }
+  InterprocessDelivery(const InterprocessDelivery&) = delete;
+  InterprocessDelivery& operator=(const InterprocessDelivery&) = delete;
+
+ private:
+  eprosima::fastrtps::LibrarySettingsAttributes saved_;
+};
+
+TEST(DdsTest, ALaggingObservationReaderLosesOldSamplesAndCountsThem) {
+  InterprocessDelivery udp;
+  Pair p;
+  std::mutex gate;
+  std::unique_lock blocked(gate);
+  std::atomic<int64_t> received{0};
+  auto reader = dds::make_reader(*p.b, dds::kRobotObservation, [&](const RobotObservation&, const auto&) {
+    std::lock_guard wait(gate);
+    ++received;
+  });
+  ASSERT_TRUE(reader) << reader.message();
+  auto writer = dds::make_writer(*p.a, dds::kRobotObservation);
+  ASSERT_TRUE(writer) << writer.message();
+  ASSERT_TRUE((*writer)->wait_for_readers(10s));
+  // 16 kB samples, 16 MB in all: several times what the reader's socket buffer holds (4 MB, which
+  // Linux doubles), and far more than the writer keeps (4 per robot).
+  constexpr int kRobots = 10;
+  constexpr int kSent = 1000;
+  RobotObservation o;
+  o.hits(std::vector<Point2>(1000));
+  for (int i = 0; i < kSent; ++i) {
+    o.robot_id("robot-" + std::to_string(i % kRobots));
+    o.seq(static_cast<uint64_t>(i / kRobots + 1));
+    ASSERT_TRUE((*writer)->write(o)) << "write " << i;
+  }
+  blocked.unlock();
+  const auto accounted = [&] { return received + (*reader)->samples_lost(); };
+  EXPECT_TRUE(wait_until([&] { return accounted() == kSent; }, 30s))
+      << received << " received + " << (*reader)->samples_lost() << " lost of " << kSent;
+  EXPECT_GT((*reader)->samples_lost(), 0) << "the writer kept every sample for the lagging reader";
+  EXPECT_GT(received, 0);
 }
 
 }  // namespace

@@ -13,12 +13,25 @@ struct QosSpec {
   bool transient_local;  // late joiners get the last `depth` samples per instance
   int32_t depth;         // keep-last depth per instance
   int32_t lease_ms;      // automatic liveliness lease; 0 = infinite
+  // A Fast DDS reader's keep-last depth when it differs from the writer's (0: `depth`). A reliable
+  // reader holds what arrives after a lost datagram until the gap is repaired, and keep-last
+  // replaces held samples without counting them lost: its depth must cover that wait.
+  int32_t reader_depth = 0;
 };
 
 // Latest value per key, kept for late joiners (robot state, map snapshot, paths, goals).
 inline constexpr QosSpec kStateQos{true, true, 1, 0};
-// Reliable data stream with a deep history (per key) so bursts are not lost (observations, patches).
+// Reliable data stream with a deep history (per key) so bursts are not lost (map patches).
 inline constexpr QosSpec kStreamQos{true, false, 200, 0};
+// Robot observations (one writer per gateway, one key per robot, ~10 samples/s each): reliable, but
+// a writer keeps only the last 4 per robot for repair. A lost datagram is repaired within one
+// heartbeat round trip (100-200 ms: 1-2 samples of a robot), so 4 leaves twice that. A reader that
+// falls further behind loses the older samples (counted: SAMPLE_LOST, the mapper's
+// `observations_lost`) instead of every robot's history growing: Fast DDS keeps a writer's
+// per-reader state in vectors it walks and shifts per sample, so 200 per robot let a lagging reader
+// slow the writer until the pipeline collapsed (docs/performance.md, "Overload"). Readers keep
+// 200 per robot: what a slow reader's socket still holds while it waits for a repair.
+inline constexpr QosSpec kObservationQos{true, false, 4, 0, 200};
 // Requests and replies: reliable, volatile, moderate depth.
 inline constexpr QosSpec kCommandQos{true, false, 64, 0};
 // Heartbeats: latest per service, liveliness tells when a service died.
@@ -31,7 +44,7 @@ struct TopicInfo {
   QosSpec qos;
 };
 
-inline constexpr TopicInfo kRobotObservation{"slam/robot/observation", kStreamQos};
+inline constexpr TopicInfo kRobotObservation{"slam/robot/observation", kObservationQos};
 inline constexpr TopicInfo kRobotState{"slam/robot/state", kStateQos};
 inline constexpr TopicInfo kRobotOdometry{"slam/robot/odometry", kStateQos};
 inline constexpr TopicInfo kPoseCorrection{"slam/robot/correction", kStateQos};

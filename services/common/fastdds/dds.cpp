@@ -108,7 +108,9 @@ fdds::DataWriterQos writer_qos(const topics::QosSpec& spec) {
 
 fdds::DataReaderQos reader_qos(const topics::QosSpec& spec) {
   fdds::DataReaderQos q = fdds::DATAREADER_QOS_DEFAULT;
-  apply(spec, q);
+  topics::QosSpec reader = spec;
+  if (spec.reader_depth > 0) reader.depth = spec.reader_depth;
+  apply(reader, q);
   q.data_sharing().off();
   q.endpoint().history_memory_policy = eprosima::fastrtps::rtps::PREALLOCATED_WITH_REALLOC_MEMORY_MODE;
   return q;
