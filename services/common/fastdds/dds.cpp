@@ -94,11 +94,6 @@ fdds::DataWriterQos writer_qos(const topics::QosSpec& spec) {
   // Data sharing (on by default for fixed-size types) keeps files in /dev/shm that a killed
   // process leaves behind, like the shared-memory transport we also keep off.
   q.data_sharing().off();
-  // A synchronous writer sends one datagram per sample, and every reader then pays a receive per
-  // sample (most of a reader's CPU at 10 000 observations/s). The asynchronous writer's thread
-  // packs every sample that waited for it into one datagram, so under load the packing grows by
-  // itself; when idle a sample leaves at once, one thread hop later.
-  q.publish_mode().kind = fdds::ASYNCHRONOUS_PUBLISH_MODE;
   // Large samples (map snapshots) must be fragmented and may need resending; keep memory growable.
   q.endpoint().history_memory_policy = eprosima::fastrtps::rtps::PREALLOCATED_WITH_REALLOC_MEMORY_MODE;
   if (spec.reliable) {
