@@ -103,15 +103,17 @@ class Tap {
 
  private:
   Tap() = default;
+  // Written by the listeners: declared before the readers so it outlives them (members are
+  // destroyed in reverse order).
+  mutable std::mutex mutex_;
+  std::map<std::string, Vec2> positions_;
+  std::map<std::string, std::pair<uint64_t, GoalStatus>> status_;
+  std::map<std::string, std::map<std::string, int64_t>> counters_;
   std::unique_ptr<dds::Participant> participant_;
   std::unique_ptr<dds::Reader<RobotState>> states_;
   std::unique_ptr<dds::Reader<RobotPath>> paths_;
   std::unique_ptr<dds::Reader<Heartbeat>> heartbeats_;
   std::unique_ptr<dds::Writer<NavGoal>> goals_;
-  mutable std::mutex mutex_;
-  std::map<std::string, Vec2> positions_;
-  std::map<std::string, std::pair<uint64_t, GoalStatus>> status_;
-  std::map<std::string, std::map<std::string, int64_t>> counters_;
 };
 
 // Places on a 0.2 m lattice clear of walls by `clearance` and connected to `from` (the simulator's

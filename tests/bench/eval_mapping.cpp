@@ -177,6 +177,12 @@ class SystemTap {
   }
 
   RunRecorder& recorder_;
+  // Written by the listeners: declared before the readers so it outlives them (members are
+  // destroyed in reverse order).
+  mutable std::mutex mutex_;
+  std::optional<SimWorld> world_;
+  std::map<std::string, std::map<std::string, int64_t>> counters_;
+  std::map<uint64_t, MapReply> replies_;
   std::unique_ptr<dds::Participant> participant_;
   std::unique_ptr<dds::Reader<SimGroundTruth>> truth_;
   std::unique_ptr<dds::Reader<RobotState>> states_;
@@ -187,10 +193,6 @@ class SystemTap {
   std::unique_ptr<dds::Reader<MapReply>> replies_reader_;
   std::unique_ptr<dds::Writer<NavGoal>> goals_;
   std::unique_ptr<dds::Writer<MapFileRequest>> files_;
-  mutable std::mutex mutex_;
-  std::optional<SimWorld> world_;
-  std::map<std::string, std::map<std::string, int64_t>> counters_;
-  std::map<uint64_t, MapReply> replies_;
 };
 
 std::vector<sim::Segment> walls_of(const SimWorld& world, const Pose& map_from_world) {

@@ -123,14 +123,16 @@ class PipelineRig {
   int robots_ = 0;
   int gateways_ = 1;
   int planners_ = 1;
+  // Written by the listeners: declared before the readers so it outlives them (members are
+  // destroyed in reverse order).
+  mutable std::mutex mutex_;
+  std::map<std::string, std::map<std::string, CounterSample>> latest_;  // by service, then instance
   std::unique_ptr<dds::Participant> participant_;
   std::unique_ptr<dds::Participant> sim_participant_;  // DDS Security on: on sim_domain_, plain
   std::unique_ptr<dds::Reader<Heartbeat>> heartbeats_;
   std::unique_ptr<dds::Reader<Heartbeat>> sim_heartbeats_;
   std::unique_ptr<dds::Writer<SimControl>> sim_control_;
   uint64_t commands_sent_ = 0;
-  mutable std::mutex mutex_;
-  std::map<std::string, std::map<std::string, CounterSample>> latest_;  // by service, then instance
 };
 
 }  // namespace slam::bench

@@ -129,11 +129,13 @@ class SimulatorTest : public ::testing::Test {
   testkit::ProcessGroup group_;
   int port_ = 0;
   std::unique_ptr<testkit::MqttTestClient> mqtt_;
-  std::unique_ptr<dds::Participant> participant_;
-  std::unique_ptr<dds::Reader<Heartbeat>> heartbeat_reader_;
+  // Written by the listeners: declared before the readers so it outlives them (members are
+  // destroyed in reverse order).
   std::mutex mutex_;
   std::map<std::string, int64_t> counters_;
   int heartbeats_ = 0;
+  std::unique_ptr<dds::Participant> participant_;
+  std::unique_ptr<dds::Reader<Heartbeat>> heartbeat_reader_;
 };
 
 TEST_F(SimulatorTest, V1RobotDrivesToWaypointAndSeesTheTrueWalls) {
