@@ -23,6 +23,7 @@ Writer::~Writer() {
 
 Status Writer::emit(std::span<const uint8_t> bytes, bool data_section) {
   if (!file_ || closed_) return Error{path_ + ": the recording is closed"};
+  if (bytes.empty()) return {};  // fwrite with an empty span's null data pointer is undefined
   if (std::fwrite(bytes.data(), 1, bytes.size(), file_) != bytes.size())
     return Error{"cannot write " + path_ + ": " + std::strerror(errno)};
   if (data_section) data_crc_ = crc32(bytes, data_crc_);

@@ -17,10 +17,13 @@ const Instant kNow{1'700'000'000'000'000'000, 1'000'000'000};
 
 class InboundDecoderTest : public ::testing::Test {
  protected:
+  // The decoder's robot_id() points into the topic, so the fixture keeps the topic alive for the reads.
   InboundKind feed(const std::string& topic, const std::string& payload) {
-    decoder.decode(topic, bytes(payload));
+    topic_ = topic;
+    decoder.decode(topic_, bytes(payload));
     return decoder.apply(registry, kNow);
   }
+  std::string topic_;
   RobotRegistry registry;
   InboundDecoder decoder{protocol::CodecLimits{}};
 };
