@@ -369,7 +369,7 @@ FleetPoints sample_fleet_points() {
   s.stamp_ns(-7);
   for (int i = 0; i < 200; ++i) {
     DigestRobotPoints r;
-    r.robot_id("r" + std::to_string(i));
+    r.robot_id(std::string("r").append(std::to_string(i)));
     r.stamp_ns(1763800000000000000LL - i);
     for (int k = 0; k < i % 20; ++k) {
       DigestPoint p;
