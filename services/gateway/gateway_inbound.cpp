@@ -23,6 +23,8 @@ void GatewayNode::on_mqtt_message(std::string_view topic, std::span<const std::u
   {
     std::lock_guard lock(registry_mutex_);
     kind = decoder_.apply(registry_, now);
+    if (kind == InboundKind::Observation)
+      digest_.add_hits(decoder_.robot_id(), decoder_.observation().hits, now.wall_ns);
     const AcceptResult& a = decoder_.accepted();
     if (a.first_seen || a.came_online || a.went_offline) urgent_ = true;
   }

@@ -74,6 +74,42 @@ void fill_traffic(const TrafficRecord& in, slam::MqttTraffic& out) {
   out.payload_size(in.payload_size);
 }
 
+void fill_digest(std::string_view gateway_id, std::int64_t stamp_ns, std::span<const DigestRobotEntry> robots,
+                 slam::FleetDigest& out) {
+  set_text(out.gateway_id(), gateway_id);
+  out.stamp_ns(stamp_ns);
+  out.robots().resize(robots.size());
+  for (std::size_t i = 0; i < robots.size(); ++i) {
+    const DigestRobotEntry& in = robots[i];
+    slam::DigestRobot& r = out.robots()[i];
+    set_text(r.robot_id(), in.id);
+    r.pose().x(in.pose.x);
+    r.pose().y(in.pose.y);
+    r.pose().theta(in.has_heading ? in.pose.theta : 0.0);
+    r.has_heading(in.has_heading);
+    r.presence(in.online ? slam::PRESENCE_ONLINE : slam::PRESENCE_OFFLINE);
+    r.last_seen_ns(in.last_seen_ns);
+  }
+}
+
+void fill_points(std::string_view gateway_id, std::int64_t stamp_ns,
+                 std::span<const DigestPointsEntry> robots, slam::FleetPoints& out) {
+  set_text(out.gateway_id(), gateway_id);
+  out.stamp_ns(stamp_ns);
+  out.robots().resize(robots.size());
+  for (std::size_t i = 0; i < robots.size(); ++i) {
+    const DigestPointsEntry& in = robots[i];
+    slam::DigestRobotPoints& r = out.robots()[i];
+    set_text(r.robot_id(), in.id);
+    r.stamp_ns(in.stamp_ns);
+    r.points().resize(in.points.size());
+    for (std::size_t k = 0; k < in.points.size(); ++k) {
+      r.points()[k].x(static_cast<float>(in.points[k].x));
+      r.points()[k].y(static_cast<float>(in.points[k].y));
+    }
+  }
+}
+
 void to_points(const std::vector<slam::Point2>& in, std::vector<protocol::Point>& out) {
   out.resize(in.size());
   for (std::size_t i = 0; i < in.size(); ++i) out[i] = {in[i].x(), in[i].y()};

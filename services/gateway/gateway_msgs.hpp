@@ -10,10 +10,12 @@
 #include <cstdint>
 #include <cstring>
 #include <fastrtps/utils/fixed_size_string.hpp>
+#include <span>
 #include <string_view>
 #include <vector>
 
 #include "common/core/bounded_text.hpp"
+#include "gateway/fleet_digest.hpp"
 #include "gateway/frame_correction.hpp"
 #include "gateway/robot_registry.hpp"
 #include "gateway/traffic_queue.hpp"
@@ -47,6 +49,11 @@ void fill_odometry(const RobotRecord& in, std::uint64_t correction_version, slam
 // A PoseCorrection sample as the gateway keeps it.
 Correction to_correction(const slam::PoseCorrection& in);
 void fill_traffic(const TrafficRecord& in, slam::MqttTraffic& out);
+// A fleet digest of gateway `gateway_id` (robots already placed in the map frame).
+void fill_digest(std::string_view gateway_id, std::int64_t stamp_ns, std::span<const DigestRobotEntry> robots,
+                 slam::FleetDigest& out);
+void fill_points(std::string_view gateway_id, std::int64_t stamp_ns,
+                 std::span<const DigestPointsEntry> robots, slam::FleetPoints& out);
 // DDS points into `out` (replaced, capacity kept).
 void to_points(const std::vector<slam::Point2>& in, std::vector<protocol::Point>& out);
 

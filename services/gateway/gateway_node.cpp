@@ -63,7 +63,8 @@ GatewayNode::Metrics::Metrics(Counters& c)
       robots_owned(c.get("robots_owned")),
       gateways_live(c.get("gateways_live")),
       robot_protocols_refused(c.get("robot_protocols_refused")),
-      robots_forgotten(c.get("robots_forgotten")) {
+      robots_forgotten(c.get("robots_forgotten")),
+      fleet_digests(c.get("fleet_digests")) {
   for (protocol::RejectReason r : protocol::kAllRejectReasons) {
     rejected[static_cast<size_t>(r)] = &c.get(std::string(protocol::reason_counter(r)));
   }
@@ -75,6 +76,7 @@ GatewayNode::GatewayNode(const GatewayOptions& options, Counters& counters)
       metrics_(counters),
       traffic_(options.traffic_queue, options.traffic_rate),
       registry_(RegistryConfig{static_cast<int64_t>(options.offline_after_s * 1e9), options.max_robots}),
+      digest_(options.digest_points_per_robot),
       corrections_(options.max_robots),
       decoder_(options.limits),
       encoder_(options.limits),
@@ -108,6 +110,12 @@ Status GatewayNode::configure() {
   auto replies = dds::make_writer(*participant_, dds::kMqttReply);
   if (!replies) return replies.error();
   reply_writer_ = std::move(*replies);
+  auto digests = dds::make_writer(*participant_, dds::kFleetDigest);
+  if (!digests) return digests.error();
+  digest_writer_ = std::move(*digests);
+  auto points = dds::make_writer(*participant_, dds::kFleetPoints);
+  if (!points) return points.error();
+  points_writer_ = std::move(*points);
   auto traffic = TrafficPublisher::start(*participant_, traffic_, metrics_.write_failures);
   if (!traffic) return traffic.error();
   traffic_publisher_ = std::move(*traffic);
@@ -173,7 +181,11 @@ void GatewayNode::run_once() {
   forgotten_.clear();
   {
     std::unique_lock lock(registry_mutex_);
-    const auto wake = std::min(std::chrono::steady_clock::now() + period_, mqtt_->next_attempt());
+    const auto steady_now = std::chrono::steady_clock::now();
+    const auto digest_due = std::chrono::steady_clock::time_point(
+        std::chrono::nanoseconds(std::min(next_digest_ns_, next_points_ns_)));
+    const auto wake =
+        std::min({steady_now + period_, mqtt_->next_attempt(), std::max(steady_now, digest_due)});
     loop_wake_.wait_until(lock, wake, [&] { return urgent_; });
     urgent_ = false;
     now = {now_ns(), monotonic_ns()};
@@ -183,6 +195,7 @@ void GatewayNode::run_once() {
       if (r == nullptr) continue;
       forgotten_.emplace_back(id, r->has_pose);
       registry_.forget(id);
+      digest_.forget(id);
     }
     forget_.clear();
     registry_.expire(now, [&](const RobotRecord& r) { went_offline_.push_back(r.id); });
@@ -197,6 +210,7 @@ void GatewayNode::run_once() {
   update_ownership(now.mono_ns);
   dispose_forgotten();
   publish_states();
+  publish_digests(now.mono_ns, now.wall_ns);
   metrics_.robots_online.store(static_cast<int64_t>(online), std::memory_order_relaxed);
   metrics_.reconnects.store(static_cast<int64_t>(mqtt_->reconnects()), std::memory_order_relaxed);
   publish_subscriptions();
@@ -270,6 +284,32 @@ void GatewayNode::publish_states() {
     if (!r.has_pose) continue;
     fill_odometry(r, correction.version, odometry_);
     if (!odometry_writer_->write(odometry_)) bump(metrics_.write_failures);
+  }
+}
+
+void GatewayNode::publish_digests(std::int64_t now_mono_ns, std::int64_t now_wall_ns) {
+  const bool robots_due = now_mono_ns >= next_digest_ns_;
+  const bool points_due = now_mono_ns >= next_points_ns_;
+  if (!robots_due && !points_due) return;
+  {
+    std::lock_guard lock(registry_mutex_);
+    if (robots_due) digest_.collect(registry_);
+    if (points_due) digest_.take_points();
+  }
+  {
+    std::lock_guard lock(corrections_mutex_);
+    if (robots_due) digest_.place_robots(corrections_);
+    if (points_due) digest_.place_points(corrections_);
+  }
+  if (robots_due) {
+    next_digest_ns_ = now_mono_ns + to_ns(options_.digest_period_s);
+    fill_digest(ownership_.self(), now_wall_ns, digest_.robots(), fleet_digest_);
+    bump(digest_writer_->write(fleet_digest_) ? metrics_.fleet_digests : metrics_.write_failures);
+  }
+  if (points_due) {
+    next_points_ns_ = now_mono_ns + to_ns(options_.digest_points_period_s);
+    fill_points(ownership_.self(), now_wall_ns, digest_.points(), fleet_points_);
+    if (!points_writer_->write(fleet_points_)) bump(metrics_.write_failures);
   }
 }
 

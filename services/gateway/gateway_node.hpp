@@ -29,6 +29,7 @@
 #include "common/fastdds/fast_topics.hpp"
 #include "common/mqtt/mqtt_connection.hpp"
 #include "gateway/command_encoder.hpp"
+#include "gateway/fleet_digest.hpp"
 #include "gateway/frame_correction.hpp"
 #include "gateway/gateway_options.hpp"
 #include "gateway/inbound_decoder.hpp"
@@ -55,9 +56,9 @@ class GatewayNode {
       static_cast<std::int64_t>(kGatewayHeartbeatPeriodS * 1000.0)};
 
   // One loop pass: waits up to the state period (less when a robot appears, changes presence or gets
-  // a new correction, or an MQTT reconnection attempt is due), starts a due attempt, marks silent
-  // robots offline, publishes changed RobotStates with their RobotOdometry and, when changed,
-  // MqttSubscriptions.
+  // a new correction, or an MQTT reconnection attempt or a fleet digest is due), starts a due
+  // attempt, marks silent robots offline, publishes changed RobotStates with their RobotOdometry,
+  // the fleet digests when due and, when changed, MqttSubscriptions.
   void run_once();
 
  private:
@@ -90,6 +91,7 @@ class GatewayNode {
     std::atomic<int64_t>& gateways_live;
     std::atomic<int64_t>& robot_protocols_refused;
     std::atomic<int64_t>& robots_forgotten;
+    std::atomic<int64_t>& fleet_digests;
   };
 
   GatewayNode(const GatewayOptions& options, Counters& counters);
@@ -117,6 +119,8 @@ class GatewayNode {
   void warn(const std::string& key, const std::string& line);
 
   void publish_states();
+  // Loop: FleetDigest and FleetPoints, each when its period is over.
+  void publish_digests(std::int64_t now_mono_ns, std::int64_t now_wall_ns);
   void publish_subscriptions();
   // Loop: drops silent gateways, logs changes of the live set and counts the robots owned.
   void update_ownership(std::int64_t now_mono_ns);
@@ -133,6 +137,7 @@ class GatewayNode {
   bool urgent_ = false;
   RobotRegistry registry_;
   std::vector<std::string> forget_;  // ForgetRobot commands not applied yet
+  FleetDigestBuilder digest_;        // threads: see fleet_digest.hpp
 
   // Correction reader thread writes; waypoint reader thread and loop read. Never held with
   // registry_mutex_.
@@ -169,6 +174,10 @@ class GatewayNode {
   slam::RobotState state_;
   slam::RobotOdometry odometry_;
   std::uint64_t published_version_ = 0;
+  std::int64_t next_digest_ns_ = 0;  // monotonic
+  std::int64_t next_points_ns_ = 0;
+  slam::FleetDigest fleet_digest_;
+  slam::FleetPoints fleet_points_;
 
   // Destroyed bottom-up: readers stop first (they publish through the MQTT client), then the MQTT
   // client (its callbacks write observations and traffic), the traffic worker, writers, participant.
@@ -178,6 +187,8 @@ class GatewayNode {
   std::unique_ptr<dds::Writer<slam::RobotOdometry>> odometry_writer_;
   std::unique_ptr<dds::Writer<slam::MqttSubscriptions>> subscriptions_writer_;
   std::unique_ptr<dds::Writer<slam::MqttReply>> reply_writer_;
+  std::unique_ptr<dds::Writer<slam::FleetDigest>> digest_writer_;
+  std::unique_ptr<dds::Writer<slam::FleetPoints>> points_writer_;
   ReplyCache<Status> replies_sent_;
   std::unique_ptr<TrafficPublisher> traffic_publisher_;
   std::unique_ptr<mqtt::Connection> mqtt_;

@@ -53,6 +53,15 @@ void add_gateway_options(CLI::App& app, GatewayOptions& o) {
   app.add_option("--max-robots", o.max_robots,
                  "robots tracked at most; messages from further ones are refused")
       ->capture_default_str();
+  app.add_option("--digest-period-s", o.digest_period_s,
+                 "every robot's map pose and presence published in one FleetDigest this often (s)")
+      ->capture_default_str();
+  app.add_option("--digest-points-period-s", o.digest_points_period_s,
+                 "the robots' latest obstacle points published in one FleetPoints this often (s)")
+      ->capture_default_str();
+  app.add_option("--digest-points-per-robot", o.digest_points_per_robot,
+                 "latest obstacle points of each robot in one FleetPoints at most")
+      ->capture_default_str();
   app.add_option("--traffic-queue", o.traffic_queue, "MQTT traffic records queued for the viewer")
       ->capture_default_str();
   app.add_option("--traffic-rate", o.traffic_rate, "MQTT traffic records per second published at most")
@@ -86,6 +95,9 @@ Status validate(const GatewayOptions& o) {
   if (auto s = check_seconds("offline-after-s", o.offline_after_s, 0.1, 86400.0); !s) return s;
   if (auto s = check_seconds("state-period-s", o.state_period_s, 0.01, 10.0); !s) return s;
   if (o.max_robots == 0) return Error{"max-robots must be at least 1"};
+  if (auto s = check_seconds("digest-period-s", o.digest_period_s, 0.01, 60.0); !s) return s;
+  if (auto s = check_seconds("digest-points-period-s", o.digest_points_period_s, 0.01, 60.0); !s) return s;
+  if (o.digest_points_per_robot > 10'000) return Error{"digest-points-per-robot must be 10000 at most"};
   if (o.traffic_queue == 0 || o.traffic_queue > 1'000'000)
     return Error{"traffic-queue must be between 1 and 1000000"};
   if (!std::isfinite(o.traffic_rate) || o.traffic_rate < 0.0) return Error{"traffic-rate must be 0 or more"};

@@ -32,6 +32,11 @@ struct GatewayOptions {
   double offline_after_s = 5.0;  // silence that turns a robot offline
   double state_period_s = 0.1;   // RobotState is published at most this often per robot
   std::size_t max_robots = 10'000;
+  // The fleet digests for the bridge (FleetDigest, FleetPoints): every robot in one sample each
+  // period, with up to digest_points_per_robot of each robot's latest hits per points sample.
+  double digest_period_s = 0.2;
+  double digest_points_period_s = 1.0;
+  std::size_t digest_points_per_robot = 16;
   std::size_t traffic_queue = 1024;  // MqttTraffic records waiting for the worker
   double traffic_rate = 2000.0;      // MqttTraffic records per second at most
   // Several gateways share the robots: the filters are subscribed as $share/<share_group>/<filter>

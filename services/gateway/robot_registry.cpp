@@ -139,4 +139,8 @@ void RobotRegistry::take_changed(const std::function<void(const RobotRecord&)>& 
   }
 }
 
+void RobotRegistry::for_each(const std::function<void(const RobotRecord&)>& fn) const {
+  for (const auto& [id, r] : robots_) fn(r);
+}
+
 }  // namespace slam::gateway

@@ -86,6 +86,9 @@ class RobotRegistry {
   // Calls `fn` for every robot changed since the last call and clears the flags.
   void take_changed(const std::function<void(const RobotRecord&)>& fn);
 
+  // Calls `fn` for every robot (in no particular order).
+  void for_each(const std::function<void(const RobotRecord&)>& fn) const;
+
   // The operator forgot the robot: its record goes (a message from it later makes it new again).
   // False when it was not known.
   bool forget(std::string_view id);

@@ -1,7 +1,7 @@
 // The frames contract through a real slam-gateway and mosquitto: a PoseCorrection on DDS moves what
 // the gateway publishes for a robot into the map frame (RobotState) with the raw pose beside it
 // (RobotOdometry), and map-frame waypoints leave on MQTT in the robot's odometry frame (exact v1
-// bytes, v2 JSON).
+// bytes, v2 JSON); the fleet digests carry map-frame poses and points.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -178,6 +178,51 @@ TEST_F(GatewayFramesTest, V2PoseHeadingAndWaypointPathAreConverted) {
   EXPECT_NEAR(path["points"][0][1].get<double>(), 0.0, 1e-9);
   EXPECT_NEAR(path["points"][1][0].get<double>(), -1.0, 1e-9);
   EXPECT_NEAR(path["points"][1][1].get<double>(), 3.5, 1e-9);
+}
+
+TEST_F(GatewayFramesTest, FleetDigestsCarryMapFramePosesAndPoints) {
+  Inbox<FleetDigest> digests;
+  Inbox<FleetPoints> points;
+  auto digest_reader = make_inbox_reader(*participant, dds::kFleetDigest, digests);
+  auto points_reader = make_inbox_reader(*participant, dds::kFleetPoints, points);
+  ASSERT_NO_FATAL_FAILURE(correct("r3", 1.0, 2.0, kPi / 2, 1));
+  MqttTestClient robot(port, "r3");
+  ASSERT_EQ(robot.connect(), 0);
+  ASSERT_TRUE(robot.publish("v2/robot/r3/pose", R"({"x": 1.0, "y": 0.0, "heading": 0.0})"));
+  ASSERT_TRUE(state_at("r3", 1.0, 3.0));  // the correction is in
+  // One beam straight ahead hits at odometry (2, 0): map (1, 4).
+  ASSERT_TRUE(robot.publish("v2/robot/r3/scan", R"({"pose": {"x": 1.0, "y": 0.0, "heading": 0.0},
+      "angles": [0.0], "ranges": [1.0], "max_range": 4.0})"));
+
+  const auto digest = digests.wait_for(
+      [](const FleetDigest& d) {
+        for (const DigestRobot& r : d.robots())
+          if (r.robot_id() == "r3" && near(r.pose().x(), 1.0) && near(r.pose().y(), 3.0)) return true;
+        return false;
+      },
+      10s);
+  ASSERT_TRUE(digest);
+  EXPECT_GT(digest->gateway_id().size(), 0u);
+  ASSERT_EQ(digest->robots().size(), 1u);
+  const DigestRobot& r3 = digest->robots()[0];
+  EXPECT_TRUE(r3.has_heading());
+  EXPECT_NEAR(r3.pose().theta(), kPi / 2, 1e-9);
+  EXPECT_EQ(r3.presence(), PRESENCE_ONLINE);
+  EXPECT_GT(r3.last_seen_ns(), 0);
+
+  const auto hit = points.wait_for(
+      [](const FleetPoints& f) {
+        for (const DigestRobotPoints& r : f.robots())
+          if (r.robot_id() == "r3" && !r.points().empty()) return true;
+        return false;
+      },
+      10s);
+  ASSERT_TRUE(hit);
+  ASSERT_EQ(hit->robots().size(), 1u);
+  ASSERT_EQ(hit->robots()[0].points().size(), 1u);
+  EXPECT_NEAR(hit->robots()[0].points()[0].x(), 1.0, 1e-5);
+  EXPECT_NEAR(hit->robots()[0].points()[0].y(), 4.0, 1e-5);
+  EXPECT_EQ(hit->gateway_id(), digest->gateway_id());
 }
 
 }  // namespace

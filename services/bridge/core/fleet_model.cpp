@@ -19,6 +19,7 @@ RobotView& FleetModel::robot(const std::string& id) {
 
 void FleetModel::ingest(const RobotStateInput& s) {
   RobotView& r = robot(s.robot_id);
+  if (r.has_state && s.stamp_ns < r.state.stamp_ns) return;
   r.state = s;
   r.has_state = true;
   ++versions_.robots;
@@ -31,14 +32,10 @@ void FleetModel::ingest(RobotPathInput&& p) {
   ++versions_.paths;
 }
 
-void FleetModel::ingest(const CorrectionInput& c) {
-  robot(c.robot_id).map_from_odom = c.map_from_odom;
-}
-
 void FleetModel::ingest(const ObservationInput& o) {
   if (o.hits.empty()) return;
   RobotView& r = robot(o.robot_id);
-  for (const Vec2& hit : o.hits) r.points.add(r.map_from_odom.transform(hit));
+  for (const Vec2& hit : o.hits) r.points.add(hit);
   ++versions_.points;
 }
 

@@ -16,7 +16,7 @@ struct RobotStateInput {
   Pose pose;  // map frame
   bool has_heading = false;
   bool online = true;
-  int64_t stamp_ns = 0;
+  int64_t stamp_ns = 0;  // the robot's last message: the newest wins when several gateways list it
 };
 
 enum class PathStatus { None, Active, Reached, Failed };
@@ -30,12 +30,7 @@ struct RobotPathInput {
   uint32_t current = 0;         // index of the waypoint being driven to
 };
 
-struct CorrectionInput {
-  std::string robot_id;
-  Pose map_from_odom;
-};
-
-// Obstacle points of one observation, in the robot's odometry frame.
+// Recent obstacle points of one robot, in the map frame (the gateways place them).
 struct ObservationInput {
   std::string robot_id;
   std::vector<Vec2> hits;
@@ -86,8 +81,7 @@ struct RobotView {
   bool has_state = false;
   RobotPathInput path;
   bool has_path = false;
-  Pose map_from_odom;  // identity until the mapper corrects the robot
-  PointRing points;    // map frame
+  PointRing points;  // map frame
 };
 
 struct ServiceView {
@@ -108,10 +102,9 @@ class FleetModel {
  public:
   explicit FleetModel(size_t points_per_robot) : points_per_robot_(points_per_robot) {}
 
+  // Kept unless the robot's state already is from a later message (another gateway's older view).
   void ingest(const RobotStateInput& s);
   void ingest(RobotPathInput&& p);
-  void ingest(const CorrectionInput& c);
-  // Points go in through the robot's current correction, so they stay where they were seen.
   void ingest(const ObservationInput& o);
   void ingest(const HeartbeatInput& h, int64_t now_mono_ns);
   void ingest(AlertInput&& a);

@@ -4,6 +4,8 @@
 #include <spdlog/spdlog.h>
 #include <unistd.h>
 
+#include <iterator>
+
 #include "common/core/alert_kind.hpp"
 #include "common/core/clock.hpp"
 #include "common/core/shutdown.hpp"
@@ -162,10 +164,29 @@ Status BridgeNode::create_readers() {
     out = std::move(*r);
     return {};
   };
-  SLAM_TRY(make(dds::kRobotState, state_reader_, [&in](const RobotState& s) {
-    queue(in, in.states,
-          RobotStateInput{s.robot_id().to_string(), pose_of(s.pose()), s.has_heading(),
-                          s.presence() == PRESENCE_ONLINE, s.last_seen_ns()});
+  SLAM_TRY(make(dds::kFleetDigest, digest_reader_, [&in](const FleetDigest& d) {
+    std::vector<RobotStateInput> states;
+    states.reserve(d.robots().size());
+    for (const DigestRobot& r : d.robots()) {
+      states.push_back(RobotStateInput{r.robot_id().to_string(), pose_of(r.pose()), r.has_heading(),
+                                       r.presence() == PRESENCE_ONLINE, r.last_seen_ns()});
+    }
+    std::lock_guard lock(in.mutex);
+    in.states.insert(in.states.end(), std::make_move_iterator(states.begin()),
+                     std::make_move_iterator(states.end()));
+  }));
+  SLAM_TRY(make(dds::kFleetPoints, points_reader_, [&in](const FleetPoints& f) {
+    std::vector<ObservationInput> robots;
+    robots.reserve(f.robots().size());
+    for (const DigestRobotPoints& r : f.robots()) {
+      ObservationInput points{r.robot_id().to_string(), {}};
+      points.hits.reserve(r.points().size());
+      for (const DigestPoint& d : r.points()) points.hits.push_back({d.x(), d.y()});
+      robots.push_back(std::move(points));
+    }
+    std::lock_guard lock(in.mutex);
+    in.observations.insert(in.observations.end(), std::make_move_iterator(robots.begin()),
+                           std::make_move_iterator(robots.end()));
   }));
   SLAM_TRY(make(dds::kRobotPath, path_reader_, [&in](const RobotPath& s) {
     RobotPathInput path{s.robot_id().to_string(),
@@ -177,15 +198,6 @@ Status BridgeNode::create_readers() {
     path.waypoints.reserve(s.waypoints().size());
     for (const Point2& w : s.waypoints()) path.waypoints.push_back({w.x(), w.y()});
     queue(in, in.paths, std::move(path));
-  }));
-  SLAM_TRY(make(dds::kPoseCorrection, correction_reader_, [&in](const PoseCorrection& c) {
-    queue(in, in.corrections, CorrectionInput{c.robot_id().to_string(), pose_of(c.map_from_odom())});
-  }));
-  SLAM_TRY(make(dds::kRobotObservation, observation_reader_, [&in](const RobotObservation& o) {
-    ObservationInput obs{o.robot_id().to_string(), {}};
-    obs.hits.reserve(o.hits().size());
-    for (const Point2& h : o.hits()) obs.hits.push_back({h.x(), h.y()});
-    queue(in, in.observations, std::move(obs));
   }));
   SLAM_TRY(make(dds::kHeartbeat, heartbeat_reader_, [&in](const Heartbeat& h) {
     queue(in, in.heartbeats,
@@ -221,7 +233,6 @@ void BridgeNode::drain_intake() {
     std::lock_guard lock(intake_.mutex);
     std::swap(batch.states, intake_.states);
     std::swap(batch.paths, intake_.paths);
-    std::swap(batch.corrections, intake_.corrections);
     std::swap(batch.observations, intake_.observations);
     std::swap(batch.heartbeats, intake_.heartbeats);
     std::swap(batch.alerts, intake_.alerts);
@@ -229,8 +240,6 @@ void BridgeNode::drain_intake() {
     std::swap(batch.answers, intake_.answers);
   }
   const int64_t now = monotonic_ns();
-  // Corrections first: the observations that arrived with them are placed through them.
-  for (const auto& c : batch.corrections) fleet_.ingest(c);
   for (const auto& s : batch.states) fleet_.ingest(s);
   for (auto& p : batch.paths) fleet_.ingest(std::move(p));
   for (const auto& o : batch.observations) fleet_.ingest(o);

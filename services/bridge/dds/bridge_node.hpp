@@ -31,7 +31,6 @@ struct BridgeIntake {
   std::mutex mutex;
   std::vector<RobotStateInput> states;
   std::vector<RobotPathInput> paths;
-  std::vector<CorrectionInput> corrections;
   std::vector<ObservationInput> observations;
   std::vector<HeartbeatInput> heartbeats;
   std::vector<AlertInput> alerts;
@@ -76,10 +75,11 @@ class BridgeNode final : public OperatorSink, public FrameSink {
   std::unique_ptr<dds::Writer<NavGoal>> goal_writer_;
   std::unique_ptr<dds::Writer<PathRequest>> path_writer_;
   std::unique_ptr<dds::Requester<PathReply>> path_requester_;
-  std::unique_ptr<dds::Reader<RobotState>> state_reader_;
+  // The gateways' fleet digests, not every robot's RobotState and RobotObservation: one sample per
+  // gateway and period instead of one datagram per robot message (docs/performance.md, "Bridge").
+  std::unique_ptr<dds::Reader<FleetDigest>> digest_reader_;
+  std::unique_ptr<dds::Reader<FleetPoints>> points_reader_;
   std::unique_ptr<dds::Reader<RobotPath>> path_reader_;
-  std::unique_ptr<dds::Reader<PoseCorrection>> correction_reader_;
-  std::unique_ptr<dds::Reader<RobotObservation>> observation_reader_;
   std::unique_ptr<dds::Reader<Heartbeat>> heartbeat_reader_;
   std::unique_ptr<dds::Reader<Alert>> alert_reader_;
   std::unique_ptr<dds::Reader<GridSnapshot>> snapshot_reader_;

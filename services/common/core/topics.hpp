@@ -32,6 +32,10 @@ inline constexpr QosSpec kStreamQos{true, false, 200, 0};
 // slow the writer until the pipeline collapsed (docs/performance.md, "Overload"). Readers keep
 // 200 per robot: what a slow reader's socket still holds while it waits for a repair.
 inline constexpr QosSpec kObservationQos{true, false, 4, 0, 200};
+// A gateway's fleet digests (one sample per gateway, every robot in it, 50-150 KB at 1000 robots,
+// so fragmented): only the latest matters, a newer one replaces what is still being repaired, and
+// a late joiner waits one period for the next.
+inline constexpr QosSpec kDigestQos{true, false, 1, 0};
 // Requests and replies: reliable, volatile, moderate depth.
 inline constexpr QosSpec kCommandQos{true, false, 64, 0};
 // Heartbeats: latest per service, liveliness tells when a service died.
@@ -72,6 +76,8 @@ inline constexpr TopicInfo kSimGroundTruth{"slam/sim/ground_truth", kTelemetryQo
 inline constexpr TopicInfo kHeartbeat{"slam/system/heartbeat", kHeartbeatQos};
 inline constexpr TopicInfo kAlert{"slam/system/alert", kStateQos};
 inline constexpr TopicInfo kForgetRobot{"slam/robot/forget", kCommandQos};
+inline constexpr TopicInfo kFleetDigest{"slam/fleet/digest", kDigestQos};
+inline constexpr TopicInfo kFleetPoints{"slam/fleet/points", kDigestQos};
 
 // ROS 2 topics (idl/ros2.idl; the bridge's ROS 2 face): ROS 2 puts topic /NAME on DDS as "rt/NAME".
 // The map as Nav2's map_server publishes it (reliable, transient-local, keep last 1); frames and

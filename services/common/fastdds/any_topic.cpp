@@ -67,6 +67,7 @@ const std::vector<AnyTopic>& all_topics() {
       any(kSimControl),       any(kSimReply),        any(kSimWorld),      any(kSimGroundTruth),
       any(kHeartbeat),        any(kAlert),           any(kForgetRobot),   any(kNavMission),
       any(kRosMap),           any(kRosTf),           any(kRosGoalPose),   any(kRosInitialPose),
+      any(kFleetDigest),      any(kFleetPoints),
   };
   return table;
 }

@@ -42,6 +42,8 @@ inline const Topic<SimGroundTruth, SimGroundTruthPubSubType> kSimGroundTruth{top
 inline const Topic<Heartbeat, HeartbeatPubSubType> kHeartbeat{topics::kHeartbeat};
 inline const Topic<Alert, AlertPubSubType> kAlert{topics::kAlert};
 inline const Topic<ForgetRobot, ForgetRobotPubSubType> kForgetRobot{topics::kForgetRobot};
+inline const Topic<FleetDigest, FleetDigestPubSubType> kFleetDigest{topics::kFleetDigest};
+inline const Topic<FleetPoints, FleetPointsPubSubType> kFleetPoints{topics::kFleetPoints};
 
 inline const Topic<nav_msgs::msg::dds_::OccupancyGrid_, nav_msgs::msg::dds_::OccupancyGrid_PubSubType>
     kRosMap{topics::kRosMap};

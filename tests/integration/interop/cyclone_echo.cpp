@@ -54,6 +54,8 @@ const EchoTopic kTopics[] = {
     {&slam_Heartbeat_desc, slam::topics::kHeartbeat},
     {&slam_Alert_desc, slam::topics::kAlert},
     {&slam_ForgetRobot_desc, slam::topics::kForgetRobot},
+    {&slam_FleetDigest_desc, slam::topics::kFleetDigest},
+    {&slam_FleetPoints_desc, slam::topics::kFleetPoints},
     {&nav_msgs_msg_dds__OccupancyGrid__desc, slam::topics::kRosMap},
     {&tf2_msgs_msg_dds__TFMessage__desc, slam::topics::kRosTf},
     {&geometry_msgs_msg_dds__PoseStamped__desc, slam::topics::kRosGoalPose},

@@ -106,6 +106,8 @@ const std::vector<Case>& cases() {
       make_case("Heartbeat", dds::kHeartbeat, &sample_heartbeat),
       make_case("Alert", dds::kAlert, &sample_alert),
       make_case("ForgetRobot", dds::kForgetRobot, &sample_forget_robot),
+      make_case("FleetDigest", dds::kFleetDigest, &sample_fleet_digest),
+      make_case("FleetPoints", dds::kFleetPoints, &sample_fleet_points),
       make_case("RosOccupancyGrid", dds::kRosMap, &sample_ros_occupancy_grid),
       make_case("RosTFMessage", dds::kRosTf, &sample_ros_tf_message),
       make_case("RosPoseStamped", dds::kRosGoalPose, &sample_ros_pose_stamped),
@@ -116,7 +118,7 @@ const std::vector<Case>& cases() {
 }
 
 // Topic types in topics.hpp: a new type there must get a case (and a line in cyclone_echo.cpp).
-constexpr size_t kTopicTypes = 31;
+constexpr size_t kTopicTypes = 33;
 
 class InteropTest : public ::testing::TestWithParam<size_t> {};
 

@@ -1,6 +1,7 @@
 #include "samples.hpp"
 
 #include <array>
+#include <string>
 
 namespace slam::interop {
 namespace {
@@ -343,6 +344,41 @@ ForgetRobot sample_forget_robot() {
   ForgetRobot s;
   s.request_id(0xfedcba9876543210ULL);
   s.robot_id("forgotten-robot-1");
+  return s;
+}
+
+FleetDigest sample_fleet_digest() {
+  FleetDigest s;
+  s.gateway_id("gateway-host:4242");
+  s.stamp_ns(1763800000987654321LL);
+  for (int i = 0; i < 300; ++i) {
+    DigestRobot r;
+    r.robot_id("robot-ü" + std::to_string(i));
+    r.pose(pose(0.5 * i, -0.25 * i, 0.001 * i));
+    r.has_heading(i % 2 == 0);
+    r.presence(i % 3 == 0 ? PRESENCE_OFFLINE : PRESENCE_ONLINE);
+    r.last_seen_ns(1763800000000000000LL + i);
+    s.robots().push_back(r);
+  }
+  return s;
+}
+
+FleetPoints sample_fleet_points() {
+  FleetPoints s;
+  s.gateway_id("gateway-host:4242");
+  s.stamp_ns(-7);
+  for (int i = 0; i < 200; ++i) {
+    DigestRobotPoints r;
+    r.robot_id(std::string("r").append(std::to_string(i)));
+    r.stamp_ns(1763800000000000000LL - i);
+    for (int k = 0; k < i % 20; ++k) {
+      DigestPoint p;
+      p.x(0.125f * static_cast<float>(k) - 3.5f);
+      p.y(-1e-3f * static_cast<float>(i));
+      r.points().push_back(p);
+    }
+    s.robots().push_back(r);
+  }
   return s;
 }
 

@@ -32,6 +32,8 @@ SimGroundTruth sample_sim_ground_truth();
 Heartbeat sample_heartbeat();
 Alert sample_alert();
 ForgetRobot sample_forget_robot();
+FleetDigest sample_fleet_digest();
+FleetPoints sample_fleet_points();
 nav_msgs::msg::dds_::OccupancyGrid_ sample_ros_occupancy_grid();
 tf2_msgs::msg::dds_::TFMessage_ sample_ros_tf_message();
 geometry_msgs::msg::dds_::PoseStamped_ sample_ros_pose_stamped();

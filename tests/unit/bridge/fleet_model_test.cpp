@@ -2,7 +2,7 @@
 
 #include <gtest/gtest.h>
 
-#include <numbers>
+#include <algorithm>
 #include <vector>
 
 namespace slam::bridge {
@@ -14,16 +14,18 @@ std::vector<Vec2> points_of(const RobotView& r) {
   return out;
 }
 
-TEST(FleetModel, PlacesPointsThroughTheRobotsCorrectionAtArrival) {
+TEST(FleetModel, KeepsTheStateOfTheLatestMessageWhateverTheOrderOfArrival) {
   FleetModel fleet(10);
-  fleet.ingest(ObservationInput{"r1", {{1.0, 0.0}}});
-  fleet.ingest(CorrectionInput{"r1", Pose{2.0, 0.0, std::numbers::pi / 2}});
-  fleet.ingest(ObservationInput{"r1", {{1.0, 0.0}}});
-  const auto points = points_of(fleet.robots().at("r1"));
-  ASSERT_EQ(points.size(), 2u);
-  EXPECT_DOUBLE_EQ(points[0].x, 1.0);  // before the correction: as reported
-  EXPECT_NEAR(points[1].x, 2.0, 1e-12);
-  EXPECT_NEAR(points[1].y, 1.0, 1e-12);
+  // Two gateways list the robot: the one that heard it last wins, whichever digest comes last.
+  fleet.ingest(RobotStateInput{"r1", Pose{1, 0, 0}, true, true, 200});
+  fleet.ingest(RobotStateInput{"r1", Pose{5, 0, 0}, true, false, 100});
+  EXPECT_EQ(fleet.robots().at("r1").state.pose.x, 1.0);
+  EXPECT_TRUE(fleet.robots().at("r1").state.online);
+  fleet.ingest(RobotStateInput{"r1", Pose{2, 0, 0}, true, true, 200});  // same message, newer correction
+  EXPECT_EQ(fleet.robots().at("r1").state.pose.x, 2.0);
+  fleet.ingest(RobotStateInput{"r1", Pose{3, 0, 0}, true, false, 300});
+  EXPECT_EQ(fleet.robots().at("r1").state.pose.x, 3.0);
+  EXPECT_FALSE(fleet.robots().at("r1").state.online);
 }
 
 TEST(FleetModel, KeepsOnlyTheMostRecentPointsPerRobot) {

@@ -42,7 +42,13 @@ TEST(GatewayOptions, FlagsBind) {
                                 "--units-per-meter",
                                 "1000",
                                 "--offline-after-s",
-                                "2"};
+                                "2",
+                                "--digest-period-s",
+                                "0.5",
+                                "--digest-points-period-s",
+                                "2",
+                                "--digest-points-per-robot",
+                                "40"};
   std::vector<char*> argv;
   for (auto& a : args) argv.push_back(a.data());
   app.parse(static_cast<int>(argv.size()), argv.data());
@@ -52,6 +58,9 @@ TEST(GatewayOptions, FlagsBind) {
   EXPECT_EQ(o.mqtt.subscriptions, (std::vector<std::string>{"a/+", "b/#"}));
   EXPECT_DOUBLE_EQ(o.limits.units_per_meter, 1000.0);
   EXPECT_DOUBLE_EQ(o.offline_after_s, 2.0);
+  EXPECT_DOUBLE_EQ(o.digest_period_s, 0.5);
+  EXPECT_DOUBLE_EQ(o.digest_points_period_s, 2.0);
+  EXPECT_EQ(o.digest_points_per_robot, 40u);
   EXPECT_EQ(error_of(o), "");
 }
 
@@ -83,6 +92,11 @@ TEST(GatewayOptions, BadValuesNameTheKey) {
   EXPECT_NE(with([](auto& o) { o.offline_after_s = -1; }).find("offline-after-s"), std::string::npos);
   EXPECT_NE(with([](auto& o) { o.max_robots = 0; }).find("max-robots"), std::string::npos);
   EXPECT_NE(with([](auto& o) { o.traffic_queue = 0; }).find("traffic-queue"), std::string::npos);
+  EXPECT_NE(with([](auto& o) { o.digest_period_s = 0; }).find("digest-period-s"), std::string::npos);
+  EXPECT_NE(with([](auto& o) { o.digest_points_period_s = 100; }).find("digest-points-period-s"),
+            std::string::npos);
+  EXPECT_NE(with([](auto& o) { o.digest_points_per_robot = 20'000; }).find("digest-points-per-robot"),
+            std::string::npos);
 }
 
 GatewayOptions parsed(std::vector<std::string> args) {
