@@ -184,9 +184,12 @@ void GatewayNode::run_once() {
     const auto steady_now = std::chrono::steady_clock::now();
     const auto digest_due = std::chrono::steady_clock::time_point(
         std::chrono::nanoseconds(std::min(next_digest_ns_, next_points_ns_)));
-    const auto wake =
-        std::min({steady_now + period_, mqtt_->next_attempt(), std::max(steady_now, digest_due)});
+    const auto states_due_at =
+        std::chrono::steady_clock::time_point(std::chrono::nanoseconds(next_states_ns_));
+    const auto wake = std::min(
+        {std::max(steady_now, states_due_at), mqtt_->next_attempt(), std::max(steady_now, digest_due)});
     loop_wake_.wait_until(lock, wake, [&] { return urgent_; });
+    const bool urgent = urgent_;
     urgent_ = false;
     now = {now_ns(), monotonic_ns()};
     // Before take_changed: a forgotten robot's state must not go out after its disposal.
@@ -199,7 +202,12 @@ void GatewayNode::run_once() {
     }
     forget_.clear();
     registry_.expire(now, [&](const RobotRecord& r) { went_offline_.push_back(r.id); });
-    registry_.take_changed([&](const RobotRecord& r) { changed_.push_back(r); });
+    // The digest and MQTT wakes come more often than the state period; states wait for it unless
+    // a presence or correction change is urgent.
+    if (urgent || now.mono_ns >= next_states_ns_) {
+      registry_.take_changed([&](const RobotRecord& r) { changed_.push_back(r); });
+      next_states_ns_ = now.mono_ns + std::chrono::nanoseconds(period_).count();
+    }
     online = registry_.online();
   }
   for (const std::string& id : went_offline_) {

@@ -175,6 +175,7 @@ class GatewayNode {
   slam::RobotOdometry odometry_;
   std::uint64_t published_version_ = 0;
   std::int64_t next_digest_ns_ = 0;  // monotonic
+  std::int64_t next_states_ns_ = 0;  // monotonic
   std::int64_t next_points_ns_ = 0;
   slam::FleetDigest fleet_digest_;
   slam::FleetPoints fleet_points_;

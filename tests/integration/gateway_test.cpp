@@ -11,6 +11,7 @@
 #include <mutex>
 #include <optional>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "common/fastdds/fast_topics.hpp"
@@ -62,6 +63,11 @@ class DdsProbe {
     for (auto it = states_seen_.rbegin(); it != states_seen_.rend(); ++it)
       if (it->robot_id() == robot) return *it;
     return std::nullopt;
+  }
+  size_t state_count(const std::string& robot) {
+    std::lock_guard lock(mutex_);
+    return static_cast<size_t>(std::count_if(states_seen_.begin(), states_seen_.end(),
+                                             [&](const RobotState& s) { return s.robot_id() == robot; }));
   }
   bool connected() {
     std::lock_guard lock(mutex_);
@@ -299,6 +305,27 @@ TEST_F(GatewayTest, BrokerRestartResumesTrafficWithoutRestartingTheGateway) {
   ASSERT_TRUE(cmd.has_value());
   EXPECT_EQ(cmd->payload, hex_bytes("0a001400"));
   ASSERT_TRUE(wait_until([&] { return probe.counter("reconnects") >= 1; }, 5s));
+}
+
+// The loop wakes for the fleet digest every 0.2 s; a longer state period must still hold per robot.
+TEST_F(GatewayTest, RobotStatesFollowTheStatePeriodNotTheLoopsOtherWakes) {
+  ASSERT_NO_FATAL_FAILURE(start_gateway({"--state-period-s", "5"}));
+  MqttTestClient robot(port, "steady");
+  ASSERT_EQ(robot.connect(), 0);
+  ASSERT_TRUE(wait_until(
+      [&] {
+        robot.publish("v1/robot/steady/adv", hex_bytes("64000000"), 0);
+        return !probe.observations("steady").empty();
+      },
+      10s, 100ms));
+  // 30 moving reports over ~1.5 s: the first sighting goes out at once, the rest wait for the period.
+  for (int i = 1; i <= 30; ++i) {
+    const auto x = static_cast<char>(100 + i);
+    ASSERT_TRUE(robot.publish("v1/robot/steady/adv", std::string{x, 0, 0, 0}, 0));
+    std::this_thread::sleep_for(50ms);
+  }
+  ASSERT_TRUE(wait_until([&] { return probe.observations("steady").size() >= 31; }, 10s));
+  EXPECT_LE(probe.state_count("steady"), 2u) << group.log("gateway");
 }
 
 TEST_F(GatewayTest, MalformedFloodLeavesAValidRobotUnaffected) {
