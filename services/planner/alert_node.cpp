@@ -24,12 +24,6 @@ Result<std::unique_ptr<AlertNode>> AlertNode::create(dds::Participant& participa
   if (!goals) return goals.error();
   node->goal_writer_ = std::move(*goals);
   AlertNode* n = node.get();
-  auto states = dds::make_reader(participant, dds::kRobotState, [n](const slam::RobotState& s, const auto&) {
-    std::lock_guard lock(n->mutex_);
-    n->monitor_.robot(s.robot_id().to_string(), s.presence() == slam::PRESENCE_ONLINE, s.battery());
-  });
-  if (!states) return states.error();
-  node->state_reader_ = std::move(*states);
   auto beats = dds::make_reader(participant, dds::kHeartbeat, [n](const slam::Heartbeat& h, const auto&) {
     std::lock_guard lock(n->mutex_);
     n->monitor_.heartbeat(h.service().to_string(), h.instance_id().to_string(),
@@ -38,6 +32,11 @@ Result<std::unique_ptr<AlertNode>> AlertNode::create(dds::Participant& participa
   if (!beats) return beats.error();
   node->heartbeat_reader_ = std::move(*beats);
   return node;
+}
+
+void AlertNode::on_state(const slam::RobotState& state) {
+  std::lock_guard lock(mutex_);
+  monitor_.robot(state.robot_id().to_string(), state.presence() == slam::PRESENCE_ONLINE, state.battery());
 }
 
 void AlertNode::forget_robot(const std::string& robot_id) {

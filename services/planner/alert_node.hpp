@@ -1,7 +1,7 @@
 #pragma once
-// The alerts' DDS edge in the planner: robot states and heartbeats go into an AlertMonitor (its own
-// readers, so the planner's loop is not involved); each loop pass publishes what changed on
-// slam/system/alert and logs it, and a robot whose battery ran low is sent home with a NavGoal
+// The alerts' DDS edge in the planner: robot states (handed over by the planner's state reader) and
+// heartbeats (its own reader) go into an AlertMonitor, off the planner's loop; each loop pass publishes what
+// changed on slam/system/alert and logs it, and a robot whose battery ran low is sent home with a NavGoal
 // (mode home: where the planner first saw it), which every planner takes like an operator's goal.
 // The planner hosts alerts because it already decides, with its peers, which one speaks for each
 // robot: the owner of a robot raises its alerts, and service alerts go by the same rendezvous.
@@ -31,6 +31,8 @@ class AlertNode {
   void tick(int64_t now_mono_ns, const std::function<bool(const std::string&)>& owns);
   // The operator forgot the robot: its alerts clear at the next tick.
   void forget_robot(const std::string& robot_id);
+  // A RobotState from the planner's reader (one reader feeds both: each sample is decoded once).
+  void on_state(const slam::RobotState& state);
 
  private:
   AlertNode(const AlertConfig& config, std::string self, Counters& counters);
@@ -54,7 +56,6 @@ class AlertNode {
 
   std::unique_ptr<dds::Writer<slam::Alert>> alert_writer_;
   std::unique_ptr<dds::Writer<slam::NavGoal>> goal_writer_;
-  std::unique_ptr<dds::Reader<slam::RobotState>> state_reader_;
   std::unique_ptr<dds::Reader<slam::Heartbeat>> heartbeat_reader_;
 };
 

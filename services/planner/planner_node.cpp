@@ -136,8 +136,11 @@ Status PlannerNode::configure() {
                                   [this](const slam::GridTiles& p, const auto&) { intake_.push_patch(p); });
   if (!patches) return patches.error();
   patch_reader_ = std::move(*patches);
-  auto states = dds::make_reader(*participant_, dds::kRobotState,
-                                 [this](const slam::RobotState& s, const auto&) { intake_.push_state(s); });
+  auto states =
+      dds::make_reader(*participant_, dds::kRobotState, [this](const slam::RobotState& s, const auto&) {
+        intake_.push_state(s);
+        alerts_->on_state(s);
+      });
   if (!states) return states.error();
   state_reader_ = std::move(*states);
   auto goals = dds::make_reader(*participant_, dds::kNavGoal,

@@ -168,6 +168,7 @@ class PlannerNode {
   std::unique_ptr<dds::Writer<slam::WaypointCommand>> waypoint_writer_;
   std::unique_ptr<dds::Writer<slam::RobotPath>> path_writer_;
   std::unique_ptr<RequestWorkers> workers_;
+  std::unique_ptr<AlertNode> alerts_;  // the state reader feeds it, so it outlives the readers
   std::unique_ptr<dds::Reader<slam::GridSnapshot>> snapshot_reader_;
   std::unique_ptr<dds::Reader<slam::GridTiles>> patch_reader_;
   std::unique_ptr<dds::Reader<slam::RobotState>> state_reader_;
@@ -176,7 +177,6 @@ class PlannerNode {
   std::unique_ptr<dds::Reader<slam::Heartbeat>> heartbeat_reader_;
   std::unique_ptr<dds::Reader<slam::RobotPath>> path_reader_;
   std::unique_ptr<dds::Reader<slam::ForgetRobot>> forget_reader_;
-  std::unique_ptr<AlertNode> alerts_;
   // Its reader stops before the participant goes.
   MissionEdge missions_;
 };
