@@ -244,6 +244,7 @@ void MapperNode::publish_changes() {
 void MapperNode::publish_snapshot(bool new_version) {
   const PublishStamp stamp = mapper_->prepare_snapshot(new_version);
   fill_snapshot(mapper_->grid(), stamp.layout_id, stamp.version, now_ns(), &snapshot_);
+  readers_hold(mapper_->grid().classes(), encoded_);  // the next patch's XOR coding starts from it
   next_snapshot_ = std::chrono::steady_clock::now() + snapshot_period_;
   if (!snapshot_writer_->write(snapshot_)) {
     bump(metrics_.write_failures);

@@ -352,7 +352,10 @@ std::string describe(const GridSnapshot& s) {
 std::string describe(const GridTiles& s) {
   return fmt("patch layout %u version %llu %zu tiles of %u cells, %zu octets %s", s.layout_id(),
              static_cast<unsigned long long>(s.version()), s.tiles().size(), s.tile_side(), s.data().size(),
-             s.encoding() == 0 ? "raw" : (s.encoding() == 1 ? "run-length" : "unknown encoding"));
+             s.encoding() == 0   ? "raw"
+             : s.encoding() == 1 ? "run-length"
+             : s.encoding() == 2 ? "run-length of the XOR"
+                                 : "unknown encoding");
 }
 std::string describe(const RobotPath& s) {
   return fmt("path %s goal %llu %s/%s target %s waypoint %u of %zu %s", s.robot_id().c_str(),

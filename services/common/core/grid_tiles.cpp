@@ -21,6 +21,18 @@ void append_tile(std::span<const uint8_t> cells, const TileLayout& layout, uint3
   }
 }
 
+// Copies the tile's cells from `from` into the same place of `to` (both of the layout's size).
+void copy_tile(std::span<const uint8_t> from, const TileLayout& layout, uint32_t tile,
+               std::span<uint8_t> to) {
+  const CellBox box = layout.box(tile);
+  for (int32_t y = box.y0; y < box.y0 + box.height; ++y) {
+    const size_t at =
+        static_cast<size_t>(y) * static_cast<size_t>(layout.width) + static_cast<size_t>(box.x0);
+    std::copy_n(from.begin() + static_cast<std::ptrdiff_t>(at), box.width,
+                to.begin() + static_cast<std::ptrdiff_t>(at));
+  }
+}
+
 // Run-length codes `raw` into `out`; false (out partly written) as soon as it is not shorter.
 bool run_length(std::span<const uint8_t> raw, std::vector<uint8_t>& out) {
   out.clear();
@@ -69,16 +81,32 @@ bool DirtyTiles::any() const {
 void encode_tiles(std::span<const uint8_t> cells, const DirtyTiles& dirty, EncodedTiles& out) {
   out.tiles.clear();
   out.raw.clear();
+  out.xored.clear();
+  const bool with_xor = out.readers_cells.size() == cells.size();
   dirty.for_each([&](uint32_t tile) {
     out.tiles.push_back(tile);
+    const size_t from = out.raw.size();
     append_tile(cells, dirty.layout(), tile, out.raw);
+    if (!with_xor) return;
+    append_tile(out.readers_cells, dirty.layout(), tile, out.xored);
+    for (size_t i = from; i < out.raw.size(); ++i) out.xored[i] ^= out.raw[i];
+    copy_tile(cells, dirty.layout(), tile, out.readers_cells);
   });
-  if (run_length(out.raw, out.data)) {
+  const bool rle = run_length(out.raw, out.data);
+  const bool xor_rle = with_xor && run_length(out.xored, out.xor_data);
+  if (xor_rle && (!rle || out.xor_data.size() < out.data.size())) {
+    out.encoding = TileEncoding::XorRunLength;
+    out.data.swap(out.xor_data);
+  } else if (rle) {
     out.encoding = TileEncoding::RunLength;
   } else {
     out.encoding = TileEncoding::Raw;
     out.data.assign(out.raw.begin(), out.raw.end());
   }
+}
+
+void readers_hold(std::span<const uint8_t> cells, EncodedTiles& out) {
+  out.readers_cells.assign(cells.begin(), cells.end());
 }
 
 Status apply_tiles(const TilePatchView& patch, std::span<uint8_t> cells, int32_t width, int32_t height,
@@ -88,7 +116,7 @@ Status apply_tiles(const TilePatchView& patch, std::span<uint8_t> cells, int32_t
   if (patch.side == 0 || patch.side > static_cast<uint32_t>(kMaxGridTileSide))
     return Error{"tile patch: tile side " + std::to_string(patch.side) + " is outside 1.." +
                  std::to_string(kMaxGridTileSide)};
-  if (patch.encoding > static_cast<uint8_t>(TileEncoding::RunLength))
+  if (patch.encoding > static_cast<uint8_t>(TileEncoding::XorRunLength))
     return Error{"tile patch: unknown encoding " + std::to_string(patch.encoding)};
   const TileLayout layout{width, height, static_cast<int32_t>(patch.side)};
   const uint32_t count = layout.count();
@@ -119,6 +147,7 @@ Status apply_tiles(const TilePatchView& patch, std::span<uint8_t> cells, int32_t
   }
 
   // Walks the run-length data (or the raw cells) as one stream over the tiles' rows.
+  const bool xored = patch.encoding == static_cast<uint8_t>(TileEncoding::XorRunLength);
   size_t pos = 0;       // in patch.data
   size_t run_left = 0;  // cells left in the current run
   const auto fill = [&](uint8_t* dst, size_t n) {
@@ -133,7 +162,11 @@ Status apply_tiles(const TilePatchView& patch, std::span<uint8_t> cells, int32_t
         pos += 2;
       }
       const size_t k = std::min(n, run_left);
-      std::fill_n(dst, k, patch.data[pos - 1]);
+      const uint8_t value = patch.data[pos - 1];
+      if (!xored)
+        std::fill_n(dst, k, value);
+      else if (value != 0)
+        for (size_t i = 0; i < k; ++i) dst[i] ^= value;
       dst += k;
       n -= k;
       run_left -= k;

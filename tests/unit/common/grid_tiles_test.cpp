@@ -102,6 +102,43 @@ TEST(GridTiles, RunLengthIsChosenWhenShorterAndRawOtherwise) {
   EXPECT_EQ(mirror, noise);
 }
 
+// A stream of patches after a snapshot: few cells change per patch, so the XOR coding is chosen and
+// much shorter, and a reader that follows the versions stays equal to the source cell for cell.
+TEST(GridTiles, XorCodedPatchesKeepAFollowingReaderExactAndAreShorter) {
+  const int32_t w = 97, h = 70;
+  std::vector<uint8_t> source = room(w, h);
+  EncodedTiles e;
+  readers_hold(source, e);
+  std::vector<uint8_t> reader = source;  // took the snapshot
+  DirtyTiles dirty;
+  dirty.reset({w, h, kGridTileSide});
+  std::mt19937 rng(11);
+  for (int patch = 0; patch < 40; ++patch) {
+    dirty.clear();
+    for (int k = 0; k < 12; ++k) {
+      const int32_t x = static_cast<int32_t>(rng() % static_cast<uint32_t>(w));
+      const int32_t y = static_cast<int32_t>(rng() % static_cast<uint32_t>(h));
+      source[static_cast<size_t>(y * w + x)] = static_cast<uint8_t>(rng() % 8);
+      dirty.mark(x, y);
+    }
+    encode_tiles(source, dirty, e);
+    ASSERT_EQ(e.encoding, TileEncoding::XorRunLength) << "patch " << patch;
+    EncodedTiles absolute;  // the same patch without the readers' cells
+    encode_tiles(source, dirty, absolute);
+    EXPECT_LT(e.data.size() * 3, absolute.data.size()) << "patch " << patch;
+    ASSERT_TRUE(apply_tiles(view_of(e), reader, w, h)) << "patch " << patch;
+    ASSERT_EQ(reader, source) << "patch " << patch;
+    EXPECT_EQ(e.readers_cells, source);
+  }
+  // Whole tiles rewritten (a region re-rendered): the absolute coding wins again.
+  dirty.mark_all();
+  for (auto& c : source) c = static_cast<uint8_t>(c == 6 ? 0 : 6);
+  encode_tiles(source, dirty, e);
+  EXPECT_NE(e.encoding, TileEncoding::XorRunLength);
+  ASSERT_TRUE(apply_tiles(view_of(e), reader, w, h));
+  EXPECT_EQ(reader, source);
+}
+
 TEST(GridTiles, EmptyPatchChangesNothing) {
   DirtyTiles dirty;
   dirty.reset({40, 40, kGridTileSide});
