@@ -106,6 +106,8 @@ int cmd_echo(Session& s, const std::string& topic, int count) {
   if (topic == topics::kPathReply.name) return echo(s, dds::kPathReply, count);
   if (topic == topics::kAlert.name) return echo(s, dds::kAlert, count);
   if (topic == topics::kForgetRobot.name) return echo(s, dds::kForgetRobot, count);
+  if (topic == topics::kFleetDigest.name) return echo(s, dds::kFleetDigest, count);
+  if (topic == topics::kFleetPoints.name) return echo(s, dds::kFleetPoints, count);
   return fail("cannot echo '" + topic + "': see docs/topics.md for topic names");
 }
 

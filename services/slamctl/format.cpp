@@ -1,5 +1,6 @@
 #include "slamctl/format.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cstdio>
 #include <functional>
@@ -399,6 +400,18 @@ std::string describe(const Alert& s) {
 }
 std::string describe(const ForgetRobot& s) {
   return fmt("forget %llu %s", static_cast<unsigned long long>(s.request_id()), s.robot_id().c_str());
+}
+std::string describe(const FleetDigest& s) {
+  const auto online = std::count_if(s.robots().begin(), s.robots().end(),
+                                    [](const DigestRobot& r) { return r.presence() == PRESENCE_ONLINE; });
+  return fmt("digest of gateway %s: %zu robots, %zu online", s.gateway_id().c_str(), s.robots().size(),
+             static_cast<size_t>(online));
+}
+std::string describe(const FleetPoints& s) {
+  size_t points = 0;
+  for (const DigestRobotPoints& r : s.robots()) points += r.points().size();
+  return fmt("points of gateway %s: %zu robots, %zu points", s.gateway_id().c_str(), s.robots().size(),
+             points);
 }
 std::string describe(const PathReply& s) {
   return fmt("path reply %llu %s", static_cast<unsigned long long>(s.request_id()),

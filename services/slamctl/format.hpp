@@ -75,5 +75,7 @@ std::string describe(const MapReply& s);
 std::string describe(const PathReply& s);
 std::string describe(const Alert& s);
 std::string describe(const ForgetRobot& s);
+std::string describe(const FleetDigest& s);
+std::string describe(const FleetPoints& s);
 
 }  // namespace slam::ctl

@@ -196,6 +196,22 @@ Alert alert(const char* id, AlertKind kind, bool active) {
   return a;
 }
 
+TEST(SlamctlFormat, FleetDigestAndPointsLinesCountRobotsAndPoints) {
+  FleetDigest digest;
+  digest.gateway_id("vm:42");
+  digest.robots().resize(3);
+  digest.robots()[0].presence(PRESENCE_ONLINE);
+  digest.robots()[1].presence(PRESENCE_OFFLINE);
+  digest.robots()[2].presence(PRESENCE_ONLINE);
+  EXPECT_EQ(describe(digest), "digest of gateway vm:42: 3 robots, 2 online");
+  FleetPoints points;
+  points.gateway_id("vm:42");
+  points.robots().resize(2);
+  points.robots()[0].points().resize(16);
+  points.robots()[1].points().resize(5);
+  EXPECT_EQ(describe(points), "points of gateway vm:42: 2 robots, 21 points");
+}
+
 TEST(SlamctlFormat, AlertLineAndJson) {
   const std::string line = format_alert(alert("battery/sim-1", ALERT_BATTERY_LOW, true), 4'000'000'000);
   EXPECT_EQ(std::count(line.begin(), line.end(), '\n'), 1) << line;
