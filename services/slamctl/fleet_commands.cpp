@@ -2,7 +2,6 @@
 
 #include <unistd.h>
 
-#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <numbers>
@@ -134,43 +133,16 @@ Handler add_alerts(CLI::App& cli) {
 
 namespace {
 
-// The running services that act on a ForgetRobot (gateways, planners, viewers), counted from one
-// round of heartbeats.
-int forgetting_services(Session& s) {
-  Latest<Heartbeat> beats(s, dds::kHeartbeat, [](const Heartbeat& h) { return h.instance_id().to_string(); });
-  if (!beats.ok()) return 0;
-  listen_after_match(s, beats, std::min<std::chrono::milliseconds>(s.timeout(), 1500ms));
-  int count = 0;
-  for (const auto& [id, hb] : beats.take()) {
-    const std::string service = hb.service().to_string();
-    const bool acts = service == "gateway" || service == "planner" || service == "viewer";
-    if (acts && hb.state() != SERVICE_STOPPING) ++count;
-  }
-  return count;
-}
-
 int cmd_forget(Session& s, const std::string& robot) {
   ForgetRobot f;
   f.request_id(s.next_goal_id());
   f.robot_id(robot);
-  auto writer = dds::make_writer(s.participant(), dds::kForgetRobot);
-  if (!writer) return fail(writer.message());
-  // The request is volatile: a service that discovers slamctl after the write never gets it. So
-  // the write waits until every running service that acts on it has matched, not just the first.
-  const int expected = std::max(1, forgetting_services(s));
-  if (!wait_until([&] { return (*writer)->matched_readers() >= expected; }, s.timeout()) &&
-      (*writer)->matched_readers() == 0)
-    return fail("no gateway, planner or viewer on DDS domain " + std::to_string(s.domain()) +
-                " (is it running?)");
-  const int matched = (*writer)->matched_readers();
-  if (!(*writer)->write(f)) return fail("could not write to " + std::string(topics::kForgetRobot.name));
-  if (!(*writer)->wait_for_acknowledgments(s.timeout())) return fail("the services did not acknowledge");
-  if (matched < expected)
-    return fail("robot " + robot + " forgotten by only " + std::to_string(matched) + " of " +
-                std::to_string(expected) + " running gateways, planners and viewers: run the command again");
-  std::printf("robot %s forgotten by %d service(s) (gateways, planners, viewers); its map data stays\n",
-              robot.c_str(), matched);
-  return 0;
+  int reached = 0;
+  const int rc = send(s, dds::kForgetRobot, f, {"gateway", "planner", "viewer"}, &reached);
+  if (rc == 0)
+    std::printf("robot %s forgotten by %d service(s) (gateways, planners, viewers); its map data stays\n",
+                robot.c_str(), reached);
+  return rc;
 }
 
 }  // namespace
@@ -207,7 +179,7 @@ int cmd_goal(Session& s, const GoalArgs& a) {
   goal.target(a.xy.size() == 2 ? point(a.xy[0], a.xy[1]) : point(0, 0));
   goal.square_size(a.square_size);
   goal.square_anchor(a.centred ? SQUARE_CENTRED : SQUARE_CORNER);
-  const int rc = send(s, dds::kNavGoal, goal, "planner");
+  const int rc = send(s, dds::kNavGoal, goal, {"planner"});
   if (rc == 0) std::printf("goal %s sent to %s\n", goal_mode_name(*mode).c_str(), a.robot.c_str());
   return rc;
 }
@@ -256,7 +228,7 @@ int cmd_mission(Session& s, const MissionArgs& a) {
   mission.waypoints(spec.waypoints);
   mission.loop(spec.loop);
   mission.status(MISSION_ACTIVE);
-  const int rc = send(s, dds::kNavMission, mission, "planner");
+  const int rc = send(s, dds::kNavMission, mission, {"planner"});
   if (rc == 0)
     std::printf("mission of %zu waypoint(s)%s sent to %s\n", spec.waypoints.size(),
                 spec.loop ? ", looped," : "", a.robot.c_str());

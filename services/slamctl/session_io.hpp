@@ -1,13 +1,16 @@
 #pragma once
 // What every subcommand does with its Session: one-line errors, sending a sample to the service that
 // serves a topic, request/reply with retries, and collecting the latest samples of a state topic.
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <functional>
+#include <initializer_list>
 #include <map>
 #include <mutex>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <thread>
 
 #include "common/core/service_options.hpp"
@@ -44,20 +47,6 @@ inline bool wait_until(const std::function<bool()>& pred, std::chrono::milliseco
     std::this_thread::sleep_for(10ms);
   }
   return true;
-}
-
-// Writes one sample to whoever serves `topic` (waits for a reader first, then for its ack).
-template <class T, class P>
-int send(Session& s, const dds::Topic<T, P>& topic, const T& sample, const char* served_by) {
-  auto writer = dds::make_writer(s.participant(), topic);
-  if (!writer) return fail(writer.message());
-  if (!(*writer)->wait_for_readers(s.timeout()))
-    return fail(std::string("no ") + served_by + " on DDS domain " + std::to_string(s.domain()) +
-                " (is it running?)");
-  if (!(*writer)->write(sample)) return fail(std::string("could not write to ") + topic.info.name);
-  if (!(*writer)->wait_for_acknowledgments(s.timeout()))
-    return fail(std::string(served_by) + " did not acknowledge the request");
-  return 0;
 }
 
 // Sends a request and waits for the reply with the same request id, sending it again on the retry
@@ -147,6 +136,47 @@ template <class T>
 void listen_after_match(Session& s, Latest<T>& first, std::chrono::milliseconds listen) {
   if (!wait_until([&] { return first.matched(); }, s.timeout())) return;
   if (wait_until([&] { return first.heard(); }, s.timeout())) wait_for_shutdown(listen);
+}
+
+// The running instances (not stopping) of the named services, from one round of heartbeats: every
+// service beats at least once a second.
+inline int running_instances(Session& s, std::initializer_list<std::string_view> services) {
+  Latest<Heartbeat> beats(s, dds::kHeartbeat, [](const Heartbeat& h) { return h.instance_id().to_string(); });
+  if (!beats.ok()) return 0;
+  listen_after_match(s, beats, std::min<std::chrono::milliseconds>(s.timeout(), 1500ms));
+  int count = 0;
+  for (const auto& [id, hb] : beats.take()) {
+    const bool serves =
+        std::find(services.begin(), services.end(), hb.service().to_string()) != services.end();
+    if (serves && hb.state() != SERVICE_STOPPING) ++count;
+  }
+  return count;
+}
+
+// Writes one sample to every running instance of the services in `served_by` and waits for their
+// acknowledgements. The sample is volatile for whoever matches after the write, so the write waits
+// until as many readers have matched as instances beat (at least one), not only the first; it
+// fails, naming the count, when some did not match within the timeout. `reached`: the readers written to.
+template <class T, class P>
+int send(Session& s, const dds::Topic<T, P>& topic, const T& sample,
+         std::initializer_list<std::string_view> served_by, int* reached = nullptr) {
+  std::string names;
+  for (const std::string_view name : served_by) names += (names.empty() ? "" : " or ") + std::string(name);
+  auto writer = dds::make_writer(s.participant(), topic);
+  if (!writer) return fail(writer.message());
+  const int expected = std::max(1, running_instances(s, served_by));
+  if (!wait_until([&] { return (*writer)->matched_readers() >= expected; }, s.timeout()) &&
+      (*writer)->matched_readers() == 0)
+    return fail("no " + names + " on DDS domain " + std::to_string(s.domain()) + " (is it running?)");
+  const int matched = (*writer)->matched_readers();
+  if (!(*writer)->write(sample)) return fail(std::string("could not write to ") + topic.info.name);
+  if (!(*writer)->wait_for_acknowledgments(s.timeout()))
+    return fail(names + " did not acknowledge the request");
+  if (matched < expected)
+    return fail("reached only " + std::to_string(matched) + " of " + std::to_string(expected) + " running " +
+                names + " instances: run the command again");
+  if (reached) *reached = matched;
+  return 0;
 }
 
 }  // namespace slam::ctl
