@@ -1,5 +1,6 @@
 // GatewayNode, MQTT -> DDS: the hot path. Runs on paho's receive thread: traffic record, decode
-// into reused buffers, registry update under a short lock, RobotObservation written directly.
+// into reused buffers, registry update under a short lock, the observation appended to the batch
+// (written here when full; the loop writes it when it has waited --batch-ms).
 // A rejected message only touches counters and a rate-limited log line.
 #include <string>
 
@@ -35,11 +36,22 @@ void GatewayNode::on_mqtt_message(std::string_view topic, std::span<const std::u
   }
 
   switch (kind) {
-    case InboundKind::Observation:
-      fill_observation(decoder_.robot_id(), accepted.seq, now.wall_ns, decoder_.protocol(),
-                       decoder_.observation(), observation_);
-      bump(observation_writer_->write(observation_) ? metrics_.observations : metrics_.write_failures);
+    case InboundKind::Observation: {
+      const protocol::DecodedObservation& observation = decoder_.observation();
+      fill_observation(decoder_.robot_id(), accepted.seq, now.wall_ns, decoder_.protocol(), observation,
+                       append_observation(batch_, spare_observations_));
+      if (batch_policy_.add(observation.hits.size() + observation.misses.size(), now.mono_ns)) {
+        write_batch();
+      } else if (batch_.observations().size() == 1) {
+        // A new batch: the loop writes it when its wait is over, unless it fills up first.
+        {
+          std::lock_guard lock(registry_mutex_);
+          batch_due_ns_ = batch_policy_.due_ns();
+        }
+        loop_wake_.notify_one();
+      }
       return;
+    }
     case InboundKind::Status:
       bump(metrics_.statuses);
       return;
@@ -53,6 +65,29 @@ void GatewayNode::on_mqtt_message(std::string_view topic, std::span<const std::u
                           "' ignored: " + std::to_string(options_.max_robots) +
                           " robots known already (max-robots)");
       return;
+  }
+}
+
+void GatewayNode::write_batch() {
+  const auto count = static_cast<int64_t>(batch_.observations().size());
+  batch_.batch_seq(batch_.batch_seq() + 1);
+  if (observation_writer_->write(batch_)) {
+    bump(metrics_.observations, count);
+    bump(metrics_.observation_batches);
+  } else {
+    bump(metrics_.write_failures);
+  }
+  recycle_observations(batch_, spare_observations_);
+  batch_policy_.written();
+}
+
+void GatewayNode::flush_batch_when_due(std::int64_t now_mono_ns) {
+  std::lock_guard inbound(inbound_mutex_);
+  if (batch_policy_.due(now_mono_ns)) {
+    write_batch();
+  } else if (!batch_policy_.empty()) {
+    std::lock_guard lock(registry_mutex_);
+    batch_due_ns_ = batch_policy_.due_ns();
   }
 }
 

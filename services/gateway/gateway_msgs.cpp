@@ -19,6 +19,19 @@ slam::RobotProtocol to_dds(Protocol p) {
 
 }  // namespace
 
+slam::RobotObservation& append_observation(slam::RobotObservationBatch& batch,
+                                           std::vector<slam::RobotObservation>& spare) {
+  if (spare.empty()) return batch.observations().emplace_back();
+  batch.observations().push_back(std::move(spare.back()));
+  spare.pop_back();
+  return batch.observations().back();
+}
+
+void recycle_observations(slam::RobotObservationBatch& batch, std::vector<slam::RobotObservation>& spare) {
+  for (slam::RobotObservation& o : batch.observations()) spare.push_back(std::move(o));
+  batch.observations().clear();
+}
+
 void fill_observation(std::string_view robot_id, std::uint64_t seq, std::int64_t stamp_ns, Protocol protocol,
                       const protocol::DecodedObservation& in, slam::RobotObservation& out) {
   set_text(out.robot_id(), robot_id);

@@ -40,6 +40,11 @@ std::string_view text_of(const eprosima::fastrtps::fixed_string<N>& s) {
   return {s.c_str(), s.size()};
 }
 
+// A new last element of `batch`, taken from `spare` when it has one (its point buffers reused).
+slam::RobotObservation& append_observation(slam::RobotObservationBatch& batch,
+                                           std::vector<slam::RobotObservation>& spare);
+// Moves the written batch's elements to `spare`, leaving the batch empty.
+void recycle_observations(slam::RobotObservationBatch& batch, std::vector<slam::RobotObservation>& spare);
 void fill_observation(std::string_view robot_id, std::uint64_t seq, std::int64_t stamp_ns, Protocol protocol,
                       const protocol::DecodedObservation& in, slam::RobotObservation& out);
 // The robot's state with `map_pose` (its reported pose in the map frame).

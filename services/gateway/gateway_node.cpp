@@ -64,7 +64,8 @@ GatewayNode::Metrics::Metrics(Counters& c)
       gateways_live(c.get("gateways_live")),
       robot_protocols_refused(c.get("robot_protocols_refused")),
       robots_forgotten(c.get("robots_forgotten")),
-      fleet_digests(c.get("fleet_digests")) {
+      fleet_digests(c.get("fleet_digests")),
+      observation_batches(c.get("observation_batches")) {
   for (protocol::RejectReason r : protocol::kAllRejectReasons) {
     rejected[static_cast<size_t>(r)] = &c.get(std::string(protocol::reason_counter(r)));
   }
@@ -79,6 +80,10 @@ GatewayNode::GatewayNode(const GatewayOptions& options, Counters& counters)
       digest_(options.digest_points_per_robot),
       corrections_(options.max_robots),
       decoder_(options.limits),
+      // --batch-ms 0: every observation in a sample of its own.
+      batch_policy_(options.batch_ms > 0.0
+                        ? BatchLimits{.max_wait_ns = static_cast<std::int64_t>(options.batch_ms * 1e6)}
+                        : BatchLimits{.max_observations = 1, .max_wait_ns = 0}),
       encoder_(options.limits),
       // The instance id this process's heartbeats carry (host:pid), so peers and self agree.
       ownership_(ServiceIdentity::of("gateway").instance_id, monotonic_ns(), ownership_config(options)),
@@ -95,9 +100,10 @@ Status GatewayNode::configure() {
   if (!participant) return participant.error();
   participant_ = std::move(*participant);
 
-  auto observations = dds::make_writer(*participant_, dds::kRobotObservation);
+  auto observations = dds::make_writer(*participant_, dds::kRobotObservations);
   if (!observations) return observations.error();
   observation_writer_ = std::move(*observations);
+  set_text(batch_.gateway_id(), ownership_.self());
   auto states = dds::make_writer(*participant_, dds::kRobotState);
   if (!states) return states.error();
   state_writer_ = std::move(*states);
@@ -176,6 +182,7 @@ Status GatewayNode::configure() {
 void GatewayNode::run_once() {
   Instant now{};
   size_t online = 0;
+  bool flush_batch = false;
   changed_.clear();
   went_offline_.clear();
   forgotten_.clear();
@@ -186,12 +193,16 @@ void GatewayNode::run_once() {
         std::chrono::nanoseconds(std::min(next_digest_ns_, next_points_ns_)));
     const auto states_due_at =
         std::chrono::steady_clock::time_point(std::chrono::nanoseconds(next_states_ns_));
-    const auto wake = std::min(
+    auto wake = std::min(
         {std::max(steady_now, states_due_at), mqtt_->next_attempt(), std::max(steady_now, digest_due)});
+    if (batch_due_ns_ != 0)
+      wake = std::min(wake, std::chrono::steady_clock::time_point(std::chrono::nanoseconds(batch_due_ns_)));
     loop_wake_.wait_until(lock, wake, [&] { return urgent_; });
     const bool urgent = urgent_;
     urgent_ = false;
     now = {now_ns(), monotonic_ns()};
+    flush_batch = batch_due_ns_ != 0 && now.mono_ns >= batch_due_ns_;
+    if (flush_batch) batch_due_ns_ = 0;
     // Before take_changed: a forgotten robot's state must not go out after its disposal.
     for (const std::string& id : forget_) {
       const RobotRecord* r = registry_.find(id);
@@ -214,6 +225,7 @@ void GatewayNode::run_once() {
     spdlog::info("robot '{}' offline: silent for {} s", protocol::escape_for_log(id),
                  options_.offline_after_s);
   }
+  if (flush_batch) flush_batch_when_due(now.mono_ns);
   mqtt_->poll(std::chrono::steady_clock::now());
   update_ownership(now.mono_ns);
   dispose_forgotten();

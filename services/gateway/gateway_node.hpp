@@ -1,13 +1,13 @@
 #pragma once
-// slam-gateway's edges: MQTT in (decode, registry, RobotObservation written straight from the
-// MQTT thread), DDS in (pose corrections kept per robot; waypoint commands, turned into the robot's
-// odometry frame, and the viewer's MQTT requests, published to the broker from the reader
-// threads), and a loop that turns robot presence, poses (in the map frame, the raw odometry
-// beside) and subscriptions into state samples. The MQTT traffic log goes through a bounded queue to its own
-// worker. Several gateways share the robots: each robot message reaches one of them (MQTT shared
-// subscriptions) and each robot's waypoints are sent by its owner only (Ownership over the gateways'
-// heartbeats), each viewer MQTT request executed by the owner of its id only; the protocol a robot speaks is
-// learnt from every gateway's RobotStates.
+// slam-gateway's edges: MQTT in (decode, registry, observations batched and written from the
+// MQTT thread when a batch is full, from the loop when it has waited --batch-ms), DDS in (pose corrections
+// kept per robot; waypoint commands, turned into the robot's odometry frame, and the viewer's MQTT requests,
+// published to the broker from the reader threads), and a loop that turns robot presence, poses (in the map
+// frame, the raw odometry beside) and subscriptions into state samples. The MQTT traffic log goes through a
+// bounded queue to its own worker. Several gateways share the robots: each robot message reaches one of them
+// (MQTT shared subscriptions) and each robot's waypoints are sent by its owner only (Ownership over the
+// gateways' heartbeats), each viewer MQTT request executed by the owner of its id only; the protocol a robot
+// speaks is learnt from every gateway's RobotStates.
 #include <array>
 #include <atomic>
 #include <chrono>
@@ -28,6 +28,7 @@
 #include "common/core/result.hpp"
 #include "common/fastdds/fast_topics.hpp"
 #include "common/mqtt/mqtt_connection.hpp"
+#include "gateway/batch_policy.hpp"
 #include "gateway/command_encoder.hpp"
 #include "gateway/fleet_digest.hpp"
 #include "gateway/frame_correction.hpp"
@@ -92,6 +93,7 @@ class GatewayNode {
     std::atomic<int64_t>& robot_protocols_refused;
     std::atomic<int64_t>& robots_forgotten;
     std::atomic<int64_t>& fleet_digests;
+    std::atomic<int64_t>& observation_batches;
   };
 
   GatewayNode(const GatewayOptions& options, Counters& counters);
@@ -101,6 +103,10 @@ class GatewayNode {
   void on_mqtt_message(std::string_view topic, std::span<const std::uint8_t> payload);
   void log_rejection(std::string_view topic, Instant now);
   void log_presence(std::string_view robot_id, const AcceptResult& result);
+  // MQTT thread, or the loop holding inbound_mutex_: writes the pending observations in one sample.
+  void write_batch();
+  // Loop: writes the batch if its oldest observation has waited long enough, else wakes again then.
+  void flush_batch_when_due(std::int64_t now_mono_ns);
   // DDS reader threads.
   void on_correction(const slam::PoseCorrection& sample);
   void on_waypoint(const slam::WaypointCommand& command);
@@ -135,6 +141,7 @@ class GatewayNode {
   std::mutex registry_mutex_;
   std::condition_variable loop_wake_;
   bool urgent_ = false;
+  std::int64_t batch_due_ns_ = 0;  // monotonic; when the loop must write a pending batch (0: none)
   RobotRegistry registry_;
   std::vector<std::string> forget_;  // ForgetRobot commands not applied yet
   FleetDigestBuilder digest_;        // threads: see fleet_digest.hpp
@@ -147,8 +154,10 @@ class GatewayNode {
   // MQTT receive thread only (the mutex makes that a guarantee rather than an assumption).
   std::mutex inbound_mutex_;
   InboundDecoder decoder_;
-  slam::RobotObservation observation_;
-  TokenBucket reject_log_budget_{20.0, 20.0};  // rejection lines per second, all robots together
+  BatchPolicy batch_policy_;
+  slam::RobotObservationBatch batch_;
+  std::vector<slam::RobotObservation> spare_observations_;  // written batches' elements, reused
+  TokenBucket reject_log_budget_{20.0, 20.0};               // rejection lines per second, all robots together
 
   // Waypoint reader thread.
   std::mutex outbound_mutex_;
@@ -183,7 +192,7 @@ class GatewayNode {
   // Destroyed bottom-up: readers stop first (they publish through the MQTT client), then the MQTT
   // client (its callbacks write observations and traffic), the traffic worker, writers, participant.
   std::unique_ptr<dds::Participant> participant_;
-  std::unique_ptr<dds::Writer<slam::RobotObservation>> observation_writer_;
+  std::unique_ptr<dds::Writer<slam::RobotObservationBatch>> observation_writer_;
   std::unique_ptr<dds::Writer<slam::RobotState>> state_writer_;
   std::unique_ptr<dds::Writer<slam::RobotOdometry>> odometry_writer_;
   std::unique_ptr<dds::Writer<slam::MqttSubscriptions>> subscriptions_writer_;

@@ -50,6 +50,9 @@ void add_gateway_options(CLI::App& app, GatewayOptions& o) {
   app.add_option("--state-period-s", o.state_period_s,
                  "RobotState published at most this often per robot (s)")
       ->capture_default_str();
+  app.add_option("--batch-ms", o.batch_ms,
+                 "an observation waits at most this long (ms) for others to share its DDS sample")
+      ->capture_default_str();
   app.add_option("--max-robots", o.max_robots,
                  "robots tracked at most; messages from further ones are refused")
       ->capture_default_str();
@@ -94,6 +97,8 @@ Status validate(const GatewayOptions& o) {
   if (auto s = protocol::validate(o.limits); !s) return s;
   if (auto s = check_seconds("offline-after-s", o.offline_after_s, 0.1, 86400.0); !s) return s;
   if (auto s = check_seconds("state-period-s", o.state_period_s, 0.01, 10.0); !s) return s;
+  if (!std::isfinite(o.batch_ms) || o.batch_ms < 0.0 || o.batch_ms > 1000.0)
+    return Error{"batch-ms must be between 0 and 1000"};
   if (o.max_robots == 0) return Error{"max-robots must be at least 1"};
   if (auto s = check_seconds("digest-period-s", o.digest_period_s, 0.01, 60.0); !s) return s;
   if (auto s = check_seconds("digest-points-period-s", o.digest_points_period_s, 0.01, 60.0); !s) return s;

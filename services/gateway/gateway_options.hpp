@@ -31,6 +31,8 @@ struct GatewayOptions {
   protocol::CodecLimits limits;
   double offline_after_s = 5.0;  // silence that turns a robot offline
   double state_period_s = 0.1;   // RobotState is published at most this often per robot
+  // Observations leave in batches (one DDS sample each): a batch waits at most this long.
+  double batch_ms = 10.0;
   std::size_t max_robots = 10'000;
   // The fleet digests for the bridge (FleetDigest, FleetPoints): every robot in one sample each
   // period, with up to digest_points_per_robot of each robot's latest hits per points sample.

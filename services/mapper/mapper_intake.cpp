@@ -12,13 +12,15 @@ void MapperBatch::clear() {
   dropped = 0;
 }
 
-void MapperIntake::push(const slam::RobotObservation& sample) {
+void MapperIntake::push(const slam::RobotObservationBatch& batch) {
   std::lock_guard lock(mutex_);
-  if (pending_.observations.size() >= max_observations_) {
-    ++pending_.dropped;
-    return;
+  for (const slam::RobotObservation& o : batch.observations()) {
+    if (pending_.observations.size() >= max_observations_) {
+      ++pending_.dropped;
+      continue;
+    }
+    pending_.observations.push_back(o);
   }
-  pending_.observations.push_back(sample);
 }
 
 void MapperIntake::push(MapCommand command) {

@@ -29,7 +29,7 @@ class MapperIntake {
  public:
   explicit MapperIntake(size_t max_observations) : max_observations_(max_observations) {}
 
-  void push(const slam::RobotObservation& sample);
+  void push(const slam::RobotObservationBatch& batch);  // each observation, in order
   void push(MapCommand command);
   void push(const slam::InitialPose& request);
   // Wakes the loop now (a rebuild finished).

@@ -25,7 +25,7 @@ MapperNode::Metrics::Metrics(Counters& c)
       snapshots(c.get("snapshots")),
       store_bytes(c.get("store_bytes")),
       write_failures(c.get("write_failures")),
-      observations_lost(c.get("observations_lost")),
+      observation_batches_lost(c.get("observation_batches_lost")),
       requests_executed(c.get("requests_executed")),
       requests_repeated(c.get("requests_repeated")) {}
 
@@ -89,8 +89,8 @@ Status MapperNode::configure() {
 
   // Readers last: from here on callbacks run, and everything they touch exists.
   auto observations =
-      dds::make_reader(*participant_, dds::kRobotObservation,
-                       [this](const slam::RobotObservation& o, const auto&) { intake_.push(o); });
+      dds::make_reader(*participant_, dds::kRobotObservations,
+                       [this](const slam::RobotObservationBatch& b, const auto&) { intake_.push(b); });
   if (!observations) return observations.error();
   observation_reader_ = std::move(*observations);
   auto configs = dds::make_reader(
@@ -282,7 +282,7 @@ void MapperNode::update_periodic_counters() {
   counters_.get("slam_held_open").store(st.open_messages, std::memory_order_relaxed);
 
   if (observation_reader_)
-    metrics_.observations_lost.store(observation_reader_->samples_lost(), std::memory_order_relaxed);
+    metrics_.observation_batches_lost.store(observation_reader_->samples_lost(), std::memory_order_relaxed);
   next_store_stat_ = std::chrono::steady_clock::now() + std::chrono::seconds(1);
 }
 

@@ -45,9 +45,9 @@ class MapperNode {
     std::atomic<int64_t>& snapshots;
     std::atomic<int64_t>& store_bytes;
     std::atomic<int64_t>& write_failures;
-    std::atomic<int64_t>& observations_lost;  // DDS SAMPLE_LOST on the observation reader
-    std::atomic<int64_t>& requests_executed;  // requests (edits, files, layouts, poses) run
-    std::atomic<int64_t>& requests_repeated;  // repeats answered from the cache or dropped
+    std::atomic<int64_t>& observation_batches_lost;  // DDS SAMPLE_LOST on the observation reader
+    std::atomic<int64_t>& requests_executed;         // requests (edits, files, layouts, poses) run
+    std::atomic<int64_t>& requests_repeated;         // repeats answered from the cache or dropped
   };
 
   MapperNode(const MapperOptions& options, Counters& counters);
@@ -100,7 +100,7 @@ class MapperNode {
   std::unique_ptr<dds::Writer<slam::GridTiles>> patch_writer_;
   std::unique_ptr<dds::Writer<slam::MapReply>> reply_writer_;
   std::unique_ptr<dds::Writer<slam::PoseCorrection>> correction_writer_;
-  std::unique_ptr<dds::Reader<slam::RobotObservation>> observation_reader_;
+  std::unique_ptr<dds::Reader<slam::RobotObservationBatch>> observation_reader_;
   std::unique_ptr<dds::Reader<slam::GridConfig>> config_reader_;
   std::unique_ptr<dds::Reader<slam::MapEdit>> edit_reader_;
   std::unique_ptr<dds::Reader<slam::MapFileRequest>> file_reader_;

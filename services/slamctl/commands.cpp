@@ -89,7 +89,7 @@ Handler add_sim(CLI::App& cli) {
 }
 
 int cmd_echo(Session& s, const std::string& topic, int count) {
-  if (topic == topics::kRobotObservation.name) return echo(s, dds::kRobotObservation, count);
+  if (topic == topics::kRobotObservations.name) return echo(s, dds::kRobotObservations, count);
   if (topic == topics::kRobotState.name) return echo(s, dds::kRobotState, count);
   if (topic == topics::kRobotOdometry.name) return echo(s, dds::kRobotOdometry, count);
   if (topic == topics::kPoseCorrection.name) return echo(s, dds::kPoseCorrection, count);

@@ -329,6 +329,12 @@ std::string describe(const RobotObservation& s) {
              s.has_heading() ? fmt("%.2f", s.pose().theta()).c_str() : "-", s.hits().size(),
              s.misses().size());
 }
+std::string describe(const RobotObservationBatch& s) {
+  std::string out = fmt("observations of gateway %s batch %llu: %zu", s.gateway_id().c_str(),
+                        static_cast<unsigned long long>(s.batch_seq()), s.observations().size());
+  for (const RobotObservation& o : s.observations()) out += "\n  " + describe(o);
+  return out;
+}
 std::string describe(const RobotState& s) {
   return "state " + format_robot(s, nullptr, nullptr, s.last_seen_ns());
 }

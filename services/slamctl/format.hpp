@@ -59,6 +59,8 @@ std::string format_path_reply(const PathReply& reply);
 
 // One line per sample for `slamctl echo TOPIC`; long sequences are summarised.
 std::string describe(const RobotObservation& s);
+// One line for the batch, then one per observation, indented.
+std::string describe(const RobotObservationBatch& s);
 std::string describe(const RobotState& s);
 std::string describe(const RobotOdometry& s);
 std::string describe(const PoseCorrection& s);

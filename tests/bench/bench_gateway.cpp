@@ -207,9 +207,11 @@ class Rig {
     auto participant = slam::dds::Participant::create(domain_.id(), "bench-gateway");
     if (!participant) throw std::runtime_error(participant.message());
     participant_ = std::move(*participant);
-    auto reader =
-        slam::dds::make_reader(*participant_, slam::dds::kRobotObservation,
-                               [this](const slam::RobotObservation& o, const auto&) { observed(o); });
+    auto reader = slam::dds::make_reader(*participant_, slam::dds::kRobotObservations,
+                                         [this](const slam::RobotObservationBatch& b, const auto&) {
+                                           for (const slam::RobotObservation& o : b.observations())
+                                             observed(o);
+                                         });
     if (!reader) throw std::runtime_error(reader.message());
     reader_ = std::move(*reader);
     auto subscriptions = slam::dds::make_reader(*participant_, slam::dds::kMqttSubscriptions,
@@ -249,7 +251,7 @@ class Rig {
   pid_t gateway_pid_ = -1;
   std::atomic<bool> gateway_connected_{false};
   std::unique_ptr<slam::dds::Participant> participant_;
-  std::unique_ptr<slam::dds::Reader<slam::RobotObservation>> reader_;
+  std::unique_ptr<slam::dds::Reader<slam::RobotObservationBatch>> reader_;
   std::unique_ptr<slam::dds::Reader<slam::MqttSubscriptions>> subscriptions_;
   std::unique_ptr<PahoClient> subscriber_;
   std::unique_ptr<PahoClient> publisher_;

@@ -158,7 +158,7 @@ Drain drain(PipelineRig& rig, size_t probes_sent, int64_t paused_at_ns, std::chr
     last_intake = intake;
     d.gateway_gap = static_cast<double>(sent - in);
     d.mapper_gap = static_cast<double>(gateway.get("observations") - intake);
-    d.mapper_counted = static_cast<double>(mapper.get("observations_lost") + mapper.get("dropped"));
+    d.mapper_counted = static_cast<double>(mapper.get("observation_batches_lost") + mapper.get("dropped"));
     const bool complete = d.gateway_gap <= 0 && d.mapper_gap <= 0;
     const bool stalled = static_cast<double>(now - last_change) / 1e9 >= kStallS;
     if (complete || stalled || now - t0 > std::chrono::nanoseconds(timeout).count()) {
@@ -244,7 +244,7 @@ void report(benchmark::State& state, const PipelineSettings& settings, WindowEdg
   c["slam_keyframes_per_s"] = rate("mapper", "slam_keyframes");
   c["slam_placed_by_odometry"] = delta("mapper", "slam_placed_by_odometry");
   c["mapper_dropped"] = delta("mapper", "dropped");
-  c["mapper_dds_lost"] = delta("mapper", "observations_lost");
+  c["mapper_dds_lost"] = delta("mapper", "observation_batches_lost");
   // -1 when mosquitto never reported: unknown, not zero.
   c["broker_dropped"] = start.broker_dropped >= 0 && end.broker_dropped >= 0
                             ? static_cast<double>(end.broker_dropped - start.broker_dropped)

@@ -25,6 +25,7 @@
 #include "common/fastdds/security_files.hpp"
 #include "fastdds_inbox.hpp"
 #include "mqtt_test_client.hpp"
+#include "observation_batches.hpp"
 #include "process_group.hpp"
 
 namespace slam::testkit {
@@ -152,9 +153,9 @@ TEST_F(DdsSecurityTest, ParticipantWithoutCertificateDiscoversAndReceivesNothing
   auto secure = participant("viewer");
   Inbox<RobotObservation> plain_seen, secure_seen;
   Inbox<Heartbeat> plain_heartbeats;
-  auto plain_reader = make_inbox_reader(*plain, dds::kRobotObservation, plain_seen);
+  auto plain_reader = make_observation_inbox_reader(*plain, plain_seen);
   auto plain_heartbeat_reader = make_inbox_reader(*plain, dds::kHeartbeat, plain_heartbeats);
-  auto secure_reader = make_inbox_reader(*secure, dds::kRobotObservation, secure_seen);
+  auto secure_reader = make_observation_inbox_reader(*secure, secure_seen);
 
   ASSERT_TRUE(robot_reports_until_observed(secure_seen)) << "the secure reader got no observation";
   EXPECT_EQ(secure_seen.items().front().robot_id().to_string(), kRobot);
@@ -211,7 +212,7 @@ class DdsWireTest : public DdsSecurityTest {
     start_gateway(secure);
     auto reader_participant = participant(secure ? "mapper" : "");
     Inbox<RobotObservation> seen;
-    auto reader = make_inbox_reader(*reader_participant, dds::kRobotObservation, seen);
+    auto reader = make_observation_inbox_reader(*reader_participant, seen);
     EXPECT_TRUE(robot_reports_until_observed(seen, report));
     if (seen.size() > 0) {
       // The search looks for the exact doubles the samples carry.

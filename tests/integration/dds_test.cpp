@@ -124,24 +124,27 @@ TEST(DdsTest, ALaggingObservationReaderLosesOldSamplesAndCountsThem) {
   std::mutex gate;
   std::unique_lock blocked(gate);
   std::atomic<int64_t> received{0};
-  auto reader = dds::make_reader(*p.b, dds::kRobotObservation, [&](const RobotObservation&, const auto&) {
-    std::lock_guard wait(gate);
-    ++received;
-  });
+  auto reader =
+      dds::make_reader(*p.b, dds::kRobotObservations, [&](const RobotObservationBatch&, const auto&) {
+        std::lock_guard wait(gate);
+        ++received;
+      });
   ASSERT_TRUE(reader) << reader.message();
-  auto writer = dds::make_writer(*p.a, dds::kRobotObservation);
+  auto writer = dds::make_writer(*p.a, dds::kRobotObservations);
   ASSERT_TRUE(writer) << writer.message();
   ASSERT_TRUE((*writer)->wait_for_readers(10s));
   // 16 kB samples, 16 MB in all: several times what the reader's socket buffer holds (4 MB, which
-  // Linux doubles), and far more than the writer keeps (4 per robot).
-  constexpr int kRobots = 10;
+  // Linux doubles), and far more than the writer keeps (64 batches).
   constexpr int kSent = 1000;
-  RobotObservation o;
-  o.hits(std::vector<Point2>(1000));
+  RobotObservationBatch batch;
+  batch.gateway_id("host:1");
+  batch.observations().resize(1);
+  batch.observations()[0].robot_id("robot-0");
+  batch.observations()[0].hits(std::vector<Point2>(1000));
   for (int i = 0; i < kSent; ++i) {
-    o.robot_id("robot-" + std::to_string(i % kRobots));
-    o.seq(static_cast<uint64_t>(i / kRobots + 1));
-    ASSERT_TRUE((*writer)->write(o)) << "write " << i;
+    batch.batch_seq(static_cast<uint64_t>(i + 1));
+    batch.observations()[0].seq(static_cast<uint64_t>(i + 1));
+    ASSERT_TRUE((*writer)->write(batch)) << "write " << i;
   }
   blocked.unlock();
   const auto accounted = [&] { return received + (*reader)->samples_lost(); };

@@ -25,6 +25,7 @@
 #include "common/fastdds/requester.hpp"
 #include "fastdds_inbox.hpp"
 #include "mqtt_test_client.hpp"
+#include "observation_batches.hpp"
 #include "process_group.hpp"
 #include "robot_publishers.hpp"
 
@@ -60,11 +61,10 @@ class GatewayShareTest : public ::testing::Test {
   void SetUp() override {
     port = group.start_mosquitto();
     participant = std::move(*dds::Participant::create(domain.id(), "gateway-share-test"));
-    observation_reader = std::move(*dds::make_reader(
-        *participant, dds::kRobotObservation, [this](const RobotObservation& o, const auto&) {
-          std::lock_guard lock(mutex);
-          ++observations[{std::string(o.robot_id().c_str()), marker_of(o)}];
-        }));
+    observation_reader = testkit::make_observation_reader(*participant, [this](const RobotObservation& o) {
+      std::lock_guard lock(mutex);
+      ++observations[{std::string(o.robot_id().c_str()), marker_of(o)}];
+    });
     heartbeat_reader =
         std::move(*dds::make_reader(*participant, dds::kHeartbeat, [this](const Heartbeat& h, const auto&) {
           if (h.service() != std::string("gateway")) return;
@@ -137,7 +137,7 @@ class GatewayShareTest : public ::testing::Test {
   std::map<std::pair<std::string, int64_t>, int> observations;
   std::map<std::string, std::map<std::string, int64_t>> gateway_counters;
   std::unique_ptr<dds::Participant> participant;
-  std::unique_ptr<dds::Reader<RobotObservation>> observation_reader;
+  std::unique_ptr<dds::Reader<RobotObservationBatch>> observation_reader;
   std::unique_ptr<dds::Reader<Heartbeat>> heartbeat_reader;
   std::unique_ptr<dds::Writer<WaypointCommand>> waypoint_writer;
   std::unique_ptr<testkit::RobotPublishers> publishers;

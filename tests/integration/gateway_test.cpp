@@ -16,6 +16,7 @@
 
 #include "common/fastdds/fast_topics.hpp"
 #include "mqtt_test_client.hpp"
+#include "observation_batches.hpp"
 #include "process_group.hpp"
 
 namespace slam::testkit {
@@ -36,9 +37,8 @@ class DdsProbe {
  public:
   explicit DdsProbe(int domain) {
     participant_ = take(dds::Participant::create(domain, "gateway-test"));
-    observations_ = take(
-        dds::make_reader(*participant_, dds::kRobotObservation,
-                         [this](const RobotObservation& o, const auto&) { keep(observations_seen_, o); }));
+    observations_ = make_observation_reader(
+        *participant_, [this](const RobotObservation& o) { keep(observations_seen_, o); });
     states_ = take(dds::make_reader(*participant_, dds::kRobotState,
                                     [this](const RobotState& s, const auto&) { keep(states_seen_, s); }));
     subscriptions_ = take(
@@ -110,7 +110,7 @@ class DdsProbe {
   std::vector<MqttSubscriptions> subscriptions_seen_;
   std::vector<Heartbeat> heartbeats_seen_;
   std::unique_ptr<dds::Participant> participant_;
-  std::unique_ptr<dds::Reader<RobotObservation>> observations_;
+  std::unique_ptr<dds::Reader<RobotObservationBatch>> observations_;
   std::unique_ptr<dds::Reader<RobotState>> states_;
   std::unique_ptr<dds::Reader<MqttSubscriptions>> subscriptions_;
   std::unique_ptr<dds::Reader<Heartbeat>> heartbeats_;

@@ -13,6 +13,7 @@
 #include "common/fastdds/fast_topics.hpp"
 #include "fastdds_inbox.hpp"
 #include "mqtt_test_client.hpp"
+#include "observation_batches.hpp"
 #include "process_group.hpp"
 
 namespace slam::testkit {
@@ -43,7 +44,7 @@ class GatewayTlsTest : public ::testing::Test {
     auto p = dds::Participant::create(domain.id(), "gateway-tls-test");
     ASSERT_TRUE(p) << p.message();
     participant = std::move(*p);
-    observation_reader = make_inbox_reader(*participant, dds::kRobotObservation, observations_seen);
+    observation_reader = make_observation_inbox_reader(*participant, observations_seen);
     subscription_reader = make_inbox_reader(*participant, dds::kMqttSubscriptions, subscriptions_seen);
   }
   void TearDown() override {
@@ -110,7 +111,7 @@ class GatewayTlsTest : public ::testing::Test {
   Inbox<RobotObservation> observations_seen;
   Inbox<MqttSubscriptions> subscriptions_seen;
   std::unique_ptr<dds::Participant> participant;
-  std::unique_ptr<dds::Reader<RobotObservation>> observation_reader;
+  std::unique_ptr<dds::Reader<RobotObservationBatch>> observation_reader;
   std::unique_ptr<dds::Reader<MqttSubscriptions>> subscription_reader;
 };
 

@@ -22,6 +22,7 @@
 #include "common/core/map_io.hpp"
 #include "common/fastdds/fast_topics.hpp"
 #include "fastdds_inbox.hpp"
+#include "observation_batches.hpp"
 #include "process_group.hpp"
 #include "received_map.hpp"
 
@@ -76,7 +77,7 @@ class MapperTest : public ::testing::Test {
     auto p = dds::Participant::create(domain_.id(), "mapper_test");
     ASSERT_TRUE(p) << p.message();
     participant_ = std::move(*p);
-    observations_ = testkit::make_test_writer(*participant_, dds::kRobotObservation);
+    observations_ = testkit::make_test_writer(*participant_, dds::kRobotObservations);
     configs_ = testkit::make_test_writer(*participant_, dds::kGridConfig);
     edits_ = testkit::make_test_writer(*participant_, dds::kMapEdit);
     files_ = testkit::make_test_writer(*participant_, dds::kMapFileRequest);
@@ -146,7 +147,7 @@ class MapperTest : public ::testing::Test {
   void send_wall(int times, uint64_t first_seq = 1) {
     for (int i = 0; i < times; ++i)
       ASSERT_TRUE(observations_->write(
-          observation("r1", first_seq + static_cast<uint64_t>(i), pt(0, 0), wall_hits())));
+          testkit::batch_of(observation("r1", first_seq + static_cast<uint64_t>(i), pt(0, 0), wall_hits()))));
     ASSERT_TRUE(wait_until([&] { return counter("observations") >= times; }, 60s))
         << "observations never integrated";
     ASSERT_TRUE(wait_until(
@@ -193,7 +194,7 @@ class MapperTest : public ::testing::Test {
   testkit::DomainLease domain_;
   testkit::ProcessGroup group_;
   std::unique_ptr<dds::Participant> participant_;
-  std::unique_ptr<dds::Writer<RobotObservation>> observations_;
+  std::unique_ptr<dds::Writer<RobotObservationBatch>> observations_;
   std::unique_ptr<dds::Writer<GridConfig>> configs_;
   std::unique_ptr<dds::Writer<MapEdit>> edits_;
   std::unique_ptr<dds::Writer<MapFileRequest>> files_;

@@ -30,9 +30,9 @@ TEST_F(MapperTest, ObservationsBecomePatchesWithFreeRaysAndOccupiedHits) {
 
   // Bad input: rejected, counted, and the map stays as it was.
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  ASSERT_TRUE(observations_->write(observation("r1", 10, pt(0, 0), {pt(nan, 1)})));
-  ASSERT_TRUE(observations_->write(observation("r1", 11, pt(0, 0), {pt(1e9, 1)})));
-  ASSERT_TRUE(observations_->write(observation("", 1, pt(0, 0), {pt(1, 1)})));
+  ASSERT_TRUE(observations_->write(testkit::batch_of(observation("r1", 10, pt(0, 0), {pt(nan, 1)}))));
+  ASSERT_TRUE(observations_->write(testkit::batch_of(observation("r1", 11, pt(0, 0), {pt(1e9, 1)}))));
+  ASSERT_TRUE(observations_->write(testkit::batch_of(observation("", 1, pt(0, 0), {pt(1, 1)}))));
   ASSERT_TRUE(wait_until([&] { return counter("rejected") >= 3; }, 30s)) << "bad observations not counted";
   std::this_thread::sleep_for(500ms);
   EXPECT_EQ(current().value().cells, m.cells);
@@ -72,7 +72,7 @@ TEST_F(MapperTest, KillNineAndRestartRestoresTheSameMapFromTheStore) {
     for (int k = -20; k <= 20; ++k) hits.push_back(pt(0.1 * k + 0.03, 3.03));
     RobotObservation o = observation("r2", static_cast<uint64_t>(i + 1), pt(x, 0), hits);
     o.misses({pt(x, -4.0), pt(x + 1.0, -4.0)});
-    ASSERT_TRUE(observations_->write(o));
+    ASSERT_TRUE(observations_->write(testkit::batch_of(o)));
   }
   ASSERT_TRUE(wait_until([&] { return counter("observations") == kSent; }, 60s))
       << "not all observations integrated";
@@ -106,7 +106,8 @@ TEST_F(MapperTest, KillNineAndRestartRestoresTheSameMapFromTheStore) {
 
   // Killed in the middle of a stream: at most the last patch period is lost, the store stays usable.
   for (int i = 0; i < 200; ++i)
-    ASSERT_TRUE(observations_->write(observation("r3", static_cast<uint64_t>(i + 1), pt(0, 0), wall_hits())));
+    ASSERT_TRUE(observations_->write(
+        testkit::batch_of(observation("r3", static_cast<uint64_t>(i + 1), pt(0, 0), wall_hits()))));
   std::this_thread::sleep_for(300ms);
   group_.stop("mapper", SIGKILL);
   const size_t seen2 = snapshots_.size();

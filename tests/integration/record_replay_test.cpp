@@ -44,16 +44,22 @@ RobotState robot_state(int i) {
   return s;
 }
 
-RobotObservation observation(int i) {
-  RobotObservation o;
-  o.robot_id("robot-0");
-  o.seq(static_cast<uint64_t>(i) + 1);
-  o.stamp_ns(1'000'000'000LL * i);
-  Point2 hit;
-  hit.x(1.0 + i);
-  hit.y(2.0);
-  o.hits().assign(static_cast<size_t>(i % 4), hit);
-  return o;
+// A gateway's batch of two observations.
+RobotObservationBatch observations(int i) {
+  RobotObservationBatch batch;
+  batch.gateway_id("host:1");
+  batch.batch_seq(static_cast<uint64_t>(i) + 1);
+  for (int k = 0; k < 2; ++k) {
+    RobotObservation& o = batch.observations().emplace_back();
+    o.robot_id("robot-" + std::to_string(k));
+    o.seq(static_cast<uint64_t>(i) + 1);
+    o.stamp_ns(1'000'000'000LL * i);
+    Point2 hit;
+    hit.x(1.0 + i);
+    hit.y(2.0);
+    o.hits().assign(static_cast<size_t>((i + k) % 4), hit);
+  }
+  return batch;
 }
 
 Heartbeat heartbeat(int i) {
@@ -126,19 +132,19 @@ TEST(RecordReplayTest, RecordsEveryTopicWithTrafficAndReplaysItIntoAFreshDomain)
   const std::string file = (dir / "session.mcap").string();
   ProcessGroup group;
   const auto states = make<RobotState>(kStates, robot_state);
-  const auto observations = make<RobotObservation>(kObservations, observation);
+  const auto batches = make<RobotObservationBatch>(kObservations, observations);
   const auto beats = make<Heartbeat>(kHeartbeats, heartbeat);
 
   {
     DomainLease domain;
     auto p = participant(domain.id());
     auto state_writer = make_test_writer(*p, dds::kRobotState);
-    auto observation_writer = make_test_writer(*p, dds::kRobotObservation);
+    auto observation_writer = make_test_writer(*p, dds::kRobotObservations);
     auto heartbeat_writer = make_test_writer(*p, dds::kHeartbeat);
     group.start("record", {bin_path("slamctl"), "--domain", std::to_string(domain.id()), "record", file,
                            "--duration", "10"});
     publish_all(*state_writer, states);
-    publish_all(*observation_writer, observations);
+    publish_all(*observation_writer, batches);
     publish_all(*heartbeat_writer, beats);
     ASSERT_EQ(group.wait_exit("record", kExitTimeout), 0) << group.log("record");
     EXPECT_NE(group.log("record").find("recorded"), std::string::npos) << group.log("record");
@@ -160,21 +166,22 @@ TEST(RecordReplayTest, RecordsEveryTopicWithTrafficAndReplaysItIntoAFreshDomain)
   // Exactly the topics that had traffic: the test's three (nothing else runs in the domain).
   EXPECT_EQ(schema_of,
             (std::map<std::string, std::string>{{"slam/robot/state", "slam::RobotState"},
-                                                {"slam/robot/observation", "slam::RobotObservation"},
+                                                {"slam/robot/observations", "slam::RobotObservationBatch"},
                                                 {"slam/system/heartbeat", "slam::Heartbeat"}}));
   EXPECT_EQ((recorded<RobotStatePubSubType, RobotState>(*contents, "slam/robot/state")), states);
-  EXPECT_EQ((recorded<RobotObservationPubSubType, RobotObservation>(*contents, "slam/robot/observation")),
-            observations);
+  EXPECT_EQ((recorded<RobotObservationBatchPubSubType, RobotObservationBatch>(*contents,
+                                                                              "slam/robot/observations")),
+            batches);
   EXPECT_EQ((recorded<HeartbeatPubSubType, Heartbeat>(*contents, "slam/system/heartbeat")), beats);
   expect_mcap_core_reads(group, file, schema_of);
 
   DomainLease fresh;
   auto p = participant(fresh.id());
   Inbox<RobotState> state_inbox;
-  Inbox<RobotObservation> observation_inbox;
+  Inbox<RobotObservationBatch> observation_inbox;
   Inbox<Heartbeat> heartbeat_inbox;
   auto state_reader = make_inbox_reader(*p, dds::kRobotState, state_inbox);
-  auto observation_reader = make_inbox_reader(*p, dds::kRobotObservation, observation_inbox);
+  auto observation_reader = make_inbox_reader(*p, dds::kRobotObservations, observation_inbox);
   auto heartbeat_reader = make_inbox_reader(*p, dds::kHeartbeat, heartbeat_inbox);
   group.start("replay", {bin_path("slamctl"), "--domain", std::to_string(fresh.id()), "--timeout", "30",
                          "replay", file, "--rate", "4"});
@@ -183,7 +190,7 @@ TEST(RecordReplayTest, RecordsEveryTopicWithTrafficAndReplaysItIntoAFreshDomain)
             std::string::npos)
       << group.log("replay");
   EXPECT_EQ(state_inbox.items(), states);
-  EXPECT_EQ(observation_inbox.items(), observations);
+  EXPECT_EQ(observation_inbox.items(), batches);
   EXPECT_EQ(heartbeat_inbox.items(), beats);
 }
 

@@ -26,6 +26,7 @@
 #include "common/core/grid_tiles.hpp"
 #include "common/fastdds/fast_topics.hpp"
 #include "fastdds_inbox.hpp"
+#include "observation_batches.hpp"
 #include "process_group.hpp"
 
 namespace slam::testkit {
@@ -156,7 +157,7 @@ class SlamMapperTest : public ::testing::Test {
     auto p = dds::Participant::create(domain_.id(), "slam_test");
     ASSERT_TRUE(p) << p.message();
     participant_ = std::move(*p);
-    observations_ = make_test_writer(*participant_, dds::kRobotObservation);
+    observations_ = make_test_writer(*participant_, dds::kRobotObservations);
     correction_reader_ = make_inbox_reader(*participant_, dds::kPoseCorrection, corrections_);
     snapshot_reader_ = make_inbox_reader(*participant_, dds::kGridSnapshot, snapshots_);
     patch_reader_ = make_inbox_reader(*participant_, dds::kGridTiles, patches_);
@@ -201,7 +202,7 @@ class SlamMapperTest : public ::testing::Test {
   // mapper closes a silent robot's keyframe by its own clock).
   void drive(const std::string& robot, int first, int last) {
     for (int k = first; k < last; ++k) {
-      ASSERT_TRUE(observations_->write(drifting_observation(robot, k)));
+      ASSERT_TRUE(observations_->write(batch_of(drifting_observation(robot, k))));
       std::this_thread::sleep_for(20ms);
     }
   }
@@ -230,7 +231,7 @@ class SlamMapperTest : public ::testing::Test {
   DomainLease domain_;
   ProcessGroup group_;
   std::unique_ptr<dds::Participant> participant_;
-  std::unique_ptr<dds::Writer<RobotObservation>> observations_;
+  std::unique_ptr<dds::Writer<RobotObservationBatch>> observations_;
   Inbox<PoseCorrection> corrections_;
   Inbox<GridSnapshot> snapshots_;
   Inbox<GridTiles> patches_;

@@ -20,6 +20,7 @@
 #include "common/fastdds/fast_topics.hpp"
 #include "inbox.hpp"
 #include "mqtt_test_client.hpp"
+#include "observation_batches.hpp"
 #include "received_map.hpp"
 
 namespace slam::system_test {
@@ -156,11 +157,10 @@ class Probe {
           std::lock_guard lock(mutex_);
           patches_.push_back(p);
         }));
-    observation_reader_ = take(dds::make_reader(*participant_, dds::kRobotObservation,
-                                                [this](const RobotObservation& o, const auto&) {
-                                                  std::lock_guard lock(mutex_);
-                                                  observed_[o.robot_id().to_string()].push_back(Clock::now());
-                                                }));
+    observation_reader_ = testkit::make_observation_reader(*participant_, [this](const RobotObservation& o) {
+      std::lock_guard lock(mutex_);
+      observed_[o.robot_id().to_string()].push_back(Clock::now());
+    });
     heartbeat_reader_ =
         take(dds::make_reader(*participant_, dds::kHeartbeat, [this](const Heartbeat& h, const auto&) {
           std::lock_guard lock(mutex_);
@@ -239,7 +239,7 @@ class Probe {
   std::unique_ptr<dds::Participant> participant_;
   std::unique_ptr<dds::Reader<GridSnapshot>> snapshot_reader_;
   std::unique_ptr<dds::Reader<GridTiles>> patch_reader_;
-  std::unique_ptr<dds::Reader<RobotObservation>> observation_reader_;
+  std::unique_ptr<dds::Reader<RobotObservationBatch>> observation_reader_;
   std::unique_ptr<dds::Reader<Heartbeat>> heartbeat_reader_;
   std::unique_ptr<dds::Writer<NavGoal>> goals_;
 };

@@ -20,6 +20,7 @@
 #include <tuple>
 
 #include "common/fastdds/fast_topics.hpp"
+#include "observation_batches.hpp"
 #include "process_group.hpp"
 #include "viewer/core/cell_colors.hpp"
 #include "viewer/core/view_transform.hpp"
@@ -175,7 +176,7 @@ TEST(ViewerTest, RendersGridRobotsAndPointsAndSendsClicks) {
   auto& p = **participant;
   auto grid_w = dds::make_writer(p, dds::kGridSnapshot);
   auto state_w = dds::make_writer(p, dds::kRobotState);
-  auto obs_w = dds::make_writer(p, dds::kRobotObservation);
+  auto obs_w = dds::make_writer(p, dds::kRobotObservations);
   auto path_w = dds::make_writer(p, dds::kRobotPath);
   auto goal_r = dds::make_reader(p, dds::kNavGoal);
   auto edit_r = dds::make_reader(p, dds::kMapEdit);
@@ -216,8 +217,8 @@ TEST(ViewerTest, RendersGridRobotsAndPointsAndSendsClicks) {
   const Pose2 a = pose(-3.0, 2.0, 0.0), b = pose(-3.0, -2.5, M_PI / 2.0);
   (*state_w)->write(state("alpha", a));
   (*state_w)->write(state("bravo", b));
-  (*obs_w)->write(observation("alpha", a, -1.0, 1.0));
-  (*obs_w)->write(observation("bravo", b, -1.0, -2.0));
+  (*obs_w)->write(testkit::batch_of(observation("alpha", a, -1.0, 1.0)));
+  (*obs_w)->write(testkit::batch_of(observation("bravo", b, -1.0, -2.0)));
   RobotPath path;
   path.robot_id("alpha");
   path.goal_id(1);
@@ -320,7 +321,7 @@ TEST(ViewerTest, DrawsRawPointsThroughTheCorrectionAndSendsInitialPose) {
   auto& p = **participant;
   auto grid_w = dds::make_writer(p, dds::kGridSnapshot);
   auto state_w = dds::make_writer(p, dds::kRobotState);
-  auto obs_w = dds::make_writer(p, dds::kRobotObservation);
+  auto obs_w = dds::make_writer(p, dds::kRobotObservations);
   auto correction_w = dds::make_writer(p, dds::kPoseCorrection);
   auto initial_r = dds::make_reader(p, dds::kInitialPose);
   ASSERT_TRUE(grid_w && state_w && obs_w && correction_w && initial_r);
@@ -365,7 +366,7 @@ TEST(ViewerTest, DrawsRawPointsThroughTheCorrectionAndSendsInitialPose) {
       << group.log("viewer");
   (*grid_w)->write(make_grid());
   (*state_w)->write(state("alpha", pose(-3.0, 2.0, 0.0)));
-  (*obs_w)->write(observation("alpha", pose(0.0, 0.0, 0.0), 2.0, 1.0));
+  (*obs_w)->write(testkit::batch_of(observation("alpha", pose(0.0, 0.0, 0.0), 2.0, 1.0)));
 
   ASSERT_EQ(group.wait_exit("viewer", 90s), 0) << group.log("viewer");
   const std::string log = group.log("viewer");
@@ -400,7 +401,7 @@ TEST(ViewerTest, SnapshotsPeriodicallyAndFitsToDataThatArrivesLater) {
   auto& p = **participant;
   auto grid_w = dds::make_writer(p, dds::kGridSnapshot);
   auto state_w = dds::make_writer(p, dds::kRobotState);
-  auto obs_w = dds::make_writer(p, dds::kRobotObservation);
+  auto obs_w = dds::make_writer(p, dds::kRobotObservations);
   ASSERT_TRUE(grid_w && state_w && obs_w);
 
   ProcessGroup group;
@@ -418,7 +419,7 @@ TEST(ViewerTest, SnapshotsPeriodicallyAndFitsToDataThatArrivesLater) {
   (*grid_w)->write(make_grid());
   const Pose2 a = pose(-3.0, 2.0, 0.0);
   (*state_w)->write(state("alpha", a));
-  (*obs_w)->write(observation("alpha", a, -1.0, 1.0));
+  (*obs_w)->write(testkit::batch_of(observation("alpha", a, -1.0, 1.0)));
 
   // The second snapshot taken with the data in (the log lines name them): by then the view has
   // held still long enough for the point texture to be complete.

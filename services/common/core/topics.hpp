@@ -23,15 +23,15 @@ struct QosSpec {
 inline constexpr QosSpec kStateQos{true, true, 1, 0};
 // Reliable data stream with a deep history (per key) so bursts are not lost (map patches).
 inline constexpr QosSpec kStreamQos{true, false, 200, 0};
-// Robot observations (one writer per gateway, one key per robot, ~10 samples/s each): reliable, but
-// a writer keeps only the last 4 per robot for repair. A lost datagram is repaired within one
-// heartbeat round trip (100-200 ms: 1-2 samples of a robot), so 4 leaves twice that. A reader that
-// falls further behind loses the older samples (counted: SAMPLE_LOST, the mapper's
-// `observations_lost`) instead of every robot's history growing: Fast DDS keeps a writer's
-// per-reader state in vectors it walks and shifts per sample, so 200 per robot let a lagging reader
-// slow the writer until the pipeline collapsed (docs/performance.md, "Overload"). Readers keep
-// 200 per robot: what a slow reader's socket still holds while it waits for a repair.
-inline constexpr QosSpec kObservationQos{true, false, 4, 0, 200};
+// Robot observations in batches (one writer and one key per gateway, ~80-150 batches/s at 10 000
+// robot messages/s): reliable, but a writer keeps only the last 64 batches (0.4 s or more of
+// traffic) for repair; a lost datagram is repaired within one heartbeat round trip (100-200 ms). A
+// reader that falls further behind loses the older batches (counted: SAMPLE_LOST, the mapper's
+// `observation_batches_lost`) instead of the history growing: Fast DDS keeps a writer's per-reader
+// state in vectors it walks and shifts per sample, so a deep history lets a lagging reader slow the
+// writer until the pipeline collapses (docs/performance.md, "Overload"). Readers keep 256 batches:
+// what a slow reader's socket still holds while it waits for a repair.
+inline constexpr QosSpec kObservationQos{true, false, 64, 0, 256};
 // A gateway's fleet digests (one sample per gateway, every robot in it, 50-150 KB at 1000 robots,
 // so fragmented): only the latest matters, a newer one replaces what is still being repaired, and
 // a late joiner waits one period for the next.
@@ -48,7 +48,7 @@ struct TopicInfo {
   QosSpec qos;
 };
 
-inline constexpr TopicInfo kRobotObservation{"slam/robot/observation", kObservationQos};
+inline constexpr TopicInfo kRobotObservations{"slam/robot/observations", kObservationQos};
 inline constexpr TopicInfo kRobotState{"slam/robot/state", kStateQos};
 inline constexpr TopicInfo kRobotOdometry{"slam/robot/odometry", kStateQos};
 inline constexpr TopicInfo kPoseCorrection{"slam/robot/correction", kStateQos};

@@ -13,7 +13,8 @@
 
 namespace slam::dds {
 
-inline const Topic<RobotObservation, RobotObservationPubSubType> kRobotObservation{topics::kRobotObservation};
+inline const Topic<RobotObservationBatch, RobotObservationBatchPubSubType> kRobotObservations{
+    topics::kRobotObservations};
 inline const Topic<RobotState, RobotStatePubSubType> kRobotState{topics::kRobotState};
 inline const Topic<RobotOdometry, RobotOdometryPubSubType> kRobotOdometry{topics::kRobotOdometry};
 inline const Topic<PoseCorrection, PoseCorrectionPubSubType> kPoseCorrection{topics::kPoseCorrection};

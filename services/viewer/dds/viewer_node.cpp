@@ -1,18 +1,25 @@
 // The viewer's readers, writers and heartbeat (see viewer_node.hpp).
 #include "viewer/dds/viewer_node.hpp"
 
+#include <type_traits>
+
 #include "viewer/core/request_tracker.hpp"
 #include "viewer/dds/node_convert.hpp"
 
 namespace slam::viewer {
 namespace {
 
-// A reader whose callback converts each sample and pushes it into the intake.
+// A reader whose callback converts each sample (each observation of a batch) and pushes it into the
+// intake.
 template <class T, class PubSubT>
 Status make_intake_reader(dds::Participant& p, const dds::Topic<T, PubSubT>& topic, Intake& intake,
                           std::atomic<int64_t>& received, std::unique_ptr<dds::Reader<T>>& out) {
   auto r = dds::make_reader(p, topic, [&intake, &received](const T& sample, const dds::fdds::SampleInfo&) {
-    intake.push(from_idl(sample));
+    if constexpr (std::is_same_v<T, RobotObservationBatch>) {
+      for (const RobotObservation& o : sample.observations()) intake.push(from_idl(o));
+    } else {
+      intake.push(from_idl(sample));
+    }
     bump(received);
   });
   if (!r) return Error{std::string("reader for ") + topic.info.name + ": " + r.message()};
@@ -95,7 +102,7 @@ Status ViewerNode::create_readers() {
   auto& rx = received_;
   for (Status s : {make_intake_reader(p, dds::kGridSnapshot, in, rx, snapshot_reader_),
                    make_intake_reader(p, dds::kGridTiles, in, rx, patch_reader_),
-                   make_intake_reader(p, dds::kRobotObservation, in, rx, observation_reader_),
+                   make_intake_reader(p, dds::kRobotObservations, in, rx, observation_reader_),
                    make_intake_reader(p, dds::kRobotState, in, rx, state_reader_),
                    make_intake_reader(p, dds::kRobotPath, in, rx, path_reader_),
                    make_intake_reader(p, dds::kNavMission, in, rx, mission_reader_),

@@ -69,7 +69,7 @@ class ViewerNode final : public CommandSink {
   std::unique_ptr<dds::Requester<PathReply>> path_requester_;
   std::unique_ptr<dds::Reader<GridSnapshot>> snapshot_reader_;
   std::unique_ptr<dds::Reader<GridTiles>> patch_reader_;
-  std::unique_ptr<dds::Reader<RobotObservation>> observation_reader_;
+  std::unique_ptr<dds::Reader<RobotObservationBatch>> observation_reader_;
   std::unique_ptr<dds::Reader<RobotState>> state_reader_;
   std::unique_ptr<dds::Reader<RobotPath>> path_reader_;
   std::unique_ptr<dds::Reader<NavMission>> mission_reader_;

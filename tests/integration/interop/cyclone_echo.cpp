@@ -27,7 +27,7 @@ struct EchoTopic {
 };
 
 const EchoTopic kTopics[] = {
-    {&slam_RobotObservation_desc, slam::topics::kRobotObservation},
+    {&slam_RobotObservationBatch_desc, slam::topics::kRobotObservations},
     {&slam_RobotState_desc, slam::topics::kRobotState},
     {&slam_RobotOdometry_desc, slam::topics::kRobotOdometry},
     {&slam_PoseCorrection_desc, slam::topics::kPoseCorrection},

@@ -79,7 +79,7 @@ Case make_case(const char* type, const dds::Topic<T, P>& topic, T (*make)()) {
 
 const std::vector<Case>& cases() {
   static const std::vector<Case> all = {
-      make_case("RobotObservation", dds::kRobotObservation, &sample_robot_observation),
+      make_case("RobotObservationBatch", dds::kRobotObservations, &sample_robot_observations),
       make_case("RobotState", dds::kRobotState, &sample_robot_state),
       make_case("RobotOdometry", dds::kRobotOdometry, &sample_robot_odometry),
       make_case("PoseCorrection", dds::kPoseCorrection, &sample_pose_correction),

@@ -36,7 +36,7 @@ std::vector<uint8_t> bytes(size_t n) {
 
 }  // namespace
 
-RobotObservation sample_robot_observation() {
+RobotObservationBatch sample_robot_observations() {
   RobotObservation s;
   s.robot_id("robot-ä7");
   s.seq(123456789012ULL);
@@ -46,7 +46,17 @@ RobotObservation sample_robot_observation() {
   s.has_heading(true);
   s.hits(points(500, 0.05));
   s.misses(points(300, -0.02));
-  return s;
+  RobotObservation v1;
+  v1.robot_id("r1");
+  v1.seq(1);
+  v1.protocol(PROTOCOL_V1);
+  v1.pose(pose(-3, 4, 0));
+  v1.hits(points(3, 0.1));
+  RobotObservationBatch batch;
+  batch.gateway_id("host:1234");
+  batch.batch_seq(42);
+  batch.observations({s, v1});
+  return batch;
 }
 
 RobotState sample_robot_state() {

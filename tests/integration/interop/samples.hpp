@@ -5,7 +5,7 @@
 
 namespace slam::interop {
 
-RobotObservation sample_robot_observation();
+RobotObservationBatch sample_robot_observations();
 RobotState sample_robot_state();
 RobotOdometry sample_robot_odometry();
 PoseCorrection sample_pose_correction();

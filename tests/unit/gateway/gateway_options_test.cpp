@@ -48,7 +48,9 @@ TEST(GatewayOptions, FlagsBind) {
                                 "--digest-points-period-s",
                                 "2",
                                 "--digest-points-per-robot",
-                                "40"};
+                                "40",
+                                "--batch-ms",
+                                "2.5"};
   std::vector<char*> argv;
   for (auto& a : args) argv.push_back(a.data());
   app.parse(static_cast<int>(argv.size()), argv.data());
@@ -61,6 +63,7 @@ TEST(GatewayOptions, FlagsBind) {
   EXPECT_DOUBLE_EQ(o.digest_period_s, 0.5);
   EXPECT_DOUBLE_EQ(o.digest_points_period_s, 2.0);
   EXPECT_EQ(o.digest_points_per_robot, 40u);
+  EXPECT_DOUBLE_EQ(o.batch_ms, 2.5);
   EXPECT_EQ(error_of(o), "");
 }
 
@@ -91,6 +94,7 @@ TEST(GatewayOptions, BadValuesNameTheKey) {
   EXPECT_NE(with([](auto& o) { o.limits.units_per_meter = 0; }).find("units_per_meter"), std::string::npos);
   EXPECT_NE(with([](auto& o) { o.offline_after_s = -1; }).find("offline-after-s"), std::string::npos);
   EXPECT_NE(with([](auto& o) { o.max_robots = 0; }).find("max-robots"), std::string::npos);
+  EXPECT_NE(with([](auto& o) { o.batch_ms = -1; }).find("batch-ms"), std::string::npos);
   EXPECT_NE(with([](auto& o) { o.traffic_queue = 0; }).find("traffic-queue"), std::string::npos);
   EXPECT_NE(with([](auto& o) { o.digest_period_s = 0; }).find("digest-period-s"), std::string::npos);
   EXPECT_NE(with([](auto& o) { o.digest_points_period_s = 100; }).find("digest-points-period-s"),

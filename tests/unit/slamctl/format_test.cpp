@@ -212,6 +212,22 @@ TEST(SlamctlFormat, FleetDigestAndPointsLinesCountRobotsAndPoints) {
   EXPECT_EQ(describe(points), "points of gateway vm:42: 2 robots, 21 points");
 }
 
+TEST(SlamctlFormat, ObservationBatchIsALineThenOneIndentedLinePerObservation) {
+  RobotObservationBatch batch;
+  batch.gateway_id("vm:42");
+  batch.batch_seq(7);
+  batch.observations().resize(2);
+  batch.observations()[0].robot_id("r1");
+  batch.observations()[0].seq(3);
+  batch.observations()[0].hits().resize(4);
+  batch.observations()[1].robot_id("r2");
+  batch.observations()[1].seq(9);
+  EXPECT_EQ(describe(batch),
+            "observations of gateway vm:42 batch 7: 2\n"
+            "  observation r1 seq 3 pose (0.00, 0.00, -) hits 4 misses 0\n"
+            "  observation r2 seq 9 pose (0.00, 0.00, -) hits 0 misses 0");
+}
+
 TEST(SlamctlFormat, AlertLineAndJson) {
   const std::string line = format_alert(alert("battery/sim-1", ALERT_BATTERY_LOW, true), 4'000'000'000);
   EXPECT_EQ(std::count(line.begin(), line.end(), '\n'), 1) << line;

@@ -1,0 +1,51 @@
+// When the gateway's batch of observations must be written: full by count, full by points, or due.
+#include "gateway/batch_policy.hpp"
+
+#include <gtest/gtest.h>
+
+namespace slam::gateway {
+namespace {
+
+constexpr std::int64_t kMs = 1'000'000;
+
+TEST(BatchPolicy, FullAfterTheLastObservationThatFits) {
+  BatchPolicy policy({.max_observations = 3, .max_points = 1000, .max_wait_ns = 10 * kMs});
+  EXPECT_TRUE(policy.empty());
+  EXPECT_FALSE(policy.add(5, 0));
+  EXPECT_FALSE(policy.add(5, 1));
+  EXPECT_TRUE(policy.add(5, 2));
+  policy.written();
+  EXPECT_TRUE(policy.empty());
+  EXPECT_FALSE(policy.add(5, 3)) << "a written batch starts over";
+}
+
+TEST(BatchPolicy, FullWhenThePointsWouldOutgrowOneDatagram) {
+  BatchPolicy policy({.max_observations = 100, .max_points = 40, .max_wait_ns = 10 * kMs});
+  EXPECT_FALSE(policy.add(16, 0));
+  EXPECT_FALSE(policy.add(16, 0));
+  EXPECT_TRUE(policy.add(16, 0));
+}
+
+TEST(BatchPolicy, DueWhenTheOldestObservationHasWaitedTheLimit) {
+  BatchPolicy policy({.max_observations = 100, .max_points = 1000, .max_wait_ns = 10 * kMs});
+  EXPECT_FALSE(policy.due(1000 * kMs)) << "an empty batch is never due";
+  policy.add(1, 100 * kMs);
+  policy.add(1, 108 * kMs);
+  EXPECT_EQ(policy.due_ns(), 110 * kMs) << "the first observation sets the deadline";
+  EXPECT_FALSE(policy.due(109 * kMs));
+  EXPECT_TRUE(policy.due(110 * kMs));
+  policy.written();
+  EXPECT_FALSE(policy.due(200 * kMs));
+  policy.add(1, 200 * kMs);
+  EXPECT_EQ(policy.due_ns(), 210 * kMs);
+}
+
+TEST(BatchPolicy, OneObservationPerBatchWritesEachAtOnce) {
+  BatchPolicy policy({.max_observations = 1, .max_wait_ns = 0});
+  EXPECT_TRUE(policy.add(0, 0));
+  policy.written();
+  EXPECT_TRUE(policy.add(3, 1));
+}
+
+}  // namespace
+}  // namespace slam::gateway
