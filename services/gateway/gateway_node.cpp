@@ -193,11 +193,17 @@ void GatewayNode::run_once() {
         std::chrono::nanoseconds(std::min(next_digest_ns_, next_points_ns_)));
     const auto states_due_at =
         std::chrono::steady_clock::time_point(std::chrono::nanoseconds(next_states_ns_));
-    auto wake = std::min(
+    const auto wake = std::min(
         {std::max(steady_now, states_due_at), mqtt_->next_attempt(), std::max(steady_now, digest_due)});
-    if (batch_due_ns_ != 0)
-      wake = std::min(wake, std::chrono::steady_clock::time_point(std::chrono::nanoseconds(batch_due_ns_)));
-    loop_wake_.wait_until(lock, wake, [&] { return urgent_; });
+    // The MQTT thread arms a new batch's deadline and notifies: sleep on to the earlier time then.
+    for (;;) {
+      auto until = wake;
+      if (batch_due_ns_ != 0)
+        until =
+            std::min(until, std::chrono::steady_clock::time_point(std::chrono::nanoseconds(batch_due_ns_)));
+      if (urgent_ || std::chrono::steady_clock::now() >= until) break;
+      loop_wake_.wait_until(lock, until);
+    }
     const bool urgent = urgent_;
     urgent_ = false;
     now = {now_ns(), monotonic_ns()};

@@ -57,9 +57,10 @@ class GatewayNode {
       static_cast<std::int64_t>(kGatewayHeartbeatPeriodS * 1000.0)};
 
   // One loop pass: waits up to the state period (less when a robot appears, changes presence or gets
-  // a new correction, or an MQTT reconnection attempt or a fleet digest is due), starts a due
-  // attempt, marks silent robots offline, publishes changed RobotStates with their RobotOdometry,
-  // the fleet digests when due and, when changed, MqttSubscriptions.
+  // a new correction, or an MQTT reconnection attempt, a fleet digest or a batch of observations is
+  // due), writes a due batch, starts a due attempt, marks silent robots offline, publishes changed
+  // RobotStates with their RobotOdometry, the fleet digests when due and, when changed,
+  // MqttSubscriptions.
   void run_once();
 
  private:

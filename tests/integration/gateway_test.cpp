@@ -328,6 +328,27 @@ TEST_F(GatewayTest, RobotStatesFollowTheStatePeriodNotTheLoopsOtherWakes) {
   EXPECT_LE(probe.state_count("steady"), 2u) << group.log("gateway");
 }
 
+TEST_F(GatewayTest, AnObservationWaitsForItsBatchTimeNotForTheLoopsNextWake) {
+  // Nothing else wakes the loop for 10 s: a batch still leaves after --batch-ms.
+  ASSERT_NO_FATAL_FAILURE(start_gateway({"--state-period-s", "10", "--digest-period-s", "30",
+                                         "--digest-points-period-s", "30", "--batch-ms", "20"}));
+  MqttTestClient robot(port, "lone");
+  ASSERT_EQ(robot.connect(), 0);
+  ASSERT_TRUE(wait_until(
+      [&] {
+        robot.publish("v1/robot/lone/adv", hex_bytes("64000000"), 0);
+        return !probe.observations("lone").empty();
+      },
+      10s, 100ms));
+  std::this_thread::sleep_for(500ms);  // the first sighting's wake is over; the loop sleeps for 10 s
+  for (int i = 1; i <= 3; ++i) {
+    const size_t seen = probe.observations("lone").size();
+    ASSERT_TRUE(robot.publish("v1/robot/lone/adv", std::string{static_cast<char>(100 + i), 0, 0, 0}, 0));
+    EXPECT_TRUE(wait_until([&] { return probe.observations("lone").size() > seen; }, 3s))
+        << "observation " << i << " waited for the loop's next wake";
+  }
+}
+
 TEST_F(GatewayTest, MalformedFloodLeavesAValidRobotUnaffected) {
   ASSERT_NO_FATAL_FAILURE(start_gateway());
   MqttTestClient attacker(port, "attacker");
