@@ -1,7 +1,9 @@
 #pragma once
-// When the gateway's batch of observations goes out: as soon as it is full (observations or
-// points, so one batch stays within one UDP datagram), or once its oldest observation has waited
-// the longest the operator allows (--batch-ms). Plain bookkeeping; the node keeps the samples.
+// When the gateway's batch of observations goes out: before an observation that would take it
+// over its limits (observations or points, so a batch stays within one UDP datagram; one message
+// larger than that goes in a batch of its own), as soon as it is full, or once its oldest
+// observation has waited the longest the operator allows (--batch-ms). Plain bookkeeping; the node
+// keeps the samples.
 #include <cstddef>
 #include <cstdint>
 
@@ -17,6 +19,9 @@ class BatchPolicy {
  public:
   explicit BatchPolicy(BatchLimits limits) : limits_(limits) {}
 
+  // Whether an observation with `points` points still goes into this batch (always into an empty
+  // one); if not, the batch is written first.
+  bool fits(std::size_t points) const;
   // Counts one more observation with `points` points, added at `now_mono_ns`. True when the batch
   // is full and must be written now.
   bool add(std::size_t points, std::int64_t now_mono_ns);

@@ -38,17 +38,15 @@ void GatewayNode::on_mqtt_message(std::string_view topic, std::span<const std::u
   switch (kind) {
     case InboundKind::Observation: {
       const protocol::DecodedObservation& observation = decoder_.observation();
+      const std::size_t points = observation.hits.size() + observation.misses.size();
+      if (!batch_policy_.fits(points)) write_batch();
+      const bool first = batch_policy_.empty();
       fill_observation(decoder_.robot_id(), accepted.seq, now.wall_ns, decoder_.protocol(), observation,
                        append_observation(batch_, spare_observations_));
-      if (batch_policy_.add(observation.hits.size() + observation.misses.size(), now.mono_ns)) {
+      if (batch_policy_.add(points, now.mono_ns) || batch_policy_.due(now.mono_ns)) {
         write_batch();
-      } else if (batch_.observations().size() == 1) {
-        // A new batch: the loop writes it when its wait is over, unless it fills up first.
-        {
-          std::lock_guard lock(registry_mutex_);
-          batch_due_ns_ = batch_policy_.due_ns();
-        }
-        loop_wake_.notify_one();
+      } else if (first) {
+        arm_batch_deadline();  // the loop writes it when its wait is over, unless it fills up first
       }
       return;
     }
@@ -81,13 +79,23 @@ void GatewayNode::write_batch() {
   batch_policy_.written();
 }
 
+void GatewayNode::arm_batch_deadline() {
+  const std::int64_t due = batch_policy_.due_ns();
+  {
+    std::lock_guard lock(registry_mutex_);
+    // A deadline armed earlier wakes the loop first, and the loop arms this one then.
+    if (batch_due_ns_ != 0 && batch_due_ns_ <= due) return;
+    batch_due_ns_ = due;
+  }
+  loop_wake_.notify_one();
+}
+
 void GatewayNode::flush_batch_when_due(std::int64_t now_mono_ns) {
   std::lock_guard inbound(inbound_mutex_);
   if (batch_policy_.due(now_mono_ns)) {
     write_batch();
   } else if (!batch_policy_.empty()) {
-    std::lock_guard lock(registry_mutex_);
-    batch_due_ns_ = batch_policy_.due_ns();
+    arm_batch_deadline();
   }
 }
 

@@ -89,6 +89,20 @@ GatewayNode::GatewayNode(const GatewayOptions& options, Counters& counters)
       ownership_(ServiceIdentity::of("gateway").instance_id, monotonic_ns(), ownership_config(options)),
       protocols_(options.max_robots) {}
 
+GatewayNode::~GatewayNode() {
+  // The members' own order (readers, then the MQTT client), with the last batch written before the
+  // writers go.
+  forget_reader_.reset();
+  state_reader_.reset();
+  heartbeat_reader_.reset();
+  request_reader_.reset();
+  waypoint_reader_.reset();
+  correction_reader_.reset();
+  mqtt_.reset();
+  std::lock_guard inbound(inbound_mutex_);
+  if (observation_writer_ && !batch_policy_.empty()) write_batch();
+}
+
 Result<std::unique_ptr<GatewayNode>> GatewayNode::create(const GatewayOptions& options, Counters& counters) {
   std::unique_ptr<GatewayNode> node(new GatewayNode(options, counters));
   SLAM_TRY(node->configure());

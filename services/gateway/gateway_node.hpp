@@ -47,6 +47,9 @@ class GatewayNode {
   // Configure: participant, writers, traffic worker, MQTT client, readers. A failure undoes
   // what was done (members are destroyed in reverse order).
   static Result<std::unique_ptr<GatewayNode>> create(const GatewayOptions& options, Counters& counters);
+  // Stops the readers and the MQTT client, then writes the last batch: MQTT has taken those
+  // messages from the broker already.
+  ~GatewayNode();
   GatewayNode(const GatewayNode&) = delete;
   GatewayNode& operator=(const GatewayNode&) = delete;
 
@@ -106,6 +109,8 @@ class GatewayNode {
   void log_presence(std::string_view robot_id, const AcceptResult& result);
   // MQTT thread, or the loop holding inbound_mutex_: writes the pending observations in one sample.
   void write_batch();
+  // Holding inbound_mutex_: makes the loop wake when the current batch is due.
+  void arm_batch_deadline();
   // Loop: writes the batch if its oldest observation has waited long enough, else wakes again then.
   void flush_batch_when_due(std::int64_t now_mono_ns);
   // DDS reader threads.
@@ -152,7 +157,7 @@ class GatewayNode {
   std::mutex corrections_mutex_;
   CorrectionTable corrections_;
 
-  // MQTT receive thread only (the mutex makes that a guarantee rather than an assumption).
+  // MQTT receive thread, and the loop to write a due batch. Taken before registry_mutex_, never after.
   std::mutex inbound_mutex_;
   InboundDecoder decoder_;
   BatchPolicy batch_policy_;
@@ -192,6 +197,7 @@ class GatewayNode {
 
   // Destroyed bottom-up: readers stop first (they publish through the MQTT client), then the MQTT
   // client (its callbacks write observations and traffic), the traffic worker, writers, participant.
+  // ~GatewayNode stops the readers and the client itself to write the last batch before the writers go.
   std::unique_ptr<dds::Participant> participant_;
   std::unique_ptr<dds::Writer<slam::RobotObservationBatch>> observation_writer_;
   std::unique_ptr<dds::Writer<slam::RobotState>> state_writer_;

@@ -30,6 +30,7 @@
 
 #include "common/core/clock.hpp"
 #include "common/fastdds/fast_topics.hpp"
+#include "observation_batches.hpp"
 #include "process_group.hpp"
 
 namespace {
@@ -214,13 +215,8 @@ class Rig {
     auto participant = slam::dds::Participant::create(domain_.id(), "bench-gateway");
     if (!participant) throw std::runtime_error(participant.message());
     participant_ = std::move(*participant);
-    auto reader = slam::dds::make_reader(*participant_, slam::dds::kRobotObservations,
-                                         [this](const slam::RobotObservationBatch& b, const auto&) {
-                                           for (const slam::RobotObservation& o : b.observations())
-                                             observed(o);
-                                         });
-    if (!reader) throw std::runtime_error(reader.message());
-    reader_ = std::move(*reader);
+    reader_ = slam::testkit::make_observation_reader(
+        *participant_, [this](const slam::RobotObservation& o) { observed(o); });
     auto subscriptions = slam::dds::make_reader(*participant_, slam::dds::kMqttSubscriptions,
                                                 [this](const slam::MqttSubscriptions& s, const auto&) {
                                                   if (s.connected()) gateway_connected_.store(true);

@@ -19,11 +19,17 @@ TEST(BatchPolicy, FullAfterTheLastObservationThatFits) {
   EXPECT_FALSE(policy.add(5, 3)) << "a written batch starts over";
 }
 
-TEST(BatchPolicy, FullWhenThePointsWouldOutgrowOneDatagram) {
+TEST(BatchPolicy, AnObservationThatWouldOutgrowTheDatagramStartsTheNextBatch) {
   BatchPolicy policy({.max_observations = 100, .max_points = 40, .max_wait_ns = 10 * kMs});
+  EXPECT_TRUE(policy.fits(16));
   EXPECT_FALSE(policy.add(16, 0));
   EXPECT_FALSE(policy.add(16, 0));
-  EXPECT_TRUE(policy.add(16, 0));
+  EXPECT_FALSE(policy.fits(16)) << "48 points would go over 40: the batch is written first";
+  EXPECT_TRUE(policy.fits(8)) << "exactly at the limit still fits";
+  EXPECT_TRUE(policy.add(8, 0)) << "and fills the batch";
+  policy.written();
+  EXPECT_TRUE(policy.fits(500)) << "a message larger than the limit goes alone into an empty batch";
+  EXPECT_TRUE(policy.add(500, 0));
 }
 
 TEST(BatchPolicy, DueWhenTheOldestObservationHasWaitedTheLimit) {

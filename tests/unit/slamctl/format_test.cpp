@@ -123,7 +123,7 @@ TEST(SlamctlFormat, ServiceLineShowsMainRatesAndOnlyNonZeroErrors) {
 
 TEST(SlamctlFormat, ErrorCountersAreRecognisedByName) {
   for (const char* name : {"write_failures", "robots_refused", "rejected_bad_json", "traffic_dropped",
-                           "observations_lost", "request_errors", "loop_overruns"})
+                           "observation_batches_lost", "request_errors", "loop_overruns"})
     EXPECT_TRUE(is_error_counter(name)) << name;
   for (const char* name : {"messages_in", "robots_online", "waypoints_sent", "alerts_active"})
     EXPECT_FALSE(is_error_counter(name)) << name;
