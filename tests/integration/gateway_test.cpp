@@ -349,6 +349,42 @@ TEST_F(GatewayTest, AnObservationWaitsForItsBatchTimeNotForTheLoopsNextWake) {
   }
 }
 
+TEST_F(GatewayTest, ABurstSharesSamplesAndKeepsEachRobotsOrder) {
+  ASSERT_NO_FATAL_FAILURE(start_gateway());
+  MqttTestClient robots(port, "burst");
+  ASSERT_EQ(robots.connect(), 0);
+  ASSERT_TRUE(wait_until(
+      [&] {
+        robots.publish("v1/robot/a/adv", hex_bytes("64000000"));
+        robots.publish("v1/robot/b/adv", hex_bytes("64000000"));
+        return !probe.observations("a").empty() && !probe.observations("b").empty();
+      },
+      10s, 100ms));
+  const size_t warmup_a = probe.observations("a").size(), warmup_b = probe.observations("b").size();
+  constexpr int kEach = 200;
+  for (int i = 0; i < kEach; ++i) {
+    const auto x = static_cast<char>(i % 100);
+    // QoS 0: no wait for the broker's acknowledgement, so the messages come as one burst.
+    ASSERT_TRUE(robots.publish("v1/robot/a/adv", std::string{x, 0, 0, 0}, 0));
+    ASSERT_TRUE(robots.publish("v1/robot/b/adv", std::string{x, 1, 0, 0}, 0));
+  }
+  ASSERT_TRUE(wait_until(
+      [&] {
+        return probe.observations("a").size() >= warmup_a + kEach &&
+               probe.observations("b").size() >= warmup_b + kEach;
+      },
+      20s))
+      << probe.observations("a").size() << " and " << probe.observations("b").size() << " observations";
+  for (const char* id : {"a", "b"}) {
+    const std::vector<RobotObservation> seen = probe.observations(id);
+    for (size_t k = 1; k < seen.size(); ++k)
+      ASSERT_EQ(seen[k].seq(), seen[k - 1].seq() + 1) << "robot " << id << " observation " << k;
+  }
+  // Several observations to a DDS sample: fewer batches than observations.
+  ASSERT_TRUE(wait_until([&] { return probe.counter("observations") >= 2 * kEach; }, 10s));
+  EXPECT_LT(probe.counter("observation_batches"), probe.counter("observations") / 2);
+}
+
 TEST_F(GatewayTest, MalformedFloodLeavesAValidRobotUnaffected) {
   ASSERT_NO_FATAL_FAILURE(start_gateway());
   MqttTestClient attacker(port, "attacker");
