@@ -23,10 +23,14 @@
 namespace slam::testkit {
 
 DomainLease::DomainLease() {
-  // Domains 20..230; the flock is released by the kernel even if the test process crashes.
-  const int start = 20 + static_cast<int>(getpid() % 200);
-  for (int i = 0; i < 211; ++i) {
-    const int id = 20 + (start - 20 + i) % 211;
+  // Domains 20..100: a domain's ports are 7400 + 250 × id and up, and above id 100 they fall into
+  // Linux's ephemeral range (32768 and up), where any client socket may hold one first and a
+  // participant then fails with "address in use". The flock is released by the kernel even if the
+  // test process crashes.
+  constexpr int kFirst = 20, kCount = 81;
+  const int start = static_cast<int>(getpid() % kCount);
+  for (int i = 0; i < kCount; ++i) {
+    const int id = kFirst + (start + i) % kCount;
     const std::string path = "/tmp/slamfleet-dds-domain-" + std::to_string(id) + ".lock";
     const int fd = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0666);
     if (fd < 0) continue;
@@ -37,7 +41,7 @@ DomainLease::DomainLease() {
     }
     ::close(fd);
   }
-  throw std::runtime_error("no free DDS domain id in 20..230");
+  throw std::runtime_error("no free DDS domain id in 20..100");
 }
 
 DomainLease::~DomainLease() {
