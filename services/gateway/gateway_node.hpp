@@ -59,11 +59,11 @@ class GatewayNode {
   static constexpr std::chrono::milliseconds kHeartbeatPeriod{
       static_cast<std::int64_t>(kGatewayHeartbeatPeriodS * 1000.0)};
 
-  // One loop pass: waits up to the state period (less when a robot appears, changes presence or gets
-  // a new correction, or an MQTT reconnection attempt, a fleet digest or a batch of observations is
-  // due), writes a due batch, starts a due attempt, marks silent robots offline, publishes changed
-  // RobotStates with their RobotOdometry, the fleet digests when due and, when changed,
-  // MqttSubscriptions.
+  // One loop pass. It waits up to the state period, less when a robot appears, changes presence or
+  // gets a new correction, or when an MQTT reconnection attempt, a fleet digest or a batch of
+  // observations is due. Then it writes a due batch, starts a due attempt and marks silent robots
+  // offline. It publishes the state and odometry of each robot that changed, the fleet digests
+  // when due, and the MQTT subscriptions when they changed.
   void run_once();
 
  private:

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <fstream>
+#include <initializer_list>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -142,6 +143,21 @@ class GatewayTest : public ::testing::Test {
     ASSERT_TRUE(wait_until([&] { return probe.connected(); }, 20s))
         << "gateway never reported an MQTT connection";
     ASSERT_TRUE(wait_until([&] { return probe.waypoint_reader_matched(); }, 10s));
+  }
+  // Publishes a v1 report as each robot of `ids` until the gateway has an observation of every one on
+  // DDS: the gateway reports its connection before the broker has acknowledged its subscriptions.
+  void report_until_seen(MqttTestClient& client, std::initializer_list<const char*> ids) {
+    ASSERT_TRUE(wait_until(
+        [&] {
+          bool all = true;
+          for (const char* id : ids) {
+            client.publish(std::string("v1/robot/") + id + "/adv", hex_bytes("64000000"), 0);
+            all = all && !probe.observations(id).empty();
+          }
+          return all;
+        },
+        10s, 100ms))
+        << group.log("gateway");
   }
   // Publishes a v1 adv payload from a file with mosquitto_pub, as a legacy robot's tooling would.
   void mosquitto_pub_file(const std::string& name, const std::string& topic, const std::string& payload) {
@@ -312,12 +328,7 @@ TEST_F(GatewayTest, RobotStatesFollowTheStatePeriodNotTheLoopsOtherWakes) {
   ASSERT_NO_FATAL_FAILURE(start_gateway({"--state-period-s", "5"}));
   MqttTestClient robot(port, "steady");
   ASSERT_EQ(robot.connect(), 0);
-  ASSERT_TRUE(wait_until(
-      [&] {
-        robot.publish("v1/robot/steady/adv", hex_bytes("64000000"), 0);
-        return !probe.observations("steady").empty();
-      },
-      10s, 100ms));
+  ASSERT_NO_FATAL_FAILURE(report_until_seen(robot, {"steady"}));
   // 30 moving reports over ~1.5 s: the first sighting goes out at once, the rest wait for the period.
   for (int i = 1; i <= 30; ++i) {
     const auto x = static_cast<char>(100 + i);
@@ -334,12 +345,7 @@ TEST_F(GatewayTest, AnObservationWaitsForItsBatchTimeNotForTheLoopsNextWake) {
                                          "--digest-points-period-s", "30", "--batch-ms", "20"}));
   MqttTestClient robot(port, "lone");
   ASSERT_EQ(robot.connect(), 0);
-  ASSERT_TRUE(wait_until(
-      [&] {
-        robot.publish("v1/robot/lone/adv", hex_bytes("64000000"), 0);
-        return !probe.observations("lone").empty();
-      },
-      10s, 100ms));
+  ASSERT_NO_FATAL_FAILURE(report_until_seen(robot, {"lone"}));
   std::this_thread::sleep_for(500ms);  // the first sighting's wake is over; the loop sleeps for 10 s
   for (int i = 1; i <= 3; ++i) {
     const size_t seen = probe.observations("lone").size();
@@ -353,13 +359,7 @@ TEST_F(GatewayTest, ABurstSharesSamplesAndKeepsEachRobotsOrder) {
   ASSERT_NO_FATAL_FAILURE(start_gateway());
   MqttTestClient robots(port, "burst");
   ASSERT_EQ(robots.connect(), 0);
-  ASSERT_TRUE(wait_until(
-      [&] {
-        robots.publish("v1/robot/a/adv", hex_bytes("64000000"));
-        robots.publish("v1/robot/b/adv", hex_bytes("64000000"));
-        return !probe.observations("a").empty() && !probe.observations("b").empty();
-      },
-      10s, 100ms));
+  ASSERT_NO_FATAL_FAILURE(report_until_seen(robots, {"a", "b"}));
   const size_t warmup_a = probe.observations("a").size(), warmup_b = probe.observations("b").size();
   constexpr int kEach = 200;
   for (int i = 0; i < kEach; ++i) {
@@ -391,14 +391,8 @@ TEST_F(GatewayTest, MalformedFloodLeavesAValidRobotUnaffected) {
   ASSERT_EQ(attacker.connect(), 0);
   MqttTestClient robot(port, "good");
   ASSERT_EQ(robot.connect(), 0);
-  // The gateway reports its connection before the broker has acknowledged its subscriptions: the
-  // flood starts once a robot message gets through, or the first good messages could go nowhere.
-  ASSERT_TRUE(wait_until(
-      [&] {
-        robot.publish("v1/robot/warmup/adv", hex_bytes("64000000"));
-        return !probe.observations("warmup").empty();
-      },
-      10s, 250ms));
+  // The flood starts once a robot message gets through, or the first good messages could go nowhere.
+  ASSERT_NO_FATAL_FAILURE(report_until_seen(robot, {"warmup"}));
 
   const std::vector<std::pair<std::string, std::string>> bad{
       {"v1/robot/bad/adv", "abc"},                       // bad_length
