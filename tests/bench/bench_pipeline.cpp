@@ -135,7 +135,7 @@ struct Drain {
   double seconds = 0.0;         // from the pause until both counts matched or stopped moving (>= 1.5)
   double gateway_gap = 0.0;     // sent by the simulator or the probe, not received by the gateway
   double mapper_gap = 0.0;      // published by the gateway, not taken in by the mapper
-  double mapper_counted = 0.0;  // of those, what the mapper counted lost (DDS SAMPLE_LOST) or dropped
+  double mapper_counted = 0.0;  // of those: batches counted lost (SAMPLE_LOST) + observations dropped
   bool settled = false;         // false: still moving at the timeout, so the gaps are still queued in part
 };
 
@@ -327,7 +327,7 @@ void report(benchmark::State& state, const PipelineSettings& settings, WindowEdg
       "(%.3f of the gateway's), %.1f points per observation; gateway RobotState %.0f/s\n"
       "  queues: mapper backlog %.0f -> %.0f observations (%.0f published before the mapper matched left "
       "out); dropped: mapper %.0f, simulator %.0f, "
-      "broker %.0f; lost by DDS before the mapper %.0f; simulator loop overruns %.0f\n"
+      "broker %.0f; batches lost by DDS before the mapper %.0f; simulator loop overruns %.0f\n"
       "  pose correction at the end: %.0f observations in open keyframes (by design), %.0f in closed "
       "keyframes "
       "not yet matched; %.0f keyframes/s, %.0f placed by odometry alone in the window\n"
