@@ -95,7 +95,7 @@ def figures: [
   {fig: "pipeline: observations dropped by the mapper", bench: "pipeline",
    name: "BM_Pipeline/iterations:1/real_time", field: "mapper_dropped", scale: 1, unit: "",
    target: {op: "==", value: 0, text: "0"}},
-  {fig: "pipeline: messages dropped by mosquitto / lost by DDS before the mapper", bench: "pipeline",
+  {fig: "pipeline: messages dropped by mosquitto / batches lost by DDS before the mapper", bench: "pipeline",
    name: "BM_Pipeline/iterations:1/real_time", field: ["broker_dropped", "mapper_dds_lost"], scale: 1, unit: "",
    target: {op: "==", value: 0, text: "0"}},
   {fig: "pipeline: map patches to each reader (GridTiles)", bench: "pipeline",
