@@ -5,6 +5,8 @@
 #include <cmath>
 #include <limits>
 
+#include "planner/traffic_geometry.hpp"
+
 namespace slam::planner {
 namespace {
 
@@ -74,11 +76,29 @@ void FleetCoordinator::coordinate(Fleet& fleet, const PlanningGrid& grid, int64_
     inputs_.push_back(TrafficRobot{position, ahead, s.route_since_ns, stable_hash(s.id)});
   }
   rules_.decide(grid, inputs_, now_ns, decisions_);
+  replan_off_leg(fleet, grid, now_ns);
   replan_held(fleet, grid, now_ns);
   for (size_t i = 0; i < decisions_.size(); ++i) {
     if (decisions_[i].waiting_since_ns >= 0)
       longest_wait_seen_s_ =
           std::max(longest_wait_seen_s_, static_cast<double>(now_ns - decisions_[i].waiting_since_ns) * 1e-9);
+  }
+}
+
+void FleetCoordinator::replan_off_leg(Fleet& fleet, const PlanningGrid& grid, int64_t now_ns) {
+  constexpr double kOffLegM = 0.1;
+  constexpr int64_t kRetryNs = 1'000'000'000;
+  for (size_t i = 0; i < decisions_.size(); ++i) {
+    Slot& s = robots_[i];
+    if (decisions_[i].order != TrafficOrder::Go || now_ns - s.replanned_ns < kRetryNs || !fleet.owns(s.id))
+      continue;
+    const GoalTracker* t = fleet.tracker(s.id);
+    const auto wp = t != nullptr && t->status() == GoalStatus::Active ? t->current_waypoint() : std::nullopt;
+    if (!wp || distance_to_segment(s.position, t->leg_start(), *wp) < kOffLegM ||
+        traffic::keeps_off_walls(grid, s.position, *wp, config_.robot_radius_m))
+      continue;
+    s.replanned_ns = now_ns;
+    if (fleet.replan_around(s.id, grid)) ++replans_;
   }
 }
 
@@ -170,6 +190,28 @@ TrafficOrder FleetCoordinator::order(const std::string& robot_id) const {
   const auto it = slots_.find(robot_id);
   if (it == slots_.end() || it->second >= decisions_.size()) return TrafficOrder::Go;
   return decisions_[it->second].order;
+}
+
+FleetCoordinator::Held FleetCoordinator::hold_of(const std::string& robot_id) const {
+  const auto it = slots_.find(robot_id);
+  if (it == slots_.end() || it->second >= decisions_.size()) return {};
+  const TrafficDecision& d = decisions_[it->second];
+  const auto blocker = static_cast<size_t>(d.blocker);
+  return Held{d.order, d.hold,
+              d.blocker >= 0 && blocker < robots_.size() ? robots_[blocker].id : std::string{}, d.deadlock,
+              d.section};
+}
+
+double FleetCoordinator::wait_s(const std::string& robot_id, int64_t now_ns) const {
+  const auto it = slots_.find(robot_id);
+  if (it == slots_.end() || it->second >= decisions_.size() || decisions_[it->second].waiting_since_ns < 0)
+    return 0.0;
+  return static_cast<double>(now_ns - decisions_[it->second].waiting_since_ns) * 1e-9;
+}
+
+std::string FleetCoordinator::leader() const {
+  const auto l = static_cast<size_t>(rules_.leader());
+  return rules_.leader() >= 0 && l < robots_.size() ? robots_[l].id : std::string{};
 }
 
 }  // namespace slam::planner

@@ -36,7 +36,9 @@
 // off it, and every robot standing on it is pushed into the nearest side room off it (within
 // clear_search_m, passing no other robot), the robot furthest ahead the deepest so the ones behind it
 // fit in the same branch; off the whole of the leader's route, not only the part cleared, since on a
-// tree a robot left further along it would be met again. The leader goes whenever no body stands
+// tree a robot left further along it would be met again. One with no side room in reach is pushed on
+// ahead along the route, never on a straight way that brings its body nearer a wall (a robot stops
+// against what it touches). The leader goes whenever no body stands
 // close ahead and every robot on its way has somewhere to go. It stays the leader until its route
 // ends or changes (the window cleared slides with it), or until neither it nor a robot clearing its
 // way has moved for clear_stall_s (then the others are tried first). The longest wait leads, so a
@@ -123,6 +125,8 @@ class TrafficRules {
   uint64_t deadlocks() const { return deadlocks_; }
   // Leaders whose way was cleared since the start.
   uint64_t clearings() const { return clearings_; }
+  // The robot whose way is cleared now (-1: none).
+  int32_t leader() const { return leader_; }
 
  private:
   double reach() const { return 2.0 * config_.robot_radius_m + config_.clearance_m; }
@@ -198,6 +202,7 @@ class TrafficRules {
   std::vector<uint8_t> stalled_;                         // robot i led and its way could not be cleared
   std::vector<Vec2> way_points_;                         // the leader's way ahead
   std::vector<uint8_t> pushed_;                          // robot i clears the leader's way (while it leads)
+  std::vector<Vec2> pushed_from_;                        // where robot i was when it last moved for it
   std::vector<double> push_depth_;                       // how much further off the way robot i goes
   std::vector<std::pair<double, uint32_t>> push_order_;  // (distance along the way, robot)
   uint32_t stamp_ = 0;
@@ -236,6 +241,20 @@ class FleetCoordinator {
   // The order for a robot (Go for one never seen).
   TrafficOrder order(const std::string& robot_id) const;
 
+  // For logs and tools: what holds a robot, with the robots named.
+  struct Held {
+    TrafficOrder order = TrafficOrder::Go;
+    Vec2 hold;
+    std::string blocker;  // empty: none
+    bool deadlock = false;
+    bool section = false;
+  };
+  Held hold_of(const std::string& robot_id) const;
+  // How long the robot has been held (0 when it is not).
+  double wait_s(const std::string& robot_id, int64_t now_ns) const;
+  // The robot whose way is cleared now (empty: none).
+  std::string leader() const;
+
  private:
   struct Slot {
     std::string id;
@@ -251,6 +270,10 @@ class FleetCoordinator {
     int64_t replanned_ns = std::numeric_limits<int64_t>::min() / 2;  // a way around last looked for
   };
   size_t slot(const std::string& robot_id);
+  // A robot of this planner told to go from off its route's leg (where it stepped aside or was
+  // pushed to) drives straight to its waypoint: when that way would run into a wall, its route is
+  // planned again from where it stands (at most once a second).
+  void replan_off_leg(Fleet& fleet, const PlanningGrid& grid, int64_t now_ns);
   // Re-plans the robots of this planner held longer than replan_after_s (and again as often), on a
   // copy of the grid with every other robot drawn in; a robot keeps its route when there is no other.
   void replan_held(Fleet& fleet, const PlanningGrid& grid, int64_t now_ns);

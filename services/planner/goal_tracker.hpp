@@ -90,6 +90,8 @@ class GoalTracker {
   const std::vector<Vec2>& waypoints() const { return waypoints_; }
   size_t current_index() const { return current_; }
   std::span<const Vec2> remaining() const;
+  // Where the current leg began: the previous waypoint, or where the path started.
+  Vec2 leg_start() const { return leg_start_; }
   bool homing() const { return homing_; }
   // Bumped whenever waypoints, current index or status change: time to publish the path again.
   uint64_t revision() const { return revision_; }

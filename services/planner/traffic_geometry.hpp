@@ -1,10 +1,13 @@
 #pragma once
-// Polyline distances shared by the traffic rules (traffic_rules.cpp, way_clearing.cpp).
+// Polyline and wall distances shared by the traffic rules (traffic_rules.cpp, way_clearing.cpp,
+// fleet_coordinator.cpp).
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <span>
 
 #include "planner/plan_types.hpp"
+#include "planner/planning_grid.hpp"
 
 namespace slam::planner::traffic {
 
@@ -60,6 +63,43 @@ inline double along(std::span<const Vec2> line, Vec2 p) {
     walked += len;
   }
   return best_at;
+}
+
+// Distance from p to the nearest occupied cell (its square, not its centre: the wall can lie
+// anywhere in it), or `limit` when none is nearer.
+inline double wall_gap(const PlanningGrid& grid, Vec2 p, double limit) {
+  const Vec2 g = grid.to_grid(p);
+  const auto reach = static_cast<int32_t>(std::ceil(limit / grid.resolution()));
+  const auto cx = static_cast<int32_t>(std::floor(g.x)), cy = static_cast<int32_t>(std::floor(g.y));
+  double best = limit;
+  for (int32_t y = cy - reach; y <= cy + reach; ++y)
+    for (int32_t x = cx - reach; x <= cx + reach; ++x) {
+      const Cell c{x, y};
+      if (!grid.contains(c) || (grid.at(c) & kCellStateMask) != kCellOccupied) continue;
+      const double dx = std::max({static_cast<double>(x) - g.x, 0.0, g.x - static_cast<double>(x + 1)});
+      const double dy = std::max({static_cast<double>(y) - g.y, 0.0, g.y - static_cast<double>(y + 1)});
+      best = std::min(best, std::hypot(dx, dy) * grid.resolution());
+    }
+  return best;
+}
+
+// True when a body of `radius` driving straight from `from` to `to` keeps `radius` from every wall,
+// or, standing nearer than that, gets no nearer to a wall anywhere on the way until it is `radius`
+// clear (a robot pressed against a wall may only drive away from it). A step that a planner's cell
+// test passes can still clip a wall's corner with the body: a robot sent so stops there for good.
+inline bool keeps_off_walls(const PlanningGrid& grid, Vec2 from, Vec2 to, double radius) {
+  if (grid.empty()) return true;
+  // The least gap allowed from here on: the radius, or below it the largest gap reached so far.
+  double least = std::min(radius, wall_gap(grid, from, radius)) - 1e-9;
+  const double length = distance(from, to);
+  const double step = 0.5 * grid.resolution();
+  for (double s = step; s < length + step; s += step) {
+    const Vec2 p = from + (to - from) * (std::min(s, length) / length);
+    const double gap = wall_gap(grid, p, radius);
+    if (gap < least) return false;
+    least = std::min(radius, std::max(least, gap)) - 1e-9;
+  }
+  return true;
 }
 
 }  // namespace slam::planner::traffic

@@ -81,6 +81,7 @@ void TrafficRules::clear_way(const PlanningGrid& grid, std::span<const TrafficRo
                              std::vector<TrafficDecision>& decisions) {
   const size_t n = robots.size();
   pushed_.resize(n, 0);
+  pushed_from_.resize(n);
   stalled_.resize(n, 0);
   push_depth_.resize(n, 0.0);
   // The longest way the leader can have (reserved here so a new leader allocates nothing).
@@ -147,6 +148,7 @@ void TrafficRules::clear_way(const PlanningGrid& grid, std::span<const TrafficRo
     if (!pushed_[k]) {
       // Room for the robots behind it on the way, which may follow it into the same branch.
       pushed_[k] = 1;
+      pushed_from_[k] = robots[k].position;
       push_depth_[k] = 2.0 * reach * static_cast<double>(std::min(on_way_behind, kMaxDepthSlots));
     }
     // After a robot that can go nowhere the rest wait too: a tick searches at most once in vain.
@@ -158,19 +160,30 @@ void TrafficRules::clear_way(const PlanningGrid& grid, std::span<const TrafficRo
       // No side room within reach: it drives on along the leader's route ahead of it (the "push"),
       // towards the next branch, unless the route ends there (a dead end: stuck) or a body is in
       // the way (a robot further on, pushed too: it waits for it to move).
-      step = point_along(leader, traffic::along(route, robots[k].position) + config_.yield_step_m);
+      const double along = traffic::along(route, robots[k].position);
+      step = point_along(leader, along + config_.yield_step_m);
       if (distance(step, robots[k].position) < kProgressM / 4.0) {
         stuck = true;
       } else {
-        go = keeps_apart(robots, k, step);
+        // Straight to a point ahead on the route can clip a corner from where the robot stands:
+        // then back onto the route first.
+        if (!traffic::keeps_off_walls(grid, robots[k].position, step, config_.robot_radius_m))
+          step = point_along(leader, along);
+        go = keeps_apart(robots, k, step) &&
+             traffic::keeps_off_walls(grid, robots[k].position, step, config_.robot_radius_m);
       }
     }
     if (go) {
       d.order = TrafficOrder::Yield;
       d.hold = step;
       committed_.push_back(step);
-      // Clearing is under way: the leader waiting for it is not stalled.
-      if (distance(step, robots[k].position) > kProgressM / 4.0) leader_progress_ns_ = now_ns;
+      // Clearing is under way while the robots sent off the way move: the leader waiting for them
+      // is not stalled (a robot sent but not moving, held by a wall or a robot, is no progress
+      // however often it is sent).
+      if (distance(robots[k].position, pushed_from_[k]) > kProgressM) {
+        pushed_from_[k] = robots[k].position;
+        leader_progress_ns_ = now_ns;
+      }
     } else {
       d.order = TrafficOrder::Wait;
       d.hold = robots[k].position;

@@ -20,6 +20,7 @@
 #include <thread>
 
 #include "common/fastdds/fast_topics.hpp"
+#include "eval/world_places.hpp"
 #include "process_group.hpp"
 #include "simulator/builtin_worlds.hpp"
 #include "simulator/config.hpp"
@@ -115,40 +116,6 @@ class Tap {
   std::unique_ptr<dds::Reader<Heartbeat>> heartbeats_;
   std::unique_ptr<dds::Writer<NavGoal>> goals_;
 };
-
-// Places on a 0.2 m lattice clear of walls by `clearance` and connected to `from` (the simulator's
-// odometry starts in the world frame, so these are map coordinates too).
-std::vector<Vec2> reachable_places(const sim::World& world, Vec2 from, double clearance) {
-  constexpr double kStep = 0.2;
-  const sim::Bounds& b = world.bounds();
-  const auto w = static_cast<int>((b.max.x - b.min.x) / kStep),
-             h = static_cast<int>((b.max.y - b.min.y) / kStep);
-  const auto at = [&](int x, int y) {
-    return Vec2{b.min.x + (x + 0.5) * kStep, b.min.y + (y + 0.5) * kStep};
-  };
-  std::vector<uint8_t> seen(static_cast<size_t>(w) * static_cast<size_t>(h), 0);
-  std::vector<std::pair<int, int>> queue;
-  int sx = std::clamp(static_cast<int>((from.x - b.min.x) / kStep), 0, w - 1);
-  int sy = std::clamp(static_cast<int>((from.y - b.min.y) / kStep), 0, h - 1);
-  queue.emplace_back(sx, sy);
-  seen[static_cast<size_t>(sy * w + sx)] = 1;
-  std::vector<Vec2> out;
-  for (size_t head = 0; head < queue.size(); ++head) {
-    const auto [x, y] = queue[head];
-    const Vec2 p = at(x, y);
-    if (world.is_free({p.x, p.y}, clearance)) out.push_back(p);
-    for (const auto& [dx, dy] : {std::pair{1, 0}, {-1, 0}, {0, 1}, {0, -1}}) {
-      const int nx = x + dx, ny = y + dy;
-      if (nx < 0 || ny < 0 || nx >= w || ny >= h || seen[static_cast<size_t>(ny * w + nx)]) continue;
-      const Vec2 q = at(nx, ny);
-      // Moving between lattice points must stay clear of walls (no passing through a wall).
-      if (!world.motion_clear({p.x, p.y}, {q.x, q.y}, 0.15)) continue;
-      seen[static_cast<size_t>(ny * w + nx)] = 1;
-      queue.emplace_back(nx, ny);
-    }
-  }
-  return out;
-}
 
 struct RobotRun {
   uint64_t goal_id = 0;

@@ -1,0 +1,19 @@
+#pragma once
+// A built-in world seen the way the fleet evaluations need it: the places a robot can be sent to,
+// and the planner's grid of the world as a mapper that had seen every wall would publish it.
+#include <vector>
+
+#include "planner/planning_grid.hpp"
+#include "simulator/world.hpp"
+
+namespace slam::bench {
+
+// Places on a 0.2 m lattice clear of walls by `clearance` and connected to `from` (the simulator's
+// odometry starts in the world frame, so these are map coordinates too).
+std::vector<Vec2> reachable_places(const sim::World& world, Vec2 from, double clearance);
+
+// The world as planner cells of `resolution`: a cell a wall runs through is occupied, one closer
+// to a wall than `inflation` (the mapper's robot radius) is inflated, every other cell is free.
+planner::PlanningGrid planning_grid_of(const sim::World& world, double resolution, double inflation);
+
+}  // namespace slam::bench
