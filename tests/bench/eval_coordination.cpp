@@ -179,7 +179,7 @@ class Evaluation {
         if (!next) continue;
         r.goal_id = ++next_goal;
         r.sent_s = sim_s;
-        send_goal(id, r.goal_id, pick_target(position));
+        send_goal(id, r.goal_id, pick_place(places_, position, o_.min_trip_m, rng_));
       }
       if (Clock::now() >= next_report) {
         std::fprintf(stderr, "eval_coordination: %s %s: %.0f of %.0f simulated s, %llu reached\n",
@@ -248,14 +248,6 @@ class Evaluation {
                  {testkit::bin_path("slam-simulator"), "--domain", domain, "--broker", broker, "--world",
                   o_.world, "--robots", std::to_string(o_.robots), "--speed", fmt::format("{}", o_.speed),
                   "--seed", std::to_string(o_.seed), "--log-level", "warn"});
-  }
-
-  Vec2 pick_target(Vec2 from) {
-    std::uniform_int_distribution<size_t> pick(0, places_.size() - 1);
-    Vec2 best = places_[pick(rng_)];
-    for (int attempt = 0; attempt < 20 && distance(best, from) < o_.min_trip_m; ++attempt)
-      best = places_[pick(rng_)];
-    return best;
   }
 
   void send_goal(const std::string& robot, uint64_t goal_id, Vec2 target) {

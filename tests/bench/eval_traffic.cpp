@@ -2,8 +2,9 @@
 // model (sim::Simulation: turning, collisions, the contact counter) drives on a built-in world; the
 // planner's Fleet and FleetCoordinator plan, hold, yield and lead them on a grid of the true walls,
 // each robot sent to one random reachable place after another, as eval_coordination does with the
-// whole system. A 20-minute run of 10 robots takes some ten seconds, so a rule change can be judged over many seeds before
-// the whole system measures it (the transport's delays and a map still being explored are left out).
+// whole system. A 20-minute run of 10 robots takes some ten seconds, so a rule change can be judged over many
+// seeds before the whole system measures it (the transport's delays and a map still being explored are left
+// out).
 // `--trace-wait S` prints every robot's order each time a wait passes a multiple of S seconds.
 // Run: build/bin/eval_traffic --world maze --robots 10 --seeds 8
 #include <CLI/CLI.hpp>
@@ -81,10 +82,10 @@ void trace(const Options& o, const sim::Simulation& simulation, const planner::F
                 coordinator.leader().c_str());
     for (const sim::Robot& k : simulation.robots()) {
       const auto h = coordinator.hold_of(k.id);
-      std::printf("  %s at (%.2f, %.2f): %s to (%.2f, %.2f)%s%s%s%s, held %.0f s\n", k.id.c_str(), k.true_pose.x,
-                  k.true_pose.y, order_name(h.order), h.hold.x, h.hold.y, h.blocker.empty() ? "" : " for ",
-                  h.blocker.c_str(), h.deadlock ? " (deadlock)" : "", h.section ? " (section)" : "",
-                  coordinator.wait_s(k.id, now_ns) * o.speed);
+      std::printf("  %s at (%.2f, %.2f): %s to (%.2f, %.2f)%s%s%s%s, held %.0f s\n", k.id.c_str(),
+                  k.true_pose.x, k.true_pose.y, order_name(h.order), h.hold.x, h.hold.y,
+                  h.blocker.empty() ? "" : " for ", h.blocker.c_str(), h.deadlock ? " (deadlock)" : "",
+                  h.section ? " (section)" : "", coordinator.wait_s(k.id, now_ns) * o.speed);
     }
   }
 }
@@ -102,7 +103,8 @@ Result<RunFigures> run_one(const Options& o, uint64_t seed) {
   sim::Simulation simulation = std::move(*made);
   auto ids = simulation.spawn_random(static_cast<size_t>(o.robots));
   if (!ids) return ids.error();
-  const auto places = reachable_places(*world, simulation.robots().front().true_pose.position(), o.clearance_m);
+  const auto places =
+      reachable_places(*world, simulation.robots().front().true_pose.position(), o.clearance_m);
   if (places.empty()) return Error{"no reachable place in world " + o.world};
 
   planner::FleetConfig fc;
@@ -113,7 +115,6 @@ Result<RunFigures> run_one(const Options& o, uint64_t seed) {
   fleet.grid_changed(grid, std::nullopt);
 
   std::mt19937_64 rng(seed);
-  std::uniform_int_distribution<size_t> pick(0, places.size() - 1);
   std::map<std::string, Run> runs;
   uint64_t next_goal = 1000;
   RunFigures f;
@@ -144,9 +145,7 @@ Result<RunFigures> run_one(const Options& o, uint64_t seed) {
         next = true;
       }
       if (!next) continue;
-      Vec2 target = places[pick(rng)];
-      for (int attempt = 0; attempt < 20 && distance(target, at) < o.min_trip_m; ++attempt)
-        target = places[pick(rng)];
+      const Vec2 target = pick_place(places, at, o.min_trip_m, rng);
       run.goal_id = ++next_goal;
       run.sent_s = sim_s;
       if (auto started = fleet.set_goal(r.id, planner::Goal{run.goal_id, planner::GoalMode::Planned, target});
@@ -158,7 +157,8 @@ Result<RunFigures> run_one(const Options& o, uint64_t seed) {
     fleet.due_waypoints(now_ns, due);
     coordinator.dispatch(fleet, due);
     for (const planner::DueWaypoint& d : due) SLAM_TRY(simulation.set_waypoint(d.robot_id, d.waypoint));
-    for (size_t k = 0; k < simulation.robots().size(); ++k) before[k] = simulation.robots()[k].true_pose.position();
+    for (size_t k = 0; k < simulation.robots().size(); ++k)
+      before[k] = simulation.robots()[k].true_pose.position();
     simulation.step();
     // Where the robots' time goes: driving, or standing (held, stepping aside, or with nothing
     // holding it: turning on the spot, or pressed against a wall).
@@ -166,11 +166,12 @@ Result<RunFigures> run_one(const Options& o, uint64_t seed) {
       const sim::Robot& r = simulation.robots()[k];
       const bool moved = distance(before[k], r.true_pose.position()) > kMovedM;
       const planner::TrafficOrder order = coordinator.order(r.id);
-      double& share = moved                                       ? f.driving_s
-                      : order == planner::TrafficOrder::Wait      ? f.held_s
-                      : order == planner::TrafficOrder::Yield     ? f.aside_s
-                      : simulation.world().is_free(r.true_pose.position(), sc.robot.radius + kMovedM) ? f.standing_s
-                                                                                                     : f.at_wall_s;
+      double& share = moved                                   ? f.driving_s
+                      : order == planner::TrafficOrder::Wait  ? f.held_s
+                      : order == planner::TrafficOrder::Yield ? f.aside_s
+                      : simulation.world().is_free(r.true_pose.position(), sc.robot.radius + kMovedM)
+                          ? f.standing_s
+                          : f.at_wall_s;
       share += sc.dt;
     }
 
@@ -193,16 +194,20 @@ int main(int argc, char** argv) {
   app.add_option("--duration", o.duration_s, "simulated seconds per run")->capture_default_str();
   app.add_option("--speed", o.speed, "simulated seconds per planner second (eval_coordination's --speed)")
       ->capture_default_str();
-  app.add_option("--seeds", o.seeds, "runs, with seeds first-seed, first-seed + 1, ...")->capture_default_str();
+  app.add_option("--seeds", o.seeds, "runs, with seeds first-seed, first-seed + 1, ...")
+      ->capture_default_str();
   app.add_option("--first-seed", o.first_seed, "seed of the first run")->capture_default_str();
   app.add_option("--goal-timeout", o.goal_timeout_s, "simulated seconds after which a goal counts as stuck")
       ->capture_default_str();
   app.add_option("--clear-way", o.clear_way, "the leader rule (the planner's --coordination-clear-way)")
       ->capture_default_str();
-  app.add_option("--trace-wait", o.trace_wait_s, "print every robot's order each time a wait passes a multiple")
+  app.add_option("--trace-wait", o.trace_wait_s,
+                 "print every robot's order each time a wait passes a multiple")
       ->capture_default_str();
   CLI11_PARSE(app, argc, argv);
-  std::printf("seed contacts reached failed timed_out per_min longest_wait_s | robot time %%: driving held aside standing at_wall\n");
+  std::printf(
+      "seed contacts reached failed timed_out per_min longest_wait_s | robot time %%: driving held aside "
+      "standing at_wall\n");
   for (int k = 0; k < o.seeds; ++k) {
     const uint64_t seed = o.first_seed + static_cast<uint64_t>(k);
     const auto f = slam::bench::run_one(o, seed);
@@ -213,9 +218,10 @@ int main(int argc, char** argv) {
     }
     const double all = f->driving_s + f->held_s + f->aside_s + f->standing_s + f->at_wall_s;
     const auto pct = [&](double v) { return all > 0.0 ? 100.0 * v / all : 0.0; };
-    std::printf("%llu %llu %llu %llu %llu %.2f %.0f | %.0f %.0f %.0f %.0f %.1f\n", static_cast<unsigned long long>(seed),
-                static_cast<unsigned long long>(f->contacts), static_cast<unsigned long long>(f->reached),
-                static_cast<unsigned long long>(f->failed), static_cast<unsigned long long>(f->timed_out),
+    std::printf("%llu %llu %llu %llu %llu %.2f %.0f | %.0f %.0f %.0f %.0f %.1f\n",
+                static_cast<unsigned long long>(seed), static_cast<unsigned long long>(f->contacts),
+                static_cast<unsigned long long>(f->reached), static_cast<unsigned long long>(f->failed),
+                static_cast<unsigned long long>(f->timed_out),
                 static_cast<double>(f->reached) / (o.duration_s / 60.0), f->longest_wait_s, pct(f->driving_s),
                 pct(f->held_s), pct(f->aside_s), pct(f->standing_s), pct(f->at_wall_s));
     std::fflush(stdout);

@@ -38,9 +38,18 @@ std::vector<Vec2> reachable_places(const sim::World& world, Vec2 from, double cl
   return out;
 }
 
+Vec2 pick_place(std::span<const Vec2> places, Vec2 from, double min_trip_m, std::mt19937_64& rng) {
+  std::uniform_int_distribution<size_t> pick(0, places.size() - 1);
+  Vec2 place = places[pick(rng)];
+  for (int attempt = 0; attempt < 20 && distance(place, from) < min_trip_m; ++attempt)
+    place = places[pick(rng)];
+  return place;
+}
+
 planner::PlanningGrid planning_grid_of(const sim::World& world, double resolution, double inflation) {
   const sim::Bounds& b = world.bounds();
-  const GridGeometry geometry{b.min, resolution, static_cast<int32_t>(std::ceil((b.max.x - b.min.x) / resolution)),
+  const GridGeometry geometry{b.min, resolution,
+                              static_cast<int32_t>(std::ceil((b.max.x - b.min.x) / resolution)),
                               static_cast<int32_t>(std::ceil((b.max.y - b.min.y) / resolution))};
   std::vector<uint8_t> cells(geometry.cells(), kCellFree);
   const double half_diagonal = resolution * std::sqrt(0.5);

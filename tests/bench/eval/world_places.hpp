@@ -1,6 +1,8 @@
 #pragma once
 // A built-in world seen the way the fleet evaluations need it: the places a robot can be sent to,
 // and the planner's grid of the world as a mapper that had seen every wall would publish it.
+#include <random>
+#include <span>
 #include <vector>
 
 #include "planner/planning_grid.hpp"
@@ -11,6 +13,10 @@ namespace slam::bench {
 // Places on a 0.2 m lattice clear of walls by `clearance` and connected to `from` (the simulator's
 // odometry starts in the world frame, so these are map coordinates too).
 std::vector<Vec2> reachable_places(const sim::World& world, Vec2 from, double clearance);
+
+// A random place of `places` (not empty) at least `min_trip_m` in a straight line from `from`, or
+// the last one drawn when 20 draws find none.
+Vec2 pick_place(std::span<const Vec2> places, Vec2 from, double min_trip_m, std::mt19937_64& rng);
 
 // The world as planner cells of `resolution`: a cell a wall runs through is occupied, one closer
 // to a wall than `inflation` (the mapper's robot radius) is inflated, every other cell is free.

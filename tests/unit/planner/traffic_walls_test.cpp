@@ -27,7 +27,8 @@ PlanningGrid walls(const std::vector<Box>& boxes, double inflation = 0.0) {
   const auto gap = [&](double x, double y) {
     double best = 1e9;
     for (const Box& b : boxes)
-      best = std::min(best, std::hypot(std::max({b.x0 - x, 0.0, x - b.x1}), std::max({b.y0 - y, 0.0, y - b.y1})));
+      best = std::min(best,
+                      std::hypot(std::max({b.x0 - x, 0.0, x - b.x1}), std::max({b.y0 - y, 0.0, y - b.y1})));
     return best;
   };
   std::vector<std::string> rows(100, std::string(100, '.'));
@@ -70,8 +71,8 @@ TEST(TrafficWalls, ARobotPressedAgainstAWallMayOnlyDriveAwayFromIt) {
 // x = 5 m, then north to a dead end at y = 9.2 m. The leader drives east and round the bend to the
 // end; the robot on its way has no side room, so it is pushed on ahead along the leader's route.
 TEST(TrafficWalls, ARobotPushedAlongTheLeadersRouteIsNotSentPastTheBendsCorner) {
-  const PlanningGrid grid = walls(
-      {{0.0, 0.0, 10.0, 4.6}, {0.0, 5.4, 4.6, 10.0}, {5.4, 4.6, 10.0, 10.0}, {4.6, 9.2, 5.4, 10.0}});
+  const PlanningGrid grid =
+      walls({{0.0, 0.0, 10.0, 4.6}, {0.0, 5.4, 4.6, 10.0}, {5.4, 4.6, 10.0, 10.0}, {4.6, 9.2, 5.4, 10.0}});
   // Pressed up against the corridor's north wall 0.12 m short of the bend's inner corner (4.6, 5.4)
   // m: straight to a point a metre on along the route (round the bend) it would scrape the corner.
   const Vec2 pushed{4.3, 5.28};
@@ -94,8 +95,8 @@ TEST(TrafficWalls, ALeaderWhosePushedRobotDoesNotMoveGivesTheLeadUp) {
   // The same bend; the pushed robot is sent on every tick but never gets anywhere (held by a wall
   // or a robot the planner cannot see). Sending it is no progress: after clear_stall_s of
   // neither the leader nor it moving, the lead is given up and chosen afresh.
-  const PlanningGrid grid = walls(
-      {{0.0, 0.0, 10.0, 4.6}, {0.0, 5.4, 4.6, 10.0}, {5.4, 4.6, 10.0, 10.0}, {4.6, 9.2, 5.4, 10.0}});
+  const PlanningGrid grid =
+      walls({{0.0, 0.0, 10.0, 4.6}, {0.0, 5.4, 4.6, 10.0}, {5.4, 4.6, 10.0, 10.0}, {4.6, 9.2, 5.4, 10.0}});
   std::vector<TrafficRobot> robots{{{3.2, 5.0}, {}, 0, 0}, {{4.3, 5.0}, {}, 0, 1}};
   const std::vector<Vec2> route{{5.0, 5.0}, {5.0, 9.0}};
   robots[0].ahead = route;
