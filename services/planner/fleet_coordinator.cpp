@@ -87,16 +87,18 @@ void FleetCoordinator::coordinate(Fleet& fleet, const PlanningGrid& grid, int64_
 
 void FleetCoordinator::replan_off_leg(Fleet& fleet, const PlanningGrid& grid, int64_t now_ns) {
   constexpr double kOffLegM = 0.1;
-  constexpr int64_t kRetryNs = 1'000'000'000;
+  // The wall check walks the whole straight way: once a second per robot, not every tick.
+  constexpr int64_t kCheckNs = 1'000'000'000;
   for (size_t i = 0; i < decisions_.size(); ++i) {
     Slot& s = robots_[i];
-    if (decisions_[i].order != TrafficOrder::Go || now_ns - s.replanned_ns < kRetryNs || !fleet.owns(s.id))
+    if (decisions_[i].order != TrafficOrder::Go || now_ns - s.leg_checked_ns < kCheckNs ||
+        now_ns - s.replanned_ns < kCheckNs || !fleet.owns(s.id))
       continue;
     const GoalTracker* t = fleet.tracker(s.id);
     const auto wp = t != nullptr && t->status() == GoalStatus::Active ? t->current_waypoint() : std::nullopt;
-    if (!wp || distance_to_segment(s.position, t->leg_start(), *wp) < kOffLegM ||
-        traffic::keeps_off_walls(grid, s.position, *wp, config_.robot_radius_m))
-      continue;
+    if (!wp || distance_to_segment(s.position, t->leg_start(), *wp) < kOffLegM) continue;
+    s.leg_checked_ns = now_ns;
+    if (traffic::keeps_off_walls(grid, s.position, *wp, config_.robot_radius_m)) continue;
     s.replanned_ns = now_ns;
     if (fleet.replan_around(s.id, grid)) ++replans_;
   }

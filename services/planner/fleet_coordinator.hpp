@@ -267,12 +267,13 @@ class FleetCoordinator {
     int64_t route_since_ns = 0;
     TrafficOrder sent_order = TrafficOrder::Go;
     Vec2 sent_hold;
-    int64_t replanned_ns = std::numeric_limits<int64_t>::min() / 2;  // a way around last looked for
+    int64_t replanned_ns = std::numeric_limits<int64_t>::min() / 2;    // a way around last looked for
+    int64_t leg_checked_ns = std::numeric_limits<int64_t>::min() / 2;  // its way back last checked
   };
   size_t slot(const std::string& robot_id);
   // A robot of this planner told to go from off its route's leg (where it stepped aside or was
   // pushed to) drives straight to its waypoint: when that way would run into a wall, its route is
-  // planned again from where it stands (at most once a second).
+  // planned again from where it stands (checked, and re-planned, at most once a second).
   void replan_off_leg(Fleet& fleet, const PlanningGrid& grid, int64_t now_ns);
   // Re-plans the robots of this planner held longer than replan_after_s (and again as often), on a
   // copy of the grid with every other robot drawn in; a robot keeps its route when there is no other.

@@ -167,10 +167,12 @@ void TrafficRules::clear_way(const PlanningGrid& grid, std::span<const TrafficRo
       } else {
         // Straight to a point ahead on the route can clip a corner from where the robot stands:
         // then back onto the route first.
-        if (!traffic::keeps_off_walls(grid, robots[k].position, step, config_.robot_radius_m))
+        bool off_walls = traffic::keeps_off_walls(grid, robots[k].position, step, config_.robot_radius_m);
+        if (!off_walls) {
           step = point_along(leader, along);
-        go = keeps_apart(robots, k, step) &&
-             traffic::keeps_off_walls(grid, robots[k].position, step, config_.robot_radius_m);
+          off_walls = traffic::keeps_off_walls(grid, robots[k].position, step, config_.robot_radius_m);
+        }
+        go = off_walls && keeps_apart(robots, k, step);
       }
     }
     if (go) {
