@@ -46,6 +46,9 @@ class CorrectionStage {
   void take_changed(std::vector<correction::RobotCorrection>& out);
   bool enabled() const { return enabled_; }
   bool knows(std::string_view robot) const { return corrector_.knows(robot); }
+  // Whether a pose-graph optimisation is running or waiting to be applied by step().
+  bool optimising() const { return corrector_.optimising(); }
+  void wait_for_optimisation() const { corrector_.wait_for_optimisation(); }
   const correction::CorrectorStats& stats() const { return corrector_.stats(); }
   // Observations held back until their keyframe is finalised (stats().open_messages of them wait
   // for their keyframe to close; the rest for its match).

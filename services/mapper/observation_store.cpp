@@ -122,16 +122,21 @@ Result<ObservationStore> ObservationStore::open(const std::filesystem::path& pat
   if (found > kSchemaVersion)
     return Error{"observation store " + path.string() + ": schema version " + std::to_string(found) +
                  " is newer than this program's " + std::to_string(kSchemaVersion)};
-  // One transaction: a migration half done would leave a store neither version can read.
-  if (Status s = store.exec("BEGIN"); !s) return s.error();
-  Status schema = store.exec(kSchema);
-  if (schema && found == 1)
-    schema = store.exec("ALTER TABLE observations ADD COLUMN keyframe INTEGER NOT NULL DEFAULT 0");
-  if (schema) schema = store.exec(("PRAGMA user_version=" + std::to_string(kSchemaVersion)).c_str());
-  if (schema) schema = store.exec("COMMIT");
-  if (!schema) {
-    (void)store.exec("ROLLBACK");
-    return schema.error();
+  // A store of this version is only read here: opening it must not wait for the write lock, which
+  // the mapper's own connection holds while a batch is open (the re-render worker opens the store
+  // while the map loop keeps appending). One transaction: a migration half done would leave a store
+  // neither version can read.
+  if (found != kSchemaVersion) {
+    if (Status s = store.exec("BEGIN"); !s) return s.error();
+    Status schema = store.exec(kSchema);
+    if (schema && found == 1)
+      schema = store.exec("ALTER TABLE observations ADD COLUMN keyframe INTEGER NOT NULL DEFAULT 0");
+    if (schema) schema = store.exec(("PRAGMA user_version=" + std::to_string(kSchemaVersion)).c_str());
+    if (schema) schema = store.exec("COMMIT");
+    if (!schema) {
+      (void)store.exec("ROLLBACK");
+      return schema.error();
+    }
   }
   auto insert = store.prepare(
       "INSERT INTO observations(robot, seq, stamp_ns, x, y, theta, has_heading, hits, misses, keyframe) "

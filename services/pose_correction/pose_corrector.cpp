@@ -206,6 +206,9 @@ void PoseCorrector::apply(MatchJob& job, std::vector<KeyframeCorrection>& out) {
   const Eigen::Matrix3d odom_cov = job.odom_cov;
 
   Pose estimate = job.estimate;
+  // The motion from the previous keyframe as tracking measured it, before a tie or closure moves
+  // this keyframe (a closure also bends the previous one).
+  const Pose tracked_motion = previous ? nodes_[*previous].estimate.inverse().compose(job.estimate) : Pose{};
   Eigen::Matrix3d cov = job.narrow ? job.cov : rb.chain_cov;
   CorrectionSource source = rb.state.source;
   const auto& narrow = job.narrow;
@@ -293,11 +296,12 @@ void PoseCorrector::apply(MatchJob& job, std::vector<KeyframeCorrection>& out) {
                         estimate, std::move(keyframe.points), false});
   index_.insert(slot, estimate.position());
   if (previous) {
-    // Tracking refines the odometry between consecutive keyframes; a tie or closure jump is not a
-    // motion, so then the odometry itself is the edge.
-    if (tracked && !anchor) {
-      add_edge(EdgeKind::Sequential, *previous, slot, nodes_[*previous].estimate.inverse().compose(estimate),
-               with_floor(cov, 0.01, 0.005));
+    // Tracking refines the odometry between consecutive keyframes, tied or not: a tie's or
+    // closure's move is its own edge, not a motion. (Tied keyframes used to get the bare odometry
+    // here, which the fused estimates did not follow; every optimisation then pulled the chains
+    // towards it and moved robots that had closed nothing, by up to 15 cm.)
+    if (tracked) {
+      add_edge(EdgeKind::Sequential, *previous, slot, tracked_motion, with_floor(job.cov, 0.01, 0.005));
     } else {
       add_edge(EdgeKind::Sequential, *previous, slot, odom_relative, odom_cov);
     }

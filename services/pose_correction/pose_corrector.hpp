@@ -57,6 +57,11 @@ struct CorrectorOptions {
   double old_age_s = 60.0;                // a keyframe this old (or another robot's) counts as "old map"
   double closure_radius_m = 2.0;          // old keyframes this close to the prediction are candidates
   int closure_min_keyframes = 4;          // fewer old keyframes around: no closure attempt
+  // A tracking match's covariance is the search response's spread times this. The spread is
+  // deliberately broad (MatcherOptions::independent_points keeps a ridge visible to the closure
+  // gate), which overstates a distinct match's error: at 1 tracking followed odometry through new
+  // rooms and drifted twice as far (replayed runs, docs/mapping-quality.md).
+  double track_variance_scale = 0.5;
   double odom_sigma_m_per_sqrt_m = 0.03;  // odometry edge noise (a little above the usual drift)
   double odom_sigma_rad_per_m = 0.02;     // heading noise per metre travelled (edge and chain)
   int optimise_every = 40;                // keyframes tied to the old map between optimisations
@@ -153,6 +158,9 @@ class PoseCorrector {
   const CorrectorStats& stats() const { return stats_; }
   // Whether a background optimisation is running or waiting to be taken.
   bool optimising() const { return optimising_; }
+  // Blocks until the background optimisation has finished (take it with the next process() or
+  // take_optimised()): for offline replays that must not depend on the solver's timing.
+  void wait_for_optimisation() const;
 
  private:
   struct Robot {

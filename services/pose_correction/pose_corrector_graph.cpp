@@ -142,6 +142,11 @@ double PoseCorrector::take_optimised(std::vector<KeyframeCorrection>& moved) {
   return max_shift;
 }
 
+void PoseCorrector::wait_for_optimisation() const {
+  while (!optimizer_->wait_idle(std::chrono::seconds(1))) {
+  }
+}
+
 void PoseCorrector::rebuild_index() {
   index_.clear();
   for (uint32_t slot = 0; slot < nodes_.size(); ++slot) {

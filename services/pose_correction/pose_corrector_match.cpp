@@ -156,7 +156,7 @@ void PoseCorrector::match_keyframe(ScanMatcher& matcher, MatchJob& job) const {
     // Fused with the odometry prediction by their covariances (a Kalman update): a sparse
     // keyframe's match is noisier than half a metre of odometry, and taking it as is would
     // random-walk the pose where the map is only the robot's own recent trail.
-    job.cov = with_floor(narrow->covariance, 0.005, 0.002);
+    job.cov = with_floor(narrow->covariance * options_.track_variance_scale, 0.005, 0.002);
     job.estimate = fuse(job.predicted, job.odom_cov, narrow->pose, job.cov);
     job.narrow = *narrow;
   }

@@ -4,12 +4,14 @@
 // truly are to waypoints the planner counts reached, the exported map against the true walls, and
 // whether the mapper's loop closures moved robots towards the truth (false closures); with the
 // mapper's SLAM counters at the end of the run.
-// Writes <out>/<name>.json (one object), <name>.png (the map with the true walls over it) and the
-// exported <name>.yaml/.pgm. See docs/mapping-quality.md; scripts/bench.sh runs the matrix.
+// Writes <out>/<name>.json (one object), <name>.png (the map with the true walls over it), the
+// exported <name>.yaml/.pgm, and the recording eval_replay takes (<name>.db, <name>.truth). See
+// docs/mapping-quality.md; scripts/bench.sh runs the matrix.
 #include <fmt/format.h>
 
 #include <CLI/CLI.hpp>
 #include <chrono>
+#include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -19,10 +21,9 @@
 #include <thread>
 
 #include "common/fastdds/fast_topics.hpp"
-#include "eval/closure_audit.hpp"
-#include "eval/map_metrics.hpp"
-#include "eval/map_overlay.hpp"
 #include "eval/run_recorder.hpp"
+#include "eval/run_score.hpp"
+#include "eval/truth_log.hpp"
 #include "process_group.hpp"
 #include "simulator/config.hpp"
 
@@ -77,10 +78,6 @@ std::string slam_label(const std::vector<std::string>& mapper_args, size_t corre
 
 Pose to_pose(const Pose2& p) {
   return {p.x(), p.y(), p.theta()};
-}
-
-nlohmann::json to_json(const ErrorStats& s) {
-  return {{"count", s.count}, {"mean_m", s.mean}, {"rmse_m", s.rmse}, {"max_m", s.max}};
 }
 
 // Everything the run hears on DDS, and the two request writers.
@@ -195,18 +192,9 @@ class SystemTap {
   std::unique_ptr<dds::Writer<MapFileRequest>> files_;
 };
 
-std::vector<sim::Segment> walls_of(const SimWorld& world, const Pose& map_from_world) {
+std::vector<sim::Segment> walls_of(const SimWorld& world) {
   std::vector<sim::Segment> out;
-  for (const Segment2& w : world.walls())
-    out.push_back(
-        {map_from_world.transform({w.a().x(), w.a().y()}), map_from_world.transform({w.b().x(), w.b().y()})});
-  return out;
-}
-
-std::vector<sim::Segment> polyline(const std::vector<Vec2>& points, const Pose& transform) {
-  std::vector<sim::Segment> out;
-  for (size_t i = 1; i < points.size(); ++i)
-    out.push_back({transform.transform(points[i - 1]), transform.transform(points[i])});
+  for (const Segment2& w : world.walls()) out.push_back({{w.a().x(), w.a().y()}, {w.b().x(), w.b().y()}});
   return out;
 }
 
@@ -258,6 +246,7 @@ class Evaluation {
     std::filesystem::create_directories(o_.out_dir);
     const std::string yaml = std::filesystem::absolute(o_.out_dir + "/" + name() + ".yaml").string();
     SLAM_TRY(export_map(yaml));
+    SLAM_TRY(keep_recording());
     std::ofstream(o_.out_dir + "/" + name() + ".mapper.log") << group_.log("mapper");
     auto map = read_ros_map(yaml);
     if (!map) return Error{"reading the exported map: " + map.message()};
@@ -328,13 +317,31 @@ class Evaluation {
     return Status::ok();
   }
 
+  // The run's raw observations (the mapper's store, closed by stopping the mapper) and its sampled
+  // truth, as <name>.db and <name>.truth: eval_replay runs the pose correction on them offline.
+  Status keep_recording() {
+    group_.stop("mapper", SIGTERM);
+    const std::string base = o_.out_dir + "/" + name();
+    std::error_code ec;
+    std::filesystem::copy_file(group_.dir() + "/map.db", base + ".db",
+                               std::filesystem::copy_options::overwrite_existing, ec);
+    if (ec) return Error{"keeping the mapper's store as " + base + ".db: " + ec.message()};
+    std::filesystem::remove(base + ".db-wal", ec);
+    if (std::filesystem::exists(group_.dir() + "/map.db-wal"))  // the mapper did not close it: keep the log
+      std::filesystem::copy_file(group_.dir() + "/map.db-wal", base + ".db-wal", ec);
+    return write_truth_log(base + ".truth", recorder_.truth_samples());
+  }
+
   Result<nlohmann::json> score(const MapImage& map, const std::string& yaml, double simulated_s,
                                double wall_s) {
-    const TrajectoryErrors ate = trajectory_errors(recorder_.samples(), o_.align);
+    const ScoreOptions options{o_.align, o_.false_closure_increase_m, o_.pixels_per_cell};
+    const std::string png = yaml.substr(0, yaml.size() - 5) + ".png";
+    auto run = score_run(recorder_, map, walls_of(*tap_->world()), options, png);
+    if (!run) return run.error();
     // Published states: aligned like the corrected poses (both are in the map frame).
     std::vector<Vec2> published, truth;
     for (const auto& [p, t] : recorder_.published_vs_truth()) {
-      published.push_back(ate.alignment.transform(p));
+      published.push_back(run->ate.alignment.transform(p));
       truth.push_back(t);
     }
     std::vector<double> goal_true, goal_reported;
@@ -342,24 +349,6 @@ class Evaluation {
       goal_true.push_back(a.true_distance_m);
       goal_reported.push_back(a.reported_distance_m);
     }
-    // The true walls and starts in the map frame: through the alignment's inverse when aligned.
-    const Pose map_from_world = ate.alignment.inverse();
-    const std::vector<sim::Segment> walls = walls_of(*tap_->world(), map_from_world);
-    std::vector<Vec2> starts = transformed(map_from_world, recorder_.true_starts());
-    auto walls_score = score_walls(map, walls);
-    if (!walls_score) return walls_score.error();
-    auto coverage = reachable_coverage(map, walls, starts);
-    if (!coverage) return coverage.error();
-
-    std::vector<LineLayer> layers;
-    for (const auto& [id, track] : recorder_.true_tracks())
-      layers.push_back({polyline(track, map_from_world), {80, 160, 255}});
-    layers.push_back({walls, {230, 30, 30}});
-    const std::string png = yaml.substr(0, yaml.size() - 5) + ".png";
-    SLAM_TRY(viewer::write_png(png, render_overlay(map, layers, o_.pixels_per_cell)));
-
-    const ClosureAudit closures =
-        audit_corrections(recorder_.correction_changes(), ate.alignment, o_.false_closure_increase_m);
 
     const size_t corrected = recorder_.corrected_robots();
     nlohmann::json j;
@@ -382,41 +371,11 @@ class Evaluation {
     j["achieved_speed"] = simulated_s / wall_s;
     j["simulator_loop_overruns"] = tap_->counter("simulator", "loop_overruns");
     j["mapper_dropped"] = tap_->counter("mapper", "dropped");
-    j["aligned"] = o_.align;
-    j["alignment"] = {{"x", ate.alignment.x}, {"y", ate.alignment.y}, {"theta", ate.alignment.theta}};
-    j["ate_corrected"] = to_json(ate.corrected);
-    j["ate_raw"] = to_json(ate.raw);
+    add_to_json(*run, recorder_, options, j);
     j["ate_published"] = to_json(position_errors(published, truth));
     j["goal_true"] = to_json(summarise(goal_true));
     j["goal_reported"] = to_json(summarise(goal_reported));
-    j["map"] = {{"resolution_m", map.resolution},
-                {"occupied_cells", walls_score->occupied_cells},
-                {"near_wall_share", walls_score->near_wall_share},
-                {"mean_wall_distance_m", walls_score->mean_wall_distance_m},
-                {"wall_found_share", walls_score->wall_found_share},
-                {"reachable_cells", coverage->reachable_cells},
-                {"coverage", coverage->share()}};
-    nlohmann::json false_list = nlohmann::json::array();
-    for (const FalseClosure& f : closures.false_closure_list)
-      false_list.push_back({{"robot", f.robot_id},
-                            {"version", f.version},
-                            {"truth_stamp_s", static_cast<double>(f.truth_stamp_ns) * 1e-9},
-                            {"error_before_m", f.errors.before_m},
-                            {"error_after_m", f.errors.after_m}});
     j["slam_counters"] = tap_->counters("mapper", "slam_");
-    j["closures"] = {
-        {"loop_corrections", closures.loop_corrections},
-        {"false_closures", closures.false_closures},
-        {"false_closure_increase_m", o_.false_closure_increase_m},
-        {"worst_increase_m",
-         closures.worst_increase_m ? nlohmann::json(*closures.worst_increase_m) : nlohmann::json(nullptr)},
-        {"false_matches", closures.false_matches},
-        {"largest_loop_jump_m", closures.largest_loop_jump_m},
-        {"largest_jump_m", closures.largest_jump_m},
-        {"corrections_scored", closures.corrections},
-        {"corrections_unscored", recorder_.unscored_corrections()},
-        {"versions_missed", closures.versions_missed},
-        {"false", false_list}};
     j["image"] = std::filesystem::path(png).filename().string();
     j["map_yaml"] = std::filesystem::path(yaml).filename().string();
     return j;

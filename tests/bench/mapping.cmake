@@ -10,13 +10,22 @@ add_library(mapping_eval STATIC ${CMAKE_CURRENT_LIST_DIR}/eval/trajectory_metric
                                 ${CMAKE_CURRENT_LIST_DIR}/eval/map_metrics.cpp
                                 ${CMAKE_CURRENT_LIST_DIR}/eval/map_overlay.cpp
                                 ${CMAKE_CURRENT_LIST_DIR}/eval/run_recorder.cpp
-                                ${CMAKE_CURRENT_LIST_DIR}/eval/closure_audit.cpp)
+                                ${CMAKE_CURRENT_LIST_DIR}/eval/closure_audit.cpp
+                                ${CMAKE_CURRENT_LIST_DIR}/eval/truth_log.cpp
+                                ${CMAKE_CURRENT_LIST_DIR}/eval/run_score.cpp)
 target_include_directories(mapping_eval PUBLIC ${CMAKE_CURRENT_LIST_DIR})
 # simulator_core for its segment geometry, viewer_core for PNG files.
-target_link_libraries(mapping_eval PUBLIC slam_core simulator_core viewer_core)
+target_link_libraries(mapping_eval PUBLIC slam_core simulator_core viewer_core nlohmann_json::nlohmann_json)
 slam_warnings(mapping_eval)
 
 add_executable(eval_mapping ${CMAKE_CURRENT_LIST_DIR}/eval_mapping.cpp)
 target_link_libraries(eval_mapping PRIVATE mapping_eval slam_fastdds slam_testkit nlohmann_json::nlohmann_json)
 add_dependencies(eval_mapping slam-gateway slam-mapper slam-planner slam-simulator)
 slam_warnings(eval_mapping)
+
+# eval_replay: the mapper's map loop with pose correction, offline and deterministic, on a run
+# eval_mapping recorded (<out>/<name>.db and .truth), scored the same way.
+# Run: build/bin/eval_replay build/bench/mapping/office-v1-drift0.02 --world office
+add_executable(eval_replay ${CMAKE_CURRENT_LIST_DIR}/eval_replay.cpp)
+target_link_libraries(eval_replay PRIVATE mapping_eval mapper_core slam_testkit CLI11::CLI11)
+slam_warnings(eval_replay)

@@ -36,6 +36,7 @@ void RunRecorder::on_truth(int64_t stamp_ns, const std::vector<RobotTruth>& robo
     r.track.push_back(truth);
     const Vec2 corrected = r.correction.compose(t.reported_pose).position();
     samples_.push_back({t.robot_id, truth, t.reported_pose.position(), corrected});
+    truth_samples_.push_back({stamp_ns, t});
     if (r.state) published_.emplace_back(*r.state, truth);
   }
 }
@@ -73,6 +74,11 @@ void RunRecorder::on_path(const std::string& robot_id, const PathView& path) {
 std::vector<TrajectorySample> RunRecorder::samples() const {
   std::lock_guard lock(mutex_);
   return samples_;
+}
+
+std::vector<TruthSample> RunRecorder::truth_samples() const {
+  std::lock_guard lock(mutex_);
+  return truth_samples_;
 }
 
 std::vector<std::pair<Vec2, Vec2>> RunRecorder::published_vs_truth() const {

@@ -24,6 +24,13 @@ struct RobotTruth {
   Pose reported_pose;  // the robot's odometry, in its own frame
 };
 
+// One sampled truth instant of one robot, with its stamp (the clock of the robots' observations):
+// what an offline replay of the run's stored observations is scored against (truth_log.hpp).
+struct TruthSample {
+  int64_t stamp_ns = 0;
+  RobotTruth truth;
+};
+
 // A waypoint counted reached: where it was, and how far from it the robot truly and reportedly was.
 struct GoalArrival {
   std::string robot_id;
@@ -49,6 +56,8 @@ class RunRecorder {
   void on_path(const std::string& robot_id, const PathView& path);
 
   std::vector<TrajectorySample> samples() const;
+  // The truth of every sampled instant (the instants samples() holds), in order.
+  std::vector<TruthSample> truth_samples() const;
   // Latest published RobotState position beside the truth, per sample where one was known.
   std::vector<std::pair<Vec2, Vec2>> published_vs_truth() const;
   std::vector<GoalArrival> arrivals() const;
@@ -83,6 +92,7 @@ class RunRecorder {
   std::map<std::string, Robot> robots_;
   std::vector<Vec2> starts_;
   std::vector<TrajectorySample> samples_;
+  std::vector<TruthSample> truth_samples_;
   std::vector<std::pair<Vec2, Vec2>> published_;
   std::vector<GoalArrival> arrivals_;
   std::vector<CorrectionChange> changes_;

@@ -73,6 +73,22 @@ TEST(ObservationStore, RoundTripInInsertionOrderAcrossReopen) {
   EXPECT_EQ(read_all(*s), rows);
 }
 
+TEST(ObservationStore, OpensWhileAnotherConnectionHoldsAnOpenBatch) {
+  // The re-render worker opens the store while the map loop's connection has a batch open (and
+  // does not commit while the worker runs). Opening a store of the current schema must not need
+  // the write lock: it used to, and the re-render then failed after 2 s with "database is locked".
+  testkit::TempDir dir("mapper");
+  const auto path = dir.path() / "map.db";
+  auto writer = ObservationStore::open(path);
+  ASSERT_TRUE(writer.is_ok()) << writer.message();
+  ASSERT_TRUE(put(*writer, {"r1", 1, 0, 0, 0, 0, false, {{1, 1}}, {}}).is_ok());
+  ASSERT_TRUE(writer->flush().is_ok());
+  ASSERT_TRUE(put(*writer, {"r1", 2, 0, 0, 0, 0, false, {{1, 1}}, {}}).is_ok());  // batch open
+  auto reader = ObservationStore::open(path);
+  ASSERT_TRUE(reader.is_ok()) << reader.message();
+  EXPECT_EQ(read_all(*reader).size(), 1U);  // what was committed
+}
+
 TEST(ObservationStore, DeleteByRobot) {
   testkit::TempDir dir("mapper");
   auto s = ObservationStore::open(dir.path() / "map.db");
