@@ -28,6 +28,13 @@ TEST(RunRecorder, SamplesOncePerPeriodWhileStartedAndAppliesTheCorrection) {
   EXPECT_EQ(recorder.true_starts(), (std::vector<Vec2>{{0.0, 0.0}}));
   EXPECT_EQ(recorder.corrected_robots(), 1u);
   EXPECT_TRUE(recorder.published_vs_truth().empty());  // no RobotState heard
+  // The truth of the sampled instants, for a replay: stamps and both poses as heard.
+  const auto truth = recorder.truth_samples();
+  ASSERT_EQ(truth.size(), samples.size());
+  EXPECT_EQ(truth.front().stamp_ns, kSecond / 4);
+  EXPECT_EQ(truth.back().stamp_ns, 17 * kSecond / 4);
+  EXPECT_EQ(truth.back().truth.robot_id, "r1");
+  EXPECT_NEAR(truth.back().truth.reported_pose.x, 2.2, 1e-12);
 }
 
 TEST(RunRecorder, AnArrivalTakesTheNextTruthSample) {
