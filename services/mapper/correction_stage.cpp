@@ -39,15 +39,7 @@ void CorrectionStage::add(Mapper& mapper, const RobotScan& scan, int64_t now_mon
     held = std::move(spare_.back());
     spare_.pop_back();
   }
-  held.robot_id.assign(scan.robot_id);
-  held.seq = scan.seq;
-  held.stamp_ns = scan.stamp_ns;
-  held.x = v.x;
-  held.y = v.y;
-  held.theta = v.theta;
-  held.has_heading = v.has_heading;
-  held.hits.assign(v.hits.begin(), v.hits.end());
-  held.misses.assign(v.misses.begin(), v.misses.end());
+  held.assign(scan.robot_id, scan.seq, scan.stamp_ns, v);
   held_[*keyframe].push_back(std::move(held));
   ++held_observations_;
 }
@@ -70,8 +62,7 @@ void CorrectionStage::step(Mapper& mapper, int64_t now_ns, int64_t now_mono_ns) 
       const auto it = held_.find(k.id);
       if (it == held_.end()) continue;
       for (const Held& h : it->second) {
-        const ObservationView view{h.x, h.y, h.theta, h.has_heading, h.hits, h.misses};
-        mapper.integrate(RobotScan{h.robot_id, h.seq, h.stamp_ns, view, k.id, k.correction}, now_mono_ns);
+        mapper.integrate(RobotScan{h.robot_id, h.seq, h.stamp_ns, h.view(), k.id, k.correction}, now_mono_ns);
       }
       held_observations_ -= static_cast<int64_t>(it->second.size());
       for (Held& h : it->second) {

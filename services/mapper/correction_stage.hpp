@@ -55,16 +55,7 @@ class CorrectionStage {
   int64_t held_observations() const { return held_observations_; }
 
  private:
-  // An observation waiting for its keyframe.
-  struct Held {
-    std::string robot_id;
-    uint64_t seq = 0;
-    int64_t stamp_ns = 0;
-    double x = 0, y = 0, theta = 0;
-    bool has_heading = false;
-    std::vector<Vec2> hits;
-    std::vector<Vec2> misses;
-  };
+  using Held = OwnedObservation;  // an observation waiting for its keyframe
 
   void save(Mapper& mapper, std::span<const correction::KeyframeCorrection> keyframes);
   // Starts the re-render an optimisation asked for, once the last one is far enough behind.

@@ -86,6 +86,31 @@ struct RobotScan {
   Pose map_from_odom;          // the robot's correction now: where it lands in the live grid
 };
 
+// One observation that owns its points (the views of RobotScan and ObservationRecord live only as
+// long as their source): what waits for its keyframe in the correction stage, what a replay reads.
+struct OwnedObservation {
+  std::string robot_id;
+  uint64_t seq = 0;
+  int64_t stamp_ns = 0;
+  double x = 0, y = 0, theta = 0;
+  bool has_heading = false;
+  std::vector<Vec2> hits, misses;
+
+  // Copies an observation in, reusing this record's string and point buffers.
+  void assign(std::string_view robot, uint64_t sequence, int64_t stamp, const ObservationView& obs) {
+    robot_id.assign(robot);
+    seq = sequence;
+    stamp_ns = stamp;
+    x = obs.x;
+    y = obs.y;
+    theta = obs.theta;
+    has_heading = obs.has_heading;
+    hits.assign(obs.hits.begin(), obs.hits.end());
+    misses.assign(obs.misses.begin(), obs.misses.end());
+  }
+  ObservationView view() const { return {x, y, theta, has_heading, hits, misses}; }
+};
+
 // How a change set is numbered on the wire: the layout it belongs to and its version.
 struct PublishStamp {
   uint32_t layout_id = 0;

@@ -45,31 +45,13 @@ struct ReplayOptions {
   ScoreOptions score;
 };
 
-// One stored observation, owned (the store's views live only during its callback).
-struct Recorded {
-  std::string robot;
-  uint64_t seq = 0;
-  int64_t stamp_ns = 0;
-  double x = 0, y = 0, theta = 0;
-  bool has_heading = false;
-  std::vector<Vec2> hits, misses;
-};
-
-Result<std::vector<Recorded>> read_observations(const std::filesystem::path& db) {
+Result<std::vector<mapper::OwnedObservation>> read_observations(const std::filesystem::path& db) {
   if (!std::filesystem::exists(db)) return Error{"no recording " + db.string()};
   auto store = mapper::ObservationStore::open(db);
   if (!store) return store.error();
-  std::vector<Recorded> out;
+  std::vector<mapper::OwnedObservation> out;
   SLAM_TRY(store->for_each([&](const mapper::ObservationRecord& r) {
-    out.push_back({std::string(r.robot_id),
-                   r.seq,
-                   r.stamp_ns,
-                   r.obs.x,
-                   r.obs.y,
-                   r.obs.theta,
-                   r.obs.has_heading,
-                   {r.obs.hits.begin(), r.obs.hits.end()},
-                   {r.obs.misses.begin(), r.obs.misses.end()}});
+    out.emplace_back().assign(r.robot_id, r.seq, r.stamp_ns, r.obs);
   }));
   if (out.empty()) return Error{db.string() + " holds no observation"};
   return out;
@@ -115,9 +97,8 @@ class Replay {
       const int64_t mono = tick - t0;
       map.poll_rebuild();
       for (; next_obs < observations->size() && (*observations)[next_obs].stamp_ns <= tick; ++next_obs) {
-        const Recorded& r = (*observations)[next_obs];
-        const mapper::ObservationView view{r.x, r.y, r.theta, r.has_heading, r.hits, r.misses};
-        stage.add(map, mapper::RobotScan{r.robot, r.seq, r.stamp_ns, view, 0, Pose{}}, mono);
+        const mapper::OwnedObservation& r = (*observations)[next_obs];
+        stage.add(map, mapper::RobotScan{r.robot_id, r.seq, r.stamp_ns, r.view(), 0, Pose{}}, mono);
       }
       stage.step(map, tick, mono);
       // Optimisations and re-renders land within this pass, whatever their time.
