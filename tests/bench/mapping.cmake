@@ -26,6 +26,10 @@ slam_warnings(eval_mapping)
 # eval_replay: the mapper's map loop with pose correction, offline and deterministic, on a run
 # eval_mapping recorded (<out>/<name>.db and .truth), scored the same way.
 # Run: build/bin/eval_replay build/bench/mapping/office-v1-drift0.02 --world office
+# mapping_replay: the replay loop itself (unit tests in tests/unit/bench).
+add_library(mapping_replay STATIC ${CMAKE_CURRENT_LIST_DIR}/eval/replay.cpp)
+target_link_libraries(mapping_replay PUBLIC mapping_eval mapper_core slam_testkit)
+slam_warnings(mapping_replay)
 add_executable(eval_replay ${CMAKE_CURRENT_LIST_DIR}/eval_replay.cpp)
-target_link_libraries(eval_replay PRIVATE mapping_eval mapper_core slam_testkit CLI11::CLI11)
+target_link_libraries(eval_replay PRIVATE mapping_replay CLI11::CLI11)
 slam_warnings(eval_replay)

@@ -1,0 +1,106 @@
+// Replaying recorded observations through the mapper's map loop (replay.hpp).
+#include "eval/replay.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <chrono>
+#include <map>
+#include <string>
+
+#include "mapper/correction_stage.hpp"
+#include "mapper/map_files.hpp"
+#include "mapper/observation_store.hpp"
+#include "temp_dir.hpp"
+
+namespace slam::bench {
+
+namespace {
+
+constexpr int64_t kLoopPeriodNs = 100'000'000;  // the mapper's patch period: one loop pass
+
+}  // namespace
+
+Result<std::vector<mapper::OwnedObservation>> read_observations(const std::filesystem::path& store) {
+  if (!std::filesystem::exists(store)) return Error{"no recording " + store.string()};
+  auto opened = mapper::ObservationStore::open(store);
+  if (!opened) return opened.error();
+  std::vector<mapper::OwnedObservation> out;
+  SLAM_TRY(opened->for_each([&](const mapper::ObservationRecord& r) {
+    out.emplace_back().assign(r.robot_id, r.seq, r.stamp_ns, r.obs);
+  }));
+  if (out.empty()) return Error{store.string() + " holds no observation"};
+  return out;
+}
+
+Result<ReplayOutcome> replay(std::span<const mapper::OwnedObservation> observations,
+                             std::span<const TruthSample> truth, const ReplayOptions& options,
+                             RunRecorder& recorder, const std::filesystem::path& yaml_path) {
+  if (observations.empty()) return Error{"nothing to replay: no observation"};
+  testkit::TempDir dir("eval-replay");
+  mapper::MapperOptions mapper_options;
+  mapper_options.store = (dir.path() / "map.db").string();
+  Counters counters;
+  auto made = mapper::Mapper::create(mapper_options, counters, 1, [] {});
+  if (!made) return made.error();
+  mapper::Mapper& map = **made;
+  correction::CorrectorOptions slam_options;
+  slam_options.old_age_s = mapper_options.slam_old_age_s;
+  slam_options.match_threads = 0;  // inline: deterministic
+  mapper::CorrectionStage stage(true, slam_options);
+
+  recorder.start();
+  const auto wall0 = std::chrono::steady_clock::now();
+  const int64_t t0 = observations.front().stamp_ns;
+  size_t next_obs = 0, next_truth = 0;
+  std::vector<correction::RobotCorrection> changed;
+  std::vector<RobotTruth> instant;
+  std::map<std::string, Pose> corrections;  // each robot's latest, for the trace
+  for (int64_t tick = t0 + kLoopPeriodNs + static_cast<int64_t>(options.phase_ms * 1e6);
+       next_obs < observations.size() || next_truth < truth.size(); tick += kLoopPeriodNs) {
+    const int64_t mono = tick - t0;
+    map.poll_rebuild();
+    for (; next_obs < observations.size() && observations[next_obs].stamp_ns <= tick; ++next_obs) {
+      const mapper::OwnedObservation& o = observations[next_obs];
+      stage.add(map, mapper::RobotScan{o.robot_id, o.seq, o.stamp_ns, o.view(), 0, Pose{}}, mono);
+    }
+    stage.step(map, tick, mono);
+    // Optimisations and re-renders land within this pass, whatever their time.
+    map.wait_for_rebuild();
+    while (stage.optimising()) {
+      stage.wait_for_optimisation();
+      stage.step(map, tick, mono);
+      map.wait_for_rebuild();
+    }
+    map.commit();
+    changed.clear();
+    stage.take_changed(changed);
+    for (const auto& c : changed) {
+      recorder.on_correction(c.robot, c.map_from_odom, c.version, c.source == correction::CorrectionSource::Loop);
+      corrections[c.robot] = c.map_from_odom;
+    }
+    while (next_truth < truth.size() && truth[next_truth].stamp_ns <= tick) {
+      const int64_t stamp = truth[next_truth].stamp_ns;
+      instant.clear();
+      for (; next_truth < truth.size() && truth[next_truth].stamp_ns == stamp; ++next_truth)
+        instant.push_back(truth[next_truth].truth);
+      recorder.on_truth(stamp, instant);
+      for (const RobotTruth& t : instant) {
+        if (!options.trace) break;
+        const Vec2 corrected = corrections[t.robot_id].compose(t.reported_pose).position();
+        spdlog::info("trace {:.1f} s {} error {:.3f} m, raw {:.3f} m", static_cast<double>(stamp - t0) * 1e-9,
+                     t.robot_id, distance(corrected, t.true_pose.position()),
+                     distance(t.reported_pose.position(), t.true_pose.position()));
+      }
+    }
+  }
+  recorder.stop();
+  ReplayOutcome outcome;
+  outcome.stats = stage.stats();
+  outcome.recorded_s = static_cast<double>(observations.back().stamp_ns - t0) * 1e-9;
+  outcome.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  const mapper::FileOutcome exported = mapper::export_map_file(map.grid(), yaml_path.string());
+  if (!exported.ok()) return Error{"map export: " + exported.message};
+  return outcome;
+}
+
+}  // namespace slam::bench

@@ -1,0 +1,37 @@
+#pragma once
+// The mapper's map loop with pose correction (Mapper + CorrectionStage, no DDS) run over recorded
+// observations, deterministically: the loop steps every 100 ms of the observations' own clock, as
+// the mapper's does, but keyframes are matched inline and every optimisation and re-render is
+// waited for, so the same input gives the same corrections every time. What eval_replay runs.
+#include <filesystem>
+#include <span>
+
+#include "common/core/result.hpp"
+#include "eval/run_recorder.hpp"
+#include "mapper/mapper.hpp"
+#include "pose_correction/pose_corrector.hpp"
+
+namespace slam::bench {
+
+struct ReplayOptions {
+  double phase_ms = 0.0;  // the loop's first pass this long after the first observation (+ one period)
+  bool trace = false;     // log (info) every robot's corrected and raw error at every truth instant
+};
+
+struct ReplayOutcome {
+  correction::CorrectorStats stats;
+  double recorded_s = 0.0;  // from the first observation to the last
+  double wall_s = 0.0;
+};
+
+// Replays `observations` (in arrival order) and feeds `recorder` every correction change and every
+// truth sample (`truth` in stamp order) as a live run would; `recorder` is started and stopped
+// here. At the end the grid is exported as a ROS map to `yaml_path` (its directory must exist).
+Result<ReplayOutcome> replay(std::span<const mapper::OwnedObservation> observations,
+                             std::span<const TruthSample> truth, const ReplayOptions& options,
+                             RunRecorder& recorder, const std::filesystem::path& yaml_path);
+
+// Every observation of a mapper store, in insertion (arrival) order.
+Result<std::vector<mapper::OwnedObservation>> read_observations(const std::filesystem::path& store);
+
+}  // namespace slam::bench
