@@ -98,7 +98,7 @@ Status check_options(const MatcherOptions& o) {
 }  // namespace
 
 bool DistinctMatch::accepts(const MatchResult& m) const {
-  return m.flat_directions == 0 && m.ambiguity <= max_ambiguity &&
+  return m.flat_directions == 0 && !m.at_window_edge && m.ambiguity <= max_ambiguity &&
          m.covariance(0, 0) <= max_sigma_m * max_sigma_m && m.covariance(1, 1) <= max_sigma_m * max_sigma_m &&
          m.covariance(2, 2) <= max_sigma_rad * max_sigma_rad;
 }
@@ -236,6 +236,12 @@ Result<MatchResult> ScanMatcher::match(const GridView& grid, std::span<const Vec
     return {(ix - linear_steps) * step_m, (iy - linear_steps) * step_m, (h - angular_steps) * angular_step};
   };
   const Eigen::Vector3d best_offset = offset_of(best_index);
+  const auto on_edge = [](double offset, int32_t steps, double step) {
+    return steps > 0 && std::abs(offset) >= (steps - 0.5) * step;
+  };
+  const bool at_window_edge = on_edge(best_offset.x(), linear_steps, step_m) ||
+                              on_edge(best_offset.y(), linear_steps, step_m) ||
+                              on_edge(best_offset.z(), angular_steps, angular_step);
   const Pose best{predicted.x + best_offset.x(), predicted.y + best_offset.y(),
                   wrap_angle(predicted.theta + best_offset.z())};
 
@@ -322,6 +328,7 @@ Result<MatchResult> ScanMatcher::match(const GridView& grid, std::span<const Vec
   result.covariance = covariance;
   result.flat_directions = flat_directions;
   result.ambiguity = best_sum > 0.0 ? distinct_sum / best_sum : 0.0;
+  result.at_window_edge = at_window_edge;
   for (const Vec2& p : points) result.points_used += geo.cell_at(result.pose.transform(p)) ? 1 : 0;
   if (result.score < options_.min_score)
     return Error{"scan match: best score " + std::to_string(result.score) + " below " +

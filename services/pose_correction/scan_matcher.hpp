@@ -53,11 +53,14 @@ struct MatchResult {
   // to the best's (0..1; 0 when the window holds no such candidate). Near 1: a second peak (or a
   // ridge) as good as the best, so the best is a guess among equals.
   double ambiguity = 0.0;
+  // The best candidate lies on the search window's edge (in x, y or heading): the response may
+  // still rise beyond it, so the best is not known to be a peak.
+  bool at_window_edge = false;
 };
 
 // Whether a match pins one pose, as a loop closure must (a wrong closure is worse than none): no
 // flat direction, no second peak or ridge scoring close to the best away from it (a ring, a corridor,
-// look-alike rooms within the window), and a small spread.
+// look-alike rooms within the window), a small spread, and a best candidate inside the window.
 struct DistinctMatch {
   double max_ambiguity = 0.8;
   double max_sigma_m = 0.05;

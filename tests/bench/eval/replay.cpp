@@ -75,7 +75,8 @@ Result<ReplayOutcome> replay(std::span<const mapper::OwnedObservation> observati
     changed.clear();
     stage.take_changed(changed);
     for (const auto& c : changed) {
-      recorder.on_correction(c.robot, c.map_from_odom, c.version, c.source == correction::CorrectionSource::Loop);
+      recorder.on_correction(c.robot, c.map_from_odom, c.version,
+                             c.source == correction::CorrectionSource::Loop);
       corrections[c.robot] = c.map_from_odom;
     }
     while (next_truth < truth.size() && truth[next_truth].stamp_ns <= tick) {

@@ -250,6 +250,25 @@ TEST(ScanMatcher, DistinctRoomClosureWindowIsAccepted) {
   EXPECT_TRUE(DistinctMatch{}.accepts(*r));
 }
 
+TEST(ScanMatcher, ABestCandidateOnTheWindowsEdgeIsNotDistinct) {
+  // The true pose lies 6 cm beyond a 0.3 m window: the best candidate the search can reach sits on
+  // the window's edge, where the response is still rising. Its spread is sharp (2.5 cm) and its
+  // ambiguity low (0.65), so only the edge tells it is not a peak: a closure must not take it. The
+  // same keyframe with a window that holds the true pose is distinct.
+  const Scene s = scene(l_room(), {-1.0, -1.0}, {7.0, 6.0}, {4.0, 1.2, 0.3});
+  ScanMatcher matcher;
+  const Pose predicted = offset(s.truth, 0.36, 0.0, 0.0);
+  const auto cut = matcher.match(s.view(), s.points, predicted, {0.3, 0.1});
+  ASSERT_TRUE(cut) << cut.message();
+  EXPECT_TRUE(cut->at_window_edge);
+  EXPECT_FALSE(DistinctMatch{}.accepts(*cut));
+  const auto whole = matcher.match(s.view(), s.points, predicted, {1.0, 0.1});
+  ASSERT_TRUE(whole) << whole.message();
+  expect_near_pose(whole->pose, s.truth);
+  EXPECT_FALSE(whole->at_window_edge);
+  EXPECT_TRUE(DistinctMatch{}.accepts(*whole));
+}
+
 TEST(ScanMatcher, ObstructedCellsCountAsOccupied) {
   Scene s = scene(l_room(), {-1.0, -1.0}, {7.0, 6.0}, {4.0, 1.2, 0.3});
   for (uint8_t& c : s.grid.classes)
