@@ -31,9 +31,8 @@ constexpr double kOperatorSigma_rad = 0.01;
 // A closure match's figures for the log: what each gate saw.
 std::string describe(const MatchResult& m, size_t points, const Eigen::Matrix3d& chain_cov) {
   return fmt::format(
-      "{} points, score {:.2f}, sigma {:.3f} / {:.3f} m, {:.2f} deg, flat {}, ambiguity {:.2f}, window edge "
-      "{}, "
-      "chain sigma {:.3f} m",
+      "{} points, score {:.2f}, sigma {:.3f} / {:.3f} m, {:.2f} deg, flat {}, ambiguity {:.2f}, "
+      "window edge {}, chain sigma {:.3f} m",
       points, m.score, std::sqrt(m.covariance(0, 0)), std::sqrt(m.covariance(1, 1)),
       std::sqrt(m.covariance(2, 2)) * 57.29578, m.flat_directions, m.ambiguity, m.at_window_edge,
       std::sqrt(std::max(chain_cov(0, 0), chain_cov(1, 1))));

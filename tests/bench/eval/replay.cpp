@@ -18,6 +18,20 @@ namespace {
 
 constexpr int64_t kLoopPeriodNs = 100'000'000;  // the mapper's patch period: one loop pass
 
+// Logs each robot's corrected and raw error at one truth instant (`since_ns` after the first
+// observation), among the pose correction's own log lines.
+void trace(std::span<const RobotTruth> instant, const std::map<std::string, Pose>& corrections,
+           int64_t since_ns) {
+  for (const RobotTruth& t : instant) {
+    const auto c = corrections.find(t.robot_id);
+    const Pose correction = c == corrections.end() ? Pose{} : c->second;
+    const Vec2 corrected = correction.compose(t.reported_pose).position();
+    spdlog::info("trace {:.1f} s {} error {:.3f} m, raw {:.3f} m", static_cast<double>(since_ns) * 1e-9,
+                 t.robot_id, distance(corrected, t.true_pose.position()),
+                 distance(t.reported_pose.position(), t.true_pose.position()));
+  }
+}
+
 }  // namespace
 
 Result<std::vector<mapper::OwnedObservation>> read_observations(const std::filesystem::path& store) {
@@ -85,13 +99,7 @@ Result<ReplayOutcome> replay(std::span<const mapper::OwnedObservation> observati
       for (; next_truth < truth.size() && truth[next_truth].stamp_ns == stamp; ++next_truth)
         instant.push_back(truth[next_truth].truth);
       recorder.on_truth(stamp, instant);
-      for (const RobotTruth& t : instant) {
-        if (!options.trace) break;
-        const Vec2 corrected = corrections[t.robot_id].compose(t.reported_pose).position();
-        spdlog::info("trace {:.1f} s {} error {:.3f} m, raw {:.3f} m", static_cast<double>(stamp - t0) * 1e-9,
-                     t.robot_id, distance(corrected, t.true_pose.position()),
-                     distance(t.reported_pose.position(), t.true_pose.position()));
-      }
+      if (options.trace) trace(instant, corrections, stamp - t0);
     }
   }
   recorder.stop();
