@@ -234,7 +234,7 @@ void GatewayNode::run_once() {
     forget_.clear();
     registry_.expire(now, [&](const RobotRecord& r) { went_offline_.push_back(r.id); });
     // The digest and MQTT wakes come more often than the state period; states wait for it unless
-    // a presence or correction change is urgent.
+    // a first sighting, a presence change or a forget is urgent.
     if (urgent || now.mono_ns >= next_states_ns_) {
       registry_.take_changed([&](const RobotRecord& r) { changed_.push_back(r); });
       next_states_ns_ = now.mono_ns + std::chrono::nanoseconds(period_).count();
@@ -272,13 +272,11 @@ void GatewayNode::on_correction(const slam::PoseCorrection& sample) {
   }
   bump(metrics_.corrections);
   if (!*changed) return;
-  bool known = false;
-  {
-    std::lock_guard lock(registry_mutex_);
-    known = registry_.mark_changed(id);
-    if (known) urgent_ = true;
-  }
-  if (known) loop_wake_.notify_one();
+  // Not urgent: the next digest (a tenth of a second) carries the new map pose to every reader
+  // that follows motion; the robot's state record follows at its period. With a correction per
+  // keyframe, waking for each would publish every robot's state many times a second.
+  std::lock_guard lock(registry_mutex_);
+  registry_.mark_changed(id);
 }
 
 void GatewayNode::on_forget(const slam::ForgetRobot& command) {

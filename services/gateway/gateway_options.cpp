@@ -48,7 +48,8 @@ void add_gateway_options(CLI::App& app, GatewayOptions& o) {
   app.add_option("--offline-after-s", o.offline_after_s, "a robot silent this long (s) is offline")
       ->capture_default_str();
   app.add_option("--state-period-s", o.state_period_s,
-                 "RobotState published at most this often per robot (s)")
+                 "RobotState and RobotOdometry published at most this often per robot (s); "
+                 "presence changes go out at once, poses at the digest period")
       ->capture_default_str();
   app.add_option("--batch-ms", o.batch_ms,
                  "an observation waits at most this long (ms) for others to share its DDS sample")
@@ -57,7 +58,8 @@ void add_gateway_options(CLI::App& app, GatewayOptions& o) {
                  "robots tracked at most; messages from further ones are refused")
       ->capture_default_str();
   app.add_option("--digest-period-s", o.digest_period_s,
-                 "every robot's map pose and presence published in one FleetDigest this often (s)")
+                 "every robot's map pose and presence published in one FleetDigest this often (s): "
+                 "the pose stream the planner and the viewer follow")
       ->capture_default_str();
   app.add_option("--digest-points-period-s", o.digest_points_period_s,
                  "the robots' latest obstacle points published in one FleetPoints this often (s)")

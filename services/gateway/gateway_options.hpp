@@ -30,13 +30,16 @@ struct GatewayOptions {
   MqttOptions mqtt = default_mqtt_options();
   protocol::CodecLimits limits;
   double offline_after_s = 5.0;  // silence that turns a robot offline
-  double state_period_s = 0.1;   // RobotState is published at most this often per robot
+  // RobotState and RobotOdometry go out at most this often per robot (presence changes at once):
+  // they are each robot's status record. The pose stream readers follow is the FleetDigest.
+  double state_period_s = 1.0;
   // Observations leave in batches (one DDS sample each): a batch waits at most this long.
   double batch_ms = 10.0;
   std::size_t max_robots = 10'000;
-  // The fleet digests for the bridge (FleetDigest, FleetPoints): every robot in one sample each
-  // period, with up to digest_points_per_robot of each robot's latest hits per points sample.
-  double digest_period_s = 0.2;
+  // The fleet digests (FleetDigest, FleetPoints): every robot in one sample each period, with up
+  // to digest_points_per_robot of each robot's latest hits per points sample. The digest is the
+  // pose stream the planner, the viewer and the bridge follow.
+  double digest_period_s = 0.1;
   double digest_points_period_s = 1.0;
   std::size_t digest_points_per_robot = 16;
   std::size_t traffic_queue = 1024;  // MqttTraffic records waiting for the worker

@@ -9,7 +9,7 @@ void IntakeBatch::clear() {
   snapshot.reset();
   patches.clear();
   patches_dropped = false;
-  states.clear();
+  positions.clear();
   goals.clear();
   requests.clear();
 }
@@ -33,13 +33,22 @@ void PlannerIntake::push_patch(const slam::GridTiles& sample) {
 }
 
 void PlannerIntake::push_state(const slam::RobotState& sample) {
+  const auto& id = sample.robot_id();
   std::lock_guard lock(mutex_);
-  auto [it, inserted] = state_index_.try_emplace(sample.robot_id().to_string(), pending_.states.size());
-  if (inserted) {
-    pending_.states.push_back(sample);
-  } else {
-    pending_.states[it->second] = sample;
+  positions_.offer({id.c_str(), id.size()}, {sample.pose().x(), sample.pose().y()}, sample.last_seen_ns());
+}
+
+void PlannerIntake::push_digest(const slam::FleetDigest& sample) {
+  std::lock_guard lock(mutex_);
+  for (const slam::DigestRobot& r : sample.robots()) {
+    const auto& id = r.robot_id();
+    positions_.offer({id.c_str(), id.size()}, {r.pose().x(), r.pose().y()}, r.last_seen_ns());
   }
+}
+
+void PlannerIntake::forget_robot(const std::string& robot_id) {
+  std::lock_guard lock(mutex_);
+  positions_.forget(robot_id);
 }
 
 void PlannerIntake::push_goal(const slam::NavGoal& sample, int64_t sent_ns) {
@@ -69,7 +78,7 @@ void PlannerIntake::drain(IntakeBatch& out) {
   out.clear();
   std::lock_guard lock(mutex_);
   std::swap(out, pending_);
-  state_index_.clear();
+  positions_.take(out.positions);
   urgent_ = false;
 }
 

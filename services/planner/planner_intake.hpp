@@ -10,11 +10,12 @@
 #include <chrono>
 #include <condition_variable>
 #include <cstdint>
-#include <map>
 #include <mutex>
 #include <optional>
 #include <string>
 #include <vector>
+
+#include "planner/robot_positions.hpp"
 
 namespace slam::planner {
 
@@ -28,7 +29,7 @@ struct IntakeBatch {
   std::optional<slam::GridSnapshot> snapshot;  // the latest one, applied before `patches`
   std::vector<slam::GridTiles> patches;        // in arrival order
   bool patches_dropped = false;                // the queue overflowed: wait for the next snapshot
-  std::vector<slam::RobotState> states;        // the latest per robot
+  std::vector<RobotPosition> positions;        // the newest per robot (RobotPositions)
   std::vector<ReceivedGoal> goals;             // in arrival order
   std::vector<slam::PathRequest> requests;     // in arrival order
 
@@ -43,7 +44,12 @@ class PlannerIntake {
 
   void push_snapshot(const slam::GridSnapshot& sample);
   void push_patch(const slam::GridTiles& sample);
+  // A robot's position from its state record or from a gateway's digest of every robot it hears:
+  // the newest wins (RobotPositions).
   void push_state(const slam::RobotState& sample);
+  void push_digest(const slam::FleetDigest& sample);
+  // The robot was forgotten: its next position is taken whatever its stamp.
+  void forget_robot(const std::string& robot_id);
   void push_goal(const slam::NavGoal& sample, int64_t sent_ns);
   void push_request(const slam::PathRequest& sample);
 
@@ -57,7 +63,7 @@ class PlannerIntake {
   std::condition_variable wake_;
   bool urgent_ = false;
   IntakeBatch pending_;
-  std::map<std::string, size_t> state_index_;  // robot_id -> index in pending_.states
+  RobotPositions positions_;
 };
 
 }  // namespace slam::planner

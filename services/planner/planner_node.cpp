@@ -47,8 +47,8 @@ PlannerNode::Metrics::Metrics(Counters& c)
       replans(c.get("replans")),
       waypoints_sent(c.get("waypoints_sent")),
       paths_published(c.get("paths_published")),
-      robot_states(c.get("robot_states")),
-      robot_states_rejected(c.get("robot_states_rejected")),
+      robot_positions(c.get("robot_positions")),
+      robot_positions_rejected(c.get("robot_positions_rejected")),
       snapshots(c.get("snapshots")),
       snapshots_rejected(c.get("snapshots_rejected")),
       patches_applied(c.get("patches_applied")),
@@ -143,6 +143,12 @@ Status PlannerNode::configure() {
       });
   if (!states) return states.error();
   state_reader_ = std::move(*states);
+  // The pose stream: every gateway's robots ten times a second (a state record comes once a second).
+  auto digests =
+      dds::make_reader(*participant_, dds::kFleetDigest,
+                       [this](const slam::FleetDigest& d, const auto&) { intake_.push_digest(d); });
+  if (!digests) return digests.error();
+  digest_reader_ = std::move(*digests);
   auto goals = dds::make_reader(*participant_, dds::kNavGoal,
                                 [this](const slam::NavGoal& g, const dds::fdds::SampleInfo& info) {
                                   intake_.push_goal(g, info.source_timestamp.to_ns());
@@ -175,7 +181,7 @@ void PlannerNode::run_once() {
   intake_.wait(period_);
   intake_.drain(batch_);
   apply_grid(batch_);
-  apply_states(batch_.states);
+  apply_positions(batch_.positions);
   apply_goals(batch_.goals);
   const int64_t now = monotonic_ns();
   update_ownership(now);
@@ -318,6 +324,7 @@ void PlannerNode::apply_forgets() {
   for (const std::string& id : forget_taken_) {
     if (id.empty() || id == kAllRobots) continue;
     const bool known = robots_.erase(id) > 0;
+    intake_.forget_robot(id);
     fleet_.forget(id);
     coordinator_.forget(id);
     missions_.forget(id);

@@ -68,8 +68,8 @@ class PlannerNode {
     std::atomic<int64_t>& replans;
     std::atomic<int64_t>& waypoints_sent;
     std::atomic<int64_t>& paths_published;
-    std::atomic<int64_t>& robot_states;
-    std::atomic<int64_t>& robot_states_rejected;
+    std::atomic<int64_t>& robot_positions;
+    std::atomic<int64_t>& robot_positions_rejected;
     std::atomic<int64_t>& snapshots;
     std::atomic<int64_t>& snapshots_rejected;
     std::atomic<int64_t>& patches_applied;
@@ -90,7 +90,7 @@ class PlannerNode {
   Status configure();
 
   void apply_grid(IntakeBatch& batch);
-  void apply_states(const std::vector<slam::RobotState>& states);
+  void apply_positions(const std::vector<RobotPosition>& positions);
   // Goals and homes from the store, before any reader runs: a restarted planner carries on.
   void resume_goals();
   void apply_goals(const std::vector<ReceivedGoal>& goals);
@@ -172,6 +172,7 @@ class PlannerNode {
   std::unique_ptr<dds::Reader<slam::GridSnapshot>> snapshot_reader_;
   std::unique_ptr<dds::Reader<slam::GridTiles>> patch_reader_;
   std::unique_ptr<dds::Reader<slam::RobotState>> state_reader_;
+  std::unique_ptr<dds::Reader<slam::FleetDigest>> digest_reader_;
   std::unique_ptr<dds::Reader<slam::NavGoal>> goal_reader_;
   std::unique_ptr<dds::Reader<slam::PathRequest>> request_reader_;
   std::unique_ptr<dds::Reader<slam::Heartbeat>> heartbeat_reader_;

@@ -86,21 +86,21 @@ void PlannerNode::apply_grid(IntakeBatch& batch) {
   metrics_.map_version.store(static_cast<int64_t>(grid_.version()), std::memory_order_relaxed);
 }
 
-void PlannerNode::apply_states(const std::vector<slam::RobotState>& states) {
-  for (const slam::RobotState& s : states) {
-    const std::string id = s.robot_id().to_string();
-    const Vec2 position{s.pose().x(), s.pose().y()};
+void PlannerNode::apply_positions(const std::vector<RobotPosition>& positions) {
+  for (const RobotPosition& p : positions) {
+    const std::string& id = p.robot_id;
+    const Vec2 position = p.position;
     if (id.empty() || id == kAllRobots) {
-      bump(metrics_.robot_states_rejected);
-      warn("state:" + id, "robot state ignored: robot_id '" + id + "' is not a robot's name");
+      bump(metrics_.robot_positions_rejected);
+      warn("position:" + id, "robot position ignored: robot_id '" + id + "' is not a robot's name");
       continue;
     }
     if (!std::isfinite(position.x) || !std::isfinite(position.y)) {
-      bump(metrics_.robot_states_rejected);
-      warn("state:" + id, "robot '" + id + "': position is not finite, state ignored");
+      bump(metrics_.robot_positions_rejected);
+      warn("position:" + id, "robot '" + id + "': position is not finite, ignored");
       continue;
     }
-    bump(metrics_.robot_states);
+    bump(metrics_.robot_positions);
     const bool first = robots_.insert(id).second;
     fleet_.observe(id, position);
     coordinator_.observe(id, position);

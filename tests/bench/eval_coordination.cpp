@@ -54,13 +54,14 @@ class Tap {
     auto participant = dds::Participant::create(domain, "eval-coordination");
     if (!participant) return Error{"DDS participant: " + participant.message()};
     tap->participant_ = std::move(*participant);
-    auto states = dds::make_reader(
-        *tap->participant_, dds::kRobotState, [t = tap.get()](const RobotState& s, const auto&) {
+    auto digests = dds::make_reader(
+        *tap->participant_, dds::kFleetDigest, [t = tap.get()](const FleetDigest& d, const auto&) {
           std::lock_guard lock(t->mutex_);
-          t->positions_[s.robot_id().to_string()] = Vec2{s.pose().x(), s.pose().y()};
+          for (const DigestRobot& r : d.robots())
+            t->positions_[r.robot_id().to_string()] = Vec2{r.pose().x(), r.pose().y()};
         });
-    if (!states) return states.error();
-    tap->states_ = std::move(*states);
+    if (!digests) return digests.error();
+    tap->digests_ = std::move(*digests);
     auto paths = dds::make_reader(*tap->participant_, dds::kRobotPath,
                                   [t = tap.get()](const RobotPath& p, const auto&) {
                                     std::lock_guard lock(t->mutex_);
@@ -111,7 +112,7 @@ class Tap {
   std::map<std::string, std::pair<uint64_t, GoalStatus>> status_;
   std::map<std::string, std::map<std::string, int64_t>> counters_;
   std::unique_ptr<dds::Participant> participant_;
-  std::unique_ptr<dds::Reader<RobotState>> states_;
+  std::unique_ptr<dds::Reader<FleetDigest>> digests_;
   std::unique_ptr<dds::Reader<RobotPath>> paths_;
   std::unique_ptr<dds::Reader<Heartbeat>> heartbeats_;
   std::unique_ptr<dds::Writer<NavGoal>> goals_;

@@ -139,8 +139,9 @@ class SystemTap {
         robots.push_back({r.robot_id().to_string(), to_pose(r.true_pose()), to_pose(r.reported_pose())});
       recorder_.on_truth(t.stamp_ns(), robots);
     }));
-    SLAM_TRY(open(states_, dds::kRobotState, [this](const RobotState& s) {
-      recorder_.on_state(s.robot_id().to_string(), {s.pose().x(), s.pose().y()});
+    SLAM_TRY(open(digests_, dds::kFleetDigest, [this](const FleetDigest& d) {
+      for (const DigestRobot& r : d.robots())
+        recorder_.on_published_pose(r.robot_id().to_string(), {r.pose().x(), r.pose().y()});
     }));
     SLAM_TRY(open(corrections_, dds::kPoseCorrection, [this](const PoseCorrection& c) {
       recorder_.on_correction(c.robot_id().to_string(), to_pose(c.map_from_odom()), c.version(),
@@ -182,7 +183,7 @@ class SystemTap {
   std::map<uint64_t, MapReply> replies_;
   std::unique_ptr<dds::Participant> participant_;
   std::unique_ptr<dds::Reader<SimGroundTruth>> truth_;
-  std::unique_ptr<dds::Reader<RobotState>> states_;
+  std::unique_ptr<dds::Reader<FleetDigest>> digests_;
   std::unique_ptr<dds::Reader<PoseCorrection>> corrections_;
   std::unique_ptr<dds::Reader<RobotPath>> paths_;
   std::unique_ptr<dds::Reader<SimWorld>> worlds_;
@@ -210,7 +211,7 @@ class Evaluation {
     tap_ = std::move(*tap);
     SLAM_TRY(wait_for("every robot's truth and state, the world and the planner's goal reader", 90s, [&] {
       return recorder_.robots_seen() >= static_cast<size_t>(o_.robots) &&
-             recorder_.states_seen() >= static_cast<size_t>(o_.robots) && tap_->world().has_value() &&
+             recorder_.robots_published() >= static_cast<size_t>(o_.robots) && tap_->world().has_value() &&
              tap_->counter("simulator", "steps") >= 0 && tap_->goals().wait_for_readers(10ms);
     }));
 

@@ -133,7 +133,8 @@ TEST_F(GatewayFramesTest, V1RobotStateInTheMapFrameOdometryRawAndWaypointBytesIn
   EXPECT_EQ(cmd->topic, "v1/server/r1/cmd");
   EXPECT_EQ(cmd->payload, std::string("\x64\x00\x00\x00", 4));
 
-  // A new correction republishes the state without a word from the robot: identity, so map = odom.
+  // A new correction republishes the state (at the state period) without a word from the robot:
+  // identity, so map = odom.
   ASSERT_NO_FATAL_FAILURE(correct("r1", 0.0, 0.0, 0.0, 4));
   ASSERT_TRUE(state_at("r1", 1.0, -2.5));
   ASSERT_TRUE(odometry_with("r1", 4));

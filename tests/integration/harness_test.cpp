@@ -3,6 +3,9 @@
 #include <gtest/gtest.h>
 #include <signal.h>
 
+#include <memory>
+#include <vector>
+
 #include "process_group.hpp"
 
 namespace slam::testkit {
@@ -41,6 +44,17 @@ TEST(ProcessGroupTest, DomainLeasesAreExclusive) {
   DomainLease a;
   DomainLease b;
   EXPECT_NE(a.id(), b.id());
+}
+
+// A lease of two holds both ids: no other lease gets either.
+TEST(ProcessGroupTest, ALeaseOfTwoHoldsTwoDomainsInARow) {
+  DomainLease pair(2);
+  std::vector<std::unique_ptr<DomainLease>> others;
+  for (int i = 0; i < 20; ++i) {
+    others.push_back(std::make_unique<DomainLease>());
+    EXPECT_NE(others.back()->id(), pair.id());
+    EXPECT_NE(others.back()->id(), pair.id() + 1);
+  }
 }
 
 }  // namespace

@@ -271,7 +271,7 @@ TEST_F(PlannerTest, StreamsWaypointsInOrderAndReplansWhenAPatchBlocksThePath) {
   TestMap map = walled_map();
   publish_map(map, 5);
   move_robot("r1", 2, 1);
-  ASSERT_TRUE(wait_until([&] { return counter("robot_states") >= 1; }, 30s));
+  ASSERT_TRUE(wait_until([&] { return counter("robot_positions") >= 1; }, 30s));
 
   // A goal for a robot not seen yet waits for it (status NONE, the reason says so); bad goals get a
   // clear FAILED status with the reason, and nothing is sent.
@@ -346,7 +346,7 @@ TEST_F(PlannerTest, ExploringRobotsGetDifferentFrontiers) {
   publish_map(map, 1);
   move_robot("r1", 4, 3);
   move_robot("r2", 8, 3);
-  ASSERT_TRUE(wait_until([&] { return counter("robot_states") >= 2; }, 30s));
+  ASSERT_TRUE(wait_until([&] { return counter("robot_positions") >= 2; }, 30s));
 
   send_goal("*", 7, GOAL_EXPLORE, pt(0, 0));
   const auto exploring = [&](const std::string& id) {

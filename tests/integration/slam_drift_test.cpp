@@ -159,7 +159,9 @@ TEST(SlamDriftTest, DriftingRobotOnAKnownMapStaysCloseToTheTruth) {
   const std::string domain = std::to_string(lease.id());
   const int port = group.start_mosquitto();
   const std::string broker = "tcp://127.0.0.1:" + std::to_string(port);
-  group.start("gateway", {bin_path("slam-gateway"), "--domain", domain, "--broker", broker});
+  // Every state and its odometry at 10 Hz: the observer pairs each truth sample with them.
+  group.start("gateway",
+              {bin_path("slam-gateway"), "--domain", domain, "--broker", broker, "--state-period-s", "0.1"});
   group.start("mapper", {bin_path("slam-mapper"), "--domain", domain, "--store", group.dir() + "/map.db"});
   group.start("planner",
               {bin_path("slam-planner"), "--domain", domain, "--goal-store", group.dir() + "/goals.json"});

@@ -22,30 +22,47 @@
 
 namespace slam::testkit {
 
-DomainLease::DomainLease() {
+namespace {
+
+// Locks domain `id`'s file; -1 when another process holds it.
+int lock_domain(int id) {
+  const std::string path = "/tmp/slamfleet-dds-domain-" + std::to_string(id) + ".lock";
+  const int fd = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0666);
+  if (fd < 0) return -1;
+  if (flock(fd, LOCK_EX | LOCK_NB) == 0) return fd;
+  ::close(fd);
+  return -1;
+}
+
+}  // namespace
+
+DomainLease::DomainLease(int count) {
   // Domains 20..100: a domain's ports are 7400 + 250 × id and up, and above id 100 they fall into
   // Linux's ephemeral range (32768 and up), where any client socket may hold one first and a
   // participant then fails with "address in use". The flock is released by the kernel even if the
   // test process crashes.
   constexpr int kFirst = 20, kCount = 81;
-  const int start = static_cast<int>(getpid() % kCount);
-  for (int i = 0; i < kCount; ++i) {
-    const int id = kFirst + (start + i) % kCount;
-    const std::string path = "/tmp/slamfleet-dds-domain-" + std::to_string(id) + ".lock";
-    const int fd = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0666);
-    if (fd < 0) continue;
-    if (flock(fd, LOCK_EX | LOCK_NB) == 0) {
+  const int starts = kCount - count + 1;
+  const int offset = static_cast<int>(getpid() % starts);
+  for (int i = 0; i < starts; ++i) {
+    const int id = kFirst + (offset + i) % starts;
+    for (int k = 0; k < count; ++k) {
+      const int fd = lock_domain(id + k);
+      if (fd < 0) break;
+      fds_.push_back(fd);
+    }
+    if (static_cast<int>(fds_.size()) == count) {
       id_ = id;
-      fd_ = fd;
       return;
     }
-    ::close(fd);
+    for (int fd : fds_) ::close(fd);
+    fds_.clear();
   }
-  throw std::runtime_error("no free DDS domain id in 20..100");
+  throw std::runtime_error("no " + std::to_string(count) + " free DDS domain id(s) in a row in 20..100");
 }
 
 DomainLease::~DomainLease() {
-  if (fd_ >= 0) ::close(fd_);
+  for (int fd : fds_) ::close(fd);
 }
 
 int free_tcp_port() {

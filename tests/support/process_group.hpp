@@ -16,10 +16,11 @@ namespace slam::testkit {
 using namespace std::chrono_literals;
 
 // A DDS domain id held exclusively by this process (flock on a file in /tmp) for its lifetime, so
-// parallel tests never share a domain.
+// parallel tests never share a domain. `count` > 1 holds id() .. id() + count - 1, for a test whose
+// system uses the next domains too (the secure launcher puts the simulator on domain + 1).
 class DomainLease {
  public:
-  DomainLease();
+  explicit DomainLease(int count = 1);
   ~DomainLease();
   DomainLease(const DomainLease&) = delete;
   DomainLease& operator=(const DomainLease&) = delete;
@@ -27,7 +28,7 @@ class DomainLease {
 
  private:
   int id_ = -1;
-  int fd_ = -1;
+  std::vector<int> fds_;
 };
 
 // A loopback TCP port that was free a moment ago.

@@ -74,6 +74,7 @@ void IntakeBatch::clear() {
   patches.clear();
   observations.clear();
   states.clear();
+  poses.clear();
   paths.clear();
   missions.clear();
   corrections.clear();
@@ -115,6 +116,11 @@ void Intake::push(RobotStateData&& s) {
       return;
     }
   pending_.states.push_back(std::move(s));
+}
+
+void Intake::push(RobotPoseData&& p) {
+  std::lock_guard lock(mutex_);
+  pending_.poses.push_back(std::move(p));
 }
 
 void Intake::push(RobotPathData&& p) {

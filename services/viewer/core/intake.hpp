@@ -17,6 +17,7 @@ struct IntakeBatch {
   std::vector<GridPatchData> patches;
   std::vector<ObservationData> observations;
   std::vector<RobotStateData> states;
+  std::vector<RobotPoseData> poses;  // in arrival order; the registry keeps the newest
   std::vector<RobotPathData> paths;
   std::vector<MissionData> missions;            // the newest per robot
   std::vector<PoseCorrectionData> corrections;  // the newest per robot
@@ -45,6 +46,7 @@ class Intake {
   void push(GridPatchData&& p);
   void push(ObservationData&& o);
   void push(RobotStateData&& s);
+  void push(RobotPoseData&& p);
   void push(RobotPathData&& p);
   void push(MissionData&& m);
   void push(PoseCorrectionData&& c);

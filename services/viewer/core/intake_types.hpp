@@ -82,6 +82,16 @@ struct RobotStateData {
   std::string status;
 };
 
+// One robot of a gateway's FleetDigest: the pose stream (ten times a second; RobotState, the
+// robot's whole record, comes once a second or on a presence change).
+struct RobotPoseData {
+  std::string robot_id;
+  Pose pose;
+  bool has_heading = false;
+  bool online = false;
+  int64_t last_seen_ns = 0;
+};
+
 struct RobotPathData {
   std::string robot_id;
   uint64_t goal_id = 0;

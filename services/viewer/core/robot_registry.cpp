@@ -36,12 +36,37 @@ void RobotRegistry::ingest(const ObservationData& o) {
   RobotView& r = get_or_add(o.robot_id);
   ++r.observations;
   r.last_observed_pose = o.pose;
-  r.points.append(o.hits_xy.data(), o.hits_xy.size() / 2);
+  const Pose map_from_odom = r.map_from_odom();
+  placed_xy_.resize(o.hits_xy.size());
+  for (size_t i = 0; i + 1 < o.hits_xy.size(); i += 2) {
+    const Vec2 p = map_from_odom.transform({o.hits_xy[i], o.hits_xy[i + 1]});
+    placed_xy_[i] = static_cast<float>(p.x);
+    placed_xy_[i + 1] = static_cast<float>(p.y);
+  }
+  r.points.append(placed_xy_.data(), placed_xy_.size() / 2);
 }
 
 void RobotRegistry::ingest(RobotStateData&& s) {
   RobotView& r = get_or_add(s.robot_id);
+  if (r.has_state && s.last_seen_ns < r.state.last_seen_ns) {
+    // A record older than the digest pose shown: its counters are news, its pose is not.
+    s.pose = r.state.pose;
+    s.has_heading = r.state.has_heading;
+    s.online = r.state.online;
+    s.last_seen_ns = r.state.last_seen_ns;
+  }
   r.state = std::move(s);
+  r.has_state = true;
+}
+
+void RobotRegistry::ingest(const RobotPoseData& p) {
+  RobotView& r = get_or_add(p.robot_id);
+  if (r.has_state && p.last_seen_ns < r.state.last_seen_ns) return;
+  r.state.robot_id = p.robot_id;
+  r.state.pose = p.pose;
+  r.state.has_heading = p.has_heading;
+  r.state.online = p.online;
+  r.state.last_seen_ns = p.last_seen_ns;
   r.has_state = true;
 }
 
@@ -109,14 +134,8 @@ bool RobotRegistry::bounds(WorldBox* box) const {
   for (const auto& r : robots_) {
     if (r->has_state) add(r->state.pose.x, r->state.pose.y, r->state.pose.x, r->state.pose.y);
     if (!r->points.empty()) {
-      // The raw box's corners through the correction bound the corrected points.
       const WorldBox& b = r->points.bounds();
-      const Pose m = r->map_from_odom();
-      for (const Vec2 corner :
-           {Vec2{b.min_x, b.min_y}, Vec2{b.max_x, b.min_y}, Vec2{b.min_x, b.max_y}, Vec2{b.max_x, b.max_y}}) {
-        const Vec2 p = m.transform(corner);
-        add(p.x, p.y, p.x, p.y);
-      }
+      add(b.min_x, b.min_y, b.max_x, b.max_y);
     }
   }
   return any;

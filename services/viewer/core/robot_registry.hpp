@@ -36,7 +36,10 @@ struct RobotView {
   MissionData mission;
   bool has_correction = false;
   PoseCorrectionData correction;
-  PointStore points;  // raw, in the robot's odometry frame: draw them through map_from_odom()
+  // Map frame: each point went through the robot's correction of the moment it arrived. A later
+  // correction fixes the robot's drift from then on; it does not move what was already placed
+  // (re-applying the newest correction to old points rotates them by every heading fix since).
+  PointStore points;
   uint64_t observations = 0;
   Pose last_observed_pose;
 
@@ -56,7 +59,9 @@ class RobotRegistry {
   const RobotView& at(size_t index) const { return *robots_[index]; }
 
   void ingest(const ObservationData& o);
+  // A robot's pose comes from its state record and from the digests; the one heard last wins.
   void ingest(RobotStateData&& s);
+  void ingest(const RobotPoseData& p);
   void ingest(RobotPathData&& p);
   void ingest(MissionData&& m);
   void ingest(PoseCorrectionData&& c);
@@ -72,10 +77,11 @@ class RobotRegistry {
 
   size_t online() const;
   size_t total_points() const;
-  // Box around every robot position and point (points corrected); false when there is nothing.
+  // Box around every robot position and point; false when there is nothing.
   bool bounds(WorldBox* box) const;
 
  private:
+  std::vector<float> placed_xy_;  // reused: one observation's points in the map frame
   size_t max_points_;
   RobotSettings defaults_;
   std::vector<std::unique_ptr<RobotView>> robots_;

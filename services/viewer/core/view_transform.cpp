@@ -12,11 +12,6 @@ Affine2 Affine2::then(const Affine2& n) const {
           n.b * c + n.d * d, n.a * tx + n.c * ty + n.tx, n.b * tx + n.d * ty + n.ty};
 }
 
-Affine2 pose_affine(const Pose& p) {
-  const double c = std::cos(p.theta), s = std::sin(p.theta);
-  return {c, s, -s, c, p.x, p.y};
-}
-
 Affine2 Affine2::inverse() const {
   const double det = a * d - b * c;
   const double ia = d / det, ib = -b / det, ic = -c / det, id = a / det;

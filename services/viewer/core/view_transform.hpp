@@ -20,9 +20,6 @@ struct Affine2 {
   void to_mat3(float out[9]) const;
 };
 
-// The pose as a map from its own frame into the frame it is expressed in (as Pose::transform).
-Affine2 pose_affine(const Pose& p);
-
 // A rectangle in window pixels (x, y: top-left corner).
 struct Viewport {
   double x = 0.0;

@@ -33,15 +33,17 @@ void ViewerState::ingest(IntakeBatch& batch, int64_t now_ns) {
       ++patches_dropped;
     }
   }
+  // Corrections first: this frame's points are placed through the newest one.
+  for (auto& c : batch.corrections) robots.ingest(std::move(c));
   for (const auto& o : batch.observations) {
     robots.ingest(o);
     rates.observations.add();
     rates.points.add(o.hits_xy.size() / 2);
   }
   for (auto& s : batch.states) robots.ingest(std::move(s));
+  for (const auto& p : batch.poses) robots.ingest(p);
   for (auto& p : batch.paths) robots.ingest(std::move(p));
   for (auto& m : batch.missions) robots.ingest(std::move(m));
-  for (auto& c : batch.corrections) robots.ingest(std::move(c));
   for (const auto& f : batch.forgets) {
     robots.forget(f.robot_id);
     if (selected_robot == f.robot_id) selected_robot = "*";

@@ -63,6 +63,16 @@ RobotStateData from_idl(const slam::RobotState& s) {
   return d;
 }
 
+RobotPoseData from_idl(const slam::DigestRobot& r) {
+  RobotPoseData d;
+  d.robot_id = r.robot_id().to_string();
+  d.pose = pose(r.pose());
+  d.has_heading = r.has_heading();
+  d.online = r.presence() == slam::PRESENCE_ONLINE;
+  d.last_seen_ns = r.last_seen_ns();
+  return d;
+}
+
 RobotPathData from_idl(const slam::RobotPath& p) {
   RobotPathData d;
   d.robot_id = p.robot_id().to_string();

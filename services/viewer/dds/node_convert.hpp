@@ -11,6 +11,7 @@ GridSnapshotData from_idl(const slam::GridSnapshot& s);
 GridPatchData from_idl(const slam::GridTiles& p);
 ObservationData from_idl(const slam::RobotObservation& o);
 RobotStateData from_idl(const slam::RobotState& s);
+RobotPoseData from_idl(const slam::DigestRobot& r);
 RobotPathData from_idl(const slam::RobotPath& p);
 MissionData from_idl(const slam::NavMission& m);
 HeartbeatData from_idl(const slam::Heartbeat& h);

@@ -17,6 +17,8 @@ Status make_intake_reader(dds::Participant& p, const dds::Topic<T, PubSubT>& top
   auto r = dds::make_reader(p, topic, [&intake, &received](const T& sample, const dds::fdds::SampleInfo&) {
     if constexpr (std::is_same_v<T, RobotObservationBatch>) {
       for (const RobotObservation& o : sample.observations()) intake.push(from_idl(o));
+    } else if constexpr (std::is_same_v<T, FleetDigest>) {
+      for (const DigestRobot& robot : sample.robots()) intake.push(from_idl(robot));
     } else {
       intake.push(from_idl(sample));
     }
@@ -104,6 +106,7 @@ Status ViewerNode::create_readers() {
                    make_intake_reader(p, dds::kGridTiles, in, rx, patch_reader_),
                    make_intake_reader(p, dds::kRobotObservations, in, rx, observation_reader_),
                    make_intake_reader(p, dds::kRobotState, in, rx, state_reader_),
+                   make_intake_reader(p, dds::kFleetDigest, in, rx, digest_reader_),
                    make_intake_reader(p, dds::kRobotPath, in, rx, path_reader_),
                    make_intake_reader(p, dds::kNavMission, in, rx, mission_reader_),
                    make_intake_reader(p, dds::kPoseCorrection, in, rx, correction_reader_),

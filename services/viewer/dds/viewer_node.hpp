@@ -74,6 +74,7 @@ class ViewerNode final : public CommandSink {
   std::unique_ptr<dds::Reader<RobotPath>> path_reader_;
   std::unique_ptr<dds::Reader<NavMission>> mission_reader_;
   std::unique_ptr<dds::Reader<PoseCorrection>> correction_reader_;
+  std::unique_ptr<dds::Reader<FleetDigest>> digest_reader_;
   std::unique_ptr<dds::Reader<Heartbeat>> heartbeat_reader_;
   std::unique_ptr<dds::Reader<MqttTraffic>> traffic_reader_;
   std::unique_ptr<dds::Reader<MqttSubscriptions>> subscriptions_reader_;

@@ -51,12 +51,6 @@ bool accumulated(const RobotSettings& s) {
   return s.visible && s.last_n == 0;
 }
 
-// Points are stored raw (odometry frame): the robot's current correction maps them into the map,
-// so a new correction moves every point of the robot at once.
-Affine2 odom_to_ndc(const RobotView& r, const Affine2& world_to_ndc) {
-  return pose_affine(r.map_from_odom()).then(world_to_ndc);
-}
-
 }  // namespace
 
 Status PointLayer::init(const PacerConfig& pacing) {
@@ -145,9 +139,7 @@ void PointLayer::fingerprint(const RobotRegistry& robots, std::vector<float>& ou
       out.push_back(-1.0f);
       continue;
     }
-    const Pose m = robots.at(i).map_from_odom();
-    out.insert(out.end(), {s.color.r, s.color.g, s.color.b, s.color.a, s.point_radius_px,
-                           static_cast<float>(m.x), static_cast<float>(m.y), static_cast<float>(m.theta)});
+    out.insert(out.end(), {s.color.r, s.color.g, s.color.b, s.color.a, s.point_radius_px});
   }
 }
 
@@ -192,7 +184,7 @@ void PointLayer::draw_range(const RobotBuffer& b, const RobotView& r, size_t fir
                             const Affine2& world_to_ndc, double fb_scale) {
   const RobotSettings& s = r.settings;
   float m[9];
-  odom_to_ndc(r, world_to_ndc).to_mat3(m);
+  world_to_ndc.to_mat3(m);
   const float size = std::max(1.0f, 2.0f * s.point_radius_px * static_cast<float>(fb_scale));
   glUniformMatrix3fv(points_.uniform("u_world_to_ndc"), 1, GL_FALSE, m);
   glUniform1f(points_.uniform("u_size"), size);

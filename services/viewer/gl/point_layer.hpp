@@ -8,8 +8,8 @@
 //   once the view holds still, a new texture is rendered in steps and swapped in when complete.
 //   Each step rasterises as many points as fit the target frame time (PointPacer, fed with the
 //   time of earlier frames), so no frame overruns whatever the renderer or the load;
-// - points are stored raw (odometry frame) and drawn through each robot's current correction; a
-//   changed correction re-renders the texture like a changed colour;
+// - points are stored in the map frame (placed through the correction of their arrival), so a
+//   new correction adds nothing to redraw;
 // - robots limited to their last N points are drawn straight from their VBO (N is bounded).
 #include <cstdint>
 #include <vector>
@@ -73,7 +73,7 @@ class PointLayer {
   void reset(Target& t, const ViewTransform& view, const std::vector<float>& fp, const PixelRect& px);
   // Adds up to stats_.step_budget points to `t`; true once it holds them all.
   bool advance(Target& t, const RobotRegistry& robots, double fb_scale);
-  // Draws points [first, first + count) of robot `r` through its correction.
+  // Draws points [first, first + count) of robot `r`.
   void draw_range(const RobotBuffer& b, const RobotView& r, size_t first, size_t count,
                   const Affine2& world_to_ndc, double fb_scale);
   void show(const Target& t, const Affine2& delta);

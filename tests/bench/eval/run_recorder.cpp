@@ -41,7 +41,7 @@ void RunRecorder::on_truth(int64_t stamp_ns, const std::vector<RobotTruth>& robo
   }
 }
 
-void RunRecorder::on_state(const std::string& robot_id, Vec2 map_position) {
+void RunRecorder::on_published_pose(const std::string& robot_id, Vec2 map_position) {
   std::lock_guard lock(mutex_);
   robots_[robot_id].state = map_position;
 }
@@ -120,7 +120,7 @@ size_t RunRecorder::robots_seen() const {
   return n;
 }
 
-size_t RunRecorder::states_seen() const {
+size_t RunRecorder::robots_published() const {
   std::lock_guard lock(mutex_);
   size_t n = 0;
   for (const auto& [id, r] : robots_) n += r.state ? 1 : 0;

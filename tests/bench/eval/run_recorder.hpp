@@ -1,10 +1,11 @@
 #pragma once
 // What an evaluation run keeps from the system while it runs, fed from DDS callbacks (any thread)
-// as plain values: every ground-truth sample pairs each robot's true pose with its raw odometry and
+// as plain values: every ground-truth sample pairs each robot's true pose with its raw odometry,
 // with the server's corrected pose (the mapper's latest map <- odom correction applied to that
-// same odometry, so no transport delay enters the error), and with the latest published RobotState;
-// waypoints the planner counts reached are paired with the next truth sample of that robot; every
-// change of a robot's correction is kept with the robot's latest truth sample (closure_audit.hpp).
+// same odometry, so no transport delay enters the error) and with the latest published pose (the
+// FleetDigest the planner follows); waypoints the planner counts reached are paired with the next
+// truth sample of that robot; every change of a robot's correction is kept with the robot's latest
+// truth sample (closure_audit.hpp).
 #include <cstdint>
 #include <map>
 #include <mutex>
@@ -50,7 +51,7 @@ class RunRecorder {
   void stop();
 
   void on_truth(int64_t stamp_ns, const std::vector<RobotTruth>& robots);
-  void on_state(const std::string& robot_id, Vec2 map_position);
+  void on_published_pose(const std::string& robot_id, Vec2 map_position);
   // `loop`: the change comes from a loop closure (CORRECTION_LOOP).
   void on_correction(const std::string& robot_id, const Pose& map_from_odom, uint64_t version, bool loop);
   void on_path(const std::string& robot_id, const PathView& path);
@@ -58,14 +59,14 @@ class RunRecorder {
   std::vector<TrajectorySample> samples() const;
   // The truth of every sampled instant (the instants samples() holds), in order.
   std::vector<TruthSample> truth_samples() const;
-  // Latest published RobotState position beside the truth, per sample where one was known.
+  // Latest published position (FleetDigest) beside the truth, per sample where one was known.
   std::vector<std::pair<Vec2, Vec2>> published_vs_truth() const;
   std::vector<GoalArrival> arrivals() const;
   // First true position of every robot seen (flood-fill starts) and each robot's true track.
   std::vector<Vec2> true_starts() const;
   std::map<std::string, std::vector<Vec2>> true_tracks() const;
   size_t robots_seen() const;
-  size_t states_seen() const;
+  size_t robots_published() const;
   size_t corrected_robots() const;  // robots with a correction of version > 0
   // Changes whose previous correction and truth were known; the others are only counted: before
   // the robot's first truth sample, or when the first version heard is not 1 (what it replaced is

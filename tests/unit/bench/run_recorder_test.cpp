@@ -42,7 +42,7 @@ TEST(RunRecorder, AnArrivalTakesTheNextTruthSample) {
   recorder.start();
   const std::vector<Vec2> path = {{1.0, 0.0}, {2.0, 0.0}};
   recorder.on_path("r1", {1, path, 0});
-  recorder.on_state("r1", {1.0, 0.1});
+  recorder.on_published_pose("r1", {1.0, 0.1});
   recorder.on_path("r1", {1, path, 1});
   EXPECT_TRUE(recorder.arrivals().empty());  // waits for the truth
   recorder.on_truth(kSecond, {{"r1", Pose{1.0, 0.3, 0.0}, Pose{1.0, 0.1, 0.0}}});

@@ -1,5 +1,5 @@
-// Robots' corrections: points stay raw (odometry frame), the robot's current correction maps them
-// into the map (identity until the mapper sent one), and the fit box follows the corrected points.
+// Robots' corrections (identity until the mapper sent one) and their points, placed in the map
+// frame through the correction of the moment they arrived; the fit box covers them.
 #include "viewer/core/robot_registry.hpp"
 
 #include <gtest/gtest.h>
@@ -25,27 +25,92 @@ TEST(RobotRegistry, CorrectionIsIdentityUntilTheMapperSendsOne) {
   EXPECT_EQ(r.map_from_odom().theta, 0.0);
 }
 
-TEST(RobotRegistry, PointsStayRawAndTheBoxFollowsTheCorrection) {
-  RobotRegistry robots;
-  robots.ingest(observation("r1", {1.0f, 0.0f, 2.0f, 0.0f}));
+PoseCorrectionData correction(const std::string& id, uint64_t version, Pose map_from_odom) {
   PoseCorrectionData c;
-  c.robot_id = "r1";
-  c.version = 3;
-  c.map_from_odom = {5.0, -1.0, std::numbers::pi / 2.0};
+  c.robot_id = id;
+  c.version = version;
+  c.map_from_odom = map_from_odom;
   c.source = CorrectionSource::Loop;
-  robots.ingest(PoseCorrectionData(c));
+  return c;
+}
+
+TEST(RobotRegistry, PointsArePlacedThroughTheCorrectionOfTheirArrival) {
+  RobotRegistry robots;
+  robots.ingest(observation("r1", {1.0f, 0.0f}));  // before any correction: as reported
+  robots.ingest(correction("r1", 3, {5.0, -1.0, std::numbers::pi / 2.0}));
+  robots.ingest(observation("r1", {1.0f, 0.0f, 2.0f, 0.0f}));
   const RobotView& r = *robots.find("r1");
   ASSERT_TRUE(r.has_correction);
   EXPECT_EQ(r.correction.version, 3u);
-  EXPECT_EQ(r.points.data()[0], 1.0f);  // raw
+  EXPECT_STREQ(correction_source_name(r.correction.source), "loop closure");
+  ASSERT_EQ(r.points.size(), 3u);
+  const float* xy = r.points.data();
+  EXPECT_FLOAT_EQ(xy[0], 1.0f);
+  EXPECT_FLOAT_EQ(xy[1], 0.0f);
   // (1, 0) and (2, 0) rotated a quarter turn and moved by (5, -1): (5, 0) and (5, 1).
+  EXPECT_NEAR(xy[2], 5.0f, 1e-6);
+  EXPECT_NEAR(xy[3], 0.0f, 1e-6);
+  EXPECT_NEAR(xy[4], 5.0f, 1e-6);
+  EXPECT_NEAR(xy[5], 1.0f, 1e-6);
   WorldBox box;
   ASSERT_TRUE(robots.bounds(&box));
-  EXPECT_NEAR(box.min_x, 5.0, 1e-9);
-  EXPECT_NEAR(box.max_x, 5.0, 1e-9);
-  EXPECT_NEAR(box.min_y, 0.0, 1e-9);
-  EXPECT_NEAR(box.max_y, 1.0, 1e-9);
-  EXPECT_STREQ(correction_source_name(r.correction.source), "loop closure");
+  EXPECT_NEAR(box.min_x, 1.0, 1e-6);
+  EXPECT_NEAR(box.max_x, 5.0, 1e-6);
+  EXPECT_NEAR(box.min_y, 0.0, 1e-6);
+  EXPECT_NEAR(box.max_y, 1.0, 1e-6);
+}
+
+// A heading fix must not swing what the robot saw long before it (the old points were placed
+// with the correction that was right for them).
+TEST(RobotRegistry, ALaterCorrectionLeavesPlacedPointsWhereTheyAre) {
+  RobotRegistry robots;
+  robots.ingest(correction("r1", 1, {0.0, 0.0, 0.0}));
+  robots.ingest(observation("r1", {4.0f, 0.0f}));
+  robots.ingest(correction("r1", 2, {0.0, 0.0, 0.1}));
+  const RobotView& r = *robots.find("r1");
+  EXPECT_FLOAT_EQ(r.points.data()[0], 4.0f);
+  EXPECT_FLOAT_EQ(r.points.data()[1], 0.0f);
+  EXPECT_EQ(r.map_from_odom().theta, 0.1);
+}
+
+// The pose stream (digests, ten times a second) and the state record (once a second) both carry a
+// pose: the one heard last wins, and an older record still brings its counters.
+TEST(RobotRegistry, TheNewestPoseWinsBetweenDigestAndStateRecord) {
+  RobotRegistry robots;
+  RobotPoseData p;
+  p.robot_id = "r1";
+  p.pose = {2.0, 1.0, 0.5};
+  p.has_heading = true;
+  p.online = true;
+  p.last_seen_ns = 200;
+  robots.ingest(p);
+  const RobotView& r = *robots.find("r1");
+  ASSERT_TRUE(r.has_state);
+  EXPECT_EQ(r.state.pose.x, 2.0);
+
+  RobotStateData older;
+  older.robot_id = "r1";
+  older.pose = {1.0, 1.0, 0.0};
+  older.last_seen_ns = 150;
+  older.messages = 42;
+  robots.ingest(std::move(older));
+  EXPECT_EQ(r.state.pose.x, 2.0);
+  EXPECT_TRUE(r.state.online);
+  EXPECT_EQ(r.state.last_seen_ns, 200);
+  EXPECT_EQ(r.state.messages, 42u);
+
+  p.pose = {1.5, 1.0, 0.5};
+  p.last_seen_ns = 100;  // a gateway that stopped hearing the robot
+  robots.ingest(p);
+  EXPECT_EQ(r.state.pose.x, 2.0);
+
+  RobotStateData newer;
+  newer.robot_id = "r1";
+  newer.pose = {3.0, 1.0, 0.0};
+  newer.last_seen_ns = 300;
+  robots.ingest(std::move(newer));
+  EXPECT_EQ(r.state.pose.x, 3.0);
+  EXPECT_FALSE(r.state.online);  // the record's own presence
 }
 
 }  // namespace

@@ -23,14 +23,6 @@ void expect_near(Vec2 a, Vec2 b, double eps = kEps) {
   EXPECT_NEAR(a.y, b.y, eps);
 }
 
-TEST(PoseAffine, MapsLikePoseTransform) {
-  const Pose p{2.0, -1.0, 0.7};
-  const Vec2 q{0.3, 1.5};
-  const Vec2 a = pose_affine(p).apply(q), b = p.transform(q);
-  EXPECT_NEAR(a.x, b.x, 1e-12);
-  EXPECT_NEAR(a.y, b.y, 1e-12);
-}
-
 TEST(ViewTransform, CentreOfViewportShowsCentreAndYPointsUp) {
   const ViewTransform v = make_view();
   expect_near(v.world_to_screen({2.0, 3.0}), {500.0, 300.0});
