@@ -152,8 +152,9 @@ Status GatewayNode::configure() {
   if (!mqtt) return mqtt.error();
   mqtt_ = std::move(*mqtt);
 
-  // Readers last: their callbacks publish through the MQTT client (or, for corrections, wake the
-  // loop, and waypoints need them). Heartbeats and states before waypoints, which need both.
+  // Readers last: their callbacks publish through the MQTT client (or, for corrections, mark the
+  // robot for its next state, and waypoints need them). Heartbeats and states before waypoints, which need
+  // both.
   if (options_.share) {
     auto heartbeats = dds::make_reader(*participant_, dds::kHeartbeat,
                                        [this](const slam::Heartbeat& h, const auto&) { on_heartbeat(h); });
@@ -233,11 +234,14 @@ void GatewayNode::run_once() {
     }
     forget_.clear();
     registry_.expire(now, [&](const RobotRecord& r) { went_offline_.push_back(r.id); });
-    // The digest and MQTT wakes come more often than the state period; states wait for it unless
-    // a first sighting, a presence change or a forget is urgent.
-    if (urgent || now.mono_ns >= next_states_ns_) {
+    // The digest and MQTT wakes come more often than the state period; states wait for it, except
+    // the robots whose presence changed (a first sighting, online again, offline), which go at once
+    // and alone.
+    if (now.mono_ns >= next_states_ns_) {
       registry_.take_changed([&](const RobotRecord& r) { changed_.push_back(r); });
       next_states_ns_ = now.mono_ns + std::chrono::nanoseconds(period_).count();
+    } else if (urgent || !went_offline_.empty()) {
+      registry_.take_changed([&](const RobotRecord& r) { changed_.push_back(r); }, true);
     }
     online = registry_.online();
   }

@@ -49,6 +49,7 @@ RobotRecord* RobotRegistry::touch(std::string_view id, Protocol protocol, Instan
 void RobotRegistry::set_presence(RobotRecord& r, Presence presence, AcceptResult& result) {
   if (r.presence == presence) return;
   r.presence = presence;
+  r.urgent = true;
   if (presence == Presence::Online) {
     ++online_;
     result.came_online = !result.first_seen;
@@ -119,22 +120,21 @@ void RobotRegistry::expire(Instant now, const std::function<void(const RobotReco
       continue;
     r.presence = Presence::Offline;
     r.changed = true;
+    r.urgent = true;
     --online_;
     if (on_offline) on_offline(r);
   }
 }
 
-bool RobotRegistry::mark_changed(std::string_view id) {
-  RobotRecord* r = lookup(id);
-  if (!r) return false;
-  r->changed = true;
-  return true;
+void RobotRegistry::mark_changed(std::string_view id) {
+  if (RobotRecord* r = lookup(id)) r->changed = true;
 }
 
-void RobotRegistry::take_changed(const std::function<void(const RobotRecord&)>& fn) {
+void RobotRegistry::take_changed(const std::function<void(const RobotRecord&)>& fn, bool urgent_only) {
   for (auto& [id, r] : robots_) {
-    if (!r.changed) continue;
+    if (!r.changed || (urgent_only && !r.urgent)) continue;
     r.changed = false;
+    r.urgent = false;
     fn(r);
   }
 }

@@ -42,6 +42,7 @@ struct RobotRecord {
   float battery = -1.0f;  // negative: unknown
   std::string status;     // v2 robot-reported state, empty when unknown
   bool changed = true;    // not published since the last change
+  bool urgent = false;    // its presence changed: published at once, not at the state period
 };
 
 struct RegistryConfig {
@@ -80,11 +81,12 @@ class RobotRegistry {
 
   // Turns robots silent for longer than offline_after offline; `on_offline` is called for each.
   void expire(Instant now, const std::function<void(const RobotRecord&)>& on_offline = {});
-  // Marks a known robot changed, so its state is published again (its correction moved); false for
-  // an unknown robot (nothing to publish until it speaks).
-  bool mark_changed(std::string_view id);
-  // Calls `fn` for every robot changed since the last call and clears the flags.
-  void take_changed(const std::function<void(const RobotRecord&)>& fn);
+  // Marks a known robot changed, so its state is published again (its correction moved); an
+  // unknown robot has nothing to publish until it speaks.
+  void mark_changed(std::string_view id);
+  // Calls `fn` for every robot changed since the last call (only the urgent ones: whose presence
+  // changed) and clears their flags.
+  void take_changed(const std::function<void(const RobotRecord&)>& fn, bool urgent_only = false);
 
   // Calls `fn` for every robot (in no particular order).
   void for_each(const std::function<void(const RobotRecord&)>& fn) const;

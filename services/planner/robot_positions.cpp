@@ -1,21 +1,20 @@
-// RobotPositions: newest-wins merge of robot positions (see robot_positions.hpp).
+// RobotPositions: the newest position per robot since the last take (see robot_positions.hpp).
 #include "planner/robot_positions.hpp"
 
 namespace slam::planner {
 
 bool RobotPositions::offer(std::string_view robot_id, Vec2 position, int64_t last_seen_ns) {
-  auto it = seen_.find(robot_id);
-  if (it == seen_.end()) it = seen_.emplace(std::string(robot_id), Seen{}).first;
-  Seen& seen = it->second;
-  if (last_seen_ns < seen.last_seen_ns) return false;
-  seen.last_seen_ns = last_seen_ns;
-  if (seen.round == round_) {
-    pending_[seen.index].position = position;
-    pending_[seen.index].last_seen_ns = last_seen_ns;
+  if (stamps_.judge(robot_id, last_seen_ns) != LatestStamps::Verdict::Fresh) return false;
+  auto it = slots_.find(robot_id);
+  if (it == slots_.end()) it = slots_.emplace(std::string(robot_id), Slot{}).first;
+  Slot& slot = it->second;
+  if (slot.round == round_) {
+    pending_[slot.index].position = position;
+    pending_[slot.index].last_seen_ns = last_seen_ns;
     return true;
   }
-  seen.round = round_;
-  seen.index = pending_.size();
+  slot.round = round_;
+  slot.index = pending_.size();
   RobotPosition& p = pending_.emplace_back();
   p.robot_id.assign(robot_id);
   p.position = position;
@@ -30,9 +29,16 @@ void RobotPositions::take(std::vector<RobotPosition>& out) {
 }
 
 void RobotPositions::forget(std::string_view robot_id) {
-  // The entry stays (with its slot in this round, if any) so a robot forgotten and heard again
-  // within one round is still taken once.
-  if (auto it = seen_.find(robot_id); it != seen_.end()) it->second.last_seen_ns = Seen{}.last_seen_ns;
+  stamps_.forget(robot_id);
+  const auto it = slots_.find(robot_id);
+  if (it == slots_.end()) return;
+  const Slot gone = it->second;
+  slots_.erase(it);
+  if (gone.round != round_) return;
+  // Rare (an operator's forget): close the gap and move the later slots of this round down.
+  pending_.erase(pending_.begin() + static_cast<std::ptrdiff_t>(gone.index));
+  for (auto& [id, slot] : slots_)
+    if (slot.round == round_ && slot.index > gone.index) --slot.index;
 }
 
 }  // namespace slam::planner

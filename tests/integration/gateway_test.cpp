@@ -323,7 +323,7 @@ TEST_F(GatewayTest, BrokerRestartResumesTrafficWithoutRestartingTheGateway) {
   ASSERT_TRUE(wait_until([&] { return probe.counter("reconnects") >= 1; }, 5s));
 }
 
-// The loop wakes for the fleet digest every 0.2 s; a longer state period must still hold per robot.
+// The loop wakes for the fleet digest every 0.1 s; a longer state period must still hold per robot.
 TEST_F(GatewayTest, RobotStatesFollowTheStatePeriodNotTheLoopsOtherWakes) {
   ASSERT_NO_FATAL_FAILURE(start_gateway({"--state-period-s", "5"}));
   MqttTestClient robot(port, "steady");

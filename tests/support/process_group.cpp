@@ -42,6 +42,7 @@ DomainLease::DomainLease(int count) {
   // participant then fails with "address in use". The flock is released by the kernel even if the
   // test process crashes.
   constexpr int kFirst = 20, kCount = 81;
+  if (count < 1 || count > kCount) throw std::invalid_argument("DomainLease: count must be 1..81");
   const int starts = kCount - count + 1;
   const int offset = static_cast<int>(getpid() % starts);
   for (int i = 0; i < starts; ++i) {

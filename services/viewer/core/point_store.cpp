@@ -29,6 +29,19 @@ void PointStore::reset() {
   ++generation_;
 }
 
+void PointStore::move_all(const Pose& delta) {
+  std::vector<float> moved;
+  moved.swap(xy_);
+  bounds_ = {};
+  for (size_t i = 0; i + 1 < moved.size(); i += 2) {
+    const Vec2 p = delta.transform({moved[i], moved[i + 1]});
+    moved[i] = static_cast<float>(p.x);
+    moved[i + 1] = static_cast<float>(p.y);
+  }
+  append(moved.data(), moved.size() / 2);
+  ++generation_;
+}
+
 PointStore::Range PointStore::last_n(size_t n) const {
   const size_t total = size();
   if (n == 0 || n >= total) return {0, total};

@@ -17,6 +17,8 @@ class PointStore {
   // Appends n points from xy (2n floats); returns how many were stored.
   size_t append(const float* xy, size_t n);
   void reset();
+  // Moves every stored point by `delta` (a new generation: whoever uploaded them starts over).
+  void move_all(const Pose& delta);
 
   size_t size() const { return xy_.size() / 2; }
   const float* data() const { return xy_.data(); }

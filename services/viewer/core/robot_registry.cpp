@@ -21,6 +21,7 @@ RobotView* RobotRegistry::find(const std::string& id) {
 }
 
 bool RobotRegistry::forget(const std::string& id) {
+  pose_stamps_.forget(id);
   const auto it = index_.find(id);
   if (it == index_.end()) return false;
   const size_t at = it->second;
@@ -47,8 +48,10 @@ void RobotRegistry::ingest(const ObservationData& o) {
 }
 
 void RobotRegistry::ingest(RobotStateData&& s) {
+  const LatestStamps::Verdict verdict = pose_stamps_.judge(s.robot_id, s.last_seen_ns);
+  if (verdict == LatestStamps::Verdict::Forgotten) return;
   RobotView& r = get_or_add(s.robot_id);
-  if (r.has_state && s.last_seen_ns < r.state.last_seen_ns) {
+  if (verdict == LatestStamps::Verdict::Stale && r.has_state) {
     // A record older than the digest pose shown: its counters are news, its pose is not.
     s.pose = r.state.pose;
     s.has_heading = r.state.has_heading;
@@ -60,8 +63,8 @@ void RobotRegistry::ingest(RobotStateData&& s) {
 }
 
 void RobotRegistry::ingest(const RobotPoseData& p) {
+  if (pose_stamps_.judge(p.robot_id, p.last_seen_ns) != LatestStamps::Verdict::Fresh) return;
   RobotView& r = get_or_add(p.robot_id);
-  if (r.has_state && p.last_seen_ns < r.state.last_seen_ns) return;
   r.state.robot_id = p.robot_id;
   r.state.pose = p.pose;
   r.state.has_heading = p.has_heading;
@@ -98,6 +101,8 @@ void RobotRegistry::ingest(MissionData&& m) {
 
 void RobotRegistry::ingest(PoseCorrectionData&& c) {
   RobotView& r = get_or_add(c.robot_id);
+  if ((!r.has_correction || c.source == CorrectionSource::Operator) && !r.points.empty())
+    r.points.move_all(c.map_from_odom.compose(r.map_from_odom().inverse()));
   r.correction = std::move(c);
   r.has_correction = true;
 }

@@ -8,6 +8,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "common/core/latest_stamps.hpp"
 #include "viewer/core/cell_colors.hpp"
 #include "viewer/core/intake_types.hpp"
 #include "viewer/core/point_store.hpp"
@@ -59,11 +60,14 @@ class RobotRegistry {
   const RobotView& at(size_t index) const { return *robots_[index]; }
 
   void ingest(const ObservationData& o);
-  // A robot's pose comes from its state record and from the digests; the one heard last wins.
+  // A robot's pose comes from its state record and from the digests: the report of its latest
+  // message wins (LatestStamps), and a forgotten robot stays forgotten until it speaks again.
   void ingest(RobotStateData&& s);
   void ingest(const RobotPoseData& p);
   void ingest(RobotPathData&& p);
   void ingest(MissionData&& m);
+  // A robot's first correction, or one an operator set, also moves the points placed before it:
+  // they were placed in a frame now known to be wrong.
   void ingest(PoseCorrectionData&& c);
   // The operator forgot the robot: its view, settings and points go, and the robots after it move
   // up one place. False when it was not known.
@@ -82,6 +86,7 @@ class RobotRegistry {
 
  private:
   std::vector<float> placed_xy_;  // reused: one observation's points in the map frame
+  LatestStamps pose_stamps_;      // which report of each robot's pose is the newest
   size_t max_points_;
   RobotSettings defaults_;
   std::vector<std::unique_ptr<RobotView>> robots_;

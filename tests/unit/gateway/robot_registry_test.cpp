@@ -182,11 +182,31 @@ TEST(RobotRegistry, MarkingAKnownRobotChangedReportsItAgain) {
   auto o = pose_at(0, 0);
   registry.accept_observation("a", Protocol::V1, o, at(1));
   EXPECT_EQ(changed_ids(registry), std::vector<std::string>{"a"});
-  EXPECT_TRUE(registry.mark_changed("a"));
+  registry.mark_changed("a");
   EXPECT_EQ(changed_ids(registry), std::vector<std::string>{"a"});
-  EXPECT_FALSE(registry.mark_changed("unknown"));
+  registry.mark_changed("unknown");
   EXPECT_TRUE(changed_ids(registry).empty());
   EXPECT_EQ(registry.size(), 1u);
+}
+
+// A presence change goes out at once, alone: the robots that only moved wait for the state period.
+TEST(RobotRegistry, OnlyPresenceChangesAreUrgent) {
+  RobotRegistry registry(RegistryConfig{5 * kSecond, 10});
+  auto o = pose_at(0, 0);
+  registry.accept_observation("a", Protocol::V1, o, at(1));
+  registry.accept_observation("b", Protocol::V1, o, at(1));
+  EXPECT_EQ(changed_ids(registry).size(), 2u);
+  registry.accept_observation("a", Protocol::V1, o, at(2));  // moved
+  registry.accept_observation("c", Protocol::V1, o, at(2));  // first seen
+  std::vector<std::string> urgent;
+  registry.take_changed([&](const RobotRecord& r) { urgent.push_back(r.id); }, true);
+  EXPECT_EQ(urgent, std::vector<std::string>{"c"});
+  EXPECT_EQ(changed_ids(registry), std::vector<std::string>{"a"});
+  registry.accept_observation("a", Protocol::V1, o, at(3));
+  registry.expire(at(6));  // b silent for 5 s; c for 4 s, a for 3 s
+  urgent.clear();
+  registry.take_changed([&](const RobotRecord& r) { urgent.push_back(r.id); }, true);
+  EXPECT_EQ(urgent, std::vector<std::string>{"b"});
 }
 
 TEST(RobotRegistry, NewRobotsBeyondTheLimitAreRefusedKnownOnesContinue) {

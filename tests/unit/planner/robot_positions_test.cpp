@@ -45,13 +45,23 @@ TEST(RobotPositions, AnEqualStampIsTaken) {
   EXPECT_EQ(out[0].position, (Vec2{2.1, 0.0}));
 }
 
-// A forgotten robot that comes back through a restarted gateway may carry older stamps.
-TEST(RobotPositions, AForgottenRobotStartsAfresh) {
+// A position offered before the forget but not yet taken goes with it; a digest still listing
+// the robot with its last stamp does not bring it back, a newer message does.
+TEST(RobotPositions, AForgottenRobotIsDroppedUntilItSpeaksAgain) {
   RobotPositions positions;
   EXPECT_TRUE(positions.offer("a", {2.0, 0.0}, 200));
+  EXPECT_TRUE(positions.offer("b", {3.0, 0.0}, 200));
+  EXPECT_TRUE(positions.offer("c", {4.0, 0.0}, 200));
   positions.forget("a");
-  EXPECT_TRUE(positions.offer("a", {0.5, 0.0}, 50));
+  EXPECT_FALSE(positions.offer("a", {2.0, 0.0}, 200));
+  EXPECT_TRUE(positions.offer("c", {4.5, 0.0}, 210));
   std::vector<RobotPosition> out;
+  positions.take(out);
+  ASSERT_EQ(out.size(), 2u);
+  EXPECT_EQ(out[0].robot_id, "b");
+  EXPECT_EQ(out[1].robot_id, "c");
+  EXPECT_EQ(out[1].position, (Vec2{4.5, 0.0}));
+  EXPECT_TRUE(positions.offer("a", {0.5, 0.0}, 300));
   positions.take(out);
   ASSERT_EQ(out.size(), 1u);
   EXPECT_EQ(out[0].position, (Vec2{0.5, 0.0}));

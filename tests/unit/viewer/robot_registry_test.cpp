@@ -36,7 +36,8 @@ PoseCorrectionData correction(const std::string& id, uint64_t version, Pose map_
 
 TEST(RobotRegistry, PointsArePlacedThroughTheCorrectionOfTheirArrival) {
   RobotRegistry robots;
-  robots.ingest(observation("r1", {1.0f, 0.0f}));  // before any correction: as reported
+  robots.ingest(correction("r1", 2, {0.0, 0.0, 0.0}));
+  robots.ingest(observation("r1", {1.0f, 0.0f}));
   robots.ingest(correction("r1", 3, {5.0, -1.0, std::numbers::pi / 2.0}));
   robots.ingest(observation("r1", {1.0f, 0.0f, 2.0f, 0.0f}));
   const RobotView& r = *robots.find("r1");
@@ -111,6 +112,46 @@ TEST(RobotRegistry, TheNewestPoseWinsBetweenDigestAndStateRecord) {
   robots.ingest(std::move(newer));
   EXPECT_EQ(r.state.pose.x, 3.0);
   EXPECT_FALSE(r.state.online);  // the record's own presence
+}
+
+// Points that arrived before the robot's frame was known (no correction yet, or a wrong one an
+// operator then fixed) move with the correction that places the frame.
+TEST(RobotRegistry, AFirstOrOperatorCorrectionMovesThePointsPlacedBeforeIt) {
+  RobotRegistry robots;
+  robots.ingest(observation("r1", {1.0f, 0.0f}));
+  robots.ingest(correction("r1", 1, {2.0, 0.0, 0.0}));  // the first one
+  const RobotView& r = *robots.find("r1");
+  EXPECT_NEAR(r.points.data()[0], 3.0f, 1e-6);
+  const uint64_t generation = r.points.generation();
+  PoseCorrectionData set_pose = correction("r1", 2, {2.0, 1.0, 0.0});
+  set_pose.source = CorrectionSource::Operator;
+  robots.ingest(std::move(set_pose));
+  EXPECT_NEAR(r.points.data()[0], 3.0f, 1e-6);
+  EXPECT_NEAR(r.points.data()[1], 1.0f, 1e-6);
+  EXPECT_GT(r.points.generation(), generation);  // the GPU copy is stale
+  WorldBox box;
+  ASSERT_TRUE(robots.bounds(&box));
+  EXPECT_NEAR(box.min_y, 1.0, 1e-6);
+}
+
+// A digest written before the gateways dropped a forgotten robot does not bring it back; its next
+// message does.
+TEST(RobotRegistry, AForgottenRobotStaysForgottenUntilItSpeaksAgain) {
+  RobotRegistry robots;
+  RobotPoseData p;
+  p.robot_id = "r1";
+  p.last_seen_ns = 200;
+  robots.ingest(p);
+  ASSERT_TRUE(robots.forget("r1"));
+  robots.ingest(p);
+  RobotStateData record;
+  record.robot_id = "r1";
+  record.last_seen_ns = 200;
+  robots.ingest(std::move(record));
+  EXPECT_EQ(robots.find("r1"), nullptr);
+  p.last_seen_ns = 300;
+  robots.ingest(p);
+  EXPECT_NE(robots.find("r1"), nullptr);
 }
 
 }  // namespace
