@@ -35,12 +35,15 @@ Result<std::unique_ptr<AlertNode>> AlertNode::create(dds::Participant& participa
 }
 
 void AlertNode::on_state(const slam::RobotState& state) {
+  const std::string id = state.robot_id().to_string();
   std::lock_guard lock(mutex_);
-  monitor_.robot(state.robot_id().to_string(), state.presence() == slam::PRESENCE_ONLINE, state.battery());
+  if (record_stamps_.judge(id, state.last_seen_ns()) != LatestStamps::Verdict::Fresh) return;
+  monitor_.robot(id, state.presence() == slam::PRESENCE_ONLINE, state.battery());
 }
 
 void AlertNode::forget_robot(const std::string& robot_id) {
   std::lock_guard lock(mutex_);
+  record_stamps_.forget(robot_id);
   monitor_.forget_robot(robot_id);
 }
 

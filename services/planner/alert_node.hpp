@@ -12,6 +12,7 @@
 #include <string>
 
 #include "common/core/counters.hpp"
+#include "common/core/latest_stamps.hpp"
 #include "common/core/request_retry.hpp"
 #include "common/core/result.hpp"
 #include "common/fastdds/fast_topics.hpp"
@@ -32,6 +33,8 @@ class AlertNode {
   // The operator forgot the robot: its alerts clear at the next tick.
   void forget_robot(const std::string& robot_id);
   // A RobotState from the planner's reader (one reader feeds both: each sample is decoded once).
+  // A record older than one already taken is ignored: a gateway that stopped hearing the robot
+  // (its MQTT link lost) reports it offline while another gateway still hears it.
   void on_state(const slam::RobotState& state);
 
  private:
@@ -53,6 +56,7 @@ class AlertNode {
 
   std::mutex mutex_;  // reader threads and the loop
   AlertMonitor monitor_;
+  LatestStamps record_stamps_;
 
   std::unique_ptr<dds::Writer<slam::Alert>> alert_writer_;
   std::unique_ptr<dds::Writer<slam::NavGoal>> goal_writer_;

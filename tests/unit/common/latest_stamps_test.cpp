@@ -11,9 +11,9 @@ using Verdict = LatestStamps::Verdict;
 TEST(LatestStamps, OlderReportsAreStaleEqualOnesAreTaken) {
   LatestStamps stamps;
   EXPECT_EQ(stamps.judge("a", 200), Verdict::Fresh);
-  EXPECT_EQ(stamps.judge("a", 150), Verdict::Stale);   // a slow state record
-  EXPECT_EQ(stamps.judge("a", 200), Verdict::Fresh);   // the same message, a newer correction
-  EXPECT_EQ(stamps.judge("b", 0), Verdict::Fresh);     // robots are independent
+  EXPECT_EQ(stamps.judge("a", 150), Verdict::Stale);  // a slow state record
+  EXPECT_EQ(stamps.judge("a", 200), Verdict::Fresh);  // the same message, a newer correction
+  EXPECT_EQ(stamps.judge("b", 0), Verdict::Fresh);    // robots are independent
   EXPECT_EQ(stamps.judge("a", 300), Verdict::Fresh);
 }
 
