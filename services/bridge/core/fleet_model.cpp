@@ -18,14 +18,16 @@ RobotView& FleetModel::robot(const std::string& id) {
 }
 
 void FleetModel::ingest(const RobotStateInput& s) {
+  if (state_stamps_.judge(s.robot_id, s.stamp_ns) != LatestStamps::Verdict::Fresh) return;
+  forgotten_.erase(s.robot_id);
   RobotView& r = robot(s.robot_id);
-  if (r.has_state && s.stamp_ns < r.state.stamp_ns) return;
   r.state = s;
   r.has_state = true;
   ++versions_.robots;
 }
 
 void FleetModel::ingest(RobotPathInput&& p) {
+  if (forgotten_.contains(p.robot_id)) return;
   RobotView& r = robot(p.robot_id);
   r.path = std::move(p);
   r.has_path = true;
@@ -33,9 +35,18 @@ void FleetModel::ingest(RobotPathInput&& p) {
 }
 
 void FleetModel::ingest(const ObservationInput& o) {
-  if (o.hits.empty()) return;
+  if (o.hits.empty() || forgotten_.contains(o.robot_id)) return;
   RobotView& r = robot(o.robot_id);
   for (const Vec2& hit : o.hits) r.points.add(hit);
+  ++versions_.points;
+}
+
+void FleetModel::forget(const std::string& robot_id) {
+  state_stamps_.forget(robot_id);
+  forgotten_.insert(robot_id);
+  if (robots_.erase(robot_id) == 0) return;
+  ++versions_.robots;
+  ++versions_.paths;
   ++versions_.points;
 }
 

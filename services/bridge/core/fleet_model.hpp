@@ -4,10 +4,12 @@
 // Plain C++: the DDS edge converts samples into the *Input types below.
 #include <cstdint>
 #include <map>
+#include <set>
 #include <string>
 #include <vector>
 
 #include "common/core/geometry.hpp"
+#include "common/core/latest_stamps.hpp"
 
 namespace slam::bridge {
 
@@ -102,12 +104,16 @@ class FleetModel {
  public:
   explicit FleetModel(size_t points_per_robot) : points_per_robot_(points_per_robot) {}
 
-  // Kept unless the robot's state already is from a later message (another gateway's older view).
+  // Kept unless the robot's state already is from a later message (another gateway's older view),
+  // or the robot was forgotten and this is not a newer message (LatestStamps).
   void ingest(const RobotStateInput& s);
   void ingest(RobotPathInput&& p);
   void ingest(const ObservationInput& o);
   void ingest(const HeartbeatInput& h, int64_t now_mono_ns);
   void ingest(AlertInput&& a);
+  // The operator forgot the robot: it leaves the model; its paths and points are ignored until a
+  // newer message of it arrives.
+  void forget(const std::string& robot_id);
 
   // By robot id (sorted, so every message lists robots in the same order).
   const std::map<std::string, RobotView>& robots() const { return robots_; }
@@ -121,6 +127,8 @@ class FleetModel {
   RobotView& robot(const std::string& id);
 
   size_t points_per_robot_;
+  LatestStamps state_stamps_;
+  std::set<std::string> forgotten_;  // until a newer state brings the robot back
   std::map<std::string, RobotView> robots_;
   std::map<std::pair<std::string, std::string>, ServiceView> services_;
   std::map<std::string, AlertInput> alerts_;

@@ -210,6 +210,8 @@ Status BridgeNode::create_readers() {
                      a.subject().to_string(), a.active(), a.raised_ns(), a.stamp_ns(),
                      a.message().to_string(), a.raised_by().to_string()});
   }));
+  SLAM_TRY(make(dds::kForgetRobot, forget_reader_,
+                [&in](const ForgetRobot& f) { queue(in, in.forgets, f.robot_id().to_string()); }));
   SLAM_TRY(make(dds::kGridSnapshot, snapshot_reader_, [&in](const GridSnapshot& s) {
     const GridInfo& info = s.info();
     GridSnapshotInput snap{
@@ -236,6 +238,7 @@ void BridgeNode::drain_intake() {
     std::swap(batch.observations, intake_.observations);
     std::swap(batch.heartbeats, intake_.heartbeats);
     std::swap(batch.alerts, intake_.alerts);
+    std::swap(batch.forgets, intake_.forgets);
     std::swap(batch.map, intake_.map);
     std::swap(batch.answers, intake_.answers);
   }
@@ -245,6 +248,7 @@ void BridgeNode::drain_intake() {
   for (const auto& o : batch.observations) fleet_.ingest(o);
   for (const auto& h : batch.heartbeats) fleet_.ingest(h, now);
   for (auto& a : batch.alerts) fleet_.ingest(std::move(a));
+  for (const std::string& id : batch.forgets) fleet_.forget(id);
   for (auto& m : batch.map) {
     const Status s = std::visit([this](auto& input) { return map_.ingest(std::move(input)); }, m);
     if (!s) {

@@ -34,6 +34,7 @@ struct BridgeIntake {
   std::vector<ObservationInput> observations;
   std::vector<HeartbeatInput> heartbeats;
   std::vector<AlertInput> alerts;
+  std::vector<std::string> forgets;  // robot ids, applied after everything else of the batch
   // Snapshots and patches in arrival order (a patch applies only on top of what came before it).
   std::vector<std::variant<GridSnapshotInput, GridTilesInput>> map;
   std::vector<std::pair<PathCall, std::optional<PathAnswer>>> answers;
@@ -82,6 +83,7 @@ class BridgeNode final : public OperatorSink, public FrameSink {
   std::unique_ptr<dds::Reader<RobotPath>> path_reader_;
   std::unique_ptr<dds::Reader<Heartbeat>> heartbeat_reader_;
   std::unique_ptr<dds::Reader<Alert>> alert_reader_;
+  std::unique_ptr<dds::Reader<ForgetRobot>> forget_reader_;
   std::unique_ptr<dds::Reader<GridSnapshot>> snapshot_reader_;
   std::unique_ptr<dds::Reader<GridTiles>> tiles_reader_;
   std::unique_ptr<RosEdge> ros_;  // null with --no-ros

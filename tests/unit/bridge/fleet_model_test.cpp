@@ -28,6 +28,25 @@ TEST(FleetModel, KeepsTheStateOfTheLatestMessageWhateverTheOrderOfArrival) {
   EXPECT_FALSE(fleet.robots().at("r1").state.online);
 }
 
+// The gateways' digests written before they dropped a forgotten robot still list it with its last
+// message; only a newer message brings it back.
+TEST(FleetModel, AForgottenRobotLeavesUntilItSpeaksAgain) {
+  FleetModel fleet(10);
+  fleet.ingest(RobotStateInput{"r1", Pose{1, 0, 0}, true, true, 200});
+  fleet.ingest(ObservationInput{"r1", {{1.0, 1.0}}});
+  const FleetVersions before = fleet.versions();
+  fleet.forget("r1");
+  EXPECT_TRUE(fleet.robots().empty());
+  EXPECT_GT(fleet.versions().robots, before.robots);
+  fleet.ingest(RobotStateInput{"r1", Pose{1, 0, 0}, true, true, 200});
+  fleet.ingest(ObservationInput{"r1", {{1.0, 1.0}}});
+  fleet.ingest(RobotPathInput{"r1", PathStatus::Active, "planned", {2.0, 0.0}, {{2.0, 0.0}}, 0});
+  EXPECT_TRUE(fleet.robots().empty());
+  fleet.ingest(RobotStateInput{"r1", Pose{1.5, 0, 0}, true, true, 300});
+  ASSERT_EQ(fleet.robots().count("r1"), 1u);
+  EXPECT_EQ(fleet.robots().at("r1").state.pose.x, 1.5);
+}
+
 TEST(FleetModel, KeepsOnlyTheMostRecentPointsPerRobot) {
   FleetModel fleet(3);
   for (int i = 0; i < 5; ++i) fleet.ingest(ObservationInput{"r1", {{static_cast<double>(i), 0.0}}});
