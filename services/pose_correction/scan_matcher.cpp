@@ -115,6 +115,8 @@ Result<MatchResult> ScanMatcher::match(const GridView& grid, std::span<const Vec
     return Error{"scan match: " + std::to_string(points.size()) + " points, at least " +
                  std::to_string(options_.min_points) + " needed"};
   if (!finite(predicted)) return Error{"scan match: predicted pose is not finite"};
+  if (!(grid.unobserved_likelihood >= 0.0 && grid.unobserved_likelihood <= 1.0))
+    return Error{"scan match: unobserved_likelihood must be within 0..1"};
   if (!(window.linear_m >= 0.0) || !(window.angular_rad >= 0.0) || !std::isfinite(window.linear_m) ||
       !std::isfinite(window.angular_rad))
     return Error{"scan match: search window must be finite and >= 0"};
@@ -202,6 +204,23 @@ Result<MatchResult> ScanMatcher::match(const GridView& grid, std::span<const Vec
     }
   }
 
+  // Unobserved cells away from walls: a hit there is neither confirmed nor contradicted.
+  if (const auto unobserved = static_cast<float>(grid.unobserved_likelihood); unobserved > 0.0f) {
+    for (int32_t y = 0; y < fh; ++y) {
+      const int32_t gy = field_box_.y0 + y;
+      float* out = field_.data() + static_cast<size_t>(y) * static_cast<size_t>(fw);
+      for (int32_t x = 0; x < fw; ++x) {
+        const int32_t gx = field_box_.x0 + x;
+        const bool inside = gx >= 0 && gy >= 0 && gx < geo.width && gy < geo.height;
+        const uint8_t cell = inside ? grid.classes[static_cast<size_t>(gy) * static_cast<size_t>(geo.width) +
+                                                   static_cast<size_t>(gx)]
+                                    : kCellUnknown;
+        if ((cell & kCellStateMask) == kCellUnknown && (cell & kCellObstructed) == 0)
+          out[x] = std::max(out[x], unobserved);
+      }
+    }
+  }
+
   // Correlative search: per heading rotate the points once, then every x/y offset is a lookup.
   const size_t n = points.size();
   const size_t per_heading = static_cast<size_t>(side) * static_cast<size_t>(side);
@@ -226,15 +245,33 @@ Result<MatchResult> ScanMatcher::match(const GridView& grid, std::span<const Vec
       }
     }
   }
-  const auto best_it = std::max_element(sums_.begin(), sums_.end());
-  const size_t best_index = static_cast<size_t>(best_it - sums_.begin());
-  const double best_sum = *best_it;
   auto offset_of = [&](size_t index) -> Eigen::Vector3d {
     const auto h = static_cast<int32_t>(index / per_heading);
     const auto iy = static_cast<int32_t>(index % per_heading) / side;
     const auto ix = static_cast<int32_t>(index % per_heading) % side;
     return {(ix - linear_steps) * step_m, (iy - linear_steps) * step_m, (h - angular_steps) * angular_step};
   };
+  // Offsets are compared in metres, heading counted as the arc it swings at the points' RMS range.
+  double squared_range = 0.0;
+  for (const Vec2& p : points) squared_range += p.x * p.x + p.y * p.y;
+  const double rms_range = std::max(res, std::sqrt(squared_range / static_cast<double>(n)));
+  const Eigen::Vector3d scale(1.0, 1.0, rms_range);
+  // The best candidate; among equals the one nearest the prediction. Along a straight wall or a
+  // corridor whole-cell shifts score exactly alike, and the first of them (the window's corner)
+  // would push every such keyframe the same way.
+  const float top = *std::max_element(sums_.begin(), sums_.end());
+  const float tie = top - std::max(1e-5f * std::abs(top), 1e-6f);
+  size_t best_index = 0;
+  double best_distance = std::numeric_limits<double>::infinity();
+  for (size_t index = 0; index < sums_.size(); ++index) {
+    if (sums_[index] < tie) continue;
+    const double d = offset_of(index).cwiseProduct(scale).squaredNorm();
+    if (d < best_distance) {
+      best_distance = d;
+      best_index = index;
+    }
+  }
+  const double best_sum = sums_[best_index];
   const Eigen::Vector3d best_offset = offset_of(best_index);
   const auto on_edge = [](double offset, int32_t steps, double step) {
     return steps > 0 && std::abs(offset) >= (steps - 0.5) * step;
@@ -249,10 +286,6 @@ Result<MatchResult> ScanMatcher::match(const GridView& grid, std::span<const Vec
   // likelihood relative to the best read as a log-likelihood; ambiguous directions keep many heavy
   // candidates. Worked in metres, heading counted as the arc it swings at the points' RMS range,
   // so a flat direction mixing position and heading (a ring) is found as one eigenvector.
-  double squared_range = 0.0;
-  for (const Vec2& p : points) squared_range += p.x * p.x + p.y * p.y;
-  const double rms_range = std::max(res, std::sqrt(squared_range / static_cast<double>(n)));
-  const Eigen::Vector3d scale(1.0, 1.0, rms_range);
   const double temperature = std::max(1.0, static_cast<double>(n) / options_.independent_points);
   const Eigen::Vector3d best_scaled = best_offset.cwiseProduct(scale);
   double weight_sum = 0.0, distinct_sum = 0.0;

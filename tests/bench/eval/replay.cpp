@@ -18,16 +18,17 @@ namespace {
 
 constexpr int64_t kLoopPeriodNs = 100'000'000;  // the mapper's patch period: one loop pass
 
-// Logs each robot's corrected and raw error at one truth instant (`since_ns` after the first
-// observation), among the pose correction's own log lines.
+// Logs each robot's corrected error (distance and map-frame vector) and raw error at one truth instant
+// (`since_ns` after the first observation), among the pose correction's own log lines.
 void trace(std::span<const RobotTruth> instant, const std::map<std::string, Pose>& corrections,
            int64_t since_ns) {
   for (const RobotTruth& t : instant) {
     const auto c = corrections.find(t.robot_id);
     const Pose correction = c == corrections.end() ? Pose{} : c->second;
     const Vec2 corrected = correction.compose(t.reported_pose).position();
-    spdlog::info("trace {:.1f} s {} error {:.3f} m, raw {:.3f} m", static_cast<double>(since_ns) * 1e-9,
-                 t.robot_id, distance(corrected, t.true_pose.position()),
+    const Vec2 error = corrected - t.true_pose.position();
+    spdlog::info("trace {:.1f} s {} error {:.3f} m ({:+.3f}, {:+.3f}), raw {:.3f} m",
+                 static_cast<double>(since_ns) * 1e-9, t.robot_id, norm(error), error.x, error.y,
                  distance(t.reported_pose.position(), t.true_pose.position()));
   }
 }
