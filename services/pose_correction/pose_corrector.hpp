@@ -62,10 +62,6 @@ struct CorrectorOptions {
   // gate), which overstates a distinct match's error: at 1 tracking followed odometry through new
   // rooms and drifted twice as far (replayed runs, docs/mapping-quality.md).
   double track_variance_scale = 0.5;
-  // A tracking match reads the grid's never-observed cells as this likelihood (GridView): 0 let
-  // the edge of what the map has seen drag exploring robots back (72 replays: mean maximum ATE
-  // 17.3 cm at 0, 15.4 at 0.2; at 0.5, at the match's min_score, keyframes in unseen space pass).
-  double track_unobserved_likelihood = 0.2;
   double odom_sigma_m_per_sqrt_m = 0.03;  // odometry edge noise (a little above the usual drift)
   double odom_sigma_rad_per_m = 0.02;     // heading noise per metre travelled (edge and chain)
   int optimise_every = 40;                // keyframes tied to the old map between optimisations

@@ -151,8 +151,8 @@ void PoseCorrector::match_keyframe(ScanMatcher& matcher, MatchJob& job) const {
   if (!job.track) return;
   // 1. Track: the keyframe against the grid, near the prediction.
   const auto& points = job.keyframe.points;
-  const GridView track{job.track_geometry, job.track_cells, options_.track_unobserved_likelihood};
-  if (auto narrow = matcher.match(track, points, job.predicted, options_.track_window)) {
+  if (auto narrow = matcher.match(GridView{job.track_geometry, job.track_cells}, points, job.predicted,
+                                  options_.track_window)) {
     // Fused with the odometry prediction by their covariances (a Kalman update): a sparse
     // keyframe's match is noisier than half a metre of odometry, and taking it as is would
     // random-walk the pose where the map is only the robot's own recent trail.

@@ -115,8 +115,6 @@ Result<MatchResult> ScanMatcher::match(const GridView& grid, std::span<const Vec
     return Error{"scan match: " + std::to_string(points.size()) + " points, at least " +
                  std::to_string(options_.min_points) + " needed"};
   if (!finite(predicted)) return Error{"scan match: predicted pose is not finite"};
-  if (!(grid.unobserved_likelihood >= 0.0 && grid.unobserved_likelihood <= 1.0))
-    return Error{"scan match: unobserved_likelihood must be within 0..1"};
   if (!(window.linear_m >= 0.0) || !(window.angular_rad >= 0.0) || !std::isfinite(window.linear_m) ||
       !std::isfinite(window.angular_rad))
     return Error{"scan match: search window must be finite and >= 0"};
@@ -200,23 +198,6 @@ Result<MatchResult> ScanMatcher::match(const GridView& grid, std::span<const Vec
         float* out = field_.data() + static_cast<size_t>(y) * static_cast<size_t>(fw);
         const float* k = kernel_.data() + static_cast<size_t>((y - cy + r) * span);
         for (int32_t x = x_from; x <= x_to; ++x) out[x] = std::max(out[x], k[x - cx + r]);
-      }
-    }
-  }
-
-  // Unobserved cells away from walls: a hit there is neither confirmed nor contradicted.
-  if (const auto unobserved = static_cast<float>(grid.unobserved_likelihood); unobserved > 0.0f) {
-    for (int32_t y = 0; y < fh; ++y) {
-      const int32_t gy = field_box_.y0 + y;
-      float* out = field_.data() + static_cast<size_t>(y) * static_cast<size_t>(fw);
-      for (int32_t x = 0; x < fw; ++x) {
-        const int32_t gx = field_box_.x0 + x;
-        const bool inside = gx >= 0 && gy >= 0 && gx < geo.width && gy < geo.height;
-        const uint8_t cell = inside ? grid.classes[static_cast<size_t>(gy) * static_cast<size_t>(geo.width) +
-                                                   static_cast<size_t>(gx)]
-                                    : kCellUnknown;
-        if ((cell & kCellStateMask) == kCellUnknown && (cell & kCellObstructed) == 0)
-          out[x] = std::max(out[x], unobserved);
       }
     }
   }

@@ -6,8 +6,7 @@
 // likelihood), so an ambiguous match (a corridor, one wall, a ring) reports a large uncertainty along
 // the ambiguous direction; a direction along which the response stays flat to the window's edge is
 // counted as flat. A second good peak far from the best one is reported as `ambiguity`. Among
-// equally good candidates the one nearest the prediction is taken. Cells the grid marks as never
-// observed score GridView::unobserved_likelihood.
+// equally good candidates the one nearest the prediction is taken.
 #include <Eigen/Core>
 #include <cstdint>
 #include <span>

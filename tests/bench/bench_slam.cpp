@@ -7,7 +7,6 @@
 #include <random>
 #include <vector>
 
-#include "pose_correction/pose_corrector.hpp"
 #include "pose_correction/scan_matcher.hpp"
 #include "synthetic_world.hpp"
 
@@ -88,9 +87,9 @@ const Scene& scene() {
   return s;
 }
 
-void run_matches(benchmark::State& state, const SearchWindow& window, double unobserved_likelihood) {
+void run_matches(benchmark::State& state, const SearchWindow& window) {
   const Scene& s = scene();
-  const slam::correction::GridView view{s.grid.geometry, s.grid.classes, unobserved_likelihood};
+  const slam::correction::GridView view{s.grid.geometry, s.grid.classes};
   ScanMatcher matcher;
   size_t next = 0;
   int64_t failed = 0;
@@ -107,14 +106,13 @@ void run_matches(benchmark::State& state, const SearchWindow& window, double uno
 }
 
 void BM_KeyframeMatch(benchmark::State& state) {
-  // As the corrector's tracking reads the mapper's grid.
-  run_matches(state, {0.15, 0.08}, slam::correction::CorrectorOptions{}.track_unobserved_likelihood);
+  run_matches(state, {0.15, 0.08});
 }
 BENCHMARK(BM_KeyframeMatch)->Unit(benchmark::kMicrosecond);
 
 // A loop closure searches wider: +-1 m, +-0.3 rad.
 void BM_LoopClosureMatch(benchmark::State& state) {
-  run_matches(state, {1.0, 0.3}, 0.0);  // a local grid drawn from old keyframes knows walls only
+  run_matches(state, {1.0, 0.3});
 }
 BENCHMARK(BM_LoopClosureMatch)->Unit(benchmark::kMillisecond);
 

@@ -1,8 +1,8 @@
 // ScanMatcher: recovers known offsets and rotations on synthetic maps (exact and noisy sparse
 // sensors), reports a corridor's and a ring's ambiguity in its covariance (flat directions) and a
 // second peak as ambiguity, honours the cell classes, reuses its buffers correctly, and refuses what
-// it cannot match (too few points, off the grid, free space), scores hits in never-observed cells
-// as told, and breaks ties towards the prediction. DistinctMatch: what a closure needs.
+// it cannot match (too few points, off the grid, free space), and breaks ties towards the prediction.
+// DistinctMatch: what a closure needs.
 #include "pose_correction/scan_matcher.hpp"
 
 #include <gtest/gtest.h>
@@ -196,42 +196,6 @@ TEST(ScanMatcher, AlongAFlatCorridorTheMatchKeepsThePredictedPosition) {
     EXPECT_NEAR(r->pose.x, predicted.x, kHalfCell);
     EXPECT_NEAR(r->pose.y, truth.y, kHalfCell);
   }
-}
-
-// What a hit in a never-observed cell is worth: the room's east part (x > 5 m, its east wall
-// included) unobserved, the keyframe matched where it is.
-TEST(ScanMatcher, HitsInUnobservedCellsScoreTheUnobservedLikelihood) {
-  Scene s = scene(l_room(), {-1.0, -1.0}, {7.0, 6.0}, {4.0, 1.2, 0.3});
-  for (int32_t y = 0; y < s.grid.geometry.height; ++y)
-    for (int32_t x = 0; x < s.grid.geometry.width; ++x)
-      if (s.grid.geometry.centre({x, y}).x > 5.0)
-        s.grid.classes[s.grid.geometry.index({x, y})] = kCellUnknown;
-  double unseen = 0.0;  // points more than a field's reach (0.15 m) into the unobserved part
-  double edge = 0.0;    // points in between: on the mapped walls' ends, scored by their blur
-  for (const Vec2& p : s.points) {
-    const double x = s.truth.transform(p).x;
-    if (x > 5.2)
-      unseen += 1.0;
-    else if (x > 5.0)
-      edge += 1.0;
-  }
-  const double n = static_cast<double>(s.points.size());
-  ASSERT_GT(unseen / n, 0.15);
-  for (const double worth : {0.0, 0.2, 0.4}) {
-    ScanMatcher matcher;
-    const auto r = matcher.match({s.grid.geometry, s.grid.classes, worth}, s.points, s.truth, {0.0, 0.0});
-    ASSERT_TRUE(r) << r.message();
-    const double mapped = n - unseen - edge;
-    EXPECT_GE(r->score, (mapped + worth * unseen) / n - 0.02) << worth;
-    EXPECT_LE(r->score, (mapped + worth * unseen + edge) / n + 0.02) << worth;
-  }
-}
-
-TEST(ScanMatcher, UnobservedLikelihoodOutsideZeroToOneIsAnError) {
-  const Scene s = scene(l_room(), {-1.0, -1.0}, {7.0, 6.0}, {4.0, 1.2, 0.3});
-  ScanMatcher matcher;
-  for (const double bad : {-0.1, 1.5, std::nan("")})
-    EXPECT_FALSE(matcher.match({s.grid.geometry, s.grid.classes, bad}, s.points, s.truth, {})) << bad;
 }
 
 // A ring corridor 1 m wide around (0, 0), radii 1.5 and 2.5 m, as the built-in track world.
