@@ -149,17 +149,29 @@ TEST(ScanMatcher, CovarianceNearTheFloorWhenEveryDirectionIsConstrained) {
   EXPECT_GE(r->covariance(2, 2), kHalfDegree * kHalfDegree * 0.999);
 }
 
-TEST(ScanMatcher, CorridorCovarianceIsLargeAlongAndSmallAcross) {
+// A straight corridor 1.5 m wide and 40 m long, the robot in its middle with a sensor that never
+// sees its ends.
+struct CorridorScene {
+  ClassGrid grid;
+  std::vector<Vec2> points;
+  Pose truth{0.0, 0.75, 0.0};
+};
+
+CorridorScene corridor_scene() {
   SyntheticWorld corridor;
   corridor.wall({-20.0, 0.0}, {20.0, 0.0});
   corridor.wall({-20.0, 1.5}, {20.0, 1.5});
   std::mt19937 rng(3);
   SparseSensor sensor;
   sensor.beams = 16;
-  sensor.max_range_m = 3.0;  // never sees the corridor's ends
-  const Pose truth{0.0, 0.75, 0.0};
-  const auto points = keyframe_points(corridor, sensor, truth, {0.05, 0.0, 0.0}, 10, rng);
-  const ClassGrid grid = ClassGrid::rasterise(corridor, geometry_over({-21.0, -1.0}, {21.0, 2.5}));
+  sensor.max_range_m = 3.0;
+  CorridorScene s{ClassGrid::rasterise(corridor, geometry_over({-21.0, -1.0}, {21.0, 2.5})), {}};
+  s.points = keyframe_points(corridor, sensor, s.truth, {0.05, 0.0, 0.0}, 10, rng);
+  return s;
+}
+
+TEST(ScanMatcher, CorridorCovarianceIsLargeAlongAndSmallAcross) {
+  const auto [grid, points, truth] = corridor_scene();
   ScanMatcher matcher;
   const auto r = matcher.match({grid.geometry, grid.classes}, points, offset(truth, 0.05, 0.08, 0.0), {});
   ASSERT_TRUE(r) << r.message();
@@ -176,16 +188,7 @@ TEST(ScanMatcher, CorridorCovarianceIsLargeAlongAndSmallAcross) {
 }
 
 TEST(ScanMatcher, AlongAFlatCorridorTheMatchKeepsThePredictedPosition) {
-  SyntheticWorld corridor;
-  corridor.wall({-20.0, 0.0}, {20.0, 0.0});
-  corridor.wall({-20.0, 1.5}, {20.0, 1.5});
-  std::mt19937 rng(3);
-  SparseSensor sensor;
-  sensor.beams = 16;
-  sensor.max_range_m = 3.0;
-  const Pose truth{0.0, 0.75, 0.0};
-  const auto points = keyframe_points(corridor, sensor, truth, {0.05, 0.0, 0.0}, 10, rng);
-  const ClassGrid grid = ClassGrid::rasterise(corridor, geometry_over({-21.0, -1.0}, {21.0, 2.5}));
+  const auto [grid, points, truth] = corridor_scene();
   ScanMatcher matcher;
   // Every whole-cell shift along the corridor scores exactly alike: the tie goes to the prediction,
   // not to the window's corner, which would push every keyframe in a corridor the same way.
