@@ -9,6 +9,7 @@
 // Plain C++; the mapper's loop thread calls everything (the corrector may match on its own worker:
 // a keyframe's observations then reach the grid at a later step()).
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <optional>
 #include <string>
@@ -50,6 +51,9 @@ class CorrectionStage {
   bool optimising() const { return corrector_.optimising(); }
   void wait_for_optimisation() const { corrector_.wait_for_optimisation(); }
   const correction::CorrectorStats& stats() const { return corrector_.stats(); }
+  void set_keyframe_observer(std::function<void(const correction::KeyframeDecision&)> observer) {
+    corrector_.set_keyframe_observer(std::move(observer));
+  }
   // Observations held back until their keyframe is finalised (stats().open_messages of them wait
   // for their keyframe to close; the rest for its match).
   int64_t held_observations() const { return held_observations_; }

@@ -325,6 +325,13 @@ void PoseCorrector::apply(MatchJob& job, std::vector<KeyframeCorrection>& out) {
   rb.last_node = slot;
   if (anchor || operator_set || !previous) rb.last_tied = slot;
 
+  if (keyframe_observer_) {
+    const Node& node = nodes_[slot];
+    keyframe_observer_(KeyframeDecision{rb.name, node.stamp_ns, node.odom, job.predicted,
+                                        tracked ? std::optional<Pose>(narrow->pose) : std::nullopt,
+                                        tracked ? narrow->covariance : Eigen::Matrix3d::Zero(), estimate,
+                                        anchor.has_value(), closure});
+  }
   const Pose before = rb.state.map_from_odom.compose(keyframe.odom);
   rb.state.map_from_odom = estimate.compose(keyframe.odom.inverse());
   if (distance(before.position(), estimate.position()) > kJumpWarning_m) {

@@ -22,6 +22,7 @@
 //     re-renders the grid from its store and persists them.
 #include <Eigen/Core>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <span>
@@ -112,6 +113,21 @@ struct CorrectorStats {
   int64_t robots_reset = 0;
 };
 
+// How one keyframe was placed, for diagnostics (eval_replay --trace-keyframes compares each pose
+// with the truth): which of prediction, match and map agreed tells a tracking error from a map
+// built in the wrong place.
+struct KeyframeDecision {
+  std::string_view robot;
+  int64_t stamp_ns = 0;       // the keyframe's first observation
+  Pose odom;                  // its origin in the robot's odometry frame
+  Pose predicted;             // the robot's correction before it, applied to `odom`
+  std::optional<Pose> match;  // the tracking match (none: too few points, a poor score)
+  Eigen::Matrix3d match_covariance = Eigen::Matrix3d::Zero();
+  Pose estimate;      // where it was placed: fused, then tied or closed
+  bool tied = false;  // to old keyframes (a narrow tie or an accepted closure)
+  bool closure = false;
+};
+
 class PoseCorrector {
  public:
   explicit PoseCorrector(const CorrectorOptions& options = {});
@@ -161,6 +177,11 @@ class PoseCorrector {
   // Blocks until the background optimisation has finished (take it with the next process() or
   // take_optimised()): for offline replays that must not depend on the solver's timing.
   void wait_for_optimisation() const;
+  // Called with every keyframe as it is placed (on the caller's thread, inside process()); the
+  // decision's `robot` is valid during the call only.
+  void set_keyframe_observer(std::function<void(const KeyframeDecision&)> observer) {
+    keyframe_observer_ = std::move(observer);
+  }
 
  private:
   struct Robot {
@@ -242,6 +263,7 @@ class PoseCorrector {
   int64_t last_process_ns_ = 0;            // now_ns of the latest process()
   int64_t submitted_ns_ = 0;               // ...when the running optimisation started
   size_t submitted_nodes_ = 0;
+  std::function<void(const KeyframeDecision&)> keyframe_observer_;
   CorrectorStats stats_;
   size_t removed_nodes_ = 0;
   CorrectionSchedule schedule_;

@@ -93,6 +93,8 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_flag("--trace", o.replay.trace,
                "log each robot's corrected-pose error at every truth instant (info)");
+  app.add_flag("--trace-keyframes", o.replay.trace_keyframes,
+               "log each keyframe's predicted, matched and placed pose against the truth (info)");
   app.add_flag("--align", o.score.align, "fit the map frame to the world first (--odom-frame start runs)");
   app.add_option("--false-closure-increase", o.score.false_closure_increase_m,
                  "error increase (m) beyond which a loop-closure correction counts as false")

@@ -1,10 +1,14 @@
 // Replaying recorded observations through the mapper's map loop (replay.hpp).
 #include "eval/replay.hpp"
 
+#include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <map>
+#include <numbers>
 #include <string>
 
 #include "mapper/correction_stage.hpp"
@@ -31,6 +35,37 @@ void trace(std::span<const RobotTruth> instant, const std::map<std::string, Pose
                  static_cast<double>(since_ns) * 1e-9, t.robot_id, norm(error), error.x, error.y,
                  distance(t.reported_pose.position(), t.true_pose.position()));
   }
+}
+
+// The truth of `robot` at the first sampled instant at or after `stamp_ns` (null past the last).
+const RobotTruth* truth_at(std::span<const TruthSample> truth, std::string_view robot, int64_t stamp_ns) {
+  auto it = std::lower_bound(truth.begin(), truth.end(), stamp_ns,
+                             [](const TruthSample& s, int64_t stamp) { return s.stamp_ns < stamp; });
+  for (; it != truth.end(); ++it)
+    if (it->truth.robot_id == robot) return &it->truth;
+  return nullptr;
+}
+
+// Logs where one keyframe was predicted, matched and placed against its true pose: the true
+// map-from-odometry transform of that instant applied to the keyframe's odometry origin. A match
+// that agrees with the prediction while both are off means the map there was built off.
+void trace_keyframe(const correction::KeyframeDecision& k, std::span<const TruthSample> truth, int64_t t0) {
+  const RobotTruth* t = truth_at(truth, k.robot, k.stamp_ns);
+  if (!t) return;
+  const Pose truth_pose = t->true_pose.compose(t->reported_pose.inverse()).compose(k.odom);
+  auto error = [&](const Pose& p) {
+    const Vec2 e = p.position() - truth_pose.position();
+    return fmt::format("{:.1f} cm ({:+.1f}, {:+.1f}) {:+.2f} deg", 100 * norm(e), 100 * e.x, 100 * e.y,
+                       wrap_angle(p.theta - truth_pose.theta) * 180.0 / std::numbers::pi);
+  };
+  const char* tie = k.closure ? ", loop closure" : k.tied ? ", tied" : "";
+  spdlog::info(
+      "keyframe {:.1f} s {} at ({:.2f}, {:.2f}): predicted {}, match {} (sigma {:.1f} / {:.1f} cm, {:.2f} "
+      "deg), placed {}{}",
+      static_cast<double>(k.stamp_ns - t0) * 1e-9, k.robot, truth_pose.x, truth_pose.y, error(k.predicted),
+      k.match ? error(*k.match) : std::string("none"), 100 * std::sqrt(k.match_covariance(0, 0)),
+      100 * std::sqrt(k.match_covariance(1, 1)),
+      std::sqrt(k.match_covariance(2, 2)) * 180.0 / std::numbers::pi, error(k.estimate), tie);
 }
 
 }  // namespace
@@ -62,6 +97,11 @@ Result<ReplayOutcome> replay(std::span<const mapper::OwnedObservation> observati
   slam_options.old_age_s = mapper_options.slam_old_age_s;
   slam_options.match_threads = 0;  // inline: deterministic
   mapper::CorrectionStage stage(true, slam_options);
+
+  if (options.trace_keyframes)
+    stage.set_keyframe_observer([&](const correction::KeyframeDecision& k) {
+      trace_keyframe(k, truth, observations.front().stamp_ns);
+    });
 
   recorder.start();
   const auto wall0 = std::chrono::steady_clock::now();

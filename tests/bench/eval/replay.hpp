@@ -16,6 +16,8 @@ namespace slam::bench {
 struct ReplayOptions {
   double phase_ms = 0.0;  // the loop's first pass this long after the first observation (+ one period)
   bool trace = false;     // log (info) every robot's corrected and raw error at every truth instant
+  // Log (info) every keyframe's predicted, matched and placed pose against the truth of its instant.
+  bool trace_keyframes = false;
 };
 
 struct ReplayOutcome {

@@ -187,6 +187,40 @@ TEST(PoseCorrector, AnOptimisationLeavesATrackedAndTiedRobotWhereItIs) {
   EXPECT_LT(largest_move, 0.015);
 }
 
+TEST(PoseCorrector, TheObserverSeesEveryKeyframeWhereItWasPlaced) {
+  const TrueMap map(room());
+  PoseCorrector corrector;
+  std::vector<KeyframeDecision> decisions;
+  corrector.set_keyframe_observer([&](const KeyframeDecision& k) {
+    decisions.push_back(k);
+    decisions.back().robot = {};  // the view is only valid during the call
+    EXPECT_EQ(k.robot, "r1");
+  });
+  std::vector<KeyframeCorrection> finalised;
+  drive_two_laps(corrector, map, 0.0015, 0.0, finalised);
+  ASSERT_EQ(decisions.size(), finalised.size());
+  ASSERT_EQ(static_cast<int64_t>(decisions.size()), corrector.stats().keyframes);
+  int matched = 0, tied = 0;
+  for (size_t i = 0; i < decisions.size(); ++i) {
+    const KeyframeDecision& k = decisions[i];
+    // Placed where the keyframe's correction puts its odometry origin.
+    const Pose placed = finalised[i].correction.compose(finalised[i].odom);
+    EXPECT_NEAR(k.estimate.x, placed.x, 1e-9);
+    EXPECT_NEAR(k.estimate.y, placed.y, 1e-9);
+    EXPECT_NEAR(wrap_angle(k.estimate.theta - placed.theta), 0.0, 1e-9);
+    if (i > 0) {
+      EXPECT_GT(k.stamp_ns, decisions[i - 1].stamp_ns);
+    }
+    matched += k.match ? 1 : 0;
+    tied += k.tied ? 1 : 0;
+    if (k.match) {
+      EXPECT_GT(k.match_covariance(0, 0), 0.0);
+    }
+  }
+  EXPECT_EQ(matched, corrector.stats().matched);
+  EXPECT_GT(tied, 0);  // the second lap is tied to the first
+}
+
 TEST(PoseCorrector, EveryObservationBelongsToTheKeyframeThatFinalisesIt) {
   const TrueMap map(room());
   PoseCorrector corrector;
