@@ -330,7 +330,7 @@ void PoseCorrector::apply(MatchJob& job, std::vector<KeyframeCorrection>& out) {
     keyframe_observer_(KeyframeDecision{rb.name, node.stamp_ns, node.odom, job.predicted,
                                         tracked ? std::optional<Pose>(narrow->pose) : std::nullopt,
                                         tracked ? narrow->covariance : Eigen::Matrix3d::Zero(), estimate,
-                                        anchor.has_value(), closure});
+                                        anchor.has_value(), closure, rb.chain_cov});
   }
   const Pose before = rb.state.map_from_odom.compose(keyframe.odom);
   rb.state.map_from_odom = estimate.compose(keyframe.odom.inverse());

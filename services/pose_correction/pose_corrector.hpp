@@ -126,6 +126,10 @@ struct KeyframeDecision {
   Pose estimate;      // where it was placed: fused, then tied or closed
   bool tied = false;  // to old keyframes (a narrow tie or an accepted closure)
   bool closure = false;
+  // The robot's uncertainty after it, as the corrector holds it to check a loop closure: grown by
+  // odometry since the robot was last tied to the old map, shrunk by each tie; a new trajectory
+  // segment, the robot's first included, starts barely known (2 m).
+  Eigen::Matrix3d uncertainty = Eigen::Matrix3d::Zero();
 };
 
 class PoseCorrector {

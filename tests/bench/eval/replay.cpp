@@ -61,11 +61,12 @@ void trace_keyframe(const correction::KeyframeDecision& k, std::span<const Truth
   const char* tie = k.closure ? ", loop closure" : k.tied ? ", tied" : "";
   spdlog::info(
       "keyframe {:.1f} s {} at ({:.2f}, {:.2f}): predicted {}, match {} (sigma {:.1f} / {:.1f} cm, {:.2f} "
-      "deg), placed {}{}",
+      "deg), placed {}{}, uncertainty {:.1f} cm",
       static_cast<double>(k.stamp_ns - t0) * 1e-9, k.robot, truth_pose.x, truth_pose.y, error(k.predicted),
       k.match ? error(*k.match) : std::string("none"), 100 * std::sqrt(k.match_covariance(0, 0)),
       100 * std::sqrt(k.match_covariance(1, 1)),
-      std::sqrt(k.match_covariance(2, 2)) * 180.0 / std::numbers::pi, error(k.estimate), tie);
+      std::sqrt(k.match_covariance(2, 2)) * 180.0 / std::numbers::pi, error(k.estimate), tie,
+      100 * std::sqrt(k.uncertainty(0, 0) + k.uncertainty(1, 1)));
 }
 
 }  // namespace

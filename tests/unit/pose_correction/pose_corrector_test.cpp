@@ -221,6 +221,26 @@ TEST(PoseCorrector, TheObserverSeesEveryKeyframeWhereItWasPlaced) {
   EXPECT_GT(tied, 0);  // the second lap is tied to the first
 }
 
+TEST(PoseCorrector, TheRobotsUncertaintyGrowsUntilItIsTiedToTheOldMap) {
+  const TrueMap map(room());
+  PoseCorrector corrector;
+  std::vector<double> sigmas;  // position sigma after each keyframe
+  std::vector<bool> tied;
+  corrector.set_keyframe_observer([&](const KeyframeDecision& k) {
+    sigmas.push_back(std::sqrt(k.uncertainty(0, 0) + k.uncertainty(1, 1)));
+    tied.push_back(k.tied);
+  });
+  std::vector<KeyframeCorrection> finalised;
+  drive_two_laps(corrector, map, 0.0015, 0.0, finalised);
+  // The first lap has no old map to tie to: tracking against its own fresh trail does not make
+  // the robot surer of where it is, every step of odometry adds to it.
+  const auto first_tie = std::find(tied.begin() + 1, tied.end(), true) - tied.begin();
+  ASSERT_LT(first_tie, static_cast<long>(tied.size()));
+  ASSERT_GT(first_tie, 5);
+  for (long i = 1; i < first_tie; ++i) EXPECT_GT(sigmas[i], sigmas[i - 1]) << "keyframe " << i;
+  EXPECT_LT(sigmas[first_tie], 0.1 * sigmas[first_tie - 1]);  // the tie to the first lap shrinks it
+}
+
 TEST(PoseCorrector, EveryObservationBelongsToTheKeyframeThatFinalisesIt) {
   const TrueMap map(room());
   PoseCorrector corrector;
