@@ -28,7 +28,8 @@ struct MapperOptions {
   // Pose correction (SLAM): "on" corrects every robot's odometry against the map, "off" trusts the
   // reported poses (odometry frame = map frame).
   std::string slam = "on";
-  double slam_old_age_s = 60.0;  // own keyframes this old count as the old map (loop closure)
+  double slam_old_age_s = 60.0;          // own keyframes this old count as the old map (loop closure)
+  std::string slam_wall_heading = "on";  // keyframe headings held to the walls' directions
   // Offline commands (no DDS): rebuild from the store and write a ROS map, or store a map as prior.
   std::string export_yaml;
   std::string import_yaml;

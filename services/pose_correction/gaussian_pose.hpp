@@ -39,5 +39,11 @@ inline Eigen::Matrix3d fused_covariance(const Eigen::Matrix3d& ca, const Eigen::
 // After an odometry jump (a new segment) a robot's pose is barely known.
 inline constexpr double kSegmentSigma_m = 2.0;
 inline constexpr double kSegmentSigma_rad = 0.5;
+// A robot's first keyframe: its start pose is trusted.
+inline constexpr double kStartSigma_m = 0.05;
+inline constexpr double kStartSigma_rad = 0.02;
+// An operator's initial pose.
+inline constexpr double kOperatorSigma_m = 0.02;
+inline constexpr double kOperatorSigma_rad = 0.01;
 
 }  // namespace slam::correction

@@ -23,11 +23,6 @@ bool finite(const Pose& p) {
   return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.theta);
 }
 
-constexpr double kStartSigma_m = 0.05;  // a robot's first keyframe: its start pose is trusted
-constexpr double kStartSigma_rad = 0.02;
-constexpr double kOperatorSigma_m = 0.02;
-constexpr double kOperatorSigma_rad = 0.01;
-
 // A closure match's figures for the log: what each gate saw.
 std::string describe(const MatchResult& m, size_t points, const Eigen::Matrix3d& chain_cov) {
   return fmt::format(
@@ -145,6 +140,7 @@ void PoseCorrector::start(Keyframe&& keyframe, const GridView& grid, bool match,
   prepare(std::move(keyframe), grid, match, *job);
   if (!match) {
     ++stats_.placed_by_odometry;
+    match_keyframe(matcher_, *job);  // matches nothing: sets the job's results to the prediction
   } else if (worker_) {
     robots_[job->keyframe.robot].matching = true;
     ++in_flight_;
@@ -198,7 +194,9 @@ void PoseCorrector::apply(MatchJob& job, std::vector<KeyframeCorrection>& out) {
   const Pose moved = rb.state.map_from_odom.compose(job.prepared_correction.inverse());
   auto carry = [&](Pose& p) { p = moved.compose(p); };
   carry(job.predicted);
+  carry(job.tracked);
   carry(job.estimate);
+  if (job.wall_heading) *job.wall_heading = wrap_angle(*job.wall_heading + moved.theta);
   if (job.narrow) carry(job.narrow->pose);
   if (job.tie_match) carry(job.tie_match->pose);
   const std::optional<uint32_t> previous = job.previous;
@@ -206,9 +204,11 @@ void PoseCorrector::apply(MatchJob& job, std::vector<KeyframeCorrection>& out) {
   const Eigen::Matrix3d odom_cov = job.odom_cov;
 
   Pose estimate = job.estimate;
-  // The motion from the previous keyframe as tracking measured it, before a tie or closure moves
-  // this keyframe (a closure also bends the previous one).
-  const Pose tracked_motion = previous ? nodes_[*previous].estimate.inverse().compose(job.estimate) : Pose{};
+  rb.heading_variance = job.wall_heading ? job.corrected_heading_variance : job.heading_variance;
+  // The motion from the previous keyframe as tracking measured it, before the walls' heading, a tie
+  // or a closure moves this keyframe (a closure also bends the previous one): each of those is its
+  // own edge.
+  const Pose tracked_motion = previous ? nodes_[*previous].estimate.inverse().compose(job.tracked) : Pose{};
   Eigen::Matrix3d cov = job.narrow ? job.cov : rb.chain_cov;
   CorrectionSource source = rb.state.source;
   const auto& narrow = job.narrow;
@@ -274,11 +274,13 @@ void PoseCorrector::apply(MatchJob& job, std::vector<KeyframeCorrection>& out) {
       closure_since_optimise_ = true;
       estimate = anchored_estimate;
       rb.chain_cov = anchored_cov;
+      rb.heading_variance = anchored_cov(2, 2);
     } else {
       // A tie inside the tracking window: the same update, weighted by what the robot has
       // accumulated since it was last tied.
       estimate = fuse(estimate, rb.chain_cov, anchored_estimate, anchored_cov);
       rb.chain_cov = fused_covariance(rb.chain_cov, anchored_cov);
+      rb.heading_variance = 1.0 / (1.0 / rb.heading_variance + 1.0 / anchored_cov(2, 2));
     }
     cov = anchored_cov;
     ++tied_since_optimise_;
@@ -288,6 +290,7 @@ void PoseCorrector::apply(MatchJob& job, std::vector<KeyframeCorrection>& out) {
     if (tracked) estimate = narrow->pose;
     source = CorrectionSource::Operator;
     rb.chain_cov = diagonal(kOperatorSigma_m, kOperatorSigma_m, kOperatorSigma_rad);
+    rb.heading_variance = kOperatorSigma_rad * kOperatorSigma_rad;
   }
 
   // 3. The node and its edges.
@@ -309,6 +312,24 @@ void PoseCorrector::apply(MatchJob& job, std::vector<KeyframeCorrection>& out) {
   if (anchor) {
     add_edge(EdgeKind::LoopClosure, *anchor, slot, nodes_[*anchor].estimate.inverse().compose(estimate), cov);
   }
+  if (job.wall_heading && !operator_set) {
+    GraphEdge heading;
+    heading.kind = EdgeKind::Heading;
+    heading.from = heading.to = keyframe.id;
+    heading.measurement = Pose{0.0, 0.0, *job.wall_heading};
+    heading.information = Eigen::Matrix3d::Zero();
+    heading.information(2, 2) = 1.0 / job.wall_variance;
+    edges_.push_back(heading);
+    ++stats_.wall_headings;
+  }
+  if (job.wall_reading) {
+    wall_axes_.learn(wrap_quarter(job.wall_reading->angle + estimate.theta));
+    // At the pose given (the prediction from it, not a match's): the robot's first keyframes only.
+    if (rb.anchors_walls > 0 && MapWallAxes::anchors(*job.wall_reading)) {
+      wall_axes_.anchor(wrap_quarter(job.wall_reading->angle + job.predicted.theta), 1.0 / job.wall_variance);
+    }
+  }
+  if (rb.anchors_walls > 0) --rb.anchors_walls;
   if (operator_set || !previous) {
     GraphEdge prior;
     prior.kind = EdgeKind::Prior;
@@ -329,7 +350,8 @@ void PoseCorrector::apply(MatchJob& job, std::vector<KeyframeCorrection>& out) {
     const Node& node = nodes_[slot];
     keyframe_observer_(KeyframeDecision{rb.name, node.stamp_ns, node.odom, job.predicted,
                                         tracked ? std::optional<Pose>(narrow->pose) : std::nullopt,
-                                        tracked ? narrow->covariance : Eigen::Matrix3d::Zero(), estimate,
+                                        tracked ? narrow->covariance : Eigen::Matrix3d::Zero(),
+                                        operator_set ? std::nullopt : job.wall_heading, estimate,
                                         anchor.has_value(), closure, rb.chain_cov});
   }
   const Pose before = rb.state.map_from_odom.compose(keyframe.odom);
@@ -377,6 +399,8 @@ Status PoseCorrector::set_initial_pose(std::string_view robot, const Pose& map_p
   rb.state.map_from_odom = correction;
   ++epoch_;
   rb.chain_cov = diagonal(kOperatorSigma_m, kOperatorSigma_m, kOperatorSigma_rad);
+  rb.heading_variance = kOperatorSigma_rad * kOperatorSigma_rad;
+  rb.anchors_walls = kAnchoringKeyframes;
   rb.state.covariance = rb.chain_cov;
   mark_changed(rb, CorrectionSource::Operator);
   return Status::ok();
@@ -421,6 +445,7 @@ size_t PoseCorrector::reset_robot(std::string_view robot) {
   rb.last_tied.reset();
   rb.operator_pose.reset();
   rb.chain_cov = Eigen::Matrix3d::Zero();
+  rb.heading_variance = 0.0;
   rb.schedule = {};
   rb.state.keyframes = 0;
   rb.state.loop_closures = 0;

@@ -42,6 +42,7 @@
 #include "pose_correction/odometry_trust.hpp"
 #include "pose_correction/pose_graph.hpp"
 #include "pose_correction/scan_matcher.hpp"
+#include "pose_correction/wall_axes.hpp"
 
 namespace slam::correction {
 
@@ -65,6 +66,14 @@ struct CorrectorOptions {
   double track_variance_scale = 0.5;
   double odom_sigma_m_per_sqrt_m = 0.03;  // odometry edge noise (a little above the usual drift)
   double odom_sigma_rad_per_m = 0.02;     // heading noise per metre travelled (edge and chain)
+  // The walls' heading (wall_axes.hpp): each keyframe's heading is pulled toward the one its
+  // straight walls give against the map's axes, and held there in the graph. It acts only once the
+  // map's walls agree on two perpendicular directions, so maps with walls at many angles are left
+  // alone; off for a building whose walls are square to each other only in places.
+  bool wall_heading = true;
+  WallAxisOptions wall_axis;
+  double wall_heading_floor_rad = 0.005;  // added to a reading's spread: no building is exactly square
+  double wall_heading_gate_rad = 0.08;    // a larger correction is not taken: a wall at another angle
   int optimise_every = 40;                // keyframes tied to the old map between optimisations
   double rerender_shift_m = 0.02;         // keyframe moves smaller than this are not re-rendered
   ScheduleOptions schedule;
@@ -102,6 +111,7 @@ struct CorrectorStats {
   int64_t failed_optimisations = 0;
   int64_t segments = 0;         // odometry jumps that started a new segment
   int64_t rejected_inputs = 0;  // non-finite observations, bad initial poses
+  int64_t wall_headings = 0;    // keyframes whose heading the walls corrected
   // Scheduling under load (CorrectionSchedule).
   int64_t ties_tried = 0;          // keyframes matched against old keyframes (narrow or wide)
   int64_t ties_skipped = 0;        // near old map, but the load allowed no tie
@@ -123,8 +133,9 @@ struct KeyframeDecision {
   Pose predicted;             // the robot's correction before it, applied to `odom`
   std::optional<Pose> match;  // the tracking match (none: too few points, a poor score)
   Eigen::Matrix3d match_covariance = Eigen::Matrix3d::Zero();
-  Pose estimate;      // where it was placed: fused, then tied or closed
-  bool tied = false;  // to old keyframes (a narrow tie or an accepted closure)
+  std::optional<double> wall_heading;  // the heading its walls gave against the map's axes, when taken
+  Pose estimate;                       // where it was placed: fused, then tied or closed
+  bool tied = false;                   // to old keyframes (a narrow tie or an accepted closure)
   bool closure = false;
   // The robot's uncertainty after it, as the corrector holds it to check a loop closure: grown by
   // odometry since the robot was last tied to the old map, shrunk by each tie; a new trajectory
@@ -194,9 +205,15 @@ class PoseCorrector {
     KeyframeBuilder builder;
     RobotCorrection state;
     Eigen::Matrix3d chain_cov = Eigen::Matrix3d::Zero();  // uncertainty since last tied to old map
-    OdometryTrust odometry_trust;                         // scales its odometry covariance
-    std::optional<uint32_t> last_node;                    // slot of its previous keyframe
-    std::optional<uint32_t> last_tied;                    // slot of its last keyframe tied to the map
+    // Of its heading in the map: grown by odometry, shrunk by the walls' heading and by ties. Unlike
+    // chain_cov it starts small at the robot's trusted start.
+    double heading_variance = 0.0;
+    // Its next keyframes' headings are given (its trusted start, an operator's pose): those whose
+    // walls are clear anchor the map's axes (MapWallAxes). How many are left.
+    int anchors_walls = 0;
+    OdometryTrust odometry_trust;       // scales its odometry covariance
+    std::optional<uint32_t> last_node;  // slot of its previous keyframe
+    std::optional<uint32_t> last_tied;  // slot of its last keyframe tied to the map
     std::optional<Pose> operator_pose;  // correction set by an operator, for its next keyframe
     bool has_heading = false;           // of its latest observation
     bool changed = false;
@@ -217,6 +234,9 @@ class PoseCorrector {
     bool removed = false;  // its robot was reset: kept as a tombstone so slots stay valid
   };
 
+  // Keyframes after a trusted start that may anchor the map's wall axes: odometry barely drifts
+  // over the first few.
+  static constexpr int kAnchoringKeyframes = 3;
   // A correction moving a robot this far (by a keyframe or an optimisation) is logged as a warning.
   static constexpr double kJumpWarning_m = 0.3;
 
@@ -254,6 +274,7 @@ class PoseCorrector {
   std::vector<Node> nodes_;
   std::vector<GraphEdge> edges_;  // `from`/`to` are keyframe ids
   KeyframeIndex index_;
+  MapWallAxes wall_axes_;
   uint64_t next_id_ = 1;
   int tied_since_optimise_ = 0;
   bool closure_since_optimise_ = false;

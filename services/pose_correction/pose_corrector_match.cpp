@@ -99,7 +99,15 @@ void PoseCorrector::prepare(Keyframe&& keyframe, const GridView& grid, bool matc
   } else {
     rb.chain_cov = job.odom_cov;
   }
+  if (job.previous) {
+    job.heading_variance = rb.heading_variance;  // the matching adds the motion's
+  } else {
+    const double sigma = rb.last_node ? kSegmentSigma_rad : kStartSigma_rad;
+    job.heading_variance = sigma * sigma;
+    rb.anchors_walls = rb.last_node ? 0 : kAnchoringKeyframes;  // a start, not a jump
+  }
 
+  job.map_axis = options_.wall_heading ? wall_axes_.axis() : std::nullopt;
   job.track = match;
   job.tie = false;
   job.wide_needed = job.wide_permitted = false;
@@ -146,9 +154,15 @@ void PoseCorrector::match_keyframe(ScanMatcher& matcher, MatchJob& job) const {
   job.narrow.reset();
   job.tie_match.reset();
   job.wide = job.wide_skipped = false;
+  job.wall_reading.reset();
+  job.wall_heading.reset();
   job.estimate = job.predicted;
   job.cov = Eigen::Matrix3d::Zero();
-  if (!job.track) return;
+  if (!job.track) {
+    job.tracked = job.estimate;
+    if (job.previous) job.heading_variance += job.odom_cov(2, 2);
+    return;
+  }
   // 1. Track: the keyframe against the grid, near the prediction.
   const auto& points = job.keyframe.points;
   if (auto narrow = matcher.match(GridView{job.track_geometry, job.track_cells}, points, job.predicted,
@@ -160,8 +174,31 @@ void PoseCorrector::match_keyframe(ScanMatcher& matcher, MatchJob& job) const {
     job.estimate = fuse(job.predicted, job.odom_cov, narrow->pose, job.cov);
     job.narrow = *narrow;
   }
+  job.tracked = job.estimate;
+  // The heading's variance grows by the motion's, as tracking measured it.
+  if (job.previous) {
+    job.heading_variance += job.narrow ? fused_covariance(job.odom_cov, job.cov)(2, 2) : job.odom_cov(2, 2);
+  }
+  // 2. The walls' heading: a Kalman update of the heading alone, about the keyframe's origin.
+  if (options_.wall_heading) job.wall_reading = job.wall_reader.read(points, options_.wall_axis);
+  if (job.wall_reading) {
+    // The keyframe's points were gathered over its own motion, along which its odometry heading
+    // drifted: a robot known to drift reads its walls a little bent.
+    job.wall_variance = job.wall_reading->sigma * job.wall_reading->sigma +
+                        options_.wall_heading_floor_rad * options_.wall_heading_floor_rad +
+                        (job.previous ? job.odom_cov(2, 2) : 0.0);
+  }
+  if (job.wall_reading && job.map_axis) {
+    const double correction = heading_correction(*job.map_axis, *job.wall_reading, job.estimate.theta);
+    if (std::abs(correction) <= options_.wall_heading_gate_rad) {
+      const double gain = job.heading_variance / (job.heading_variance + job.wall_variance);
+      job.wall_heading = job.estimate.theta + correction;
+      job.corrected_heading_variance = (1.0 - gain) * job.heading_variance;
+      job.estimate.theta = wrap_angle(job.estimate.theta + gain * correction);
+    }
+  }
   if (!job.tie) return;
-  // 2. Tie to the old map: against old keyframes only; a wide search (a loop closure) when the
+  // 3. Tie to the old map: against old keyframes only; a wide search (a loop closure) when the
   // robot has not been tied for a while or tracking failed.
   const bool wide = !job.narrow || job.wide_needed;
   if (wide && !job.wide_permitted) {

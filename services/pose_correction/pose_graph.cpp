@@ -70,6 +70,18 @@ struct PriorCost {
   }
 };
 
+// A heading alone: residual = sqrt(information) wrap(theta - theta_meas).
+struct HeadingCost {
+  double theta;
+  double sqrt_info;
+
+  template <typename T>
+  bool operator()(const T* pose, T* residual) const {
+    residual[0] = sqrt_info * wrap_residual_angle(pose[2] - theta);
+    return true;
+  }
+};
+
 // Sparse Cholesky of the normal equations when Ceres was built with a sparse library (Debian's has
 // SuiteSparse), else Eigen's sparse Cholesky, else dense (slow beyond a few hundred nodes).
 void choose_linear_solver(ceres::Solver::Options& options) {
@@ -119,6 +131,14 @@ Status PoseGraph::add_node(NodeId id, const Pose& estimate, bool fixed) {
 
 Status PoseGraph::add_edge(const GraphEdge& edge) {
   if (!index_.contains(edge.from)) return Error{"edge from unknown " + node_name(edge.from)};
+  if (edge.kind == EdgeKind::Heading) {
+    const double information = edge.information(2, 2);
+    if (!std::isfinite(edge.measurement.theta)) return Error{"edge measurement is not finite"};
+    if (!(std::isfinite(information) && information > 0.0))
+      return Error{"heading information is not positive"};
+    edges_.push_back(edge);
+    return {};
+  }
   if (edge.kind != EdgeKind::Prior) {
     if (!index_.contains(edge.to)) return Error{"edge to unknown " + node_name(edge.to)};
     if (edge.from == edge.to) return Error{"relative edge joins " + node_name(edge.from) + " to itself"};
@@ -172,8 +192,14 @@ Result<OptimiseStats> PoseGraph::optimise(const OptimiseOptions& options) {
   bool closure_loss_used = false;
   bool anchored = false;
   for (const GraphEdge& edge : edges_) {
-    const Eigen::Matrix3d sqrt_info = *sqrt_information(edge.information);  // checked in add_edge
     double* from = &solution[3 * index_.at(edge.from)];
+    if (edge.kind == EdgeKind::Heading) {
+      problem.AddResidualBlock(new ceres::AutoDiffCostFunction<HeadingCost, 1, 3>(new HeadingCost{
+                                   edge.measurement.theta, std::sqrt(edge.information(2, 2))}),
+                               nullptr, from);
+      continue;
+    }
+    const Eigen::Matrix3d sqrt_info = *sqrt_information(edge.information);  // checked in add_edge
     if (edge.kind == EdgeKind::Prior) {
       problem.AddResidualBlock(
           new ceres::AutoDiffCostFunction<PriorCost, 3, 3>(new PriorCost{edge.measurement, sqrt_info}),
@@ -262,7 +288,9 @@ Result<UncertainPose> accumulate_chain(std::span<const GraphEdge> edges) {
   UncertainPose chain;
   for (size_t i = 0; i < edges.size(); ++i) {
     const GraphEdge& edge = edges[i];
-    if (edge.kind == EdgeKind::Prior) return Error{"chain edge " + std::to_string(i) + " is a prior"};
+    if (edge.kind == EdgeKind::Prior || edge.kind == EdgeKind::Heading) {
+      return Error{"chain edge " + std::to_string(i) + " is unary"};
+    }
     if (i > 0 && edges[i - 1].to != edge.from) {
       return Error{"chain breaks at edge " + std::to_string(i) + ": " + node_name(edges[i - 1].to) +
                    " then " + node_name(edge.from)};

@@ -1,9 +1,10 @@
 #pragma once
 // The pose graph: one node per keyframe (its pose in the map frame), relative-pose edges between
 // keyframes (consecutive ones of a robot: odometry refined by matching; loop closures: a keyframe
-// matched against older keyframes) and unary prior edges (an operator's initial pose, the first
-// keyframe of a segment). Optimised with Ceres; loop-closure edges carry a robust loss so one bad
-// closure that slipped through the consistency check cannot drag the graph.
+// matched against older keyframes), unary prior edges (an operator's initial pose, the first
+// keyframe of a segment) and unary heading edges (the walls' directions, wall_axes.hpp). Optimised with
+// Ceres; loop-closure edges carry a robust loss so one bad closure that slipped through the consistency check
+// cannot drag the graph.
 #include <Eigen/Core>
 #include <atomic>
 #include <cstdint>
@@ -19,14 +20,15 @@ namespace slam::correction {
 
 using NodeId = uint64_t;
 
-enum class EdgeKind : uint8_t { Sequential, LoopClosure, Prior };
+enum class EdgeKind : uint8_t { Sequential, LoopClosure, Prior, Heading };
 
 struct GraphEdge {
   EdgeKind kind = EdgeKind::Sequential;
-  NodeId from = 0;   // Prior: the node constrained
-  NodeId to = 0;     // unused for Prior
-  Pose measurement;  // relative: from^-1 ∘ to; Prior: the node's pose in the map
-  Eigen::Matrix3d information = Eigen::Matrix3d::Identity();  // inverse covariance of (x, y, theta)
+  NodeId from = 0;   // Prior, Heading: the node constrained
+  NodeId to = 0;     // unused for Prior and Heading
+  Pose measurement;  // relative: from^-1 ∘ to; Prior: the node's pose in the map; Heading: theta only
+  // Inverse covariance of (x, y, theta); a Heading edge reads only its (2, 2) entry.
+  Eigen::Matrix3d information = Eigen::Matrix3d::Identity();
 };
 
 struct OptimiseOptions {

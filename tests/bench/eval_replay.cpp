@@ -27,6 +27,7 @@ struct Options {
   std::string out_dir = "build/bench/replay";
   std::string name;  // default: the recording's file name
   std::string log_level = "warn";
+  std::string wall_heading = "on";
   ReplayOptions replay;
   ScoreOptions score;
 
@@ -57,6 +58,7 @@ Result<nlohmann::json> run(const Options& o) {
   j["recording"] = o.run;
   j["world"] = o.world;
   j["phase_ms"] = o.replay.phase_ms;
+  j["wall_heading"] = o.wall_heading;
   j["observations"] = observations->size();
   j["recorded_s"] = outcome->recorded_s;
   j["wall_s"] = outcome->wall_s;
@@ -68,6 +70,7 @@ Result<nlohmann::json> run(const Options& o) {
                {"closures_tried", st.closures_tried},
                {"closures_accepted", st.closures_accepted},
                {"closures_rejected", st.closures_rejected},
+               {"wall_headings", st.wall_headings},
                {"optimisations", st.optimisations}};
   j["image"] = std::filesystem::path(base + ".png").filename().string();
   return j;
@@ -95,6 +98,9 @@ int main(int argc, char** argv) {
                "log each robot's corrected-pose error at every truth instant (info)");
   app.add_flag("--trace-keyframes", o.replay.trace_keyframes,
                "log each keyframe's predicted, matched and placed pose against the truth (info)");
+  app.add_option("--wall-heading", o.wall_heading, "the mapper's --slam-wall-heading: on or off")
+      ->check(CLI::IsMember({"on", "off"}))
+      ->capture_default_str();
   app.add_flag("--align", o.score.align, "fit the map frame to the world first (--odom-frame start runs)");
   app.add_option("--false-closure-increase", o.score.false_closure_increase_m,
                  "error increase (m) beyond which a loop-closure correction counts as false")
@@ -102,6 +108,7 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   CLI11_PARSE(app, argc, argv);
   spdlog::set_level(spdlog::level::from_str(o.log_level));
+  o.replay.wall_heading = o.wall_heading == "on";
 
   auto result = slam::bench::run(o);
   if (!result) {

@@ -60,13 +60,17 @@ void trace_keyframe(const correction::KeyframeDecision& k, std::span<const Truth
                        wrap_angle(p.theta - truth_pose.theta) * kDegreesPerRadian);
   };
   const char* tie = k.closure ? ", loop closure" : k.tied ? ", tied" : "";
+  const std::string walls =
+      k.wall_heading
+          ? fmt::format("{:+.2f} deg", wrap_angle(*k.wall_heading - truth_pose.theta) * kDegreesPerRadian)
+          : std::string("none");
   spdlog::info(
       "keyframe {:.1f} s {} at ({:.2f}, {:.2f}): predicted {}, match {} (sigma {:.1f} / {:.1f} cm, {:.2f} "
-      "deg), placed {}{}, uncertainty {:.1f} cm",
+      "deg), walls {}, placed {}{}, uncertainty {:.1f} cm",
       static_cast<double>(k.stamp_ns - t0) * 1e-9, k.robot, truth_pose.x, truth_pose.y, error(k.predicted),
       k.match ? error(*k.match) : std::string("none"), 100 * std::sqrt(k.match_covariance(0, 0)),
       100 * std::sqrt(k.match_covariance(1, 1)), std::sqrt(k.match_covariance(2, 2)) * kDegreesPerRadian,
-      error(k.estimate), tie, 100 * std::sqrt(k.uncertainty(0, 0) + k.uncertainty(1, 1)));
+      walls, error(k.estimate), tie, 100 * std::sqrt(k.uncertainty(0, 0) + k.uncertainty(1, 1)));
 }
 
 }  // namespace
@@ -97,6 +101,7 @@ Result<ReplayOutcome> replay(std::span<const mapper::OwnedObservation> observati
   correction::CorrectorOptions slam_options;
   slam_options.old_age_s = mapper_options.slam_old_age_s;
   slam_options.match_threads = 0;  // inline: deterministic
+  slam_options.wall_heading = options.wall_heading;
   mapper::CorrectionStage stage(true, slam_options);
 
   if (options.trace_keyframes)

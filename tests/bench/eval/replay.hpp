@@ -18,6 +18,7 @@ struct ReplayOptions {
   bool trace = false;     // log (info) every robot's corrected and raw error at every truth instant
   // Log (info) every keyframe's predicted, matched and placed pose against the truth of its instant.
   bool trace_keyframes = false;
+  bool wall_heading = true;  // CorrectorOptions::wall_heading (the mapper's --slam-wall-heading)
 };
 
 struct ReplayOutcome {

@@ -168,6 +168,9 @@ TEST(PoseCorrector, AnOptimisationLeavesATrackedAndTiedRobotWhereItIs) {
   CorrectorOptions options;
   options.optimise_every = 5;
   options.old_age_s = 30.0;
+  // The walls' heading off: a heading edge per keyframe lets the solve revise past headings (a
+  // smoother), which a filter's estimates never are, so with it a solve does move the robot.
+  options.wall_heading = false;
   PoseCorrector corrector(options);
   std::vector<KeyframeCorrection> finalised, moved;
   double largest_move = 0.0;
@@ -239,6 +242,53 @@ TEST(PoseCorrector, TheRobotsUncertaintyGrowsUntilItIsTiedToTheOldMap) {
   ASSERT_GT(first_tie, 5);
   for (long i = 1; i < first_tie; ++i) EXPECT_GT(sigmas[i], sigmas[i - 1]) << "keyframe " << i;
   EXPECT_LT(sigmas[first_tie], 0.1 * sigmas[first_tie - 1]);  // the tie to the first lap shrinks it
+}
+
+TEST(PoseCorrector, TheWallsHoldTheHeadingOfARobotWithNoMapToMatch) {
+  // No map at all (every match fails, as far out in new ground), 9 degrees of heading drift a lap:
+  // odometry alone walks the robot off, the walls' directions hold its heading.
+  const TrueMap nothing(std::vector<Wall>{});
+  const auto drive = [&](bool walls) {
+    CorrectorOptions options;
+    options.wall_heading = walls;
+    PoseCorrector corrector(options);
+    std::vector<KeyframeCorrection> finalised;
+    const Drive d = drive_two_laps(corrector, nothing, 0.0003, 0.01, finalised);
+    return std::pair{d, corrector.stats()};
+  };
+  const auto [without, without_stats] = drive(false);
+  const auto [with, with_stats] = drive(true);
+  RecordProperty("worst_without_mm", static_cast<int>(without.worst_corrected * 1000));
+  RecordProperty("worst_with_mm", static_cast<int>(with.worst_corrected * 1000));
+  EXPECT_EQ(without_stats.wall_headings, 0);
+  EXPECT_GT(with_stats.wall_headings, with_stats.keyframes / 2);
+  EXPECT_GT(without.worst_corrected, 0.5);
+  EXPECT_LT(with.worst_corrected, 0.25 * without.worst_corrected);
+}
+
+TEST(PoseCorrector, WallsAtManyAnglesCorrectNoHeading) {
+  // A heptagonal room: its walls share no pair of perpendicular directions, so the map never gets
+  // axes and no keyframe's heading is pulled toward one.
+  std::vector<Wall> heptagon;
+  const Vec2 centre{3.0, 2.5};
+  for (int i = 0; i < 7; ++i) {
+    const double a0 = 2.0 * std::numbers::pi * i / 7.0, a1 = 2.0 * std::numbers::pi * (i + 1) / 7.0;
+    heptagon.push_back({centre + Vec2{2.4 * std::cos(a0), 2.4 * std::sin(a0)},
+                        centre + Vec2{2.4 * std::cos(a1), 2.4 * std::sin(a1)}});
+  }
+  const TrueMap map(heptagon);
+  PoseCorrector corrector;
+  std::vector<KeyframeCorrection> finalised;
+  int64_t stamp = 0;
+  for (int step = 0; step < 1200; ++step) {  // three laps of a 1 m circle
+    const double a = 2.0 * std::numbers::pi * step / 400.0;
+    const Pose truth{centre.x + std::cos(a), centre.y + std::sin(a), a + std::numbers::pi / 2.0};
+    stamp += 100'000'000;
+    ASSERT_TRUE(corrector.add("r1", stamp, truth, true, sense(heptagon, truth, truth, step)));
+    corrector.process(map.view(), stamp, finalised);
+  }
+  EXPECT_GT(corrector.stats().keyframes, 20);
+  EXPECT_EQ(corrector.stats().wall_headings, 0);
 }
 
 TEST(PoseCorrector, EveryObservationBelongsToTheKeyframeThatFinalisesIt) {

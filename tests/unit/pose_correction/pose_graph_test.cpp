@@ -131,6 +131,39 @@ TEST(PoseGraph, PriorPullsAFreeGraph) {
   EXPECT_NEAR(second.y, expected.y, 1e-6);
 }
 
+TEST(PoseGraph, HeadingEdgesTurnAChainAndLeaveItsLengthAlone) {
+  // Three nodes a metre apart whose odometry turned 2 degrees at each step; the walls say every
+  // heading is 0. The first node is fixed: the chain straightens about it.
+  PoseGraph graph;
+  const double turn = 2.0 * std::numbers::pi / 180.0;
+  ASSERT_TRUE(graph.add_node(0, {}, true));
+  Pose drifted;
+  for (NodeId id = 1; id <= 2; ++id) {
+    drifted = drifted.compose({1.0, 0.0, turn});
+    ASSERT_TRUE(graph.add_node(id, drifted));
+    ASSERT_TRUE(graph.add_edge(relative(EdgeKind::Sequential, id - 1, id, {1.0, 0.0, turn}, 0.01, 0.05)));
+  }
+  for (NodeId id = 1; id <= 2; ++id) {
+    GraphEdge heading{EdgeKind::Heading, id, 0, {0.0, 0.0, 0.0}, Eigen::Matrix3d::Zero()};
+    heading.information(2, 2) = 1.0 / (0.002 * 0.002);
+    ASSERT_TRUE(graph.add_edge(heading));
+  }
+  ASSERT_TRUE(graph.optimise());
+  EXPECT_NEAR(graph.estimate(1)->theta, 0.0, 0.002);
+  EXPECT_NEAR(graph.estimate(2)->theta, 0.0, 0.002);
+  EXPECT_NEAR(graph.estimate(2)->y, 0.0, 0.01);
+  EXPECT_NEAR(graph.estimate(2)->x, 2.0, 0.01);
+
+  GraphEdge bad{EdgeKind::Heading, 1, 0, {0.0, 0.0, kNan}, Eigen::Matrix3d::Identity()};
+  EXPECT_FALSE(graph.add_edge(bad));  // non-finite heading
+  bad.measurement.theta = 0.0;
+  bad.information(2, 2) = 0.0;
+  EXPECT_FALSE(graph.add_edge(bad));  // no information
+  bad.information(2, 2) = 1.0;
+  bad.from = 9;
+  EXPECT_FALSE(graph.add_edge(bad));  // unknown node
+}
+
 TEST(PoseGraph, UnanchoredGraphHoldsItsFirstNode) {
   PoseGraph graph;
   ASSERT_TRUE(graph.add_node(7, {2.0, 3.0, 0.5}));
