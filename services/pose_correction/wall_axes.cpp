@@ -232,6 +232,22 @@ void MapWallAxes::anchor(double axis_in_map, double weight) {
   if (!(std::isfinite(axis_in_map) && std::isfinite(weight) && weight > 0.0)) return;
   anchors_.push_back({axis_in_map, weight});
   anchor_mean_.add(axis_in_map, weight);
+  // The weighted median, each anchor taken modulo a quarter turn nearest the mean. Anchors come
+  // a few per robot start, so this runs rarely; axis() reads the result.
+  const double mean = anchor_mean_.mean();
+  for (Anchor& a : anchors_) a.angle = mean + wrap_quarter(a.angle - mean);
+  std::sort(anchors_.begin(), anchors_.end(),
+            [](const Anchor& a, const Anchor& b) { return a.angle < b.angle; });
+  double total = 0.0;
+  for (const Anchor& a : anchors_) total += a.weight;
+  double below = 0.0;
+  for (const Anchor& a : anchors_) {
+    below += a.weight;
+    if (below >= 0.5 * total) {
+      anchor_median_ = wrap_quarter(a.angle);
+      break;
+    }
+  }
 }
 
 void MapWallAxes::learn(double axis_in_map) {
@@ -241,19 +257,7 @@ void MapWallAxes::learn(double axis_in_map) {
 std::optional<double> MapWallAxes::axis() const {
   if (anchors_.empty() || readings_.count() < kMinReadings) return std::nullopt;
   if (anchor_mean_.agreement() < kMinAgreement || readings_.agreement() < kMinAgreement) return std::nullopt;
-  // The weighted median, each anchor taken modulo a quarter turn nearest the mean.
-  const double mean = anchor_mean_.mean();
-  std::vector<Anchor> sorted = anchors_;
-  for (Anchor& a : sorted) a.angle = mean + wrap_quarter(a.angle - mean);
-  std::sort(sorted.begin(), sorted.end(), [](const Anchor& a, const Anchor& b) { return a.angle < b.angle; });
-  double total = 0.0;
-  for (const Anchor& a : sorted) total += a.weight;
-  double below = 0.0;
-  for (const Anchor& a : sorted) {
-    below += a.weight;
-    if (below >= 0.5 * total) return wrap_quarter(a.angle);
-  }
-  return wrap_quarter(sorted.back().angle);
+  return anchor_median_;
 }
 
 double heading_correction(double map_axis, const WallAxisReading& reading, double heading) {

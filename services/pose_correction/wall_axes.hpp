@@ -122,8 +122,9 @@ class MapWallAxes {
     double angle;
     double weight;
   };
-  std::vector<Anchor> anchors_;
+  std::vector<Anchor> anchors_;  // sorted by angle, unwrapped around their mean
   QuarterTurnMean anchor_mean_;
+  double anchor_median_ = 0.0;
   QuarterTurnMean readings_;
 };
 

@@ -1,13 +1,15 @@
 // bench_slam: speed of the SLAM core. Keyframe matching: a 100-point keyframe (ten v1 messages of
 // ten points) against an office-sized 0.05 m grid (400 x 400 cells) in the tracking window
 // (+-0.15 m, +-0.08 rad). Target: 500 robots x 10 Hz with keyframes of ten messages is 500 matches/s
-// on one core, i.e. <= 2 ms per match. A loop-closure-sized window is measured for reference.
+// on one core, i.e. <= 2 ms per match. A loop-closure-sized window is measured for reference, and
+// the reading of the same keyframes' wall directions (the walls' heading, done with every match).
 #include <benchmark/benchmark.h>
 
 #include <random>
 #include <vector>
 
 #include "pose_correction/scan_matcher.hpp"
+#include "pose_correction/wall_axes.hpp"
 #include "synthetic_world.hpp"
 
 namespace {
@@ -115,6 +117,25 @@ void BM_LoopClosureMatch(benchmark::State& state) {
   run_matches(state, {1.0, 0.3});
 }
 BENCHMARK(BM_LoopClosureMatch)->Unit(benchmark::kMillisecond);
+
+// The walls' directions of each keyframe (WallAxisReader), as the corrector reads them after the
+// tracking match.
+void BM_WallAxisReading(benchmark::State& state) {
+  const Scene& s = scene();
+  slam::correction::WallAxisReader reader;
+  const slam::correction::WallAxisOptions options;
+  size_t next = 0;
+  int64_t read = 0;
+  for (auto _ : state) {
+    const auto reading = reader.read(s.keyframes[next].points, options);
+    next = (next + 1) % s.keyframes.size();
+    read += reading ? 1 : 0;
+    benchmark::DoNotOptimize(reading);
+  }
+  state.SetItemsProcessed(state.iterations());
+  state.counters["read_share"] = static_cast<double>(read) / static_cast<double>(state.iterations());
+}
+BENCHMARK(BM_WallAxisReading)->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 

@@ -2,6 +2,8 @@
 // (each from its own point of the lap), chained by drifting odometry, each robot's first keyframe
 // under a prior (its initial pose) and 200 loop closures (half a robot's later lap against its
 // first, half against the next robot's keyframes at the same place). Solved from the drifted start.
+// With headings: every keyframe also carries the heading its walls gave (the square's sides are
+// the walls' axes; 0.5 degrees of noise), as the mapper's graph does when the walls' heading is on.
 #include <benchmark/benchmark.h>
 
 #include <Eigen/Core>
@@ -50,11 +52,12 @@ struct FleetGraph {
   std::vector<Pose> truth;  // by node id
 };
 
-FleetGraph make_fleet_graph() {
+FleetGraph make_fleet_graph(bool wall_headings) {
   std::mt19937 rng(11);
   std::normal_distribution<double> linear_noise(0.0, 0.005), angular_noise(0.0, 0.001),
       match_noise(0.0, 0.01);
   std::uniform_real_distribution<double> heading_bias(-0.0005, 0.0005);
+  std::normal_distribution<double> wall_noise(0.0, 0.5 * std::numbers::pi / 180.0);
   FleetGraph fleet;
   fleet.truth.resize(static_cast<size_t>(kRobots) * kKeyframesPerRobot);
   const auto phase = [](int robot) { return robot * (kKeyframesPerLap / kRobots); };
@@ -74,6 +77,14 @@ FleetGraph make_fleet_graph() {
       } else {
         (void)fleet.graph.add_node(id, drifted);
         (void)fleet.graph.add_edge({EdgeKind::Prior, id, 0, drifted, information(0.05, 0.02)});
+      }
+      if (wall_headings) {
+        const double sigma = 0.5 * std::numbers::pi / 180.0;
+        (void)fleet.graph.add_edge({EdgeKind::Heading,
+                                    id,
+                                    0,
+                                    {0.0, 0.0, fleet.truth[id].theta + wall_noise(rng)},
+                                    information(1.0, sigma)});
       }
     }
   }
@@ -110,7 +121,7 @@ double max_error(const PoseGraph& graph, const std::vector<Pose>& truth) {
 }
 
 void BM_OptimiseFleetGraph(benchmark::State& state) {
-  const FleetGraph fleet = make_fleet_graph();
+  const FleetGraph fleet = make_fleet_graph(state.range(0) != 0);
   const slam::correction::OptimiseOptions options;  // what the mapper uses
   slam::correction::OptimiseStats stats;
   PoseGraph solved;
@@ -135,6 +146,11 @@ void BM_OptimiseFleetGraph(benchmark::State& state) {
   state.counters["start_error_m"] = max_error(fleet.graph, fleet.truth);
   state.counters["max_error_m"] = max_error(solved, fleet.truth);
 }
-BENCHMARK(BM_OptimiseFleetGraph)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_OptimiseFleetGraph)
+    ->ArgName("wall_headings")
+    ->Arg(0)
+    ->Arg(1)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 }  // namespace
