@@ -16,11 +16,11 @@ namespace slam::correction {
 
 struct WallAxisOptions {
   double thinning_cell_m = 0.05;     // the points are thinned to one per cell of this size
-  double line_band_m = 0.05;         // points this close across a line belong to it
+  double line_band_m = 0.05;         // the bands the search counts points in, across the walls
   int min_line_points = 8;           // fewer (thinned) points: no line
   double min_line_length_m = 0.6;    // shorter: no line (a table leg, a corner)
   double max_line_tilt_rad = 0.05;   // a line's fit this far off the keyframe's axes is not a wall of them
-  double point_sigma_m = 0.015;      // floor of a line's spread across (sensor noise)
+  double point_sigma_m = 0.015;      // floor of a line's spread across (sensor noise); 3x: off the line
   double max_line_spread_m = 0.025;  // spread across above this: not one straight wall, or too noisy
   double max_sigma_rad = 0.02;       // a reading less certain than this is not used
 };
