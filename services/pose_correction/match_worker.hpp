@@ -48,17 +48,16 @@ struct MatchJob {
   std::vector<uint8_t> tie_cells;
   std::optional<double> map_axis;  // the map's wall axes (MapWallAxes), when known
   // Of the robot's heading in the map: its previous keyframe's, then (by the matching) with this
-  // keyframe's motion added.
+  // keyframe's motion added and the walls' heading taken.
   double heading_variance = 0.0;
   // Filled by the matching.
   std::optional<MatchResult> narrow;
   Pose tracked;   // the prediction, fused with the narrow match when there is one
   Pose estimate;  // `tracked`, its heading pulled toward the walls' when they gave one
   std::optional<WallAxisReading> wall_reading;
-  std::optional<double> wall_heading;       // the heading the walls gave, when it was taken
-  double wall_variance = 0.0;               // ...and its variance
-  double corrected_heading_variance = 0.0;  // heading_variance after the walls' heading was taken
-  WallAxisReader wall_reader;               // scratch
+  std::optional<double> wall_heading;  // the heading the walls gave, when it was taken
+  double wall_variance = 0.0;          // ...and its variance
+  WallAxisReader wall_reader;          // scratch
   Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
   bool wide = false;          // the tie searched the wide window
   bool wide_skipped = false;  // a wide search was needed but not permitted

@@ -29,7 +29,7 @@ std::string describe(const MatchResult& m, size_t points, const Eigen::Matrix3d&
       "{} points, score {:.2f}, sigma {:.3f} / {:.3f} m, {:.2f} deg, flat {}, ambiguity {:.2f}, "
       "window edge {}, chain sigma {:.3f} m",
       points, m.score, std::sqrt(m.covariance(0, 0)), std::sqrt(m.covariance(1, 1)),
-      std::sqrt(m.covariance(2, 2)) * 57.29578, m.flat_directions, m.ambiguity, m.at_window_edge,
+      to_degrees(std::sqrt(m.covariance(2, 2))), m.flat_directions, m.ambiguity, m.at_window_edge,
       std::sqrt(std::max(chain_cov(0, 0), chain_cov(1, 1))));
 }
 
@@ -204,7 +204,7 @@ void PoseCorrector::apply(MatchJob& job, std::vector<KeyframeCorrection>& out) {
   const Eigen::Matrix3d odom_cov = job.odom_cov;
 
   Pose estimate = job.estimate;
-  rb.heading_variance = job.wall_heading ? job.corrected_heading_variance : job.heading_variance;
+  rb.heading_variance = job.heading_variance;
   // The motion from the previous keyframe as tracking measured it, before the walls' heading, a tie
   // or a closure moves this keyframe (a closure also bends the previous one): each of those is its
   // own edge.
@@ -255,7 +255,7 @@ void PoseCorrector::apply(MatchJob& job, std::vector<KeyframeCorrection>& out) {
           spdlog::info(
               "loop closure: robot {} keyframe {} moved {:.3f} m, {:.2f} deg against {} old keyframes ({})",
               rb.name, keyframe.id, distance(tie->pose.position(), estimate.position()),
-              wrap_angle(tie->pose.theta - estimate.theta) * 57.29578, job.neighbours,
+              to_degrees(wrap_angle(tie->pose.theta - estimate.theta)), job.neighbours,
               describe(*tie, keyframe.points.size(), rb.chain_cov));
         }
       } else {

@@ -193,7 +193,7 @@ void PoseCorrector::match_keyframe(ScanMatcher& matcher, MatchJob& job) const {
     if (std::abs(correction) <= options_.wall_heading_gate_rad) {
       const double gain = job.heading_variance / (job.heading_variance + job.wall_variance);
       job.wall_heading = job.estimate.theta + correction;
-      job.corrected_heading_variance = (1.0 - gain) * job.heading_variance;
+      job.heading_variance *= 1.0 - gain;
       job.estimate.theta = wrap_angle(job.estimate.theta + gain * correction);
     }
   }

@@ -5,10 +5,10 @@
 #include <cstdio>
 #include <functional>
 #include <nlohmann/json.hpp>
-#include <numbers>
 #include <utility>
 
 #include "common/core/alert_kind.hpp"
+#include "common/core/geometry.hpp"
 
 namespace slam::ctl {
 namespace {
@@ -33,13 +33,9 @@ std::string point(const Point2& p) {
   return fmt("(%.2f, %.2f)", p.x(), p.y());
 }
 
-double degrees(double radians) {
-  return radians * 180.0 / std::numbers::pi;
-}
-
 // "(x, y, theta deg)"
 std::string pose_deg(const Pose2& p) {
-  return fmt("(%.2f, %.2f, %.1f deg)", p.x(), p.y(), degrees(p.theta()));
+  return fmt("(%.2f, %.2f, %.1f deg)", p.x(), p.y(), to_degrees(p.theta()));
 }
 
 }  // namespace
@@ -259,7 +255,7 @@ std::string robots_json(const std::vector<RobotSeen>& robots, int64_t now_ns) {
       const Pose2& m = r.correction->map_from_odom();
       robot["correction"] = {{"x", m.x()},
                              {"y", m.y()},
-                             {"theta_deg", degrees(m.theta())},
+                             {"theta_deg", to_degrees(m.theta())},
                              {"version", r.correction->version()},
                              {"keyframes", r.correction->keyframes()},
                              {"loop_closures", r.correction->loop_closures()},

@@ -47,6 +47,11 @@ inline double wrap_angle(double a) {
   return a <= -std::numbers::pi ? a + 2.0 * std::numbers::pi : a;
 }
 
+// Radians as degrees, for people: logs and printed figures.
+inline double to_degrees(double radians) {
+  return radians * (180.0 / std::numbers::pi);
+}
+
 // An SE(2) pose: position plus heading theta (radians, counter-clockwise from +x). Read as the
 // transform from the pose's own frame into the frame it is expressed in (robot -> map).
 struct Pose {

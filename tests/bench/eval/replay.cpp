@@ -8,7 +8,6 @@
 #include <chrono>
 #include <cmath>
 #include <map>
-#include <numbers>
 #include <string>
 
 #include "mapper/correction_stage.hpp"
@@ -21,7 +20,6 @@ namespace slam::bench {
 namespace {
 
 constexpr int64_t kLoopPeriodNs = 100'000'000;  // the mapper's patch period: one loop pass
-constexpr double kDegreesPerRadian = 180.0 / std::numbers::pi;
 
 // Logs each robot's corrected error (distance and map-frame vector) and raw error at one truth instant
 // (`since_ns` after the first observation), among the pose correction's own log lines.
@@ -57,20 +55,19 @@ void trace_keyframe(const correction::KeyframeDecision& k, std::span<const Truth
   auto error = [&](const Pose& p) {
     const Vec2 e = p.position() - truth_pose.position();
     return fmt::format("{:.1f} cm ({:+.1f}, {:+.1f}) {:+.2f} deg", 100 * norm(e), 100 * e.x, 100 * e.y,
-                       wrap_angle(p.theta - truth_pose.theta) * kDegreesPerRadian);
+                       to_degrees(wrap_angle(p.theta - truth_pose.theta)));
   };
   const char* tie = k.closure ? ", loop closure" : k.tied ? ", tied" : "";
   const std::string walls =
-      k.wall_heading
-          ? fmt::format("{:+.2f} deg", wrap_angle(*k.wall_heading - truth_pose.theta) * kDegreesPerRadian)
-          : std::string("none");
+      k.wall_heading ? fmt::format("{:+.2f} deg", to_degrees(wrap_angle(*k.wall_heading - truth_pose.theta)))
+                     : std::string("none");
   spdlog::info(
       "keyframe {:.1f} s {} at ({:.2f}, {:.2f}): predicted {}, match {} (sigma {:.1f} / {:.1f} cm, {:.2f} "
       "deg), walls {}, placed {}{}, uncertainty {:.1f} cm",
       static_cast<double>(k.stamp_ns - t0) * 1e-9, k.robot, truth_pose.x, truth_pose.y, error(k.predicted),
       k.match ? error(*k.match) : std::string("none"), 100 * std::sqrt(k.match_covariance(0, 0)),
-      100 * std::sqrt(k.match_covariance(1, 1)), std::sqrt(k.match_covariance(2, 2)) * kDegreesPerRadian,
-      walls, error(k.estimate), tie, 100 * std::sqrt(k.uncertainty(0, 0) + k.uncertainty(1, 1)));
+      100 * std::sqrt(k.match_covariance(1, 1)), to_degrees(std::sqrt(k.match_covariance(2, 2))), walls,
+      error(k.estimate), tie, 100 * std::sqrt(k.uncertainty(0, 0) + k.uncertainty(1, 1)));
 }
 
 }  // namespace
