@@ -65,6 +65,7 @@ Status MapperNode::configure() {
   correction::CorrectorOptions slam_options;
   slam_options.old_age_s = options_.slam_old_age_s;
   slam_options.wall_heading = options_.slam_wall_heading == "on";
+  slam_options.point_refine = options_.slam_point_refine == "on";
   slam_options.match_threads = 1;  // the map loop keeps integrating while keyframes are matched
   corrections_ = std::make_unique<CorrectionStage>(options_.slam_enabled(), slam_options);
   SLAM_TRY(corrections_->restore(*mapper_));
@@ -273,6 +274,7 @@ void MapperNode::update_periodic_counters() {
   counters_.get("slam_optimisations").store(st.optimisations, std::memory_order_relaxed);
   counters_.get("slam_segments").store(st.segments, std::memory_order_relaxed);
   counters_.get("slam_wall_headings").store(st.wall_headings, std::memory_order_relaxed);
+  counters_.get("slam_point_refined").store(st.point_refined, std::memory_order_relaxed);
   counters_.get("slam_rejected_inputs").store(st.rejected_inputs, std::memory_order_relaxed);
   counters_.get("slam_ties_tried").store(st.ties_tried, std::memory_order_relaxed);
   counters_.get("slam_ties_skipped").store(st.ties_skipped, std::memory_order_relaxed);

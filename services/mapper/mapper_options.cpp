@@ -62,6 +62,12 @@ void add_mapper_options(CLI::App& app, MapperOptions& o) {
       ->check(CLI::IsMember({"on", "off"}))
       ->capture_default_str();
 
+  app.add_option("--slam-point-refine", o.slam_point_refine,
+                 "refine each match against the points of the keyframes around it, not only the grid's "
+                 "cells (off: the grid alone, walls up to half a cell off)")
+      ->check(CLI::IsMember({"on", "off"}))
+      ->capture_default_str();
+
   auto* export_flag = app.add_option("--export", o.export_yaml,
                                      "offline: write the stored map to FILE.yaml (+ .pgm) and exit");
   auto* import_flag =

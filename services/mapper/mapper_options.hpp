@@ -30,6 +30,7 @@ struct MapperOptions {
   std::string slam = "on";
   double slam_old_age_s = 60.0;          // own keyframes this old count as the old map (loop closure)
   std::string slam_wall_heading = "on";  // keyframe headings held to the walls' directions
+  std::string slam_point_refine = "on";  // matches refined against the keyframes' own points
   // Offline commands (no DDS): rebuild from the store and write a ROS map, or store a map as prior.
   std::string export_yaml;
   std::string import_yaml;

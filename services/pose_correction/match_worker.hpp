@@ -22,6 +22,7 @@
 
 #include "common/core/geometry.hpp"
 #include "pose_correction/keyframe_builder.hpp"
+#include "pose_correction/point_refiner.hpp"
 #include "pose_correction/scan_matcher.hpp"
 #include "pose_correction/wall_axes.hpp"
 
@@ -39,13 +40,15 @@ struct MatchJob {
   bool track = false;  // match against the live grid's window
   GridGeometry track_geometry;
   std::vector<uint8_t> track_cells;
-  bool tie = false;          // match against the old keyframes around it
-  bool wide_needed = false;  // the robot's chain is loose: the tie must search the wide window
+  std::vector<Vec2> track_points;  // the points of the keyframes around it (map frame) in that window
+  bool tie = false;                // match against the old keyframes around it
+  bool wide_needed = false;        // the robot's chain is loose: the tie must search the wide window
   bool wide_permitted = false;
   uint32_t anchor = 0;  // slot of the nearest old keyframe
   size_t neighbours = 0;
   GridGeometry tie_geometry;
   std::vector<uint8_t> tie_cells;
+  std::vector<Vec2> tie_points;    // the old keyframes' points that tie_cells were drawn from
   std::optional<double> map_axis;  // the map's wall axes (MapWallAxes), when known
   // Of the robot's heading in the map: its previous keyframe's, then (by the matching) with this
   // keyframe's motion added and the walls' heading taken.
@@ -58,6 +61,8 @@ struct MatchJob {
   std::optional<double> wall_heading;  // the heading the walls gave, when it was taken
   double wall_variance = 0.0;          // ...and its variance
   WallAxisReader wall_reader;          // scratch
+  PointRefiner refiner;                // scratch
+  bool point_refined = false;          // the narrow match was refined against track_points
   Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
   bool wide = false;          // the tie searched the wide window
   bool wide_skipped = false;  // a wide search was needed but not permitted

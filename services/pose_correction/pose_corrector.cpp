@@ -215,6 +215,7 @@ void PoseCorrector::apply(MatchJob& job, std::vector<KeyframeCorrection>& out) {
   if (narrow) {
     source = CorrectionSource::Match;
     ++stats_.matched;
+    if (job.point_refined) ++stats_.point_refined;
     // How far the match moved the odometry prediction teaches how far this robot's odometry holds.
     if (previous && narrow->flat_directions == 0) {
       const Eigen::Vector3d innovation(narrow->pose.x - job.predicted.x, narrow->pose.y - job.predicted.y,

@@ -74,8 +74,11 @@ struct CorrectorOptions {
   WallAxisOptions wall_axis;
   double wall_heading_floor_rad = 0.005;  // added to a reading's spread: no building is exactly square
   double wall_heading_gate_rad = 0.08;    // a larger correction is not taken: a wall at another angle
-  int optimise_every = 40;                // keyframes tied to the old map between optimisations
-  double rerender_shift_m = 0.02;         // keyframe moves smaller than this are not re-rendered
+  // The tracking match refined against the points of the keyframes around it (point_refiner.hpp):
+  // the grid alone leaves walls up to half a cell off.
+  bool point_refine = true;
+  int optimise_every = 40;         // keyframes tied to the old map between optimisations
+  double rerender_shift_m = 0.02;  // keyframe moves smaller than this are not re-rendered
   ScheduleOptions schedule;
   int match_threads = 0;  // 0: match inside process() (deterministic: tests, offline); 1: on a worker
 };
@@ -112,6 +115,7 @@ struct CorrectorStats {
   int64_t segments = 0;         // odometry jumps that started a new segment
   int64_t rejected_inputs = 0;  // non-finite observations, bad initial poses
   int64_t wall_headings = 0;    // keyframes whose heading the walls corrected
+  int64_t point_refined = 0;    // matched keyframes refined against the points of the keyframes around
   // Scheduling under load (CorrectionSchedule).
   int64_t ties_tried = 0;          // keyframes matched against old keyframes (narrow or wide)
   int64_t ties_skipped = 0;        // near old map, but the load allowed no tie
@@ -254,6 +258,11 @@ class PoseCorrector {
   void recycle(std::unique_ptr<MatchJob> job);
   // Old keyframes (another robot's, or older than old_age_s) near `centre`, nearest first.
   void old_neighbours(uint32_t robot, int64_t stamp_ns, Vec2 centre, std::vector<uint32_t>& out);
+  // The points of the keyframes near `centre` (map frame) that lie within the square of half_extent.
+  void window_points(Vec2 centre, double half_extent, std::vector<Vec2>& out);
+  // Appends the points of `slots` (at their current estimates) within the square of half_extent.
+  void gather_points(std::span<const uint32_t> slots, Vec2 centre, double half_extent,
+                     std::vector<Vec2>& out) const;
   // Draws the points of `slots` (at their current estimates) into `cells` around `centre`.
   GridGeometry draw_local_grid(std::span<const uint32_t> slots, Vec2 centre, double half_extent,
                                double resolution, std::vector<uint8_t>& cells) const;

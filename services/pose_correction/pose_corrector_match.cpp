@@ -16,6 +16,9 @@ constexpr size_t kMaxNeighbours = 40;
 constexpr double kPointReach_m = 4.5;    // sensor range plus margin: local grids cover it
 constexpr double kWindowMargin_m = 0.3;  // beyond a keyframe's farthest point: the matcher's field blur
 constexpr double kTiedSigma_m = 0.05;    // chain uncertainty above which a wide search is needed
+// Keyframes whose points the tracking match is refined against: the nearest, which hold the walls
+// around a keyframe several times over.
+constexpr size_t kMaxWindowKeyframes = 60;
 
 }  // namespace
 
@@ -49,6 +52,37 @@ GridGeometry PoseCorrector::draw_local_grid(std::span<const uint32_t> slots, Vec
     }
   }
   return g;
+}
+
+void PoseCorrector::window_points(Vec2 centre, double half_extent, std::vector<Vec2>& out) {
+  // Keyframes within a sensor's reach of the keyframe's origin see what it sees; a fixed radius
+  // keeps the candidates bounded by the map's density, not its size.
+  neighbours_.clear();
+  index_.near(centre, kPointReach_m, neighbours_);
+  std::erase_if(neighbours_,
+                [&](uint32_t slot) { return nodes_[slot].removed || nodes_[slot].points.empty(); });
+  if (neighbours_.size() > kMaxWindowKeyframes) {
+    std::nth_element(neighbours_.begin(), neighbours_.begin() + kMaxWindowKeyframes, neighbours_.end(),
+                     [&](uint32_t a, uint32_t b) {
+                       return distance(nodes_[a].estimate.position(), centre) <
+                              distance(nodes_[b].estimate.position(), centre);
+                     });
+    neighbours_.resize(kMaxWindowKeyframes);
+  }
+  gather_points(neighbours_, centre, half_extent, out);
+}
+
+void PoseCorrector::gather_points(std::span<const uint32_t> slots, Vec2 centre, double half_extent,
+                                  std::vector<Vec2>& out) const {
+  out.clear();
+  for (uint32_t slot : slots) {
+    const Node& n = nodes_[slot];
+    for (const Vec2& p : n.points) {
+      const Vec2 q = n.estimate.transform(p);
+      if (std::abs(q.x - centre.x) <= half_extent && std::abs(q.y - centre.y) <= half_extent)
+        out.push_back(q);
+    }
+  }
 }
 
 namespace {
@@ -118,6 +152,7 @@ void PoseCorrector::prepare(Keyframe&& keyframe, const GridView& grid, bool matc
     for (const Vec2& p : keyframe.points) reach = std::max(reach, norm(p));
     const double half = reach + options_.track_window.linear_m + kWindowMargin_m;
     job.track_geometry = copy_window(grid, job.predicted.position(), half, job.track_cells);
+    window_points(job.predicted.position(), half, job.track_points);
 
     // The tie to the old map, planned here where the pose graph lives (around the prediction: the
     // narrow match moves the keyframe by at most the tracking window, which the grid covers).
@@ -138,9 +173,10 @@ void PoseCorrector::prepare(Keyframe&& keyframe, const GridView& grid, bool matc
           job.neighbours = neighbours_.size();
           const double window =
               job.wide_permitted ? options_.closure_window.linear_m : options_.track_window.linear_m;
-          job.tie_geometry = draw_local_grid(neighbours_, job.predicted.position(),
-                                             kPointReach_m + window + options_.track_window.linear_m,
+          const double tie_half = kPointReach_m + window + options_.track_window.linear_m;
+          job.tie_geometry = draw_local_grid(neighbours_, job.predicted.position(), tie_half,
                                              grid.geometry.resolution, job.tie_cells);
+          gather_points(neighbours_, job.predicted.position(), tie_half, job.tie_points);
         }
       } else {
         ++stats_.ties_skipped;
@@ -171,6 +207,15 @@ void PoseCorrector::match_keyframe(ScanMatcher& matcher, MatchJob& job) const {
     // keyframe's match is noisier than half a metre of odometry, and taking it as is would
     // random-walk the pose where the map is only the robot's own recent trail.
     job.cov = with_floor(narrow->covariance * options_.track_variance_scale, 0.005, 0.002);
+    // The search read the grid's cells; the points of the keyframes around place the walls within them.
+    job.point_refined = false;
+    if (options_.point_refine) {
+      job.refiner.set_reference(job.track_points);
+      if (const auto refined = job.refiner.refine(points, narrow->pose, job.cov)) {
+        narrow->pose = refined->pose;
+        job.point_refined = true;
+      }
+    }
     job.estimate = fuse(job.predicted, job.odom_cov, narrow->pose, job.cov);
     job.narrow = *narrow;
   }
@@ -208,6 +253,11 @@ void PoseCorrector::match_keyframe(ScanMatcher& matcher, MatchJob& job) const {
   job.wide = wide;
   if (auto tie = matcher.match(GridView{job.tie_geometry, job.tie_cells}, points, job.estimate,
                                wide ? options_.closure_window : options_.track_window)) {
+    if (options_.point_refine) {
+      job.refiner.set_reference(job.tie_points);
+      if (const auto refined = job.refiner.refine(points, tie->pose, tie->covariance))
+        tie->pose = refined->pose;
+    }
     job.tie_match = *tie;
   }
 }

@@ -28,6 +28,7 @@ struct Options {
   std::string name;  // default: the recording's file name
   std::string log_level = "warn";
   std::string wall_heading = "on";
+  std::string point_refine = "on";
   ReplayOptions replay;
   ScoreOptions score;
 
@@ -59,6 +60,7 @@ Result<nlohmann::json> run(const Options& o) {
   j["world"] = o.world;
   j["phase_ms"] = o.replay.phase_ms;
   j["wall_heading"] = o.wall_heading;
+  j["point_refine"] = o.point_refine;
   j["observations"] = observations->size();
   j["recorded_s"] = outcome->recorded_s;
   j["wall_s"] = outcome->wall_s;
@@ -71,6 +73,7 @@ Result<nlohmann::json> run(const Options& o) {
                {"closures_accepted", st.closures_accepted},
                {"closures_rejected", st.closures_rejected},
                {"wall_headings", st.wall_headings},
+               {"point_refined", st.point_refined},
                {"optimisations", st.optimisations}};
   j["image"] = std::filesystem::path(base + ".png").filename().string();
   return j;
@@ -101,6 +104,9 @@ int main(int argc, char** argv) {
   app.add_option("--wall-heading", o.wall_heading, "the mapper's --slam-wall-heading: on or off")
       ->check(CLI::IsMember({"on", "off"}))
       ->capture_default_str();
+  app.add_option("--point-refine", o.point_refine, "the mapper's --slam-point-refine: on or off")
+      ->check(CLI::IsMember({"on", "off"}))
+      ->capture_default_str();
   app.add_flag("--align", o.score.align, "fit the map frame to the world first (--odom-frame start runs)");
   app.add_option("--false-closure-increase", o.score.false_closure_increase_m,
                  "error increase (m) beyond which a loop-closure correction counts as false")
@@ -109,6 +115,7 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
   spdlog::set_level(spdlog::level::from_str(o.log_level));
   o.replay.wall_heading = o.wall_heading == "on";
+  o.replay.point_refine = o.point_refine == "on";
 
   auto result = slam::bench::run(o);
   if (!result) {

@@ -99,6 +99,7 @@ Result<ReplayOutcome> replay(std::span<const mapper::OwnedObservation> observati
   slam_options.old_age_s = mapper_options.slam_old_age_s;
   slam_options.match_threads = 0;  // inline: deterministic
   slam_options.wall_heading = options.wall_heading;
+  slam_options.point_refine = options.point_refine;
   mapper::CorrectionStage stage(true, slam_options);
 
   if (options.trace_keyframes)

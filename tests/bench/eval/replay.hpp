@@ -19,6 +19,7 @@ struct ReplayOptions {
   // Log (info) every keyframe's predicted, matched and placed pose against the truth of its instant.
   bool trace_keyframes = false;
   bool wall_heading = true;  // CorrectorOptions::wall_heading (the mapper's --slam-wall-heading)
+  bool point_refine = true;  // CorrectorOptions::point_refine (the mapper's --slam-point-refine)
 };
 
 struct ReplayOutcome {
