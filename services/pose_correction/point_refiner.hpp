@@ -4,10 +4,9 @@
 // (Gauss-Newton, a Huber weight, the grid match as prior), re-associating every iteration.
 //
 // Why: the correlative search reads an occupancy grid, which holds a wall only as whole cells. A
-// wall on a cell edge is drawn in the cell behind it as seen from the robots (the cell in front is
-// cleared by the rays to the points just behind the edge), so a match against it is up to half a
-// cell off, to the side the wall is seen from, and tracking pulls every robot by that much. The
-// points keep the wall where it was measured.
+// wall on a cell edge is drawn in the cell on one side of it or the other, depending on which rays
+// cleared which cell, so a match against it is up to half a cell off and tracking pulls every
+// robot by that much. The points keep the wall where it was measured.
 #include <Eigen/Core>
 #include <cstdint>
 #include <optional>

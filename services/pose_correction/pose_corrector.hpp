@@ -74,8 +74,8 @@ struct CorrectorOptions {
   WallAxisOptions wall_axis;
   double wall_heading_floor_rad = 0.005;  // added to a reading's spread: no building is exactly square
   double wall_heading_gate_rad = 0.08;    // a larger correction is not taken: a wall at another angle
-  // The tracking match refined against the points of the keyframes around it (point_refiner.hpp):
-  // the grid alone leaves walls up to half a cell off.
+  // Each match (tracking and tie) refined against the points of the keyframes around it
+  // (point_refiner.hpp): the grid alone leaves walls up to half a cell off.
   bool point_refine = true;
   int optimise_every = 40;         // keyframes tied to the old map between optimisations
   double rerender_shift_m = 0.02;  // keyframe moves smaller than this are not re-rendered
@@ -258,9 +258,10 @@ class PoseCorrector {
   void recycle(std::unique_ptr<MatchJob> job);
   // Old keyframes (another robot's, or older than old_age_s) near `centre`, nearest first.
   void old_neighbours(uint32_t robot, int64_t stamp_ns, Vec2 centre, std::vector<uint32_t>& out);
-  // The points of the keyframes near `centre` (map frame) that lie within the square of half_extent.
+  // The points (map frame) within the square of half_extent around `centre` of the keyframes nearest
+  // it: what a match there is refined against.
   void window_points(Vec2 centre, double half_extent, std::vector<Vec2>& out);
-  // Appends the points of `slots` (at their current estimates) within the square of half_extent.
+  // The points of `slots` (map frame, at their current estimates) within the square of half_extent.
   void gather_points(std::span<const uint32_t> slots, Vec2 centre, double half_extent,
                      std::vector<Vec2>& out) const;
   // Draws the points of `slots` (at their current estimates) into `cells` around `centre`.

@@ -152,7 +152,8 @@ void PoseCorrector::prepare(Keyframe&& keyframe, const GridView& grid, bool matc
     for (const Vec2& p : keyframe.points) reach = std::max(reach, norm(p));
     const double half = reach + options_.track_window.linear_m + kWindowMargin_m;
     job.track_geometry = copy_window(grid, job.predicted.position(), half, job.track_cells);
-    window_points(job.predicted.position(), half, job.track_points);
+    job.track_points.clear();
+    if (options_.point_refine) window_points(job.predicted.position(), half, job.track_points);
 
     // The tie to the old map, planned here where the pose graph lives (around the prediction: the
     // narrow match moves the keyframe by at most the tracking window, which the grid covers).
@@ -176,7 +177,9 @@ void PoseCorrector::prepare(Keyframe&& keyframe, const GridView& grid, bool matc
           const double tie_half = kPointReach_m + window + options_.track_window.linear_m;
           job.tie_geometry = draw_local_grid(neighbours_, job.predicted.position(), tie_half,
                                              grid.geometry.resolution, job.tie_cells);
-          gather_points(neighbours_, job.predicted.position(), tie_half, job.tie_points);
+          job.tie_points.clear();
+          if (options_.point_refine)
+            gather_points(neighbours_, job.predicted.position(), tie_half, job.tie_points);
         }
       } else {
         ++stats_.ties_skipped;
