@@ -268,6 +268,7 @@ void MapperNode::update_periodic_counters() {
   counters_.get("slam_keyframes").store(st.keyframes, std::memory_order_relaxed);
   counters_.get("slam_matched").store(st.matched, std::memory_order_relaxed);
   counters_.get("slam_unmatched").store(st.unmatched, std::memory_order_relaxed);
+  counters_.get("slam_standing").store(st.standing, std::memory_order_relaxed);
   counters_.get("slam_closures_tried").store(st.closures_tried, std::memory_order_relaxed);
   counters_.get("slam_closures_accepted").store(st.closures_accepted, std::memory_order_relaxed);
   counters_.get("slam_closures_rejected").store(st.closures_rejected, std::memory_order_relaxed);

@@ -31,6 +31,7 @@ KeyframeBuilder::Step KeyframeBuilder::add(uint64_t id, uint32_t robot, int64_t 
     keyframe_.has_heading = has_heading;
     keyframe_.messages = 0;
     keyframe_.first_stamp_ns = stamp_ns;
+    keyframe_.travel_m = keyframe_.turn_rad = 0.0;
     keyframe_.points.clear();
     open_ = true;
   }
@@ -41,6 +42,8 @@ KeyframeBuilder::Step KeyframeBuilder::add(uint64_t id, uint32_t robot, int64_t 
 
   const double travel = distance(pose.position(), keyframe_.odom.position());
   const double turn = std::abs(wrap_angle(pose.theta - keyframe_.odom.theta));
+  keyframe_.travel_m = std::max(keyframe_.travel_m, travel);
+  keyframe_.turn_rad = std::max(keyframe_.turn_rad, turn);
   const bool complete = travel >= options_.travel_m || turn >= options_.turn_rad ||
                         keyframe_.messages >= options_.max_messages ||
                         stamp_ns - keyframe_.first_stamp_ns >= options_.max_span_ns;

@@ -32,6 +32,10 @@ struct Keyframe {
   int messages = 0;
   int64_t first_stamp_ns = 0;
   int64_t last_stamp_ns = 0;
+  // The farthest the robot got from the origin while the keyframe was open (a robot standing
+  // still: about zero of both).
+  double travel_m = 0.0;
+  double turn_rad = 0.0;
   std::vector<Vec2> points;  // obstacle points in the keyframe's frame
 };
 

@@ -37,6 +37,8 @@ struct MatchJob {
   std::optional<uint32_t> previous;  // slot of the robot's previous keyframe (same segment)
   Pose odom_relative;
   Eigen::Matrix3d odom_cov = Eigen::Matrix3d::Zero();
+  // The robot stood still since its previous keyframe: placed by odometry, nothing matched.
+  bool standing = false;
   bool track = false;  // match against the live grid's window
   GridGeometry track_geometry;
   std::vector<uint8_t> track_cells;

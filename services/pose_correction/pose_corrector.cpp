@@ -138,8 +138,8 @@ void PoseCorrector::start(Keyframe&& keyframe, const GridView& grid, bool match,
                           std::vector<KeyframeCorrection>& out) {
   auto job = take_job();
   prepare(std::move(keyframe), grid, match, *job);
-  if (!match) {
-    ++stats_.placed_by_odometry;
+  if (!job->track) {
+    ++(job->standing ? stats_.standing : stats_.placed_by_odometry);
     match_keyframe(matcher_, *job);  // matches nothing: sets the job's results to the prediction
   } else if (worker_) {
     robots_[job->keyframe.robot].matching = true;
@@ -222,7 +222,7 @@ void PoseCorrector::apply(MatchJob& job, std::vector<KeyframeCorrection>& out) {
                                        wrap_angle(narrow->pose.theta - job.predicted.theta));
       rb.odometry_trust.learn(innovation, job.cov, odometry_covariance(odom_relative));
     }
-  } else {
+  } else if (!job.standing) {
     ++stats_.unmatched;
   }
   const bool tracked = narrow.has_value();

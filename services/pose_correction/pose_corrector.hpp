@@ -107,6 +107,7 @@ struct CorrectorStats {
   int64_t keyframes = 0;
   int64_t matched = 0;    // narrow matches accepted
   int64_t unmatched = 0;  // keyframes placed by odometry alone (too few points, poor score)
+  int64_t standing = 0;   // keyframes of a robot standing still: placed by odometry, not matched
   int64_t closures_tried = 0;
   int64_t closures_accepted = 0;
   int64_t closures_rejected = 0;  // a match was found but failed the consistency check

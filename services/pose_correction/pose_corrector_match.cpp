@@ -19,6 +19,12 @@ constexpr double kTiedSigma_m = 0.05;    // chain uncertainty above which a wide
 // Keyframes whose points the tracking match is refined against: the nearest, which hold the walls
 // around a keyframe several times over.
 constexpr size_t kMaxWindowKeyframes = 60;
+// A keyframe whose robot moved less than this since its previous one, and within it, was taken
+// standing still. It sees the scene its previous keyframe saw: matching it again adds nothing but
+// the chance to be dragged by other robots' fresh keyframes, tied to it and to each other while
+// robots wait for one another (the office replays: a robot waiting 30 s slid 20 cm that way).
+constexpr double kStandingTravel_m = 0.02;
+constexpr double kStandingTurn_rad = 0.02;
 
 }  // namespace
 
@@ -123,8 +129,12 @@ void PoseCorrector::prepare(Keyframe&& keyframe, const GridView& grid, bool matc
   if (rb.last_node && nodes_[*rb.last_node].segment == keyframe.segment) job.previous = rb.last_node;
   job.odom_relative = Pose{};
   job.odom_cov = diagonal(kSegmentSigma_m, kSegmentSigma_m, kSegmentSigma_rad);
+  job.standing = false;
   if (job.previous) {
     job.odom_relative = nodes_[*job.previous].odom.inverse().compose(keyframe.odom);
+    job.standing = keyframe.travel_m < kStandingTravel_m && keyframe.turn_rad < kStandingTurn_rad &&
+                   norm(job.odom_relative.position()) < kStandingTravel_m &&
+                   std::abs(job.odom_relative.theta) < kStandingTurn_rad;
     job.odom_cov = rb.odometry_trust.scaled(odometry_covariance(job.odom_relative));
     const double d = norm(job.odom_relative.position());
     rb.chain_cov += job.odom_cov;
@@ -142,6 +152,7 @@ void PoseCorrector::prepare(Keyframe&& keyframe, const GridView& grid, bool matc
   }
 
   job.map_axis = options_.wall_heading ? wall_axes_.axis() : std::nullopt;
+  if (job.standing) match = false;
   job.track = match;
   job.tie = false;
   job.wide_needed = job.wide_permitted = false;

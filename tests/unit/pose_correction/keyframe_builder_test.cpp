@@ -27,6 +27,8 @@ TEST(KeyframeBuilder, ClosesAfterTheConfiguredTravelWithPointsInItsOwnFrame) {
   EXPECT_FALSE(builder.open());
   EXPECT_EQ(k.id, 7u);
   EXPECT_EQ(k.messages, 9);
+  EXPECT_NEAR(k.travel_m, 0.4, 1e-9);  // how far it got from the origin
+  EXPECT_NEAR(k.turn_rad, 0.0, 1e-12);
   ASSERT_EQ(k.points.size(), 9u);
   // (2, 1) seen from (1, 0) heading +y lies 1 m ahead and 1 m to the right.
   EXPECT_NEAR(k.points[0].x, 1.0, 1e-12);
@@ -50,6 +52,9 @@ TEST(KeyframeBuilder, ClosesAfterMaxMessagesWhenStandingStill) {
   for (int i = 0; i < 4; ++i)
     EXPECT_EQ(builder.add(1, 0, i * kStep, {}, true, {}), KeyframeBuilder::Step::Added);
   EXPECT_EQ(builder.add(1, 0, 4 * kStep, {}, true, {}), KeyframeBuilder::Step::AddedAndClosed);
+  const Keyframe k = builder.take();
+  EXPECT_EQ(k.travel_m, 0.0);  // the corrector places such a keyframe by odometry
+  EXPECT_EQ(k.turn_rad, 0.0);
 }
 
 TEST(KeyframeBuilder, AnOdometryJumpStartsANewSegment) {

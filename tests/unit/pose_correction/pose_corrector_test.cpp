@@ -190,6 +190,45 @@ TEST(PoseCorrector, AnOptimisationLeavesATrackedAndTiedRobotWhereItIs) {
   EXPECT_LT(largest_move, 0.015);
 }
 
+TEST(PoseCorrector, ARobotStandingStillIsNeitherMatchedNorMoved) {
+  // Drives 1.5 m along the room, stands still for 20 s (as a robot waiting for another does), then
+  // drives on. While it stands its keyframes see what the last one saw: they are placed by odometry,
+  // and its correction does not change.
+  const TrueMap map(room());
+  PoseCorrector corrector;
+  std::vector<KeyframeCorrection> finalised;
+  const auto walls = room();
+  Pose truth{1, 1, 0};
+  int64_t stamp = 0;
+  int step = 0;
+  auto send = [&](const Pose& pose) {
+    stamp += 100'000'000;
+    ++step;
+    ASSERT_TRUE(corrector.add("r1", stamp, pose, true, sense(walls, pose, pose, step)));
+    corrector.process(map.view(), stamp, finalised);
+  };
+  for (int i = 0; i < 50; ++i) {
+    truth = truth.compose(Pose{0.03, 0.0, 0.0});
+    send(truth);
+  }
+  // The keyframe open when it stopped, and the next (whose origin lies before the stop), moved.
+  for (int i = 0; i < 70; ++i) send(truth);
+  const int64_t matched_before = corrector.stats().matched;
+  const int64_t standing_before = corrector.stats().standing;
+  EXPECT_GT(matched_before, 0);
+  const Pose correction_standing = corrector.correction("r1");
+  for (int i = 0; i < 150; ++i) send(truth);
+  EXPECT_GE(corrector.stats().standing - standing_before, 4);  // a keyframe every 30 messages
+  EXPECT_EQ(corrector.stats().matched, matched_before);
+  EXPECT_EQ(corrector.correction("r1"), correction_standing);
+  EXPECT_EQ(corrector.stats().unmatched, 0);  // standing is not a failed match
+  for (int i = 0; i < 40; ++i) {
+    truth = truth.compose(Pose{0.03, 0.0, 0.0});
+    send(truth);
+  }
+  EXPECT_GT(corrector.stats().matched, matched_before);  // matched again once it moves
+}
+
 TEST(PoseCorrector, TheObserverSeesEveryKeyframeWhereItWasPlaced) {
   const TrueMap map(room());
   PoseCorrector corrector;
