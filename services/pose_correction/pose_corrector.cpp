@@ -294,7 +294,10 @@ void PoseCorrector::apply(MatchJob& job, std::vector<KeyframeCorrection>& out) {
     rb.heading_variance = kOperatorSigma_rad * kOperatorSigma_rad;
   }
 
-  // 3. The node and its edges.
+  // 3. The node and its edges. A standing keyframe's node keeps no points: they repeat its previous
+  // keyframe's, and a robot waiting for minutes would fill the nearest keyframes that matches and
+  // ties read with copies of one view (its observations still go into the map as any others).
+  if (job.standing) keyframe.points = {};
   const auto slot = static_cast<uint32_t>(nodes_.size());
   nodes_.push_back(Node{keyframe.id, keyframe.robot, keyframe.segment, keyframe.first_stamp_ns, keyframe.odom,
                         estimate, std::move(keyframe.points), false});

@@ -202,6 +202,7 @@ void PoseCorrector::prepare(Keyframe&& keyframe, const GridView& grid, bool matc
 
 void PoseCorrector::match_keyframe(ScanMatcher& matcher, MatchJob& job) const {
   job.narrow.reset();
+  job.point_refined = false;
   job.tie_match.reset();
   job.wide = job.wide_skipped = false;
   job.wall_reading.reset();
@@ -222,7 +223,6 @@ void PoseCorrector::match_keyframe(ScanMatcher& matcher, MatchJob& job) const {
     // random-walk the pose where the map is only the robot's own recent trail.
     job.cov = with_floor(narrow->covariance * options_.track_variance_scale, 0.005, 0.002);
     // The search read the grid's cells; the points of the keyframes around place the walls within them.
-    job.point_refined = false;
     if (options_.point_refine) {
       job.refiner.set_reference(job.track_points);
       if (const auto refined = job.refiner.refine(points, narrow->pose, job.cov)) {
