@@ -289,7 +289,7 @@ if ((SIM)) && [ "$MODE" = explore ]; then
     # "all" also reaches robots the planner has not seen yet; slamctl gives up after --timeout.
     as_slamctl=()
     ((SECURE)) && as_slamctl=(env SLAM_DDS_IDENTITY=slamctl)
-    ( sleep 2 && exec "${as_slamctl[@]}" "$BIN/slamctl" --domain "$DOMAIN" --timeout 20 goal all explore ) >>"$LOG_DIR/slamctl.log" 2>&1 &
+    ( sleep 2 && exec "${as_slamctl[@]}" "$BIN/slamctl" --domain "$DOMAIN" --timeout 60 goal all explore ) >>"$LOG_DIR/slamctl.log" 2>&1 &
     HELPER_PIDS+=($!)
     echo "run: robots will explore (slamctl goal all explore, log $LOG_DIR/slamctl.log)"
   else

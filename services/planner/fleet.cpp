@@ -6,6 +6,7 @@ namespace slam::planner {
 Status validate(const FleetConfig& config) {
   if (auto s = validate(config.goals); !s) return s;
   if (auto s = validate(config.explore); !s) return s;
+  if (auto s = validate(config.relocalise); !s) return s;
   return validate(config.planner);
 }
 
@@ -23,10 +24,11 @@ UnknownPolicy Fleet::policy(const Robot& robot) const {
 }
 
 void Fleet::observe(const std::string& robot_id, Vec2 position) {
-  auto [it, inserted] = robots_.try_emplace(
-      robot_id, Robot{GoalTracker(config_.goals), position, position, ProgressWatch{}, 0, -1, 0});
+  auto [it, inserted] = robots_.try_emplace(robot_id, Robot{GoalTracker(config_.goals), position, position,
+                                                            ProgressWatch{}, LocalisationWatch{}, 0, -1, 0});
   Robot& robot = it->second;
   robot.position = position;
+  robot.localisation.observe_position(position, config_.relocalise);
   if (!inserted) {
     robot.tracker.update_position(position);
     return;
@@ -44,6 +46,17 @@ void Fleet::observe(const std::string& robot_id, Vec2 position) {
 
 void Fleet::restore_home(const std::string& robot_id, Vec2 home) {
   if (robots_.count(robot_id) == 0) restored_homes_[robot_id] = home;
+}
+
+void Fleet::observe_uncertainty(const std::string& robot_id, double sigma_m) {
+  if (const auto it = robots_.find(robot_id); it != robots_.end()) {
+    it->second.localisation.observe_uncertainty(sigma_m, config_.relocalise);
+  }
+}
+
+void Fleet::take_revisits(std::vector<Revisit>& out) {
+  out.insert(out.end(), revisits_.begin(), revisits_.end());
+  revisits_.clear();
 }
 
 void Fleet::forget(const std::string& robot_id) {
@@ -112,10 +125,8 @@ void Fleet::plan_paths(const PlanningGrid& grid, int64_t now_ns) {
   for (auto& [id, robot] : robots_) {
     GoalTracker& t = robot.tracker;
     if (!robot.owned || !t.needs_plan()) continue;
-    // Home is where the robot once stood: inflation may cover it now, a cell beside it will do.
-    const bool snap_goal = t.mode() == GoalMode::Home || t.homing();
     const PlanResult result = planner_.plan_for_robot(grid, robot.position, t.plan_target(), policy(robot),
-                                                      snap_goal, config_.planner.goal_algorithm);
+                                                      t.target_stood_on(), config_.planner.goal_algorithm);
     if (result.ok()) {
       t.set_path(result.path);
       continue;
@@ -156,8 +167,30 @@ void Fleet::release_frontiers(const PlanningGrid& grid, int64_t now_ns) {
   }
 }
 
+void Fleet::relocalise(int64_t now_ns) {
+  for (auto& [id, robot] : robots_) {
+    if (!robot.owned) continue;
+    GoalTracker& t = robot.tracker;
+    if (t.revisiting()) {
+      // Tied again on the way back (or stuck): it explores on from where it is.
+      if (robot.localisation.tied(config_.relocalise) ||
+          robot.progress.stalled(way_to_go(robot), now_ns, config_.explore)) {
+        t.drop_frontier();
+      }
+      continue;
+    }
+    if (!t.has_frontier()) continue;
+    if (const auto place = robot.localisation.take_return(config_.relocalise)) {
+      t.revisit(*place);
+      robot.progress.start(*place, now_ns);
+      revisits_.push_back(Revisit{id, *place, robot.localisation.sigma_m()});
+    }
+  }
+}
+
 void Fleet::explore(const PlanningGrid& grid, int64_t now_ns) {
   if (!frontiers_.matches(grid)) frontiers_.rebuild(grid);
+  relocalise(now_ns);
   release_frontiers(grid, now_ns);
   std::vector<ExploringRobot> seekers;
   std::vector<std::string> ids;
@@ -245,12 +278,11 @@ bool Fleet::replan_around(const std::string& robot_id, const PlanningGrid& grid)
   if (it == robots_.end() || !it->second.owned) return false;
   Robot& robot = it->second;
   GoalTracker& t = robot.tracker;
-  const bool routed =
-      t.mode() == GoalMode::Planned || t.mode() == GoalMode::Home || t.has_frontier() || t.homing();
+  const bool routed = t.mode() == GoalMode::Planned || t.mode() == GoalMode::Home || t.has_frontier() ||
+                      t.homing() || t.revisiting();
   if (t.status() != GoalStatus::Active || !routed || grid.empty()) return false;
-  const bool snap_goal = t.mode() == GoalMode::Home || t.homing();
   const PlanResult result =
-      planner_.plan_for_robot(grid, robot.position, t.plan_target(), policy(robot), snap_goal);
+      planner_.plan_for_robot(grid, robot.position, t.plan_target(), policy(robot), t.target_stood_on());
   if (!result.ok()) return false;
   t.set_path(result.path);
   return true;

@@ -19,6 +19,7 @@
 #include "planner/frontier_assignment.hpp"
 #include "planner/frontiers.hpp"
 #include "planner/goal_tracker.hpp"
+#include "planner/localisation_watch.hpp"
 #include "planner/path_planner.hpp"
 
 namespace slam::planner {
@@ -28,10 +29,18 @@ inline constexpr const char* kAllRobots = "*";
 struct FleetConfig {
   TrackerConfig goals;
   ExplorerConfig explore;
+  RelocaliseConfig relocalise;
   PlannerConfig planner;
 };
 
 Status validate(const FleetConfig& config);
+
+// An exploring robot sent back to ground it is localised on (LocalisationWatch).
+struct Revisit {
+  std::string robot_id;
+  Vec2 place;
+  double sigma_m = 0.0;  // its uncertainty when it turned back
+};
 
 struct DueWaypoint {
   std::string robot_id;
@@ -52,6 +61,10 @@ class Fleet {
   // A home kept from an earlier run (GoalStore): the robot's home once it is seen, instead of its
   // first position.
   void restore_home(const std::string& robot_id, Vec2 home);
+  // The robot's position uncertainty (m) from the pose correction: exploring robots that pass
+  // config.relocalise.return_sigma_m go back to where they were last tied to the map. Unknown
+  // robots are ignored.
+  void observe_uncertainty(const std::string& robot_id, double sigma_m);
   // The operator forgot the robot: its tracker, home, kept goal and claim go (a robot that reports
   // again starts afresh, at its new first position).
   void forget(const std::string& robot_id);
@@ -75,6 +88,8 @@ class Fleet {
   // Robots owned here whose path or status changed since the last call (or that were just taken
   // over): their RobotPath needs publishing.
   std::vector<std::string> take_changed();
+  // Robots sent back to re-localise since the last call.
+  void take_revisits(std::vector<Revisit>& out);
 
   // Asks `owns` about every known robot (each is owned until then). A robot taken over continues
   // its goal from where it is (GoalTracker::take_over); one given up drops its frontier, which
@@ -98,7 +113,8 @@ class Fleet {
     GoalTracker tracker;
     Vec2 position;
     Vec2 home;
-    ProgressWatch progress;
+    ProgressWatch progress;  // toward its frontier, or the place it revisits
+    LocalisationWatch localisation;
     uint64_t published_revision = 0;
     int64_t idle_since_ns = -1;  // exploring without a frontier to go to since then; -1: not
     int64_t next_search_ns = 0;  // no frontier search for this robot before then
@@ -113,6 +129,9 @@ class Fleet {
   // Exploring robots plan under the exploration policy, every other goal under the planner's.
   UnknownPolicy policy(const Robot& robot) const;
   void plan_paths(const PlanningGrid& grid, int64_t now_ns);
+  // Sends exploring robots that lost their localisation back (LocalisationWatch) and ends the
+  // revisits of those tied again. Owned robots only.
+  void relocalise(int64_t now_ns);
   // Gives up a frontier target (see FrontierBlacklist).
   void give_up(Vec2 target, int64_t now_ns);
   void explore(const PlanningGrid& grid, int64_t now_ns);
@@ -136,6 +155,7 @@ class Fleet {
   std::map<std::string, KeptGoal> pending_;
   std::map<std::string, Vec2> restored_homes_;
   std::map<std::string, Vec2> claims_;  // frontiers of robots driven by other planners
+  std::vector<Revisit> revisits_;
   std::optional<KeptGoal> fleet_goal_;
   uint64_t goal_order_ = 0;
   bool exploration_complete_ = false;

@@ -51,6 +51,7 @@ void GoalTracker::set_goal(const Goal& goal, Vec2 position, Vec2 home) {
   current_ = 0;
   plan_wanted_ = false;
   frontier_set_ = false;
+  revisiting_ = false;
   homing_ = false;
   reached_frontier_.reset();
   target_ = goal.target;
@@ -173,7 +174,8 @@ void GoalTracker::fail(const std::string& reason) {
 }
 
 bool GoalTracker::wants_frontier() const {
-  return goal_.mode == GoalMode::Explore && status_ == GoalStatus::Active && !homing_ && !frontier_set_;
+  return goal_.mode == GoalMode::Explore && status_ == GoalStatus::Active && !homing_ && !frontier_set_ &&
+         !revisiting_;
 }
 
 void GoalTracker::set_frontier(Vec2 target) {
@@ -187,10 +189,23 @@ void GoalTracker::set_frontier(Vec2 target) {
 void GoalTracker::drop_frontier() {
   if (goal_.mode != GoalMode::Explore || homing_) return;
   frontier_set_ = false;
+  revisiting_ = false;
   plan_wanted_ = false;
   waypoints_.clear();
   current_ = 0;
   target_ = position_;
+  ++waypoint_seq_;
+  ++revision_;
+}
+
+void GoalTracker::revisit(Vec2 place) {
+  if (goal_.mode != GoalMode::Explore || status_ != GoalStatus::Active || homing_) return;
+  frontier_set_ = false;
+  revisiting_ = true;
+  target_ = place;
+  waypoints_.clear();
+  current_ = 0;
+  plan_wanted_ = true;
   ++waypoint_seq_;
   ++revision_;
 }
@@ -203,6 +218,7 @@ void GoalTracker::exploration_complete() {
   if (goal_.mode != GoalMode::Explore || status_ != GoalStatus::Active || homing_) return;
   homing_ = true;
   frontier_set_ = false;
+  revisiting_ = false;
   waypoints_.clear();
   current_ = 0;
   target_ = home_;

@@ -63,8 +63,17 @@ class GoalTracker {
   // Exploration: wants_frontier() while exploring without a frontier to drive to.
   bool wants_frontier() const;
   void set_frontier(Vec2 target);
-  // Gives up the current frontier (reached, vanished, stalled, unreachable): asks for another.
+  // Gives up the current frontier (reached, vanished, stalled, unreachable), or ends a revisit:
+  // asks for another frontier.
   void drop_frontier();
+  // An exploring robot drives back to `place` (ground it is localised on, LocalisationWatch)
+  // instead of its frontier; arriving, or drop_frontier(), ends the revisit and it asks for a
+  // frontier again. Only while exploring, not homing.
+  void revisit(Vec2 place);
+  bool revisiting() const { return revisiting_; }
+  // The target is a place the robot stood on (home, a revisit): inflation may cover it now, and a
+  // cell beside it will do.
+  bool target_stood_on() const { return goal_.mode == GoalMode::Home || homing_ || revisiting_; }
   bool has_frontier() const { return mode() == GoalMode::Explore && !homing_ && frontier_set_; }
   // The frontier the robot last arrived at, once: still a frontier after the robot stood on it,
   // it cannot be seen from there and should not be handed out again.
@@ -114,6 +123,7 @@ class GoalTracker {
   size_t current_ = 0;
   bool plan_wanted_ = false;
   bool frontier_set_ = false;
+  bool revisiting_ = false;
   bool homing_ = false;
   std::optional<Vec2> reached_frontier_;
   uint64_t waypoint_seq_ = 0;  // bumped when the current waypoint changes

@@ -3,6 +3,8 @@
 
 #include <utility>
 
+#include "common/core/geometry.hpp"
+
 namespace slam::planner {
 
 void IntakeBatch::clear() {
@@ -10,6 +12,7 @@ void IntakeBatch::clear() {
   patches.clear();
   patches_dropped = false;
   positions.clear();
+  uncertainties.clear();
   goals.clear();
   requests.clear();
 }
@@ -44,6 +47,12 @@ void PlannerIntake::push_digest(const slam::FleetDigest& sample) {
     const auto& id = r.robot_id();
     positions_.offer({id.c_str(), id.size()}, {r.pose().x(), r.pose().y()}, r.last_seen_ns());
   }
+}
+
+void PlannerIntake::push_correction(const slam::PoseCorrection& sample) {
+  const double sigma_m = position_sigma(sample.covariance());
+  std::lock_guard lock(mutex_);
+  pending_.uncertainties.push_back(RobotUncertainty{sample.robot_id().to_string(), sigma_m});
 }
 
 void PlannerIntake::forget_robot(const std::string& robot_id) {

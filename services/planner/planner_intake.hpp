@@ -3,6 +3,7 @@
 // Callbacks only push (short, never blocking on planning); the loop waits here for work and takes
 // everything in one go. Grid messages keep their order: a snapshot discards the patches queued
 // before it, since it already contains them.
+#include <slam/fastdds/correction.h>
 #include <slam/fastdds/map.h>
 #include <slam/fastdds/nav.h>
 #include <slam/fastdds/robot.h>
@@ -25,13 +26,20 @@ struct ReceivedGoal {
   int64_t sent_ns = 0;
 };
 
+// A robot's position uncertainty from its pose correction (PoseCorrection.covariance).
+struct RobotUncertainty {
+  std::string robot_id;
+  double sigma_m = 0.0;
+};
+
 struct IntakeBatch {
-  std::optional<slam::GridSnapshot> snapshot;  // the latest one, applied before `patches`
-  std::vector<slam::GridTiles> patches;        // in arrival order
-  bool patches_dropped = false;                // the queue overflowed: wait for the next snapshot
-  std::vector<RobotPosition> positions;        // the newest per robot (RobotPositions)
-  std::vector<ReceivedGoal> goals;             // in arrival order
-  std::vector<slam::PathRequest> requests;     // in arrival order
+  std::optional<slam::GridSnapshot> snapshot;   // the latest one, applied before `patches`
+  std::vector<slam::GridTiles> patches;         // in arrival order
+  bool patches_dropped = false;                 // the queue overflowed: wait for the next snapshot
+  std::vector<RobotPosition> positions;         // the newest per robot (RobotPositions)
+  std::vector<RobotUncertainty> uncertainties;  // in arrival order
+  std::vector<ReceivedGoal> goals;              // in arrival order
+  std::vector<slam::PathRequest> requests;      // in arrival order
 
   void clear();
 };
@@ -48,6 +56,8 @@ class PlannerIntake {
   // the newest wins (RobotPositions).
   void push_state(const slam::RobotState& sample);
   void push_digest(const slam::FleetDigest& sample);
+  // A robot's pose correction changed: its position uncertainty.
+  void push_correction(const slam::PoseCorrection& sample);
   // The robot was forgotten: its next position is taken whatever its stamp.
   void forget_robot(const std::string& robot_id);
   void push_goal(const slam::NavGoal& sample, int64_t sent_ns);

@@ -61,7 +61,8 @@ PlannerNode::Metrics::Metrics(Counters& c)
       robots_held(c.get("robots_held")),
       deadlocks_broken(c.get("deadlocks_broken")),
       replans_around_robots(c.get("replans_around_robots")),
-      longest_wait_ms(c.get("longest_wait_ms")) {
+      longest_wait_ms(c.get("longest_wait_ms")),
+      revisits(c.get("revisits")) {
   for (size_t i = 0; i < replies.size(); ++i) replies[i] = &c.get(counter_name(static_cast<PlanStatus>(i)));
 }
 
@@ -149,6 +150,11 @@ Status PlannerNode::configure() {
                        [this](const slam::FleetDigest& d, const auto&) { intake_.push_digest(d); });
   if (!digests) return digests.error();
   digest_reader_ = std::move(*digests);
+  auto corrections =
+      dds::make_reader(*participant_, dds::kPoseCorrection,
+                       [this](const slam::PoseCorrection& c, const auto&) { intake_.push_correction(c); });
+  if (!corrections) return corrections.error();
+  correction_reader_ = std::move(*corrections);
   auto goals = dds::make_reader(*participant_, dds::kNavGoal,
                                 [this](const slam::NavGoal& g, const dds::fdds::SampleInfo& info) {
                                   intake_.push_goal(g, info.source_timestamp.to_ns());
@@ -182,6 +188,7 @@ void PlannerNode::run_once() {
   intake_.drain(batch_);
   apply_grid(batch_);
   apply_positions(batch_.positions);
+  apply_uncertainties(batch_.uncertainties);
   apply_goals(batch_.goals);
   const int64_t now = monotonic_ns();
   update_ownership(now);
@@ -195,6 +202,7 @@ void PlannerNode::run_once() {
   submit_requests(batch_.requests);
   count_replans();
   fleet_.tick(grid_, now);
+  report_revisits();
   coordinate(now);
   publish_paths();
   stream_waypoints(now);

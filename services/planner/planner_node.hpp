@@ -84,6 +84,7 @@ class PlannerNode {
     std::atomic<int64_t>& deadlocks_broken;
     std::atomic<int64_t>& replans_around_robots;  // routes planned around a stopped robot
     std::atomic<int64_t>& longest_wait_ms;        // the longest wait of any robot so far
+    std::atomic<int64_t>& revisits;               // exploring robots sent back to re-localise
   };
 
   PlannerNode(const PlannerOptions& options, Counters& counters);
@@ -91,6 +92,9 @@ class PlannerNode {
 
   void apply_grid(IntakeBatch& batch);
   void apply_positions(const std::vector<RobotPosition>& positions);
+  void apply_uncertainties(const std::vector<RobotUncertainty>& uncertainties);
+  // Logs and counts the exploring robots the fleet sent back to re-localise.
+  void report_revisits();
   // Goals and homes from the store, before any reader runs: a restarted planner carries on.
   void resume_goals();
   void apply_goals(const std::vector<ReceivedGoal>& goals);
@@ -140,6 +144,7 @@ class PlannerNode {
   std::map<std::string, GoalStatus> reported_status_;
   IntakeBatch batch_;
   std::vector<DueWaypoint> due_;
+  std::vector<Revisit> revisits_;
   slam::WaypointCommand command_;
   slam::RobotPath path_;
   uint64_t ownership_version_ = ~uint64_t{0};  // none logged yet
@@ -173,6 +178,7 @@ class PlannerNode {
   std::unique_ptr<dds::Reader<slam::GridTiles>> patch_reader_;
   std::unique_ptr<dds::Reader<slam::RobotState>> state_reader_;
   std::unique_ptr<dds::Reader<slam::FleetDigest>> digest_reader_;
+  std::unique_ptr<dds::Reader<slam::PoseCorrection>> correction_reader_;
   std::unique_ptr<dds::Reader<slam::NavGoal>> goal_reader_;
   std::unique_ptr<dds::Reader<slam::PathRequest>> request_reader_;
   std::unique_ptr<dds::Reader<slam::Heartbeat>> heartbeat_reader_;

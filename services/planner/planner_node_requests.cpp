@@ -86,6 +86,21 @@ void PlannerNode::apply_grid(IntakeBatch& batch) {
   metrics_.map_version.store(static_cast<int64_t>(grid_.version()), std::memory_order_relaxed);
 }
 
+void PlannerNode::apply_uncertainties(const std::vector<RobotUncertainty>& uncertainties) {
+  for (const RobotUncertainty& u : uncertainties) fleet_.observe_uncertainty(u.robot_id, u.sigma_m);
+}
+
+void PlannerNode::report_revisits() {
+  fleet_.take_revisits(revisits_);
+  for (const Revisit& r : revisits_) {
+    bump(metrics_.revisits);
+    spdlog::info(
+        "robot '{}' goes back to ({:.2f}, {:.2f}) to re-localise: its pose is uncertain to {:.0f} cm",
+        r.robot_id, r.place.x, r.place.y, r.sigma_m * 100.0);
+  }
+  revisits_.clear();
+}
+
 void PlannerNode::apply_positions(const std::vector<RobotPosition>& positions) {
   for (const RobotPosition& p : positions) {
     const std::string& id = p.robot_id;

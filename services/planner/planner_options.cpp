@@ -92,6 +92,15 @@ void add_planner_options(CLI::App& app, PlannerOptions& o) {
                  "a robot without a reachable frontier looks again this often (s)")
       ->capture_default_str();
 
+  RelocaliseConfig& relocalise = o.fleet.relocalise;
+  app.add_option("--explore-return-sigma-m", relocalise.return_sigma_m,
+                 "an exploring robot whose pose correction is less certain than this (m) goes back to "
+                 "where it was last tied to the map, then explores on; 0: never")
+      ->capture_default_str();
+  app.add_option("--explore-tied-sigma-m", relocalise.tied_sigma_m,
+                 "a robot this certain (m) counts as tied to the map (where it may be sent back to)")
+      ->capture_default_str();
+
   CoordinationConfig& coordination = o.coordination;
   app.add_option_function<std::string>(
          "--coordination", [&coordination](const std::string& v) { coordination.enabled = v == "on"; },

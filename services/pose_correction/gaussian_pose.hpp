@@ -36,6 +36,15 @@ inline Eigen::Matrix3d fused_covariance(const Eigen::Matrix3d& ca, const Eigen::
   return (ca.inverse() + cb.inverse()).inverse();
 }
 
+// An accumulated uncertainty after one more odometry step of `length_m` with covariance `step`: the
+// step's own noise, and the heading uncertainty swinging the position over the step's length.
+inline void grow_by_motion(Eigen::Matrix3d& cov, const Eigen::Matrix3d& step, double length_m) {
+  cov += step;
+  const double swing = cov(2, 2) * length_m * length_m;
+  cov(0, 0) += swing;
+  cov(1, 1) += swing;
+}
+
 // After an odometry jump (a new segment) a robot's pose is barely known.
 inline constexpr double kSegmentSigma_m = 2.0;
 inline constexpr double kSegmentSigma_rad = 0.5;

@@ -275,12 +275,14 @@ void PoseCorrector::apply(MatchJob& job, std::vector<KeyframeCorrection>& out) {
       closure_since_optimise_ = true;
       estimate = anchored_estimate;
       rb.chain_cov = anchored_cov;
+      rb.pose_cov = anchored_cov;
       rb.heading_variance = anchored_cov(2, 2);
     } else {
       // A tie inside the tracking window: the same update, weighted by what the robot has
       // accumulated since it was last tied.
       estimate = fuse(estimate, rb.chain_cov, anchored_estimate, anchored_cov);
       rb.chain_cov = fused_covariance(rb.chain_cov, anchored_cov);
+      rb.pose_cov = fused_covariance(rb.pose_cov, anchored_cov);
       rb.heading_variance = 1.0 / (1.0 / rb.heading_variance + 1.0 / anchored_cov(2, 2));
     }
     cov = anchored_cov;
@@ -291,6 +293,7 @@ void PoseCorrector::apply(MatchJob& job, std::vector<KeyframeCorrection>& out) {
     if (tracked) estimate = narrow->pose;
     source = CorrectionSource::Operator;
     rb.chain_cov = diagonal(kOperatorSigma_m, kOperatorSigma_m, kOperatorSigma_rad);
+    rb.pose_cov = rb.chain_cov;
     rb.heading_variance = kOperatorSigma_rad * kOperatorSigma_rad;
   }
 
@@ -365,7 +368,9 @@ void PoseCorrector::apply(MatchJob& job, std::vector<KeyframeCorrection>& out) {
                  rb.name, distance(before.position(), estimate.position()), keyframe.id, tracked,
                  anchor.has_value(), closure);
   }
-  rb.state.covariance = cov;
+  // How well the robot is known in the map, not this keyframe's measurement: exploring robots are
+  // sent back to re-localise by it (the planner's LocalisationWatch).
+  rb.state.covariance = rb.pose_cov;
   rb.state.segment = keyframe.segment;
   ++rb.state.keyframes;
   mark_changed(rb, source);
@@ -403,9 +408,10 @@ Status PoseCorrector::set_initial_pose(std::string_view robot, const Pose& map_p
   rb.state.map_from_odom = correction;
   ++epoch_;
   rb.chain_cov = diagonal(kOperatorSigma_m, kOperatorSigma_m, kOperatorSigma_rad);
+  rb.pose_cov = rb.chain_cov;
   rb.heading_variance = kOperatorSigma_rad * kOperatorSigma_rad;
   rb.anchors_walls = kAnchoringKeyframes;
-  rb.state.covariance = rb.chain_cov;
+  rb.state.covariance = rb.pose_cov;
   mark_changed(rb, CorrectionSource::Operator);
   return Status::ok();
 }
@@ -449,6 +455,7 @@ size_t PoseCorrector::reset_robot(std::string_view robot) {
   rb.last_tied.reset();
   rb.operator_pose.reset();
   rb.chain_cov = Eigen::Matrix3d::Zero();
+  rb.pose_cov = Eigen::Matrix3d::Zero();
   rb.heading_variance = 0.0;
   rb.schedule = {};
   rb.state.keyframes = 0;

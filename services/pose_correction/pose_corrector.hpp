@@ -95,7 +95,7 @@ struct KeyframeCorrection {
 struct RobotCorrection {
   std::string robot;
   Pose map_from_odom;
-  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();  // how well it is known in the map (correction.idl)
   uint64_t version = 0;
   uint32_t segment = 0;
   uint32_t keyframes = 0;
@@ -210,6 +210,9 @@ class PoseCorrector {
     KeyframeBuilder builder;
     RobotCorrection state;
     Eigen::Matrix3d chain_cov = Eigen::Matrix3d::Zero();  // uncertainty since last tied to old map
+    // How well it is known in the map: chain_cov, except that a trusted start (its first keyframe)
+    // is known well rather than at a new segment's 2 m. Published with its correction.
+    Eigen::Matrix3d pose_cov = Eigen::Matrix3d::Zero();
     // Of its heading in the map: grown by odometry, shrunk by the walls' heading and by ties. Unlike
     // chain_cov it starts small at the robot's trusted start.
     double heading_variance = 0.0;

@@ -137,11 +137,11 @@ void PoseCorrector::prepare(Keyframe&& keyframe, const GridView& grid, bool matc
                    std::abs(job.odom_relative.theta) < kStandingTurn_rad;
     job.odom_cov = rb.odometry_trust.scaled(odometry_covariance(job.odom_relative));
     const double d = norm(job.odom_relative.position());
-    rb.chain_cov += job.odom_cov;
-    rb.chain_cov(0, 0) += rb.chain_cov(2, 2) * d * d;  // heading uncertainty swings the position
-    rb.chain_cov(1, 1) += rb.chain_cov(2, 2) * d * d;
+    grow_by_motion(rb.chain_cov, job.odom_cov, d);
+    grow_by_motion(rb.pose_cov, job.odom_cov, d);
   } else {
     rb.chain_cov = job.odom_cov;
+    rb.pose_cov = rb.last_node ? job.odom_cov : diagonal(kStartSigma_m, kStartSigma_m, kStartSigma_rad);
   }
   if (job.previous) {
     job.heading_variance = rb.heading_variance;  // the matching adds the motion's

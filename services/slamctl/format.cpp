@@ -259,6 +259,7 @@ std::string robots_json(const std::vector<RobotSeen>& robots, int64_t now_ns) {
                              {"version", r.correction->version()},
                              {"keyframes", r.correction->keyframes()},
                              {"loop_closures", r.correction->loop_closures()},
+                             {"sigma_m", position_sigma(r.correction->covariance())},
                              {"source", correction_source_name(r.correction->source())}};
     }
     out.push_back(std::move(robot));
@@ -289,9 +290,9 @@ std::string alerts_json(const std::vector<Alert>& alerts, int64_t now_ns) {
 }
 
 std::string format_correction(const PoseCorrection& c) {
-  return fmt("%s version %llu keyframes %u loops %u %s", pose_deg(c.map_from_odom()).c_str(),
-             static_cast<unsigned long long>(c.version()), c.keyframes(), c.loop_closures(),
-             correction_source_name(c.source()).c_str());
+  return fmt("%s ±%.0f cm version %llu keyframes %u loops %u %s", pose_deg(c.map_from_odom()).c_str(),
+             100.0 * position_sigma(c.covariance()), static_cast<unsigned long long>(c.version()),
+             c.keyframes(), c.loop_closures(), correction_source_name(c.source()).c_str());
 }
 
 std::string format_robot(const RobotState& s, const PoseCorrection* correction, const RobotPath* path,

@@ -50,6 +50,9 @@ struct EvalOptions {
   // The mapper's log level; its log is kept as <out>/<name>.mapper.log ("info" lists every loop
   // closure with the match's figures, to find a false closure's gate).
   std::string mapper_log_level = "warn";
+  // The planner's, kept as <out>/<name>.planner.log ("info" lists the robots sent back to
+  // re-localise).
+  std::string planner_log_level = "warn";
   std::string out_dir = "build/bench/mapping";
   std::string name;                 // default: from world, protocol, drift and the extra arguments
   double reach_tolerance_m = 0.20;  // the planner's 0.15 m plus motion between its decision and the sample
@@ -249,6 +252,7 @@ class Evaluation {
     SLAM_TRY(export_map(yaml));
     SLAM_TRY(keep_recording());
     std::ofstream(o_.out_dir + "/" + name() + ".mapper.log") << group_.log("mapper");
+    std::ofstream(o_.out_dir + "/" + name() + ".planner.log") << group_.log("planner");
     auto map = read_ros_map(yaml);
     if (!map) return Error{"reading the exported map: " + map.message()};
     return score(*map, yaml, simulated_s, wall_s);
@@ -274,7 +278,7 @@ class Evaluation {
                                  "--log-level", o_.mapper_log_level},
                                 o_.mapper_args));
     group_.start("planner", with({testkit::bin_path("slam-planner"), "--domain", domain, "--goal-store",
-                                  group_.dir() + "/goals.json", "--log-level", "warn"},
+                                  group_.dir() + "/goals.json", "--log-level", o_.planner_log_level},
                                  o_.planner_args));
     std::vector<std::string> sim = {
         testkit::bin_path("slam-simulator"), "--domain", domain, "--broker", broker, "--world", o_.world,
@@ -428,6 +432,9 @@ int main(int argc, char** argv) {
                  "the mapper's log level; its log is kept as <out>/<name>.mapper.log")
       ->capture_default_str();
   app.add_option("--planner-arg", o.planner_args, "extra planner argument (repeat)")->allow_extra_args(false);
+  app.add_option("--planner-log-level", o.planner_log_level,
+                 "the planner's log level; its log is kept as <out>/<name>.planner.log")
+      ->capture_default_str();
   app.add_option("--out", o.out_dir, "directory of the results")->capture_default_str();
   app.add_option("--name", o.name,
                  "run name (file names); default from world, protocol, drift and extra arguments");

@@ -206,6 +206,7 @@ class PlannerTest : public ::testing::Test {
   std::unique_ptr<dds::Reader<WaypointCommand>> waypoint_reader_;
   std::unique_ptr<dds::Reader<RobotPath>> path_reader_;
   std::unique_ptr<dds::Reader<Heartbeat>> heartbeat_reader_;
+  uint64_t corrections_sent_ = 0;
 };
 
 bool near(const Point2& a, const Point2& b, double tol = 1e-6) {
@@ -360,6 +361,59 @@ TEST_F(PlannerTest, ExploringRobotsGetDifferentFrontiers) {
   EXPECT_LT(t1.x(), 3.5) << "r1 should take the left frontier";
   EXPECT_GT(t2.x(), 8.5) << "r2 should take the right frontier";
   EXPECT_TRUE(wait_until([&] { return last_command("r1") && last_command("r2"); }, 30s));
+}
+
+TEST_F(PlannerTest, AnExploringRobotThatGrowsUncertainGoesBackToWhereItWasTied) {
+  // The mapper's part: each robot's correction, with how well the robot is known in the map.
+  auto corrections = testkit::make_test_writer(*participant_, dds::kPoseCorrection);
+  ASSERT_TRUE(wait_until([&] { return corrections->matched_readers() > 0; }, 30s));
+  const auto correct = [&](double sigma_m) {
+    PoseCorrection c;
+    c.robot_id("r1");
+    c.version(corrections_sent_ + 1);
+    c.covariance({sigma_m * sigma_m, 0.0, 0.0, sigma_m * sigma_m, 0.0, 1e-4});
+    corrections->write(c);
+    ++corrections_sent_;
+  };
+  TestMap map(120, 60, kUnknown);
+  map.fill(30, 1, 89, 58, kFree);
+  map.fill(0, 0, 119, 0, kOccupied);
+  map.fill(0, 59, 119, 59, kOccupied);
+  publish_map(map, 1);
+  const auto at = [&](double x, double y, int64_t positions) {
+    RobotState st;
+    st.robot_id("r1");
+    st.presence(PRESENCE_ONLINE);
+    st.battery(-1.0f);
+    st.pose().x(x);
+    st.pose().y(y);
+    st.last_seen_ns(positions * 1'000'000'000);  // newer each time: the planner keeps the newest
+    states_->write(st);
+    ASSERT_TRUE(wait_until([&] { return counter("robot_positions") >= positions; }, 30s));
+  };
+  at(4, 3, 1);
+  correct(0.04);  // tied to the map here
+  std::this_thread::sleep_for(500ms);
+  send_goal("r1", 8, GOAL_EXPLORE, pt(0, 0));
+  const auto path = [&] { return last_path("r1", 8); };
+  ASSERT_TRUE(wait_until([&] { return path() && !path()->waypoints().empty(); }, 30s));
+  correct(0.09);  // off into new ground: less sure, still exploring
+  std::this_thread::sleep_for(500ms);
+  at(5.5, 3, 2);
+  EXPECT_EQ(counter("revisits"), 0);
+  correct(0.15);
+  ASSERT_TRUE(wait_until([&] { return counter("revisits") >= 1; }, 30s));
+  ASSERT_TRUE(wait_until([&] { return path() && near(path()->target(), pt(4, 3), 0.15); }, 30s))
+      << "target (" << path()->target().x() << ", " << path()->target().y() << ")";
+  EXPECT_EQ(path()->mode(), GOAL_EXPLORE);
+  EXPECT_EQ(path()->status(), GOAL_STATUS_ACTIVE);
+  // Tied again on the way back: it explores on, to a frontier.
+  at(5, 3, 3);
+  correct(0.05);
+  EXPECT_TRUE(
+      wait_until([&] { return path() && (path()->target().x() < 3.5 || path()->target().x() > 8.5); }, 30s))
+      << "target (" << path()->target().x() << ", " << path()->target().y() << ")";
+  EXPECT_EQ(counter("revisits"), 1);
 }
 
 TEST(PlannerCommandLine, HelpExitsZeroAndBadConfigExitsTwoWithOneLine) {

@@ -7,6 +7,8 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -21,6 +23,14 @@ namespace slam::testkit {
 namespace {
 
 namespace fs = std::filesystem;
+
+// The last lines of a service's log, for a failure message.
+std::string tail_of(const fs::path& path) {
+  std::ifstream in(path);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  constexpr size_t kTail = 3000;
+  return text.size() > kTail ? text.substr(text.size() - kTail) : text;
+}
 
 TEST(SecureRun, FleetExploresOnTheSecureDomain) {
   DomainLease domain(2);  // the launcher puts the simulator on the next domain
@@ -47,9 +57,11 @@ TEST(SecureRun, FleetExploresOnTheSecureDomain) {
   std::mutex mutex;
   std::map<std::string, std::pair<double, double>> first;
   double moved = 0;
+  size_t seen = 0;
   auto states = dds::make_reader(**participant, dds::kRobotState, [&](const RobotState& s, const auto&) {
     std::lock_guard lock(mutex);
     const auto [it, fresh] = first.try_emplace(s.robot_id().to_string(), s.pose().x(), s.pose().y());
+    seen = first.size();
     moved = std::max(moved, std::hypot(s.pose().x() - it->second.first, s.pose().y() - it->second.second));
   });
   ASSERT_TRUE(states) << states.message();
@@ -60,8 +72,10 @@ TEST(SecureRun, FleetExploresOnTheSecureDomain) {
         return moved > 1.0;
       },
       90s))
-      << "no robot moved 1 m; launcher:\n"
-      << group.log("run");
+      << "no robot moved 1 m (" << seen << " robots seen); launcher:\n"
+      << group.log("run") << "\nslamctl:\n"
+      << tail_of(dir / "logs/slamctl.log") << "\nplanner:\n"
+      << tail_of(dir / "logs/planner.log");
   states->reset();
   participant->reset();
 

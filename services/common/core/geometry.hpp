@@ -3,6 +3,7 @@
 // cells, and the geometry of a regular grid (where cell (0, 0) lies, how large a cell is). One
 // definition, so the mapper, planner, simulator and viewer agree on what "cell (i, j)" means.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -50,6 +51,14 @@ inline double wrap_angle(double a) {
 // Radians as degrees, for people: logs and printed figures.
 inline double to_degrees(double radians) {
   return radians * (180.0 / std::numbers::pi);
+}
+
+// The larger of the x and y standard deviations (m) of an (x, y, theta) covariance kept as its upper
+// triangle (xx, xy, xt, yy, yt, tt), as PoseCorrection carries it: a corridor's length is what is
+// least known. NaN when either variance is negative or not finite.
+inline double position_sigma(const std::array<double, 6>& upper) {
+  if (!(upper[0] >= 0.0) || !(upper[3] >= 0.0)) return std::nan("");
+  return std::sqrt(std::max(upper[0], upper[3]));
 }
 
 // An SE(2) pose: position plus heading theta (radians, counter-clockwise from +x). Read as the

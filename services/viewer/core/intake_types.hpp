@@ -65,6 +65,7 @@ struct PoseCorrectionData {
   uint32_t keyframes = 0;
   uint32_t loop_closures = 0;
   CorrectionSource source = CorrectionSource::Identity;
+  double sigma_m = 0.0;  // how well the robot is known in the map (position_sigma)
 };
 
 struct RobotStateData {

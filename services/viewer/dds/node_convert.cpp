@@ -1,6 +1,8 @@
 // IDL <-> plain viewer types (see node_convert.hpp).
 #include "viewer/dds/node_convert.hpp"
 
+#include "common/core/geometry.hpp"
+
 namespace slam::viewer {
 namespace {
 
@@ -181,9 +183,13 @@ PathReplyData from_idl(const slam::PathReply& r) {
 }
 
 PoseCorrectionData from_idl(const slam::PoseCorrection& c) {
-  return {c.robot_id().to_string(), c.version(),
-          pose(c.map_from_odom()),  c.keyframes(),
-          c.loop_closures(),        static_cast<CorrectionSource>(c.source())};
+  return {c.robot_id().to_string(),
+          c.version(),
+          pose(c.map_from_odom()),
+          c.keyframes(),
+          c.loop_closures(),
+          static_cast<CorrectionSource>(c.source()),
+          position_sigma(c.covariance())};
 }
 
 slam::NavGoal to_idl(const GoalCommand& c, uint64_t goal_id) {

@@ -54,8 +54,9 @@ void robot_details(RobotsTab& tab, ViewerState& state, CommandSink& sink, RobotV
   }
   if (r.has_correction) {
     const PoseCorrectionData& c = r.correction;
-    ImGui::Text("correction (%.3f, %.3f, %.2f deg) v%llu", c.map_from_odom.x, c.map_from_odom.y,
-                c.map_from_odom.theta * 180.0 / M_PI, static_cast<unsigned long long>(c.version));
+    ImGui::Text("correction (%.3f, %.3f, %.2f deg) ±%.0f cm v%llu", c.map_from_odom.x, c.map_from_odom.y,
+                c.map_from_odom.theta * 180.0 / M_PI, c.sigma_m * 100.0,
+                static_cast<unsigned long long>(c.version));
     ImGui::Text("  keyframes %u  loop closures %u  source %s", c.keyframes, c.loop_closures,
                 correction_source_name(c.source));
   } else {

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <numbers>
 
 namespace slam {
@@ -134,4 +135,11 @@ TEST(GridGeometry, IndexIsRowMajorAndCellOfInvertsIt) {
 }
 
 }  // namespace
+TEST(PositionSigma, IsTheLargerSpreadOfXAndY) {
+  EXPECT_DOUBLE_EQ(position_sigma({0.0004, 0.001, 0.0, 0.0009, 0.0, 1.0}), 0.03);  // heading ignored
+  EXPECT_DOUBLE_EQ(position_sigma({0.0, 0.0, 0.0, 0.0, 0.0, 0.0}), 0.0);
+  EXPECT_TRUE(std::isnan(position_sigma({-0.01, 0.0, 0.0, 0.0004, 0.0, 0.0})));
+  EXPECT_TRUE(std::isnan(position_sigma({0.01, 0.0, 0.0, std::nan(""), 0.0, 0.0})));
+}
+
 }  // namespace slam

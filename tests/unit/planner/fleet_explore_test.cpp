@@ -46,6 +46,66 @@ TEST(FleetExplore, ARobotInAnInflatedCellStillExplores) {
   EXPECT_EQ(fleet.blacklist().size(), 0u);
 }
 
+TEST(FleetExplore, ARobotThatLostItsLocalisationGoesBackThenExploresOn) {
+  const PlanningGrid g = strip();
+  Fleet fleet({});
+  fleet.observe_uncertainty("ghost", 0.5);  // unknown robots are ignored
+  EXPECT_EQ(fleet.size(), 0u);
+  fleet.observe("a", {0.55, 0.25});
+  fleet.observe_uncertainty("a", 0.04);  // tied to the map here
+  fleet.grid_changed(g, std::nullopt);
+  ASSERT_TRUE(fleet.set_goal("a", explore_goal()));
+  fleet.tick(g, 0);
+  const GoalTracker* t = fleet.tracker("a");
+  ASSERT_TRUE(t->has_frontier());
+  // Off into new ground, its uncertainty grows: below the limit it explores on.
+  fleet.observe_uncertainty("a", 0.09);
+  fleet.observe("a", {1.55, 0.25});
+  fleet.tick(g, kSecond);
+  EXPECT_TRUE(t->has_frontier());
+  fleet.observe_uncertainty("a", 0.14);
+  fleet.observe("a", {1.85, 0.25});
+  fleet.tick(g, 2 * kSecond);
+  ASSERT_TRUE(t->revisiting());
+  EXPECT_EQ(t->plan_target(), (Vec2{0.55, 0.25}));
+  EXPECT_FALSE(t->waypoints().empty());
+  std::vector<Revisit> revisits;
+  fleet.take_revisits(revisits);
+  ASSERT_EQ(revisits.size(), 1u);
+  EXPECT_EQ(revisits[0].robot_id, "a");
+  EXPECT_DOUBLE_EQ(revisits[0].sigma_m, 0.14);
+  // Tied again on the way back: it explores on from there.
+  fleet.observe("a", {1.25, 0.25});
+  fleet.observe_uncertainty("a", 0.05);
+  fleet.tick(g, 3 * kSecond);
+  EXPECT_FALSE(t->revisiting());
+  EXPECT_TRUE(t->has_frontier());
+  fleet.take_revisits(revisits);
+  EXPECT_EQ(revisits.size(), 1u);  // no other
+}
+
+TEST(FleetExplore, ARobotThatDoesNotTieWhereItWentBackExploresOnAnyway) {
+  const PlanningGrid g = strip();
+  Fleet fleet({});
+  fleet.observe("a", {0.55, 0.25});
+  fleet.observe_uncertainty("a", 0.04);
+  fleet.grid_changed(g, std::nullopt);
+  ASSERT_TRUE(fleet.set_goal("a", explore_goal()));
+  fleet.tick(g, 0);
+  fleet.observe_uncertainty("a", 0.2);
+  fleet.observe("a", {1.85, 0.25});
+  fleet.tick(g, kSecond);
+  const GoalTracker* t = fleet.tracker("a");
+  ASSERT_TRUE(t->revisiting());
+  fleet.observe("a", {0.55, 0.25});  // arrived, still uncertain
+  fleet.tick(g, 2 * kSecond);
+  EXPECT_FALSE(t->revisiting());
+  EXPECT_TRUE(t->has_frontier());
+  fleet.observe("a", {1.0, 0.25});
+  fleet.tick(g, 3 * kSecond);
+  EXPECT_TRUE(t->has_frontier());  // not sent back a second time
+}
+
 TEST(FleetExplore, ARobotWithNothingObservedAroundItWaitsForTheMap) {
   PlanningGrid g = test::uniform_grid(40, 20, kCellUnknown, kRes);
   for (int32_t y = 5; y < 15; ++y) {

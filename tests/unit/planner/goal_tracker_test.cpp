@@ -215,5 +215,47 @@ TEST(GoalTracker, ReportsTheFrontierItArrivedAtOnce) {
   EXPECT_FALSE(t.take_reached_frontier());
 }
 
+TEST(GoalTracker, ARevisitDrivesBackThenAsksForAFrontierAgain) {
+  GoalTracker t({});
+  t.set_goal(goal(GoalMode::Explore), {1, 1}, {0, 0});
+  t.set_frontier({5, 1});
+  t.set_path({{1, 1}, {5, 1}});
+  t.update_position({3, 1});
+  t.revisit({1, 1});
+  EXPECT_TRUE(t.revisiting());
+  EXPECT_FALSE(t.has_frontier());
+  EXPECT_FALSE(t.wants_frontier());
+  EXPECT_TRUE(t.target_stood_on());
+  ASSERT_TRUE(t.needs_plan());
+  EXPECT_EQ(t.plan_target(), (Vec2{1, 1}));
+  t.set_path({{3, 1}, {1, 1}});
+  EXPECT_EQ(t.current_waypoint(), (Vec2{1, 1}));
+  t.update_position({1, 1});
+  // Back where it was localised: exploring goes on, and the place is no frontier to give up.
+  EXPECT_FALSE(t.revisiting());
+  EXPECT_TRUE(t.wants_frontier());
+  EXPECT_EQ(t.status(), GoalStatus::Active);
+  EXPECT_FALSE(t.take_reached_frontier());
+  // Ended early (tied again on the way): the same.
+  t.set_frontier({5, 1});
+  t.revisit({1, 1});
+  t.drop_frontier();
+  EXPECT_FALSE(t.revisiting());
+  EXPECT_TRUE(t.wants_frontier());
+}
+
+TEST(GoalTracker, OnlyAnExploringRobotRevisits) {
+  GoalTracker t({});
+  t.set_goal(goal(GoalMode::Planned, {5, 1}), {1, 1}, {0, 0});
+  t.revisit({0, 0});
+  EXPECT_FALSE(t.revisiting());
+  EXPECT_EQ(t.plan_target(), (Vec2{5, 1}));
+  t.set_goal(goal(GoalMode::Explore), {1, 1}, {0, 0});
+  t.exploration_complete();  // homing
+  t.revisit({0, 0});
+  EXPECT_FALSE(t.revisiting());
+  EXPECT_TRUE(t.homing());
+}
+
 }  // namespace
 }  // namespace slam::planner

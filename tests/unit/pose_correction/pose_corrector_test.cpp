@@ -272,8 +272,17 @@ TEST(PoseCorrector, TheRobotsUncertaintyGrowsUntilItIsTiedToTheOldMap) {
     sigmas.push_back(std::sqrt(k.uncertainty(0, 0) + k.uncertainty(1, 1)));
     tied.push_back(k.tied);
   });
+  // What its correction carries (PoseCorrection.covariance; exploring robots go by it).
+  std::vector<double> published;
+  std::vector<RobotCorrection> changed;
   std::vector<KeyframeCorrection> finalised;
-  drive_two_laps(corrector, map, 0.0015, 0.0, finalised);
+  drive_two_laps(corrector, map, 0.0015, 0.0, finalised, [&](const Pose&) {
+    changed.clear();
+    corrector.take_changed(changed);
+    for (const RobotCorrection& c : changed) {
+      published.push_back(std::sqrt(std::max(c.covariance(0, 0), c.covariance(1, 1))));
+    }
+  });
   // The first lap has no old map to tie to: tracking against its own fresh trail does not make
   // the robot surer of where it is, every step of odometry adds to it.
   const auto first_tie = std::find(tied.begin() + 1, tied.end(), true) - tied.begin();
@@ -281,6 +290,16 @@ TEST(PoseCorrector, TheRobotsUncertaintyGrowsUntilItIsTiedToTheOldMap) {
   ASSERT_GT(first_tie, 5);
   for (long i = 1; i < first_tie; ++i) EXPECT_GT(sigmas[i], sigmas[i - 1]) << "keyframe " << i;
   EXPECT_LT(sigmas[first_tie], 0.1 * sigmas[first_tie - 1]);  // the tie to the first lap shrinks it
+  // Closures are judged against a chain that starts barely known (2 m); the published uncertainty
+  // starts at the trusted start's few centimetres instead, grows the same way and shrinks with the
+  // ties.
+  EXPECT_GT(sigmas.front(), 1.0);
+  ASSERT_GE(published.size(), static_cast<size_t>(first_tie));
+  EXPECT_LT(published.front(), 0.06);
+  const double most = *std::max_element(published.begin(), published.end());
+  EXPECT_GT(most, 2.0 * published.front());
+  EXPECT_LT(most, 1.0);
+  EXPECT_LT(published.back(), 0.5 * most);
 }
 
 TEST(PoseCorrector, TheWallsHoldTheHeadingOfARobotWithNoMapToMatch) {

@@ -53,9 +53,10 @@ TEST(SlamctlFormat, RobotLineShowsTheCorrection) {
   c.keyframes(31);
   c.loop_closures(2);
   c.source(CORRECTION_LOOP);
+  c.covariance({0.0004, 0.0, 0.0, 0.0036, 0.0, 0.0001});  // 2 cm along x, 6 cm along y
   const std::string line = format_robot(s, &c, nullptr, 0);
   EXPECT_EQ(std::count(line.begin(), line.end(), '\n'), 1) << line;
-  EXPECT_NE(line.find("correction (1.00, -2.00, -90.0 deg) version 4 keyframes 31 loops 2 loop"),
+  EXPECT_NE(line.find("correction (1.00, -2.00, -90.0 deg) ±6 cm version 4 keyframes 31 loops 2 loop"),
             std::string::npos)
       << line;
 }
@@ -166,6 +167,7 @@ TEST(SlamctlFormat, RobotsJsonHasNullsForWhatIsUnknown) {
   v2.path->status(GOAL_STATUS_ACTIVE);
   v2.correction = PoseCorrection{};
   v2.correction->version(4);
+  v2.correction->covariance({0.01, 0.0, 0.0, 0.0025, 0.0, 0.0});
   const auto json = nlohmann::json::parse(robots_json({v1, v2}, 0));
   ASSERT_EQ(json.size(), 2u);
   EXPECT_EQ(json[0]["id"], "legacy");
@@ -181,6 +183,7 @@ TEST(SlamctlFormat, RobotsJsonHasNullsForWhatIsUnknown) {
   EXPECT_EQ(json[1]["goal"]["mode"], "home");
   EXPECT_EQ(json[1]["goal"]["status"], "active");
   EXPECT_EQ(json[1]["correction"]["version"], 4);
+  EXPECT_DOUBLE_EQ(json[1]["correction"]["sigma_m"].get<double>(), 0.1);
 }
 
 Alert alert(const char* id, AlertKind kind, bool active) {
