@@ -19,16 +19,20 @@ Status validate(const RelocaliseConfig& config) {
 
 void LocalisationWatch::observe_uncertainty(double sigma_m, const RelocaliseConfig& config) {
   if (!std::isfinite(sigma_m) || sigma_m < 0.0) return;
+  // Only a shrinking uncertainty shows a tie to the old map: a robot is also known well at its
+  // trusted start, where there may be nothing old to tie to when it comes back.
+  const bool shrunk = std::isfinite(sigma_m_) && sigma_m < sigma_m_;
   sigma_m_ = sigma_m;
-  if (!tied(config)) return;
+  if (!tied(config) || !shrunk || !position_) return;
   returned_ = false;
-  if (position_) tied_place_ = position_;
+  tied_place_ = position_;
 }
 
 void LocalisationWatch::observe_position(Vec2 position, const RelocaliseConfig& config) {
   if (!std::isfinite(position.x) || !std::isfinite(position.y)) return;
   position_ = position;
-  if (tied(config)) tied_place_ = position;
+  // Still tied since the last tie: the place to return to moves along with the robot.
+  if (tied_place_ && tied(config)) tied_place_ = position;
 }
 
 std::optional<Vec2> LocalisationWatch::take_return(const RelocaliseConfig& config) {

@@ -98,7 +98,7 @@ void add_planner_options(CLI::App& app, PlannerOptions& o) {
                  "where it was last tied to the map, then explores on; 0: never")
       ->capture_default_str();
   app.add_option("--explore-tied-sigma-m", relocalise.tied_sigma_m,
-                 "a robot this certain (m) counts as tied to the map (where it may be sent back to)")
+                 "a tie that makes a robot this certain (m) marks where it is as its place to return to")
       ->capture_default_str();
 
   CoordinationConfig& coordination = o.coordination;

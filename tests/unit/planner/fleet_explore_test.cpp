@@ -52,7 +52,8 @@ TEST(FleetExplore, ARobotThatLostItsLocalisationGoesBackThenExploresOn) {
   fleet.observe_uncertainty("ghost", 0.5);  // unknown robots are ignored
   EXPECT_EQ(fleet.size(), 0u);
   fleet.observe("a", {0.55, 0.25});
-  fleet.observe_uncertainty("a", 0.04);  // tied to the map here
+  fleet.observe_uncertainty("a", 0.08);
+  fleet.observe_uncertainty("a", 0.04);  // shrank: tied to the old map here
   fleet.grid_changed(g, std::nullopt);
   ASSERT_TRUE(fleet.set_goal("a", explore_goal()));
   fleet.tick(g, 0);
@@ -88,6 +89,7 @@ TEST(FleetExplore, ARobotThatDoesNotTieWhereItWentBackExploresOnAnyway) {
   const PlanningGrid g = strip();
   Fleet fleet({});
   fleet.observe("a", {0.55, 0.25});
+  fleet.observe_uncertainty("a", 0.08);
   fleet.observe_uncertainty("a", 0.04);
   fleet.grid_changed(g, std::nullopt);
   ASSERT_TRUE(fleet.set_goal("a", explore_goal()));

@@ -20,12 +20,24 @@ TEST(LocalisationWatch, ARobotNeverTiedHasNowhereToGoBackTo) {
   w.observe_position({4, 1}, kConfig);
   EXPECT_FALSE(w.tied(kConfig));
   EXPECT_FALSE(w.take_return(kConfig));
+  // Known well at its trusted start is not tied: nothing old may be there to tie to on return.
+  LocalisationWatch started;
+  started.observe_position({1, 1}, kConfig);
+  started.observe_uncertainty(0.05, kConfig);
+  EXPECT_TRUE(started.tied(kConfig));
+  started.observe_position({2, 1}, kConfig);
+  started.observe_uncertainty(0.08, kConfig);
+  started.observe_uncertainty(0.15, kConfig);
+  EXPECT_FALSE(started.tied_place());
+  EXPECT_FALSE(started.take_return(kConfig));
 }
 
 TEST(LocalisationWatch, GoesBackToTheLastPlaceItWasTiedOnceAnExcursion) {
   LocalisationWatch w;
   w.observe_position({1, 1}, kConfig);
-  w.observe_uncertainty(0.04, kConfig);
+  w.observe_uncertainty(0.08, kConfig);
+  w.observe_uncertainty(0.04, kConfig);  // shrank: a tie to the old map
+  EXPECT_EQ(w.tied_place(), (Vec2{1, 1}));
   w.observe_position({2, 1}, kConfig);  // still tied: the place moves along
   w.observe_uncertainty(0.08, kConfig);
   w.observe_position({3, 1}, kConfig);
@@ -48,6 +60,7 @@ TEST(LocalisationWatch, GoesBackToTheLastPlaceItWasTiedOnceAnExcursion) {
 TEST(LocalisationWatch, OffAtZeroAndDeafToNonsense) {
   LocalisationWatch w;
   w.observe_position({1, 1}, kConfig);
+  w.observe_uncertainty(0.07, kConfig);
   w.observe_uncertainty(0.03, kConfig);
   w.observe_uncertainty(std::numeric_limits<double>::quiet_NaN(), kConfig);
   w.observe_uncertainty(-1.0, kConfig);
