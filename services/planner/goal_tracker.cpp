@@ -186,28 +186,27 @@ void GoalTracker::set_frontier(Vec2 target) {
   ++revision_;
 }
 
+void GoalTracker::new_route(Vec2 target, bool plan) {
+  waypoints_.clear();
+  current_ = 0;
+  target_ = target;
+  plan_wanted_ = plan;
+  ++waypoint_seq_;
+  ++revision_;
+}
+
 void GoalTracker::drop_frontier() {
   if (goal_.mode != GoalMode::Explore || homing_) return;
   frontier_set_ = false;
   revisiting_ = false;
-  plan_wanted_ = false;
-  waypoints_.clear();
-  current_ = 0;
-  target_ = position_;
-  ++waypoint_seq_;
-  ++revision_;
+  new_route(position_, false);
 }
 
 void GoalTracker::revisit(Vec2 place) {
   if (goal_.mode != GoalMode::Explore || status_ != GoalStatus::Active || homing_) return;
   frontier_set_ = false;
   revisiting_ = true;
-  target_ = place;
-  waypoints_.clear();
-  current_ = 0;
-  plan_wanted_ = true;
-  ++waypoint_seq_;
-  ++revision_;
+  new_route(place, true);
 }
 
 std::optional<Vec2> GoalTracker::take_reached_frontier() {
@@ -219,12 +218,7 @@ void GoalTracker::exploration_complete() {
   homing_ = true;
   frontier_set_ = false;
   revisiting_ = false;
-  waypoints_.clear();
-  current_ = 0;
-  target_ = home_;
-  plan_wanted_ = true;
-  ++waypoint_seq_;
-  ++revision_;
+  new_route(home_, true);
 }
 
 void GoalTracker::take_over() {

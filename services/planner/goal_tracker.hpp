@@ -107,6 +107,8 @@ class GoalTracker {
 
  private:
   void follow(std::vector<Vec2> waypoints, Vec2 from);
+  // Drops the waypoints for a route to `target`, planned when `plan` (else the robot holds).
+  void new_route(Vec2 target, bool plan);
   void finish_route();
   void fail(const std::string& reason);
   bool plans_paths() const;
