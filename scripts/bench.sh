@@ -10,7 +10,7 @@
 #                                     (when mapping ran) docs/mapping-quality.md
 #   scripts/bench.sh --only gateway,pipeline   run these programs only (the table uses the JSON
 #                                              other programs left in BUILD/bench/ earlier)
-#   scripts/bench.sh --only mapping   the mapping evaluation only (about 45 minutes; --quick: one
+#   scripts/bench.sh --only mapping   the mapping evaluation only (about 50 minutes; --quick: one
 #                                     2-simulated-minute run). SLAM_EVAL_SPEED sets its speed factor.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -73,7 +73,8 @@ env_for() {
 
 # The mapping matrix: one eval_mapping run per line (its arguments). Every world with correction
 # on and off at the simulator's default drift; in the office also v2 robots, drift 0 (the reference:
-# position and heading drift off) and twice the default drift.
+# position and heading drift off) and twice the default drift. Then three runs whose robots patrol
+# the mapped building once exploration is done (--patrol: its own table).
 mapping_runs() {
   if ((QUICK)); then
     echo "--world office --protocol v1 --duration 120"
@@ -92,6 +93,9 @@ mapping_runs() {
     echo "--world office --protocol v1 $zero --mapper-arg=--slam --mapper-arg=$slam"
     echo "--world office --protocol v1 $twice --mapper-arg=--slam --mapper-arg=$slam"
   done
+  echo "--world office --protocol v1 --patrol"
+  echo "--world maze --protocol v1 --patrol"
+  echo "--world office --protocol v1 $twice --patrol"
 }
 
 # Runs the mapping matrix into $OUT/mapping (earlier results of other runs stay); a failed run is
@@ -200,8 +204,12 @@ if [[ " ${SELECTED[*]} " == *" mapping "* ]]; then
     echo "$header"
     echo
     echo "$table"
+    patrols=$(jq -n -r -f scripts/patrol_table.jq "${runs[@]}")
+    echo
+    echo "$patrols"
     if ((WRITE_DOCS)); then
       write_block "$MAPPING_DOC" mapping-table "$(printf "%s\n\n%s\n" "$header" "$table")"
+      write_block "$MAPPING_DOC" patrol-table "$(printf "%s\n\n%s\n" "$header" "$patrols")"
       mkdir -p docs/images/mapping
       cp "$OUT"/mapping/*.png docs/images/mapping/  # the table links each run's image there
     fi

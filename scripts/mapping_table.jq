@@ -2,7 +2,8 @@
 # the table of docs/mapping-quality.md: one row per run (world, protocol, drift, SLAM), the
 # trajectory, goal and map figures as columns, then the mapper's accepted loop closures and how many
 # of them the truth shows false (a loop correction that moved a robot more than 10 cm further from
-# its true pose). Rows sorted by world, protocol, drift, SLAM.
+# its true pose). Rows sorted by world, protocol, drift, SLAM. Runs with a patrol after exploration
+# (eval_mapping --patrol) have their own table: patrol_table.jq.
 
 def cm: if . == null then "—" else (. * 1000 | round / 10 | tostring) end;
 def pct: if . == null then "—" else (. * 1000 | round / 10 | tostring) + " %" end;
@@ -11,7 +12,7 @@ def pair($a; $b): "\($a | cm) / \($b | cm)";
 def drift: (.drift | tostring) + (if (.sim_args | length) > 0 then " " + (.sim_args | join(" ")) else "" end)
   + (if .odom_frame != "world" then " (odom \(.odom_frame))" else "" end);
 
-[inputs] | sort_by(.world, .protocol, .drift, (.sim_args | join(" ")), .slam)
+[inputs | select((.after_exploration // "idle") == "idle")] | sort_by(.world, .protocol, .drift, (.sim_args | join(" ")), .slam)
 | (["| world | protocol | drift | SLAM | ATE corrected RMSE / max (cm) | ATE raw RMSE / max (cm) | goal mean / max (cm, n) | occupied near a wall | mean wall distance (cm) | walls found | reachable known free | closures | false closures | run |",
     "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |"]
    + map("| \(.world) | \(.protocol) | \(drift) | \(.slam)\(if .aligned then " (aligned)" else "" end) "

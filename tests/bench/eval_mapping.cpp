@@ -3,7 +3,9 @@
 // simulator's ground truth: trajectory error (ATE) of corrected and raw poses, how close robots
 // truly are to waypoints the planner counts reached, the exported map against the true walls, and
 // whether the mapper's loop closures moved robots towards the truth (false closures); with the
-// mapper's SLAM counters at the end of the run.
+// mapper's SLAM counters at the end of the run. With --patrol, once every robot is home from
+// exploring, each drives a looped mission through random places of the world for the rest of the
+// run, as robots do in use once a building is mapped, and that part is scored apart.
 // Writes <out>/<name>.json (one object), <name>.png (the map with the true walls over it), the
 // exported <name>.yaml/.pgm, and the recording eval_replay takes (<name>.db, <name>.truth). See
 // docs/mapping-quality.md; scripts/bench.sh runs the matrix.
@@ -24,8 +26,10 @@
 #include "eval/run_recorder.hpp"
 #include "eval/run_score.hpp"
 #include "eval/truth_log.hpp"
+#include "eval/world_places.hpp"
 #include "process_group.hpp"
 #include "simulator/config.hpp"
+#include "simulator/world_loader.hpp"
 
 namespace slam::bench {
 namespace {
@@ -34,6 +38,12 @@ using namespace std::chrono_literals;
 using Clock = std::chrono::steady_clock;
 
 constexpr double kMaxTruthRateHz = 50.0;  // the largest --truth-rate the simulator accepts
+constexpr uint64_t kExploreGoalId = 1;
+// A patrol: this many places, each at least kPatrolLeg_m in a straight line from the one before and
+// kPatrolClearance_m from walls (eval_coordination's figures).
+constexpr size_t kPatrolPlaces = 8;
+constexpr double kPatrolLeg_m = 2.0;
+constexpr double kPatrolClearance_m = 0.35;
 
 struct EvalOptions {
   std::string world = "office";
@@ -58,6 +68,7 @@ struct EvalOptions {
   double reach_tolerance_m = 0.20;  // the planner's 0.15 m plus motion between its decision and the sample
   double false_closure_increase_m = 0.10;  // a loop correction adding more error than this is false
   int pixels_per_cell = 2;
+  bool patrol = false;  // after exploration, looped missions through random places (scored apart)
 };
 
 std::string default_name(const EvalOptions& o) {
@@ -65,6 +76,7 @@ std::string default_name(const EvalOptions& o) {
   for (const auto* args : {&o.sim_args, &o.mapper_args})
     for (const std::string& a : *args) name += "-" + a;
   if (!o.odom_frame.empty()) name += "-odom" + o.odom_frame;
+  if (o.patrol) name += "-patrol";
   for (char& c : name)
     if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '.') c = '_';
   return name;
@@ -113,6 +125,16 @@ class SystemTap {
     std::lock_guard lock(mutex_);
     return world_;
   }
+  // Whether `robots` robots have ended goal `goal_id` (reached or failed), by their RobotPath.
+  bool goal_ended(uint64_t goal_id, size_t robots) const {
+    std::lock_guard lock(mutex_);
+    size_t ended = 0;
+    for (const auto& [robot, status] : goal_status_)
+      if (status.first == goal_id &&
+          (status.second == GOAL_STATUS_REACHED || status.second == GOAL_STATUS_FAILED))
+        ++ended;
+    return ended >= robots;
+  }
   std::optional<MapReply> reply(uint64_t id) const {
     std::lock_guard lock(mutex_);
     const auto it = replies_.find(id);
@@ -120,6 +142,7 @@ class SystemTap {
   }
   dds::Writer<NavGoal>& goals() { return *goals_; }
   dds::Writer<MapFileRequest>& files() { return *files_; }
+  dds::Writer<NavMission>& missions() { return *missions_; }
 
  private:
   explicit SystemTap(RunRecorder& recorder) : recorder_(recorder) {}
@@ -154,6 +177,8 @@ class SystemTap {
       PathView view{p.goal_id(), {}, p.current()};
       for (const Point2& w : p.waypoints()) view.waypoints.push_back({w.x(), w.y()});
       recorder_.on_path(p.robot_id().to_string(), view);
+      std::lock_guard lock(mutex_);
+      goal_status_[p.robot_id().to_string()] = {p.goal_id(), p.status()};
     }));
     SLAM_TRY(open(worlds_, dds::kSimWorld, [this](const SimWorld& w) {
       std::lock_guard lock(mutex_);
@@ -174,6 +199,9 @@ class SystemTap {
     auto files = dds::make_writer(*participant_, dds::kMapFileRequest);
     if (!files) return Error{"MapFileRequest writer: " + files.message()};
     files_ = std::move(*files);
+    auto missions = dds::make_writer(*participant_, dds::kNavMission);
+    if (!missions) return Error{"NavMission writer: " + missions.message()};
+    missions_ = std::move(*missions);
     return Status::ok();
   }
 
@@ -184,6 +212,7 @@ class SystemTap {
   std::optional<SimWorld> world_;
   std::map<std::string, std::map<std::string, int64_t>> counters_;
   std::map<uint64_t, MapReply> replies_;
+  std::map<std::string, std::pair<uint64_t, GoalStatus>> goal_status_;  // latest RobotPath per robot
   std::unique_ptr<dds::Participant> participant_;
   std::unique_ptr<dds::Reader<SimGroundTruth>> truth_;
   std::unique_ptr<dds::Reader<FleetDigest>> digests_;
@@ -194,6 +223,7 @@ class SystemTap {
   std::unique_ptr<dds::Reader<MapReply>> replies_reader_;
   std::unique_ptr<dds::Writer<NavGoal>> goals_;
   std::unique_ptr<dds::Writer<MapFileRequest>> files_;
+  std::unique_ptr<dds::Writer<NavMission>> missions_;
 };
 
 std::vector<sim::Segment> walls_of(const SimWorld& world) {
@@ -208,6 +238,15 @@ class Evaluation {
       : o_(o), recorder_(static_cast<int64_t>(1e9 / o.speed), o.reach_tolerance_m) {}
 
   Result<nlohmann::json> run() {
+    if (o_.patrol) {
+      if (o_.align || o_.odom_frame == "start")
+        return Error{
+            "--patrol sends robots to world coordinates: it needs the world odometry frame (no --align, "
+            "no --odom-frame start)"};
+      auto world = sim::load_world(o_.world);
+      if (!world) return Error{"--patrol: " + world.message()};
+      patrol_world_ = std::move(*world);
+    }
     start_processes();
     auto tap = SystemTap::create(lease_.id(), recorder_);
     if (!tap) return tap.error();
@@ -222,7 +261,7 @@ class Evaluation {
     const int64_t steps0 = tap_->counter("simulator", "steps");
     NavGoal goal;
     goal.robot_id("*");
-    goal.goal_id(1);
+    goal.goal_id(kExploreGoalId);
     goal.mode(GOAL_EXPLORE);
     if (!tap_->goals().write(goal)) return Error{"writing the exploration goal failed"};
     recorder_.start();
@@ -238,6 +277,8 @@ class Evaluation {
                         simulated_s, o_.duration_s, budget.count())};
       std::this_thread::sleep_for(200ms);
       simulated_s = static_cast<double>(tap_->counter("simulator", "steps") - steps0) * step_s;
+      if (o_.patrol && !patrol_ && tap_->goal_ended(kExploreGoalId, static_cast<size_t>(o_.robots)))
+        SLAM_TRY(start_patrol(simulated_s));
       if (Clock::now() >= next_report) {
         std::fprintf(stderr, "eval_mapping: %s: %.0f of %.0f simulated s\n", name().c_str(), simulated_s,
                      o_.duration_s);
@@ -291,6 +332,36 @@ class Evaluation {
         "--log-level", "warn"};
     if (!o_.odom_frame.empty()) sim.insert(sim.end(), {"--odom-frame", o_.odom_frame});
     group_.start("simulator", with(sim, o_.sim_args));
+  }
+
+  // Each robot gets a looped mission from where it is now; from here on its samples are the patrol's.
+  Status start_patrol(double simulated_s) {
+    const std::vector<Vec2> places =
+        reachable_places(*patrol_world_, recorder_.true_starts().front(), kPatrolClearance_m);
+    if (places.empty()) return Error{"--patrol: no reachable place in world " + o_.world};
+    patrol_ = Patrol{simulated_s, recorder_.samples().size(), recorder_.arrivals().size()};
+    std::mt19937_64 rng(o_.seed);
+    uint64_t mission_id = 1;
+    for (const auto& [robot, track] : recorder_.true_tracks()) {
+      NavMission mission;
+      mission.robot_id(robot);
+      mission.mission_id(mission_id++);
+      std::vector<Point2> waypoints;
+      for (const Vec2& p : patrol_route(places, track.back(), kPatrolPlaces, kPatrolLeg_m, rng)) {
+        Point2 w;
+        w.x(p.x);
+        w.y(p.y);
+        waypoints.push_back(w);
+      }
+      mission.waypoints(waypoints);
+      mission.loop(true);
+      mission.status(MISSION_ACTIVE);
+      if (!tap_->missions().wait_for_readers(10s) || !tap_->missions().write(mission))
+        return Error{"the planner does not take missions"};
+    }
+    std::fprintf(stderr, "eval_mapping: %s: exploration done after %.0f simulated s; patrolling\n",
+                 name().c_str(), simulated_s);
+    return Status::ok();
   }
 
   Status check_running() {
@@ -383,14 +454,38 @@ class Evaluation {
     j["ate_published"] = to_json(position_errors(published, truth));
     j["goal_true"] = to_json(summarise(goal_true));
     j["goal_reported"] = to_json(summarise(goal_reported));
+    j["after_exploration"] = o_.patrol ? "patrol" : "idle";
+    j["patrol"] = patrol_json(goal_true);
     j["slam_counters"] = tap_->counters("mapper", "slam_");
     j["image"] = std::filesystem::path(png).filename().string();
     j["map_yaml"] = std::filesystem::path(yaml).filename().string();
     return j;
   }
 
+  // The part of the run after exploration (null without --patrol, or when exploration did not end).
+  nlohmann::json patrol_json(std::span<const double> goal_true) const {
+    if (!patrol_) return nullptr;
+    const std::vector<TrajectorySample> samples = recorder_.samples();
+    const TrajectoryErrors errors =
+        trajectory_errors(std::span(samples).subspan(std::min(patrol_->first_sample, samples.size())), false);
+    return {{"started_s", patrol_->started_s},
+            {"places", kPatrolPlaces},
+            {"ate_corrected", to_json(errors.corrected)},
+            {"ate_raw", to_json(errors.raw)},
+            {"goal_true",
+             to_json(summarise(goal_true.subspan(std::min(patrol_->first_arrival, goal_true.size()))))}};
+  }
+
+  struct Patrol {
+    double started_s = 0.0;  // simulated, from the exploration goal on
+    size_t first_sample = 0;
+    size_t first_arrival = 0;
+  };
+
   EvalOptions o_;
   RunRecorder recorder_;
+  std::optional<sim::World> patrol_world_;
+  std::optional<Patrol> patrol_;
   testkit::DomainLease lease_;
   testkit::ProcessGroup group_;
   std::unique_ptr<SystemTap> tap_;
@@ -414,7 +509,8 @@ int main(int argc, char** argv) {
   app.add_option("--speed", o.speed, "simulated seconds per wall-clock second")
       ->check(CLI::Range(0.1, 100.0))
       ->capture_default_str();
-  app.add_option("--duration", o.duration_s, "simulated seconds of exploration")
+  app.add_option("--duration", o.duration_s,
+                 "simulated seconds from the exploration goal on (a patrol included)")
       ->check(CLI::Range(1.0, 86400.0))
       ->capture_default_str();
   app.add_option("--robots", o.robots, "simulated robots")->check(CLI::Range(1, 100))->capture_default_str();
@@ -446,6 +542,9 @@ int main(int argc, char** argv) {
                  "error increase (m) beyond which a loop-closure correction counts as false")
       ->check(CLI::Range(0.0, 10.0))
       ->capture_default_str();
+  app.add_flag("--patrol", o.patrol,
+               "once every robot is home from exploring, send each a looped mission through random places "
+               "for the rest of the run, scored apart (\"patrol\" in the JSON)");
   app.add_option("--pixels-per-cell", o.pixels_per_cell, "image scale")
       ->check(CLI::Range(1, 16))
       ->capture_default_str();

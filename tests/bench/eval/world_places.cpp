@@ -46,6 +46,17 @@ Vec2 pick_place(std::span<const Vec2> places, Vec2 from, double min_trip_m, std:
   return place;
 }
 
+std::vector<Vec2> patrol_route(std::span<const Vec2> places, Vec2 from, size_t count, double min_trip_m,
+                               std::mt19937_64& rng) {
+  std::vector<Vec2> route;
+  route.reserve(count);
+  for (size_t i = 0; i < count; ++i) {
+    from = pick_place(places, from, min_trip_m, rng);
+    route.push_back(from);
+  }
+  return route;
+}
+
 planner::PlanningGrid planning_grid_of(const sim::World& world, double resolution, double inflation) {
   const sim::Bounds& b = world.bounds();
   const GridGeometry geometry{b.min, resolution,

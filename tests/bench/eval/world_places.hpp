@@ -18,6 +18,11 @@ std::vector<Vec2> reachable_places(const sim::World& world, Vec2 from, double cl
 // the last one drawn when 20 draws find none.
 Vec2 pick_place(std::span<const Vec2> places, Vec2 from, double min_trip_m, std::mt19937_64& rng);
 
+// `count` places of `places` (not empty) to patrol in order: each picked as pick_place from the one
+// before, the first from `from`.
+std::vector<Vec2> patrol_route(std::span<const Vec2> places, Vec2 from, size_t count, double min_trip_m,
+                               std::mt19937_64& rng);
+
 // The world as planner cells of `resolution`: a cell a wall runs through is occupied, one closer
 // to a wall than `inflation` (the mapper's robot radius) is inflated, every other cell is free.
 planner::PlanningGrid planning_grid_of(const sim::World& world, double resolution, double inflation);
