@@ -5,12 +5,7 @@
 # its true pose). Rows sorted by world, protocol, drift, SLAM. Runs with a patrol after exploration
 # (eval_mapping --patrol) have their own table: patrol_table.jq.
 
-def cm: if . == null then "—" else (. * 1000 | round / 10 | tostring) end;
-def pct: if . == null then "—" else (. * 1000 | round / 10 | tostring) + " %" end;
-def count: if . == null then "—" else tostring end;
-def pair($a; $b): "\($a | cm) / \($b | cm)";
-def drift: (.drift | tostring) + (if (.sim_args | length) > 0 then " " + (.sim_args | join(" ")) else "" end)
-  + (if .odom_frame != "world" then " (odom \(.odom_frame))" else "" end);
+include "mapping_defs";
 
 [inputs | select((.after_exploration // "idle") == "idle")] | sort_by(.world, .protocol, .drift, (.sim_args | join(" ")), .slam)
 | (["| world | protocol | drift | SLAM | ATE corrected RMSE / max (cm) | ATE raw RMSE / max (cm) | goal mean / max (cm, n) | occupied near a wall | mean wall distance (cm) | walls found | reachable known free | closures | false closures | run |",

@@ -3,11 +3,7 @@
 # per run: the whole run's pose error, then the patrol's alone (corrected and raw odometry) and how
 # close to its places the robots truly were when the planner counted them reached.
 
-def cm: if . == null then "—" else (. * 1000 | round / 10 | tostring) end;
-def pct: if . == null then "—" else (. * 1000 | round / 10 | tostring) + " %" end;
-def count: if . == null then "—" else tostring end;
-def pair($a; $b): "\($a | cm) / \($b | cm)";
-def drift: (.drift | tostring) + (if (.sim_args | length) > 0 then " " + (.sim_args | join(" ")) else "" end);
+include "mapping_defs";
 
 [inputs | select(.after_exploration == "patrol")] | sort_by(.world, .protocol, .drift, (.sim_args | join(" ")), .seed)
 | (["| world | protocol | drift | seed | explored (sim s) | whole run: ATE corrected RMSE / max (cm) | patrol: ATE corrected RMSE / max (cm) | patrol: ATE raw RMSE / max (cm) | patrol: goal mean / max (cm, n) | occupied near a wall | walls found | closures | false closures | run |",
