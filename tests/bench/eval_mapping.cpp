@@ -17,7 +17,6 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <mutex>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <thread>
@@ -27,6 +26,7 @@
 #include "eval/run_score.hpp"
 #include "eval/truth_log.hpp"
 #include "eval/world_places.hpp"
+#include "eval_mapping_tap.hpp"
 #include "process_group.hpp"
 #include "simulator/config.hpp"
 #include "simulator/world_loader.hpp"
@@ -89,147 +89,6 @@ std::string slam_label(const std::vector<std::string>& mapper_args, size_t corre
     if (mapper_args[i].starts_with("--slam=")) return mapper_args[i].substr(7);
   }
   return corrected_robots > 0 ? "on" : "off";
-}
-
-Pose to_pose(const Pose2& p) {
-  return {p.x(), p.y(), p.theta()};
-}
-
-// Everything the run hears on DDS, and the two request writers.
-class SystemTap {
- public:
-  static Result<std::unique_ptr<SystemTap>> create(int domain, RunRecorder& recorder) {
-    std::unique_ptr<SystemTap> tap(new SystemTap(recorder));
-    SLAM_TRY(tap->connect(domain));
-    return tap;
-  }
-
-  int64_t counter(const std::string& service, const std::string& name) const {
-    std::lock_guard lock(mutex_);
-    const auto s = counters_.find(service);
-    if (s == counters_.end()) return -1;
-    const auto c = s->second.find(name);
-    return c == s->second.end() ? -1 : c->second;
-  }
-  // The latest Heartbeat's counters of `service` whose names start with `prefix`.
-  std::map<std::string, int64_t> counters(const std::string& service, const std::string& prefix) const {
-    std::lock_guard lock(mutex_);
-    std::map<std::string, int64_t> out;
-    const auto s = counters_.find(service);
-    if (s == counters_.end()) return out;
-    for (const auto& [name, value] : s->second)
-      if (name.starts_with(prefix)) out[name] = value;
-    return out;
-  }
-  std::optional<SimWorld> world() const {
-    std::lock_guard lock(mutex_);
-    return world_;
-  }
-  // Whether `robots` robots have ended goal `goal_id` (reached or failed), by their RobotPath.
-  bool goal_ended(uint64_t goal_id, size_t robots) const {
-    std::lock_guard lock(mutex_);
-    size_t ended = 0;
-    for (const auto& [robot, status] : goal_status_)
-      if (status.first == goal_id &&
-          (status.second == GOAL_STATUS_REACHED || status.second == GOAL_STATUS_FAILED))
-        ++ended;
-    return ended >= robots;
-  }
-  std::optional<MapReply> reply(uint64_t id) const {
-    std::lock_guard lock(mutex_);
-    const auto it = replies_.find(id);
-    return it == replies_.end() ? std::nullopt : std::optional<MapReply>(it->second);
-  }
-  dds::Writer<NavGoal>& goals() { return *goals_; }
-  dds::Writer<MapFileRequest>& files() { return *files_; }
-  dds::Writer<NavMission>& missions() { return *missions_; }
-
- private:
-  explicit SystemTap(RunRecorder& recorder) : recorder_(recorder) {}
-
-  template <class T, class P, class F>
-  Status open(std::unique_ptr<dds::Reader<T>>& out, const dds::Topic<T, P>& topic, F on_sample) {
-    auto r = dds::make_reader(*participant_, topic, [on_sample](const T& s, const auto&) { on_sample(s); });
-    if (!r) return Error{fmt::format("{} reader: {}", topic.info.name, r.message())};
-    out = std::move(*r);
-    return Status::ok();
-  }
-
-  Status connect(int domain) {
-    auto participant = dds::Participant::create(domain, "eval-mapping");
-    if (!participant) return Error{"DDS participant: " + participant.message()};
-    participant_ = std::move(*participant);
-    SLAM_TRY(open(truth_, dds::kSimGroundTruth, [this](const SimGroundTruth& t) {
-      std::vector<RobotTruth> robots;
-      for (const SimRobotTruth& r : t.robots())
-        robots.push_back({r.robot_id().to_string(), to_pose(r.true_pose()), to_pose(r.reported_pose())});
-      recorder_.on_truth(t.stamp_ns(), robots);
-    }));
-    SLAM_TRY(open(digests_, dds::kFleetDigest, [this](const FleetDigest& d) {
-      for (const DigestRobot& r : d.robots())
-        recorder_.on_published_pose(r.robot_id().to_string(), {r.pose().x(), r.pose().y()});
-    }));
-    SLAM_TRY(open(corrections_, dds::kPoseCorrection, [this](const PoseCorrection& c) {
-      recorder_.on_correction(c.robot_id().to_string(), to_pose(c.map_from_odom()), c.version(),
-                              c.source() == CORRECTION_LOOP);
-    }));
-    SLAM_TRY(open(paths_, dds::kRobotPath, [this](const RobotPath& p) {
-      PathView view{p.goal_id(), {}, p.current()};
-      for (const Point2& w : p.waypoints()) view.waypoints.push_back({w.x(), w.y()});
-      recorder_.on_path(p.robot_id().to_string(), view);
-      std::lock_guard lock(mutex_);
-      goal_status_[p.robot_id().to_string()] = {p.goal_id(), p.status()};
-    }));
-    SLAM_TRY(open(worlds_, dds::kSimWorld, [this](const SimWorld& w) {
-      std::lock_guard lock(mutex_);
-      world_ = w;
-    }));
-    SLAM_TRY(open(heartbeats_, dds::kHeartbeat, [this](const Heartbeat& h) {
-      std::lock_guard lock(mutex_);
-      auto& counters = counters_[h.service().to_string()];
-      for (const Counter& c : h.counters()) counters[c.name().to_string()] = c.value();
-    }));
-    SLAM_TRY(open(replies_reader_, dds::kMapReply, [this](const MapReply& r) {
-      std::lock_guard lock(mutex_);
-      replies_[r.request_id()] = r;
-    }));
-    auto goals = dds::make_writer(*participant_, dds::kNavGoal);
-    if (!goals) return Error{"NavGoal writer: " + goals.message()};
-    goals_ = std::move(*goals);
-    auto files = dds::make_writer(*participant_, dds::kMapFileRequest);
-    if (!files) return Error{"MapFileRequest writer: " + files.message()};
-    files_ = std::move(*files);
-    auto missions = dds::make_writer(*participant_, dds::kNavMission);
-    if (!missions) return Error{"NavMission writer: " + missions.message()};
-    missions_ = std::move(*missions);
-    return Status::ok();
-  }
-
-  RunRecorder& recorder_;
-  // Written by the listeners: declared before the readers so it outlives them (members are
-  // destroyed in reverse order).
-  mutable std::mutex mutex_;
-  std::optional<SimWorld> world_;
-  std::map<std::string, std::map<std::string, int64_t>> counters_;
-  std::map<uint64_t, MapReply> replies_;
-  std::map<std::string, std::pair<uint64_t, GoalStatus>> goal_status_;  // latest RobotPath per robot
-  std::unique_ptr<dds::Participant> participant_;
-  std::unique_ptr<dds::Reader<SimGroundTruth>> truth_;
-  std::unique_ptr<dds::Reader<FleetDigest>> digests_;
-  std::unique_ptr<dds::Reader<PoseCorrection>> corrections_;
-  std::unique_ptr<dds::Reader<RobotPath>> paths_;
-  std::unique_ptr<dds::Reader<SimWorld>> worlds_;
-  std::unique_ptr<dds::Reader<Heartbeat>> heartbeats_;
-  std::unique_ptr<dds::Reader<MapReply>> replies_reader_;
-  std::unique_ptr<dds::Writer<NavGoal>> goals_;
-  std::unique_ptr<dds::Writer<MapFileRequest>> files_;
-  std::unique_ptr<dds::Writer<NavMission>> missions_;
-};
-
-std::vector<sim::Segment> walls_of(const SimWorld& world) {
-  std::vector<sim::Segment> out;
-  for (const Segment2& w : world.walls()) out.push_back({{w.a().x(), w.a().y()}, {w.b().x(), w.b().y()}});
-  return out;
 }
 
 class Evaluation {

@@ -18,7 +18,7 @@ target_include_directories(mapping_eval PUBLIC ${CMAKE_CURRENT_LIST_DIR})
 target_link_libraries(mapping_eval PUBLIC slam_core simulator_core viewer_core nlohmann_json::nlohmann_json)
 slam_warnings(mapping_eval)
 
-add_executable(eval_mapping ${CMAKE_CURRENT_LIST_DIR}/eval_mapping.cpp)
+add_executable(eval_mapping ${CMAKE_CURRENT_LIST_DIR}/eval_mapping.cpp ${CMAKE_CURRENT_LIST_DIR}/eval_mapping_tap.cpp)
 target_link_libraries(eval_mapping PRIVATE mapping_eval coordination_eval slam_fastdds slam_testkit nlohmann_json::nlohmann_json)
 add_dependencies(eval_mapping slam-gateway slam-mapper slam-planner slam-simulator)
 slam_warnings(eval_mapping)
