@@ -26,12 +26,15 @@ struct DecodedObservation {
   double theta = 0.0;
   bool has_pose = false;  // false only for a v2 points message sent without a pose
   bool has_heading = false;
+  // When the robot measured it, on the robot's own clock (v2 "stamp"); 0 when it sent none.
+  std::int64_t robot_stamp_ns = 0;
   std::vector<Point> hits;    // obstacle points: ray end is occupied
   std::vector<Point> misses;  // beams that saw nothing up to max range: ray is free, end unknown
 
   void clear() {
     x = y = theta = 0.0;
     has_pose = has_heading = false;
+    robot_stamp_ns = 0;
     hits.clear();
     misses.clear();
   }
@@ -52,6 +55,9 @@ struct DecodedStatus {
 
 inline constexpr std::size_t kMaxRobotIdBytes = 64;  // IDL string<64>
 inline constexpr std::size_t kMaxStateBytes = 32;    // IDL string<32>
+// The largest v2 "stamp" in seconds: nanoseconds beyond it would not fit in the IDL's int64
+// (9e9 s is the year 2255 as Unix time).
+inline constexpr double kMaxRobotStampS = 9.0e9;
 
 // Bounds on what a robot may send. Defaults suit indoor robots; validate() before use.
 struct CodecLimits {

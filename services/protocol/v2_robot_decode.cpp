@@ -49,6 +49,18 @@ CodecStatus read_nested_pose(const Json& doc, bool required, const CodecLimits& 
   return read_pose(*pose, "pose", required, limits, out);
 }
 
+// The optional top-level "stamp": seconds on the robot's clock, finite and >= 0; absent or null
+// leaves robot_stamp_ns at 0 (unknown).
+CodecStatus read_stamp(const Json& doc, DecodedObservation& out) {
+  const Json* stamp = json_fields::find_optional(doc, "stamp");
+  if (stamp == nullptr) return CodecStatus::ok();
+  double seconds = 0.0;
+  if (auto s = json_fields::number(*stamp, {"stamp"}, kMaxRobotStampS, seconds); !s) return s;
+  if (seconds < 0.0) return {RejectReason::OutOfRange, fmt::format("stamp is {}, must be >= 0", seconds)};
+  out.robot_stamp_ns = static_cast<std::int64_t>(std::llround(seconds * 1e9));
+  return CodecStatus::ok();
+}
+
 CodecStatus check_count(std::size_t count, std::string_view what, const CodecLimits& limits) {
   if (count <= limits.max_points) return CodecStatus::ok();
   return {RejectReason::TooManyPoints,
@@ -124,6 +136,7 @@ CodecStatus decode_v2_pose(std::span<const std::uint8_t> payload, const CodecLim
   out.clear();
   Json doc;
   if (auto s = json_fields::parse_object(payload, limits, doc); !s) return s;
+  if (auto s = read_stamp(doc, out); !s) return s;
   return read_pose(doc, "", false, limits, out);
 }
 
@@ -132,6 +145,7 @@ CodecStatus decode_v2_points(std::span<const std::uint8_t> payload, const CodecL
   out.clear();
   Json doc;
   if (auto s = json_fields::parse_object(payload, limits, doc); !s) return s;
+  if (auto s = read_stamp(doc, out); !s) return s;
   if (auto s = read_nested_pose(doc, false, limits, out); !s) return s;
   const Json* points = nullptr;
   if (auto s = json_fields::require(doc, "points", {"points"}, points); !s) return s;
@@ -148,6 +162,7 @@ CodecStatus decode_v2_scan(std::span<const std::uint8_t> payload, const CodecLim
   out.clear();
   Json doc;
   if (auto s = json_fields::parse_object(payload, limits, doc); !s) return s;
+  if (auto s = read_stamp(doc, out); !s) return s;
   if (auto s = read_nested_pose(doc, true, limits, out); !s) return s;
   SensorOffset sensor;
   if (auto s = read_sensor(doc, limits, sensor); !s) return s;

@@ -2,6 +2,8 @@
 // v2 robot -> server messages (JSON, see docs/protocol.md), decoded into the same structs as v1.
 // Every decoder clears its output first (capacity kept) and, on rejection, leaves nothing
 // meaningful in it. Unknown JSON members are ignored so robots can add fields ahead of servers.
+// pose, points and scan may carry "stamp": when the robot measured, in seconds on its own clock
+// (finite, >= 0; robot_stamp_ns), rejected as json_type, non_finite or out_of_range otherwise.
 #include <cstdint>
 #include <span>
 

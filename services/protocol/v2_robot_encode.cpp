@@ -40,6 +40,13 @@ CodecStatus check_pose(const V2Pose& p, std::string_view where, const CodecLimit
   return CodecStatus::ok();
 }
 
+CodecStatus check_stamp(const std::optional<double>& stamp) {
+  if (!stamp) return CodecStatus::ok();
+  if (auto s = check(*stamp, "", "stamp", kMaxRobotStampS); !s) return s;
+  if (*stamp < 0.0) return {RejectReason::OutOfRange, fmt::format("stamp is {}, must be >= 0", *stamp)};
+  return CodecStatus::ok();
+}
+
 void append_number(std::string& out, double value) {
   char buffer[32];
   const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
@@ -53,8 +60,15 @@ void append_member(std::string& out, std::string_view key, double value) {
   append_number(out, value);
 }
 
-void append_pose(std::string& out, const V2Pose& p) {
-  out += '{';
+// The member `,"stamp":S` when the message has a stamp.
+void append_stamp(std::string& out, const std::optional<double>& stamp) {
+  if (!stamp) return;
+  out += ',';
+  append_member(out, "stamp", *stamp);
+}
+
+// x, y and heading, without braces: the pose message adds its stamp beside them.
+void append_pose_members(std::string& out, const V2Pose& p) {
   append_member(out, "x", p.x);
   out += ',';
   append_member(out, "y", p.y);
@@ -62,6 +76,11 @@ void append_pose(std::string& out, const V2Pose& p) {
     out += ',';
     append_member(out, "heading", *p.heading);
   }
+}
+
+void append_pose(std::string& out, const V2Pose& p) {
+  out += '{';
+  append_pose_members(out, p);
   out += '}';
 }
 
@@ -105,15 +124,20 @@ CodecStatus check_scan(const V2Scan& scan, const CodecLimits& limits) {
     if (scan.ranges[i] < 0.0)
       return {RejectReason::OutOfRange, fmt::format("ranges[{}] is {}, must be >= 0", i, scan.ranges[i])};
   }
-  return CodecStatus::ok();
+  return check_stamp(scan.stamp);
 }
 
 }  // namespace
 
-CodecStatus encode_v2_pose(const V2Pose& pose, const CodecLimits& limits, std::string& out) {
+CodecStatus encode_v2_pose(const V2Pose& pose, const CodecLimits& limits, std::string& out,
+                           std::optional<double> stamp) {
   out.clear();
   if (auto s = check_pose(pose, "", limits); !s) return s;
-  append_pose(out, pose);
+  if (auto s = check_stamp(stamp); !s) return s;
+  out += '{';
+  append_pose_members(out, pose);
+  append_stamp(out, stamp);
+  out += '}';
   return CodecStatus::ok();
 }
 
@@ -144,6 +168,7 @@ CodecStatus encode_v2_scan(const V2Scan& scan, const CodecLimits& limits, std::s
   append_array(out, scan.ranges);
   out += ',';
   append_member(out, "max_range", scan.max_range);
+  append_stamp(out, scan.stamp);
   out += '}';
   return CodecStatus::ok();
 }

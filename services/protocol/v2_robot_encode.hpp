@@ -38,6 +38,7 @@ struct V2Scan {
   std::span<const double> angles;
   std::span<const double> ranges;
   double max_range = 0.0;
+  std::optional<double> stamp;  // "stamp": seconds on the robot's clock, written only when given
 };
 
 // v2/robot/<id>/status: {"battery":0.82,"state":"exploring"}; battery omitted when absent.
@@ -53,8 +54,10 @@ inline constexpr std::string_view kV2OfflineStatus = R"({"state":"offline"})";
 // OutOfRange for coordinates beyond max_abs_coordinate_m, angles beyond max_abs_angle_rad, a
 // negative range, max_range <= 0 or battery outside 0..1; MissingField for a scan pose without
 // heading; BadLength when angles and ranges differ in length; TooManyPoints beyond max_points;
-// BadText for a state that is empty, longer than 32 bytes, or not clean UTF-8.
-CodecStatus encode_v2_pose(const V2Pose& pose, const CodecLimits& limits, std::string& out);
+// BadText for a state that is empty, longer than 32 bytes, or not clean UTF-8. A "stamp" (seconds
+// on the robot's clock, written only when given) must be finite and within 0..kMaxRobotStampS.
+CodecStatus encode_v2_pose(const V2Pose& pose, const CodecLimits& limits, std::string& out,
+                           std::optional<double> stamp = std::nullopt);
 CodecStatus encode_v2_scan(const V2Scan& scan, const CodecLimits& limits, std::string& out);
 CodecStatus encode_v2_status(const V2Status& status, std::string& out);
 

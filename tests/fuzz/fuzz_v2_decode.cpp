@@ -1,7 +1,8 @@
 // Fuzz target for the topic parser and the v2 JSON decoders. Input: "<topic>\n<payload>". The
 // topic goes through parse_topic() and, when accepted, selects the decoder; the payload also goes
 // through every v2 decoder regardless, so a mutated topic does not hide the JSON paths. Accepted
-// output must be finite, bounded and within the count limits; paths must re-encode exactly.
+// output must be finite, bounded (robot stamps too) and within the count limits; paths must
+// re-encode exactly.
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
@@ -30,6 +31,7 @@ bool bounded(double v, const CodecLimits& limits) {
 void check_observation(const DecodedObservation& out, const CodecLimits& limits) {
   if (out.has_pose) check(bounded(out.x, limits) && bounded(out.y, limits));
   check(std::isfinite(out.theta));
+  check(out.robot_stamp_ns >= 0 && static_cast<double>(out.robot_stamp_ns) <= kMaxRobotStampS * 1e9);
   check(out.hits.size() + out.misses.size() <= limits.max_points);
   for (const Point& p : out.hits) check(bounded(p.x, limits) && bounded(p.y, limits));
   for (const Point& p : out.misses) check(bounded(p.x, limits) && bounded(p.y, limits));
