@@ -14,6 +14,7 @@ PACKAGES=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libsqlite3-dev libcli11-dev libspdlog-dev nlohmann-json3-dev libyaml-cpp-dev libstb-dev
   libwebsocketpp-dev libasio-dev  # the bridge's WebSocket server (header-only, standalone asio)
+  libzstd-dev liblz4-dev  # compressed chunks in MCAP recordings (ros2 bag, the mcap CLI)
   nodejs  # runs Foxglove's own client against the bridge in tests (tests/node)
   jq openssl
   docker-compose  # validates compose/docker-compose.yml in tests (no Docker engine needed)

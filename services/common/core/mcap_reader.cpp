@@ -10,6 +10,8 @@
 #include <cstdio>
 #include <cstring>
 
+#include "common/core/mcap_chunk.hpp"
+
 namespace slam::mcap {
 namespace {
 
@@ -191,7 +193,7 @@ class Parser {
       case Opcode::kMessage:
         return message(at, op, d);
       case Opcode::kChunk:
-        return fail(at, "chunked MCAP files are not supported (record unchunked)");
+        return chunk(at, op, d);
       case Opcode::kStatistics:
         return statistics(at, op, d);
       case Opcode::kSummaryOffset:
@@ -252,6 +254,58 @@ class Parser {
     m.data = d.rest();
     out_.messages.push_back(m);
     ++counts_[m.channel_id];
+    return {};
+  }
+
+  // A Chunk's records are Schema, Channel and Message records; errors inside name the chunk's offset.
+  Status chunk(size_t at, uint8_t op, Decoder& d) {
+    if (phase_ != Phase::kData) return fail(at, "Chunk record outside the data section");
+    uint64_t start_time = 0, end_time = 0, size = 0, length = 0;
+    uint32_t crc = 0;
+    std::string compression;
+    std::span<const uint8_t> stored;
+    if (!d.u64(start_time) || !d.u64(end_time) || !d.u64(size) || !d.u32(crc) || !d.prefixed(compression) ||
+        !d.u64(length) || !d.bytes(stored, length))
+      return malformed(at, op);
+    auto records = chunk_records(compression, stored, size);
+    if (!records) return fail(at, records.message());
+    if (crc != 0 && crc32(records->bytes) != crc)
+      return fail(at, "chunk CRC mismatch: the chunk says " + hex(crc, 8) + ", its records give " +
+                          hex(crc32(records->bytes), 8) + " (corrupted file)");
+    if (records->storage) out_.chunk_storage.push_back(records->storage);
+    ++out_.chunks;
+    const std::span<const uint8_t> bytes = records->bytes;
+    for (size_t i = 0; i < bytes.size();) {
+      if (bytes.size() - i < kRecordPrefix) return fail(at, "truncated record prefix inside the chunk");
+      const uint8_t inner = bytes[i];
+      const uint64_t n = le(bytes.data() + i + 1, 8);
+      if (n > bytes.size() - i - kRecordPrefix)
+        return fail(at, std::string(opcode_name(inner)) + " record inside the chunk claims " +
+                            std::to_string(n) + " bytes, only " +
+                            std::to_string(bytes.size() - i - kRecordPrefix) + " left");
+      Decoder content(bytes.subspan(i + kRecordPrefix, n));
+      switch (static_cast<Opcode>(inner)) {
+        case Opcode::kSchema:
+          SLAM_TRY(schema(at, inner, content));
+          break;
+        case Opcode::kChannel:
+          SLAM_TRY(channel(at, inner, content));
+          break;
+        case Opcode::kMessage:
+          SLAM_TRY(message(at, inner, content));
+          break;
+        case Opcode::kHeader:
+        case Opcode::kFooter:
+        case Opcode::kChunk:
+        case Opcode::kDataEnd:
+        case Opcode::kStatistics:
+        case Opcode::kSummaryOffset:
+          return fail(at, std::string(opcode_name(inner)) + " record inside a chunk");
+        default:
+          ++out_.skipped_records;
+      }
+      i += kRecordPrefix + n;
+    }
     return {};
   }
 

@@ -4,7 +4,9 @@
 // last, that messages name known channels and channels known schemas, the data-section CRC (DataEnd),
 // the summary CRC (Footer), the Footer's offsets and the Statistics counts. Records of other kinds
 // (indexes, attachments, metadata, opcodes it does not know) are skipped, as the specification asks.
-// Chunked files are refused with a clear error. Any failure is one message naming the byte offset.
+// Chunks (uncompressed, zstd or lz4: mcap_chunk.hpp) are opened and their Schema, Channel and Message
+// records read like unchunked ones, with the chunk's CRC checked. Any failure is one message naming
+// the byte offset (of the chunk, for a record inside one).
 #include <memory>
 #include <optional>
 #include <span>
@@ -16,7 +18,8 @@
 
 namespace slam::mcap {
 
-// A message whose data points into the parsed bytes (valid as long as they are).
+// A message whose data points into the parsed bytes (valid as long as they are) or, inside a
+// compressed chunk, into the uncompressed chunk its Contents keep.
 struct MessageView {
   uint16_t channel_id = 0;
   uint32_t sequence = 0;
@@ -33,6 +36,10 @@ struct Contents {
   std::vector<MessageView> messages;  // in file order
   std::optional<Statistics> statistics;
   uint64_t skipped_records = 0;  // records of kinds this reader does not use
+  uint64_t chunks = 0;
+  // Uncompressed copies of compressed chunks, which messages in them point into (shared, so a copy
+  // of the contents keeps them too).
+  std::vector<std::shared_ptr<const std::vector<uint8_t>>> chunk_storage;
 };
 
 // Parses and validates a whole file held in memory.

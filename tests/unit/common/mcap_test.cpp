@@ -203,13 +203,6 @@ TEST(McapReader, RefusesAMessageOnAnUnknownChannel) {
   EXPECT_NE(contents.message().find("unknown channel 8"), std::string::npos) << contents.message();
 }
 
-TEST(McapReader, RefusesChunkedFiles) {
-  auto contents =
-      parse(hand_made([](Encoder& file) { file.record(Opcode::kChunk, std::vector<uint8_t>(40)); }));
-  ASSERT_FALSE(contents);
-  EXPECT_NE(contents.message().find("chunked"), std::string::npos) << contents.message();
-}
-
 TEST(McapReader, RefusesARecordLongerThanTheFile) {
   auto contents = parse(hand_made([](Encoder& file) {
     file.u8(static_cast<uint8_t>(Opcode::kSchema));
