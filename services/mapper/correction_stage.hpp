@@ -45,6 +45,8 @@ class CorrectionStage {
   size_t reset_robot(std::string_view robot);
   // Robots whose correction changed since the last call.
   void take_changed(std::vector<correction::RobotCorrection>& out);
+  // Closes the open keyframes and optimises the whole graph at the next steps (PoseCorrector::finish).
+  void finish() { corrector_.finish(); }
   bool enabled() const { return enabled_; }
   bool knows(std::string_view robot) const { return corrector_.knows(robot); }
   // Whether a pose-graph optimisation is running or waiting to be applied by step().

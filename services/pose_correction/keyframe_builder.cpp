@@ -44,7 +44,10 @@ KeyframeBuilder::Step KeyframeBuilder::add(uint64_t id, uint32_t robot, int64_t 
   const double turn = std::abs(wrap_angle(pose.theta - keyframe_.odom.theta));
   keyframe_.travel_m = std::max(keyframe_.travel_m, travel);
   keyframe_.turn_rad = std::max(keyframe_.turn_rad, turn);
-  const bool complete = travel >= options_.travel_m || turn >= options_.turn_rad ||
+  const bool dense =
+      static_cast<int>(keyframe_.points.size()) >= options_.enough_points &&
+      (keyframe_.travel_m >= options_.dense_travel_m || keyframe_.turn_rad >= options_.dense_turn_rad);
+  const bool complete = dense || travel >= options_.travel_m || turn >= options_.turn_rad ||
                         keyframe_.messages >= options_.max_messages ||
                         stamp_ns - keyframe_.first_stamp_ns >= options_.max_span_ns;
   return complete ? Step::AddedAndClosed : Step::Added;

@@ -4,7 +4,8 @@
 // expressed in the frame of the keyframe's first pose, can. Odometry is trusted over that short
 // stretch (its drift over half a metre is a few millimetres).
 //
-// A keyframe closes after a travel, a turn, a number of messages, or a time span; an odometry
+// A keyframe closes after a travel, a turn, a number of messages, or a time span, or sooner once it
+// holds enough points to be matched alone (a laser scanner's scan) and the robot moved; an odometry
 // step no robot can drive (a reset, a teleport) closes it and starts a new trajectory segment, so
 // the jump never becomes a motion in the pose graph.
 #include <cstdint>
@@ -21,6 +22,14 @@ struct KeyframeOptions {
   int max_messages = 30;                // ...or this many messages...
   int64_t max_span_ns = 4'000'000'000;  // ...or when its messages span this long
   double jump_m = 1.0;                  // an odometry step longer than this between two messages is a jump
+  // A laser scanner's scan can be matched alone: once a keyframe holds this many points it closes as
+  // soon as the robot has moved dense_travel_m or turned dense_turn_rad since it opened (a motion
+  // filter: a robot standing still keeps adding scans to one keyframe until one of the limits above).
+  // Each keyframe then carries odometry over centimetres, not the half metre a sparse robot needs,
+  // which matters on real robots whose odometry turns a few degrees off per metre.
+  int enough_points = 100;
+  double dense_travel_m = 0.1;
+  double dense_turn_rad = 0.05;
 };
 
 struct Keyframe {

@@ -116,9 +116,19 @@ void PoseCorrector::process(const GridView& grid, int64_t now_ns, std::vector<Ke
   }
   closed_.resize(kept);
   stats_.backlog = static_cast<int64_t>(closed_.size() + in_flight_);
-  if ((closure_since_optimise_ || tied_since_optimise_ >= options_.optimise_every) &&
-      schedule_.allow_optimisation(now_ns))
+  const bool due = closure_since_optimise_ || tied_since_optimise_ >= options_.optimise_every;
+  if ((finish_requested_ && closed_.empty() && in_flight_ == 0 && !optimising_) ||
+      (due && schedule_.allow_optimisation(now_ns))) {
+    finish_requested_ = false;
     start_optimisation();
+  }
+}
+
+void PoseCorrector::finish() {
+  for (Robot& rb : robots_) {
+    if (rb.builder.open()) closed_.push_back(rb.builder.take());
+  }
+  finish_requested_ = true;
 }
 
 std::unique_ptr<MatchJob> PoseCorrector::take_job() {

@@ -170,6 +170,10 @@ class PoseCorrector {
   // `moved` and returns the largest move in metres (0 when nothing landed).
   double take_optimised(std::vector<KeyframeCorrection>& moved);
 
+  // Closes every robot's open keyframe and has the next process() optimise the whole graph, whatever
+  // the load: what a finished run (a played log, a trajectory export) needs for its final poses.
+  void finish();
+
   // An operator's initial pose: the robot is at `map_pose` now (for robots without heading,
   // map_pose.theta is the rotation of its odometry frame). Errors: unknown robot, non-finite.
   Status set_initial_pose(std::string_view robot, const Pose& map_pose);
@@ -292,6 +296,7 @@ class PoseCorrector {
   uint64_t next_id_ = 1;
   int tied_since_optimise_ = 0;
   bool closure_since_optimise_ = false;
+  bool finish_requested_ = false;  // finish(): optimise at the next process()
   bool optimising_ = false;
   uint64_t epoch_ = 0;            // bumped when keyframes move outside the optimiser (closures, operator)
   uint64_t submitted_epoch_ = 0;  // epoch_ when the running optimisation was submitted

@@ -12,7 +12,8 @@ add_library(mapping_eval STATIC ${CMAKE_CURRENT_LIST_DIR}/eval/trajectory_metric
                                 ${CMAKE_CURRENT_LIST_DIR}/eval/run_recorder.cpp
                                 ${CMAKE_CURRENT_LIST_DIR}/eval/closure_audit.cpp
                                 ${CMAKE_CURRENT_LIST_DIR}/eval/truth_log.cpp
-                                ${CMAKE_CURRENT_LIST_DIR}/eval/run_score.cpp)
+                                ${CMAKE_CURRENT_LIST_DIR}/eval/run_score.cpp
+                                ${CMAKE_CURRENT_LIST_DIR}/eval/relation_metric.cpp)
 target_include_directories(mapping_eval PUBLIC ${CMAKE_CURRENT_LIST_DIR})
 # simulator_core for its segment geometry, viewer_core for PNG files.
 target_link_libraries(mapping_eval PUBLIC slam_core simulator_core viewer_core nlohmann_json::nlohmann_json)
@@ -27,9 +28,17 @@ slam_warnings(eval_mapping)
 # eval_mapping recorded (<out>/<name>.db and .truth), scored the same way.
 # Run: build/bin/eval_replay build/bench/mapping/office-v1-drift0.02 --world office
 # mapping_replay: the replay loop itself (unit tests in tests/unit/bench).
-add_library(mapping_replay STATIC ${CMAKE_CURRENT_LIST_DIR}/eval/replay.cpp)
-target_link_libraries(mapping_replay PUBLIC mapping_eval mapper_core slam_testkit)
+add_library(mapping_replay STATIC ${CMAKE_CURRENT_LIST_DIR}/eval/replay.cpp
+                                  ${CMAKE_CURRENT_LIST_DIR}/eval/log_observations.cpp)
+target_link_libraries(mapping_replay PUBLIC mapping_eval mapper_core slam_testkit slam_robot_log)
 slam_warnings(mapping_replay)
 add_executable(eval_replay ${CMAKE_CURRENT_LIST_DIR}/eval_replay.cpp)
 target_link_libraries(eval_replay PRIVATE mapping_replay CLI11::CLI11)
 slam_warnings(eval_replay)
+
+# eval_log: a robot's CARMEN log (e.g. the Freiburg SLAM benchmark's) through the same offline loop,
+# scored with the benchmark's relation file (final trajectory, published poses, raw odometry).
+# Run: build/bin/eval_log intel.clf.gz --beams 16 --max-range 8 (scripts/bench.sh --only logs DIR)
+add_executable(eval_log ${CMAKE_CURRENT_LIST_DIR}/eval_log.cpp)
+target_link_libraries(eval_log PRIVATE mapping_replay CLI11::CLI11)
+slam_warnings(eval_log)

@@ -84,23 +84,66 @@ Result<std::vector<mapper::OwnedObservation>> read_observations(const std::files
   return out;
 }
 
+Result<std::unique_ptr<DeterministicMapLoop>> DeterministicMapLoop::create(
+    const correction::CorrectorOptions& slam) {
+  std::unique_ptr<DeterministicMapLoop> loop(new DeterministicMapLoop());
+  loop->dir_ = std::make_unique<testkit::TempDir>("eval-replay");
+  mapper::MapperOptions mapper_options;
+  loop->store_path_ = loop->dir_->path() / "map.db";
+  mapper_options.store = loop->store_path_.string();
+  auto made = mapper::Mapper::create(mapper_options, loop->counters_, 1, [] {});
+  if (!made) return made.error();
+  loop->map_ = std::move(*made);
+  correction::CorrectorOptions options = slam;
+  options.match_threads = 0;  // inline: deterministic
+  loop->stage_ = std::make_unique<mapper::CorrectionStage>(true, options);
+  return loop;
+}
+
+DeterministicMapLoop::~DeterministicMapLoop() {
+  stage_.reset();
+  map_.reset();  // commits the store before its directory goes
+}
+
+void DeterministicMapLoop::add(const mapper::OwnedObservation& o, int64_t mono_ns) {
+  stage_->add(*map_, mapper::RobotScan{o.robot_id, o.seq, o.stamp_ns, o.view(), 0, Pose{}}, mono_ns);
+}
+
+void DeterministicMapLoop::step(int64_t tick_ns, int64_t mono_ns,
+                                std::vector<correction::RobotCorrection>& changed) {
+  map_->poll_rebuild();
+  stage_->step(*map_, tick_ns, mono_ns);
+  // Optimisations and re-renders land within this pass, whatever their time.
+  map_->wait_for_rebuild();
+  while (stage_->optimising()) {
+    stage_->wait_for_optimisation();
+    stage_->step(*map_, tick_ns, mono_ns);
+    map_->wait_for_rebuild();
+  }
+  map_->commit();
+  stage_->take_changed(changed);
+}
+
+void DeterministicMapLoop::finish(int64_t tick_ns, int64_t mono_ns,
+                                  std::vector<correction::RobotCorrection>& changed) {
+  stage_->finish();
+  step(tick_ns, mono_ns, changed);  // matches the keyframes finish() closed, then optimises and applies
+}
+
 Result<ReplayOutcome> replay(std::span<const mapper::OwnedObservation> observations,
                              std::span<const TruthSample> truth, const ReplayOptions& options,
                              RunRecorder& recorder, const std::filesystem::path& yaml_path) {
   if (observations.empty()) return Error{"nothing to replay: no observation"};
-  testkit::TempDir dir("eval-replay");
-  mapper::MapperOptions mapper_options;
-  mapper_options.store = (dir.path() / "map.db").string();
-  Counters counters;
-  auto made = mapper::Mapper::create(mapper_options, counters, 1, [] {});
-  if (!made) return made.error();
-  mapper::Mapper& map = **made;
   correction::CorrectorOptions slam_options;
-  slam_options.old_age_s = mapper_options.slam_old_age_s;
-  slam_options.match_threads = 0;  // inline: deterministic
+  const mapper::MapperOptions mapper_defaults;
+  slam_options.old_age_s = mapper_defaults.slam_old_age_s;
   slam_options.wall_heading = options.wall_heading;
   slam_options.point_refine = options.point_refine;
-  mapper::CorrectionStage stage(true, slam_options);
+  auto made = DeterministicMapLoop::create(slam_options);
+  if (!made) return made.error();
+  DeterministicMapLoop& loop = **made;
+  mapper::Mapper& map = loop.map();
+  mapper::CorrectionStage& stage = loop.stage();
 
   if (options.trace_keyframes)
     stage.set_keyframe_observer([&](const correction::KeyframeDecision& k) {
@@ -117,22 +160,10 @@ Result<ReplayOutcome> replay(std::span<const mapper::OwnedObservation> observati
   for (int64_t tick = t0 + kLoopPeriodNs + static_cast<int64_t>(options.phase_ms * 1e6);
        next_obs < observations.size() || next_truth < truth.size(); tick += kLoopPeriodNs) {
     const int64_t mono = tick - t0;
-    map.poll_rebuild();
-    for (; next_obs < observations.size() && observations[next_obs].stamp_ns <= tick; ++next_obs) {
-      const mapper::OwnedObservation& o = observations[next_obs];
-      stage.add(map, mapper::RobotScan{o.robot_id, o.seq, o.stamp_ns, o.view(), 0, Pose{}}, mono);
-    }
-    stage.step(map, tick, mono);
-    // Optimisations and re-renders land within this pass, whatever their time.
-    map.wait_for_rebuild();
-    while (stage.optimising()) {
-      stage.wait_for_optimisation();
-      stage.step(map, tick, mono);
-      map.wait_for_rebuild();
-    }
-    map.commit();
+    for (; next_obs < observations.size() && observations[next_obs].stamp_ns <= tick; ++next_obs)
+      loop.add(observations[next_obs], mono);
     changed.clear();
-    stage.take_changed(changed);
+    loop.step(tick, mono, changed);
     for (const auto& c : changed) {
       recorder.on_correction(c.robot, c.map_from_odom, c.version,
                              c.source == correction::CorrectionSource::Loop);

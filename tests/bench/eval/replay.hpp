@@ -8,8 +8,10 @@
 
 #include "common/core/result.hpp"
 #include "eval/run_recorder.hpp"
+#include "mapper/correction_stage.hpp"
 #include "mapper/mapper.hpp"
 #include "pose_correction/pose_corrector.hpp"
+#include "temp_dir.hpp"
 
 namespace slam::bench {
 
@@ -26,6 +28,35 @@ struct ReplayOutcome {
   correction::CorrectorStats stats;
   double recorded_s = 0.0;  // from the first observation to the last
   double wall_s = 0.0;
+};
+
+// The mapper's map loop (Mapper + CorrectionStage over a temporary store) stepped deterministically:
+// keyframes are matched inline and every optimisation and re-render is waited for within the pass.
+// What replay() and eval_log run.
+class DeterministicMapLoop {
+ public:
+  static Result<std::unique_ptr<DeterministicMapLoop>> create(const correction::CorrectorOptions& slam);
+  ~DeterministicMapLoop();
+
+  // One raw observation (robot odometry frame); `mono_ns`: the loop's monotonic clock.
+  void add(const mapper::OwnedObservation& observation, int64_t mono_ns);
+  // One pass at `tick_ns` (the observations' clock): corrections that changed are appended.
+  void step(int64_t tick_ns, int64_t mono_ns, std::vector<correction::RobotCorrection>& changed);
+  // A last optimisation of the whole graph, applied (its corrections appended), as a mapper does
+  // before a trajectory is exported from a finished run.
+  void finish(int64_t tick_ns, int64_t mono_ns, std::vector<correction::RobotCorrection>& changed);
+
+  mapper::Mapper& map() { return *map_; }
+  mapper::CorrectionStage& stage() { return *stage_; }
+  const std::filesystem::path& store_path() const { return store_path_; }
+
+ private:
+  DeterministicMapLoop() = default;
+  std::unique_ptr<testkit::TempDir> dir_;
+  std::filesystem::path store_path_;
+  Counters counters_;
+  std::unique_ptr<mapper::Mapper> map_;
+  std::unique_ptr<mapper::CorrectionStage> stage_;
 };
 
 // Replays `observations` (in arrival order) and feeds `recorder` every correction change and every

@@ -1,0 +1,242 @@
+// eval_log: a real robot's log (CARMEN, e.g. the Freiburg SLAM benchmark's) run through the mapper's
+// map loop with pose correction, offline and deterministically (eval/replay.hpp), and scored with the
+// benchmark's relation metric (eval/relation_metric.hpp): the final optimised trajectory, the poses
+// published while driving (each scan placed by the correction in force when it arrived: what the
+// gateway hands the planner), and raw odometry. Scans become observations as the gateway decodes them
+// (eval/log_observations.hpp). Writes <out>/<name>.json, <name>.png and the exported map; prints one
+// summary line.
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include <CLI/CLI.hpp>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <unordered_map>
+
+#include "common/core/map_io.hpp"
+#include "eval/log_observations.hpp"
+#include "eval/map_overlay.hpp"
+#include "eval/relation_metric.hpp"
+#include "eval/replay.hpp"
+#include "mapper/map_files.hpp"
+#include "mapper/observation_store.hpp"
+#include "simulator/robot_log/carmen_log.hpp"
+#include "viewer/core/png_file.hpp"
+
+namespace slam::bench {
+namespace {
+
+constexpr int64_t kLoopPeriodNs = 100'000'000;  // the mapper's loop period
+constexpr double kShortRelation_s = 10.0;       // "short" relations: within this many seconds
+
+std::string strip_log_extension(std::string p) {
+  for (const char* ext : {".gz", ".clf", ".log"})
+    if (p.ends_with(ext)) p.resize(p.size() - std::string_view(ext).size());
+  return p;
+}
+
+struct Options {
+  std::string log;
+  std::string relations;  // default: the log's path with .relations for .clf(.gz)
+  std::string out_dir = "build/bench/logs";
+  std::string name;
+  std::string log_level = "warn";
+  LogObservationOptions observations;
+  correction::CorrectorOptions slam;
+
+  std::string run_name() const {
+    if (!name.empty()) return name;
+    return strip_log_extension(std::filesystem::path(log).filename().string()) + (observations.v1 ? "-v1" : "") +
+           (observations.beams > 0 ? fmt::format("-{}beams", observations.beams) : "");
+  }
+  std::string relation_path() const {
+    return relations.empty() ? strip_log_extension(log) + ".relations" : relations;
+  }
+};
+
+nlohmann::json to_json(const RelationScore& s) {
+  auto ms = [](const MeanStd& m) { return nlohmann::json{{"mean", m.mean}, {"std", m.std}}; };
+  return {{"relations", s.relations},      {"missing", s.missing},         {"trans_abs_m", ms(s.trans_abs)},
+          {"trans_sq_m2", ms(s.trans_sq)}, {"rot_abs_deg", ms(s.rot_abs)}, {"rot_sq_deg2", ms(s.rot_sq)}};
+}
+
+// Robot poses from sensor poses (the observations carry the sensor's).
+std::vector<Pose> robot_poses(std::span<const Pose> sensor, std::span<const Pose> sensor_in_robot) {
+  std::vector<Pose> out(sensor.size());
+  for (size_t i = 0; i < sensor.size(); ++i) out[i] = sensor[i].compose(sensor_in_robot[i].inverse());
+  return out;
+}
+
+// Each scan placed by its keyframe's correction as the store holds it now (the final trajectory). The
+// log's own odometry pose is used, so a v1 run (no heading sent) is scored on its heading too.
+Result<std::vector<Pose>> final_sensor_poses(DeterministicMapLoop& loop, const LogObservations& log) {
+  loop.map().commit();
+  auto store = mapper::ObservationStore::open(loop.store_path());
+  if (!store) return store.error();
+  auto keyframes = store->keyframes();
+  if (!keyframes) return keyframes.error();
+  std::unordered_map<mapper::KeyframeId, Pose> corrections;
+  for (const mapper::Keyframe& k : *keyframes) corrections[k.id] = k.map_from_odom;
+  std::vector<Pose> out(log.sensor_odom.size());
+  SLAM_TRY(store->for_each([&](const mapper::ObservationRecord& r) {
+    if (r.seq == 0 || r.seq > out.size()) return;
+    const auto it = corrections.find(r.keyframe_id);
+    out[r.seq - 1] = (it == corrections.end() ? Pose{} : it->second).compose(log.sensor_odom[r.seq - 1]);
+  }));
+  return out;
+}
+
+struct Played {
+  std::vector<Pose> published;  // sensor poses, by the correction in force at each scan's arrival
+  std::vector<Pose> final;      // sensor poses, by the final trajectory
+  correction::CorrectorStats stats;
+  double wall_s = 0.0;
+};
+
+Result<Played> play(const LogObservations& log, const correction::CorrectorOptions& slam,
+                    const std::filesystem::path& yaml_path) {
+  auto made = DeterministicMapLoop::create(slam);
+  if (!made) return made.error();
+  DeterministicMapLoop& loop = **made;
+  Played played;
+  played.published.resize(log.observations.size());
+  const auto wall0 = std::chrono::steady_clock::now();
+  const int64_t t0 = log.observations.front().stamp_ns;
+  Pose correction;
+  std::vector<correction::RobotCorrection> changed;
+  size_t next = 0;
+  int64_t tick = t0 + kLoopPeriodNs;
+  for (; next < log.observations.size(); tick += kLoopPeriodNs) {
+    for (; next < log.observations.size() && log.observations[next].stamp_ns <= tick; ++next) {
+      loop.add(log.observations[next], tick - t0);
+      played.published[next] = correction.compose(log.sensor_odom[next]);
+    }
+    changed.clear();
+    loop.step(tick, tick - t0, changed);
+    for (const auto& c : changed) correction = c.map_from_odom;
+  }
+  changed.clear();
+  loop.finish(tick, tick - t0, changed);
+  auto final = final_sensor_poses(loop, log);
+  if (!final) return final.error();
+  played.final = std::move(*final);
+  played.stats = loop.stage().stats();
+  played.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  const mapper::FileOutcome exported = mapper::export_map_file(loop.map().grid(), yaml_path.string());
+  if (!exported.ok()) return Error{"map export: " + exported.message};
+  return played;
+}
+
+Result<nlohmann::json> run(const Options& o) {
+  auto read = robot_log::read_carmen_log(o.log);
+  if (!read) return read.error();
+  if (read->scans.empty()) return Error{o.log + " holds no scan"};
+  auto relations = read_relations(o.relation_path());
+  if (!relations) return relations.error();
+  const LogObservations log = log_observations(read->scans, o.observations);
+  std::filesystem::create_directories(o.out_dir);
+  const std::string base = std::filesystem::absolute(o.out_dir + "/" + o.run_name()).string();
+  auto played = play(log, o.slam, base + ".yaml");
+  if (!played) return played.error();
+
+  auto image = read_ros_map(base + ".yaml");
+  if (!image) return Error{"reading the exported map: " + image.message()};
+  SLAM_TRY(viewer::write_png(base + ".png", render_overlay(*image, {}, 1)));
+
+  nlohmann::json j;
+  j["name"] = o.run_name();
+  j["log"] = o.log;
+  j["scans"] = log.observations.size();
+  j["bad_lines"] = read->stats.bad_lines;
+  j["stamps_back"] = read->stats.stamps_back;
+  j["beams"] = o.observations.beams;
+  j["max_range_m"] = o.observations.max_range_m;
+  j["protocol"] = o.observations.v1 ? "v1" : "v2";
+  j["log_s"] = log.stamps_s.back() - log.stamps_s.front();
+  j["wall_s"] = played->wall_s;
+  const std::pair<const char*, const std::vector<Pose>*> estimates[] = {
+      {"final", &played->final}, {"published", &played->published}, {"odometry", &log.sensor_odom}};
+  for (const auto& [key, sensor] : estimates) {
+    const StampedPoses poses(log.stamps_s, robot_poses(*sensor, log.sensor_in_robot));
+    j[key]["all"] = to_json(score_relations(*relations, poses));
+    j[key]["short"] = to_json(score_relations(*relations, poses, 0.0, kShortRelation_s));
+  }
+  const correction::CorrectorStats& st = played->stats;
+  j["slam"] = {{"keyframes", st.keyframes},
+               {"matched", st.matched},
+               {"unmatched", st.unmatched},
+               {"closures_tried", st.closures_tried},
+               {"closures_accepted", st.closures_accepted},
+               {"closures_rejected", st.closures_rejected},
+               {"optimisations", st.optimisations},
+               {"segments", st.segments}};
+  j["image"] = std::filesystem::path(base + ".png").filename().string();
+  return j;
+}
+
+std::string row(const nlohmann::json& j, const char* key) {
+  const auto& a = j[key]["all"];
+  const auto& s = j[key]["short"];
+  return fmt::format("{:.3f} ± {:.3f} m {:.2f}° (short {:.3f} m)", a["trans_abs_m"]["mean"].get<double>(),
+                     a["trans_abs_m"]["std"].get<double>(), a["rot_abs_deg"]["mean"].get<double>(),
+                     s["trans_abs_m"]["mean"].get<double>());
+}
+
+}  // namespace
+}  // namespace slam::bench
+
+int main(int argc, char** argv) {
+  slam::bench::Options o;
+  CLI::App app{"eval_log: a robot's CARMEN log through the pose correction, offline, scored with its relation file"};
+  app.add_option("log", o.log, "CARMEN log (.clf or .clf.gz)")->required()->check(CLI::ExistingFile);
+  app.add_option("--relations", o.relations, "relation file (default: the log's name with .relations)");
+  app.add_option("--out", o.out_dir, "directory of the results")->capture_default_str();
+  app.add_option("--name", o.name, "result file names (default: from the log's name)");
+  app.add_option("--beams", o.observations.beams, "thin each scan to N evenly spaced beams (0: all)")
+      ->check(CLI::Range(0, 100000))
+      ->capture_default_str();
+  app.add_option("--max-range", o.observations.max_range_m, "returns beyond this (m) count as no return")
+      ->check(CLI::Range(0.5, 1000.0))
+      ->capture_default_str();
+  app.add_flag("--v1", o.observations.v1, "as a legacy v1 robot: centimetre positions, no heading, <= 16 points");
+  app.add_option("--log-level", o.log_level, "log level of the pose correction")
+      ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error", "off"}))
+      ->capture_default_str();
+  auto& k = o.slam.keyframe;
+  app.add_option("--keyframe-messages", k.max_messages, "a keyframe closes after this many scans")->capture_default_str();
+  app.add_option("--keyframe-travel", k.travel_m, "...or this much travel (m)")->capture_default_str();
+  app.add_option("--keyframe-turn", k.turn_rad, "...or this much turning (rad)")->capture_default_str();
+  app.add_option("--enough-points", k.enough_points, "")->capture_default_str();
+  app.add_option("--dense-travel", k.dense_travel_m, "")->capture_default_str();
+  app.add_option("--dense-turn", k.dense_turn_rad, "")->capture_default_str();
+  app.add_option("--track-window-m", o.slam.track_window.linear_m, "tracking search window (m)")->capture_default_str();
+  app.add_option("--track-window-rad", o.slam.track_window.angular_rad, "tracking search window (rad)")
+      ->capture_default_str();
+  app.add_option("--wall-heading", o.slam.wall_heading, "the walls' heading (1/0)")->capture_default_str();
+  app.add_option("--point-refine", o.slam.point_refine, "point refinement (1/0)")->capture_default_str();
+  app.add_option("--track-variance-scale", o.slam.track_variance_scale, "")->capture_default_str();
+  app.add_option("--closure-window-m", o.slam.closure_window.linear_m, "")->capture_default_str();
+  app.add_option("--closure-window-rad", o.slam.closure_window.angular_rad, "")->capture_default_str();
+  app.add_option("--closure-radius", o.slam.closure_radius_m, "")->capture_default_str();
+  app.add_option("--odom-sigma-m", o.slam.odom_sigma_m_per_sqrt_m, "")->capture_default_str();
+  app.add_option("--odom-sigma-rad", o.slam.odom_sigma_rad_per_m, "")->capture_default_str();
+  app.add_option("--independent-points", o.slam.matcher.independent_points, "")->capture_default_str();
+  CLI11_PARSE(app, argc, argv);
+  spdlog::set_level(spdlog::level::from_str(o.log_level));
+
+  auto result = slam::bench::run(o);
+  if (!result) {
+    std::fprintf(stderr, "eval_log: %s: %s\n", o.run_name().c_str(), result.message().c_str());
+    return 1;
+  }
+  std::ofstream(o.out_dir + "/" + o.run_name() + ".json") << result->dump(2) << "\n";
+  const auto& j = *result;
+  std::printf("%s: final %s | published %s | odometry %s | %d keyframes, %d closures, %.0f s for %.0f s\n",
+              o.run_name().c_str(), slam::bench::row(j, "final").c_str(), slam::bench::row(j, "published").c_str(),
+              slam::bench::row(j, "odometry").c_str(), j["slam"]["keyframes"].get<int>(),
+              j["slam"]["closures_accepted"].get<int>(), j["wall_s"].get<double>(), j["log_s"].get<double>());
+  return 0;
+}
