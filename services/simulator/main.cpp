@@ -1,7 +1,9 @@
-// slam-simulator: options -> world -> service (Cyclone DDS + MQTT) -> run -> tear down.
+// slam-simulator: options -> world -> service (Cyclone DDS + MQTT) -> run -> tear down; or, with
+// --play, recorded logs played over MQTT (log_player.hpp).
 #include "common/core/counters.hpp"
 #include "common/core/service_options.hpp"
 #include "common/core/shutdown.hpp"
+#include "simulator/log_player.hpp"
 #include "simulator/sim_node.hpp"
 #include "simulator/sim_options.hpp"
 #include "simulator/world_loader.hpp"
@@ -15,6 +17,15 @@ int main(int argc, char** argv) {
                               "protocol over MQTT and taking commands over DDS",
                               argc, argv, options, add_sim_options))
     return *code;
+  if (options.play.enabled()) {
+    slam::install_shutdown_handlers();
+    slam::Counters counters;
+    if (auto s = play_logs(options, counters); !s) {
+      slam::report_error("slam-simulator", s.message());
+      return slam::kExitFailure;
+    }
+    return slam::kExitOk;
+  }
   auto world = load_world(options.world);
   if (!world) {
     slam::report_error("slam-simulator", "--world: " + world.message());

@@ -2,6 +2,7 @@
 // What a simulated robot reports, carrying everything both robot protocols need: v1 sends the
 // believed position then the obstacle points; v2 adds the heading and the polar scan. Encoding is
 // the gateway codecs' job; the simulator only fills this.
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -22,6 +23,9 @@ struct RobotReport {
   std::vector<double> angles;
   std::vector<double> ranges;
   double max_range = 0.0;
+  // Where the sensor sits on the robot (v2 "sensor"); `angles` are then in the sensor's frame. The
+  // simulated robots' sensor is at their centre; recorded logs (the player) know their mount.
+  std::optional<Pose> sensor;
 };
 
 }  // namespace slam::sim

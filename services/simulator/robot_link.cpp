@@ -184,6 +184,8 @@ void RobotLinks::publish(const RobotReport& report, bool driving) {
     scan.angles = report.angles;
     scan.ranges = ranges_;
     scan.max_range = report.max_range;
+    if (report.sensor)
+      scan.sensor = protocol::V2SensorOffset{report.sensor->x, report.sensor->y, report.sensor->theta};
     status = protocol::encode_v2_scan(scan, settings_.limits, text_);
     if (status) send(e, e.report_topic, as_bytes(text_));
     if (e.link->connected() && (e.status_connects != e.link->connects() || e.driving != driving ||

@@ -70,6 +70,7 @@ void add_sim_options(CLI::App& app, SimOptions& o) {
   app.add_option("--max-range", o.max_range, "range sensor reach (m)")
       ->check(CLI::Range(0.1, 1000.0))
       ->capture_default_str();
+  add_play_options(app, o.play);
 }
 
 Result<SimulationConfig> simulation_config(const SimOptions& o) {
@@ -107,6 +108,7 @@ Status validate(const SimOptions& o) {
         "--mqtt-password logs each robot in under its own id: drop --mqtt-multiplex (one shared connection)"};
   if (auto c = simulation_config(o); !c) return c.status();
   if (auto s = protocol::validate(codec_limits(o)); !s) return Error{"--units-per-meter: " + s.message()};
+  SLAM_TRY(validate(o.play));
   return {};
 }
 

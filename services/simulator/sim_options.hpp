@@ -9,6 +9,7 @@
 #include "common/core/service_options.hpp"
 #include "protocol/codec_types.hpp"
 #include "simulator/config.hpp"
+#include "simulator/play_options.hpp"
 
 namespace slam::sim {
 
@@ -36,6 +37,7 @@ struct SimOptions {
   double truth_rate_hz = 5.0;  // SimGroundTruth publications per second
   int beams = 16;
   double max_range = 4.0;
+  PlayOptions play;  // --play LOG: play recorded logs instead of simulating (log_player.hpp)
 
   RobotProtocol robot_protocol() const { return protocol == "v2" ? RobotProtocol::V2 : RobotProtocol::V1; }
 };
