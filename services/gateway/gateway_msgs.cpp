@@ -37,6 +37,7 @@ void fill_observation(std::string_view robot_id, std::uint64_t seq, std::int64_t
   set_text(out.robot_id(), robot_id);
   out.seq(seq);
   out.stamp_ns(stamp_ns);
+  out.robot_stamp_ns(in.robot_stamp_ns);
   out.protocol(to_dds(protocol));
   out.pose().x(in.x);
   out.pose().y(in.y);

@@ -39,7 +39,7 @@ void CorrectionStage::add(Mapper& mapper, const RobotScan& scan, int64_t now_mon
     held = std::move(spare_.back());
     spare_.pop_back();
   }
-  held.assign(scan.robot_id, scan.seq, scan.stamp_ns, v);
+  held.assign(scan.robot_id, scan.seq, scan.stamp_ns, v, scan.robot_stamp_ns);
   held_[*keyframe].push_back(std::move(held));
   ++held_observations_;
 }
@@ -62,7 +62,9 @@ void CorrectionStage::step(Mapper& mapper, int64_t now_ns, int64_t now_mono_ns) 
       const auto it = held_.find(k.id);
       if (it == held_.end()) continue;
       for (const Held& h : it->second) {
-        mapper.integrate(RobotScan{h.robot_id, h.seq, h.stamp_ns, h.view(), k.id, k.correction}, now_mono_ns);
+        mapper.integrate(
+            RobotScan{h.robot_id, h.seq, h.stamp_ns, h.view(), k.id, k.correction, h.robot_stamp_ns},
+            now_mono_ns);
       }
       held_observations_ -= static_cast<int64_t>(it->second.size());
       for (Held& h : it->second) {

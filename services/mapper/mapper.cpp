@@ -158,17 +158,17 @@ void Mapper::integrate(const RobotScan& scan, int64_t now_ns) {
   }
   if (worker_.busy()) {
     // The rebuild must see the store as it was when it started: keep this for the new grid.
-    deferred_.push_back(Deferred{std::string(scan.robot_id), scan.seq, scan.stamp_ns, scan.keyframe_id,
-                                 scan.map_from_odom, odom.x, odom.y, odom.theta, odom.has_heading, odom_hits_,
-                                 odom_misses_});
+    deferred_.push_back(Deferred{std::string(scan.robot_id), scan.seq, scan.stamp_ns, scan.robot_stamp_ns,
+                                 scan.keyframe_id, scan.map_from_odom, odom.x, odom.y, odom.theta,
+                                 odom.has_heading, odom_hits_, odom_misses_});
     return;
   }
-  store_observation(scan.robot_id, scan.seq, scan.stamp_ns, scan.keyframe_id, odom);
+  store_observation(scan.robot_id, scan.seq, scan.stamp_ns, scan.keyframe_id, odom, scan.robot_stamp_ns);
 }
 
 void Mapper::store_observation(std::string_view robot, uint64_t seq, int64_t stamp_ns, KeyframeId keyframe_id,
-                               const ObservationView& odom) {
-  if (Status s = store_->append(robot, seq, stamp_ns, keyframe_id, odom); !s) {
+                               const ObservationView& odom, int64_t robot_stamp_ns) {
+  if (Status s = store_->append(robot, seq, stamp_ns, keyframe_id, odom, robot_stamp_ns); !s) {
     bump(metrics_.store_errors);
     log_.warn("store", "observation of robot '{}' not stored (the map has it until restart): {}", robot,
               s.message());
@@ -386,7 +386,7 @@ void Mapper::finish_rebuild(RebuildOutcome outcome) {
       if (!restored) spdlog::error("{}", restored.message());
     }
     for (const Deferred& d : deferred_)
-      store_observation(d.robot_id, d.seq, d.stamp_ns, d.keyframe_id, d.view());
+      store_observation(d.robot_id, d.seq, d.stamp_ns, d.keyframe_id, d.view(), d.robot_stamp_ns);
     deferred_.clear();
     std::string message = "rebuild failed, the map is unchanged: " + outcome.grid.message();
     if (ticket.cause == RebuildCause::ResetRobot) message = ticket.done + "; " + message;
@@ -409,7 +409,7 @@ void Mapper::finish_rebuild(RebuildOutcome outcome) {
                 d.robot_id, d.seq, r.message());
       continue;
     }
-    store_observation(d.robot_id, d.seq, d.stamp_ns, d.keyframe_id, odom);
+    store_observation(d.robot_id, d.seq, d.stamp_ns, d.keyframe_id, odom, d.robot_stamp_ns);
   }
   deferred_.clear();
   if (ticket.cause == RebuildCause::Layout) {

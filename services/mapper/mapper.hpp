@@ -84,6 +84,7 @@ struct RobotScan {
   ObservationView view;        // odometry frame
   KeyframeId keyframe_id = 0;  // stored with it; a re-render moves it by this keyframe's correction
   Pose map_from_odom;          // the robot's correction now: where it lands in the live grid
+  int64_t robot_stamp_ns = 0;  // when it was measured, on the robot's own clock; 0: the robot sent none
 };
 
 // One observation that owns its points (the views of RobotScan and ObservationRecord live only as
@@ -92,15 +93,18 @@ struct OwnedObservation {
   std::string robot_id;
   uint64_t seq = 0;
   int64_t stamp_ns = 0;
+  int64_t robot_stamp_ns = 0;  // 0: the robot sent none
   double x = 0, y = 0, theta = 0;
   bool has_heading = false;
   std::vector<Vec2> hits, misses;
 
   // Copies an observation in, reusing this record's string and point buffers.
-  void assign(std::string_view robot, uint64_t sequence, int64_t stamp, const ObservationView& obs) {
+  void assign(std::string_view robot, uint64_t sequence, int64_t stamp, const ObservationView& obs,
+              int64_t robot_stamp = 0) {
     robot_id.assign(robot);
     seq = sequence;
     stamp_ns = stamp;
+    robot_stamp_ns = robot_stamp;
     x = obs.x;
     y = obs.y;
     theta = obs.theta;
@@ -197,6 +201,7 @@ class Mapper {
     std::string robot_id;
     uint64_t seq = 0;
     int64_t stamp_ns = 0;
+    int64_t robot_stamp_ns = 0;
     KeyframeId keyframe_id = 0;
     Pose map_from_odom;  // what it was integrated with, unless its keyframe has a correction by then
     double x = 0, y = 0, theta = 0;
@@ -221,7 +226,7 @@ class Mapper {
   Status open();
 
   void store_observation(std::string_view robot, uint64_t seq, int64_t stamp_ns, KeyframeId keyframe_id,
-                         const ObservationView& odom);
+                         const ObservationView& odom, int64_t robot_stamp_ns);
   void handle(const MapCommand& command);
   void handle_layout(const LayoutRequest& request);
   void handle_edit(const EditRequest& edit);

@@ -156,8 +156,9 @@ void MapperNode::integrate(const slam::RobotObservation& sample) {
   const std::string_view robot(sample.robot_id().c_str(), sample.robot_id().size());
   auto view = to_view(sample, hits_, misses_);
   if (!view) return mapper_->reject(robot, sample.seq(), view.message());
-  corrections_->add(*mapper_, RobotScan{robot, sample.seq(), sample.stamp_ns(), *view, 0, Pose{}},
-                    monotonic_ns());
+  corrections_->add(
+      *mapper_, RobotScan{robot, sample.seq(), sample.stamp_ns(), *view, 0, Pose{}, sample.robot_stamp_ns()},
+      monotonic_ns());
 }
 
 void MapperNode::handle_initial_pose(const slam::InitialPose& request) {

@@ -16,7 +16,8 @@ static_assert(sizeof(Vec2) == 2 * sizeof(double), "Vec2 must be two packed doubl
 namespace {
 
 // 1: observations without keyframe ids. 2: observations.keyframe, the keyframes table.
-constexpr int kSchemaVersion = 2;
+// 3: observations.robot_stamp_ns (the robot's own clock).
+constexpr int kSchemaVersion = 3;
 
 constexpr const char* kSchema = R"sql(
 CREATE TABLE IF NOT EXISTS observations(
@@ -25,7 +26,7 @@ CREATE TABLE IF NOT EXISTS observations(
   seq INTEGER NOT NULL,
   stamp_ns INTEGER NOT NULL,
   x REAL NOT NULL, y REAL NOT NULL, theta REAL NOT NULL, has_heading INTEGER NOT NULL,
-  hits BLOB, misses BLOB, keyframe INTEGER NOT NULL DEFAULT 0);
+  hits BLOB, misses BLOB, keyframe INTEGER NOT NULL DEFAULT 0, robot_stamp_ns INTEGER NOT NULL DEFAULT 0);
 CREATE TABLE IF NOT EXISTS keyframes(
   id INTEGER PRIMARY KEY,
   robot TEXT NOT NULL,
@@ -39,6 +40,10 @@ CREATE TABLE IF NOT EXISTS prior(
   width INTEGER NOT NULL, height INTEGER NOT NULL, resolution REAL NOT NULL,
   origin_x REAL NOT NULL, origin_y REAL NOT NULL, origin_yaw REAL NOT NULL, cells BLOB NOT NULL);
 )sql";
+
+// The columns visit_rows() reads, in its order; hits and misses follow as columns 10 and 11.
+constexpr std::string_view kRowColumns =
+    "id, robot, seq, stamp_ns, x, y, theta, has_heading, keyframe, robot_stamp_ns";
 
 Status decode_points(const void* blob, int bytes, std::vector<Vec2>* out) {
   if (bytes < 0 || bytes % static_cast<int>(sizeof(Vec2)) != 0)
@@ -129,8 +134,12 @@ Result<ObservationStore> ObservationStore::open(const std::filesystem::path& pat
   if (found != kSchemaVersion) {
     if (Status s = store.exec("BEGIN"); !s) return s.error();
     Status schema = store.exec(kSchema);
+    // A store older than the column gets it, 0 for its rows (CREATE TABLE IF NOT EXISTS left its table
+    // alone); schema 0 is a new, empty store.
     if (schema && found == 1)
       schema = store.exec("ALTER TABLE observations ADD COLUMN keyframe INTEGER NOT NULL DEFAULT 0");
+    if (schema && (found == 1 || found == 2))
+      schema = store.exec("ALTER TABLE observations ADD COLUMN robot_stamp_ns INTEGER NOT NULL DEFAULT 0");
     if (schema) schema = store.exec(("PRAGMA user_version=" + std::to_string(kSchemaVersion)).c_str());
     if (schema) schema = store.exec("COMMIT");
     if (!schema) {
@@ -139,8 +148,8 @@ Result<ObservationStore> ObservationStore::open(const std::filesystem::path& pat
     }
   }
   auto insert = store.prepare(
-      "INSERT INTO observations(robot, seq, stamp_ns, x, y, theta, has_heading, hits, misses, keyframe) "
-      "VALUES(?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
+      "INSERT INTO observations(robot, seq, stamp_ns, x, y, theta, has_heading, hits, misses, keyframe, "
+      "robot_stamp_ns) VALUES(?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
   if (!insert) return insert.error();
   store.insert_ = std::move(*insert);
   auto upsert = store.prepare(
@@ -163,7 +172,7 @@ Status ObservationStore::begin_batch() {
 }
 
 Status ObservationStore::append(std::string_view robot_id, uint64_t seq, int64_t stamp_ns,
-                                KeyframeId keyframe_id, const ObservationView& obs) {
+                                KeyframeId keyframe_id, const ObservationView& obs, int64_t robot_stamp_ns) {
   SLAM_TRY(begin_batch());
   sqlite3_stmt* st = insert_.get();
   sqlite3_reset(st);
@@ -177,6 +186,7 @@ Status ObservationStore::append(std::string_view robot_id, uint64_t seq, int64_t
   sqlite3_bind_blob(st, 8, obs.hits.data(), static_cast<int>(obs.hits.size_bytes()), SQLITE_STATIC);
   sqlite3_bind_blob(st, 9, obs.misses.data(), static_cast<int>(obs.misses.size_bytes()), SQLITE_STATIC);
   sqlite3_bind_int64(st, 10, static_cast<sqlite3_int64>(keyframe_id));
+  sqlite3_bind_int64(st, 11, robot_stamp_ns);
   const int rc = sqlite3_step(st);
   sqlite3_reset(st);
   sqlite3_clear_bindings(st);
@@ -240,11 +250,25 @@ Status ObservationStore::flush() {
 }
 
 Status ObservationStore::for_each(const std::function<void(const ObservationRecord&)>& visit) {
-  auto q = prepare(
-      "SELECT id, robot, seq, stamp_ns, x, y, theta, has_heading, hits, misses, keyframe FROM observations "
-      "ORDER BY id");
+  const std::string sql =
+      "SELECT " + std::string(kRowColumns) + ", hits, misses FROM observations ORDER BY id";
+  auto q = prepare(sql.c_str());
   if (!q) return q.status();
-  sqlite3_stmt* st = q->get();
+  return visit_rows(q->get(), true, visit);
+}
+
+Status ObservationStore::for_each_pose(std::string_view robot_id,
+                                       const std::function<void(const ObservationRecord&)>& visit) {
+  const std::string sql =
+      "SELECT " + std::string(kRowColumns) + " FROM observations WHERE robot = ? ORDER BY id";
+  auto q = prepare(sql.c_str());
+  if (!q) return q.status();
+  sqlite3_bind_text(q->get(), 1, robot_id.data(), static_cast<int>(robot_id.size()), SQLITE_STATIC);
+  return visit_rows(q->get(), false, visit);
+}
+
+Status ObservationStore::visit_rows(sqlite3_stmt* st, bool with_points,
+                                    const std::function<void(const ObservationRecord&)>& visit) {
   ObservationRecord rec;
   int rc = SQLITE_ROW;
   while ((rc = sqlite3_step(st)) == SQLITE_ROW) {
@@ -257,14 +281,17 @@ Status ObservationStore::for_each(const std::function<void(const ObservationReco
     rec.obs.y = sqlite3_column_double(st, 5);
     rec.obs.theta = sqlite3_column_double(st, 6);
     rec.obs.has_heading = sqlite3_column_int(st, 7) != 0;
-    rec.keyframe_id = static_cast<KeyframeId>(sqlite3_column_int64(st, 10));
-    const Status h = decode_points(sqlite3_column_blob(st, 8), sqlite3_column_bytes(st, 8), &hits_buf_);
-    const Status m = decode_points(sqlite3_column_blob(st, 9), sqlite3_column_bytes(st, 9), &misses_buf_);
-    if (!h || !m)
-      return Error{"observation store " + path_.string() + ": row " + std::to_string(rec.id) + ": " +
-                   (h ? m.message() : h.message())};
-    rec.obs.hits = hits_buf_;
-    rec.obs.misses = misses_buf_;
+    rec.keyframe_id = static_cast<KeyframeId>(sqlite3_column_int64(st, 8));
+    rec.robot_stamp_ns = sqlite3_column_int64(st, 9);
+    if (with_points) {
+      const Status h = decode_points(sqlite3_column_blob(st, 10), sqlite3_column_bytes(st, 10), &hits_buf_);
+      const Status m = decode_points(sqlite3_column_blob(st, 11), sqlite3_column_bytes(st, 11), &misses_buf_);
+      if (!h || !m)
+        return Error{"observation store " + path_.string() + ": row " + std::to_string(rec.id) + ": " +
+                     (h ? m.message() : h.message())};
+      rec.obs.hits = hits_buf_;
+      rec.obs.misses = misses_buf_;
+    }
     visit(rec);
   }
   if (rc != SQLITE_DONE) return db_error("reading observations");

@@ -37,7 +37,8 @@ struct ObservationRecord {
   int64_t id = 0;  // insertion order
   std::string_view robot_id;
   uint64_t seq = 0;
-  int64_t stamp_ns = 0;
+  int64_t stamp_ns = 0;        // gateway receive time
+  int64_t robot_stamp_ns = 0;  // the robot's own clock; 0: the robot sent none
   KeyframeId keyframe_id = 0;  // 0: none
   ObservationView obs;         // odometry frame
 };
@@ -45,8 +46,8 @@ struct ObservationRecord {
 class ObservationStore {
  public:
   // Opens or creates the database; a store written by schema 1 gains the keyframe column (0 for its
-  // rows) and the keyframes table. Errors name the path: cannot open, not a database (corrupt),
-  // written by a newer schema.
+  // rows) and the keyframes table, one written by schema 1 or 2 the robot_stamp_ns column (0). Errors
+  // name the path: cannot open, not a database (corrupt), written by a newer schema.
   static Result<ObservationStore> open(const std::filesystem::path& path, StoreOptions options = {});
 
   ObservationStore(ObservationStore&&) noexcept = default;
@@ -54,9 +55,10 @@ class ObservationStore {
   ObservationStore& operator=(ObservationStore&&) = delete;
   ~ObservationStore();  // commits pending appends
 
-  // `obs` in the robot's odometry frame; keyframe_id 0 when it belongs to none.
+  // `obs` in the robot's odometry frame; keyframe_id 0 when it belongs to none, robot_stamp_ns 0 when
+  // the robot sent no stamp.
   Status append(std::string_view robot_id, uint64_t seq, int64_t stamp_ns, KeyframeId keyframe_id,
-                const ObservationView& obs);
+                const ObservationView& obs, int64_t robot_stamp_ns = 0);
   // Inserts or replaces keyframes (by id) in the open batch, as appends are: upsert a keyframe before
   // appending the observations that reference it and it is committed no later than they are.
   Status save_keyframes(std::span<const Keyframe> keyframes);
@@ -64,6 +66,9 @@ class ObservationStore {
 
   // Every observation in insertion order (pending appends included).
   Status for_each(const std::function<void(const ObservationRecord&)>& visit);
+  // One robot's observations in insertion order, without their points (obs.hits and obs.misses
+  // empty): its poses, cheaply.
+  Status for_each_pose(std::string_view robot_id, const std::function<void(const ObservationRecord&)>& visit);
   Result<int64_t> count();
   // Every keyframe, by id.
   Result<std::vector<Keyframe>> keyframes();
@@ -99,6 +104,9 @@ class ObservationStore {
   Result<Stmt> prepare(const char* sql);
   Error db_error(std::string_view what) const;
   Status begin_batch();
+  // Steps `st` (columns as kRowColumns, then hits and misses when `with_points`) and visits each row.
+  Status visit_rows(sqlite3_stmt* st, bool with_points,
+                    const std::function<void(const ObservationRecord&)>& visit);
 
   std::filesystem::path path_;
   StoreOptions options_;

@@ -186,6 +186,7 @@ void RobotLinks::publish(const RobotReport& report, bool driving) {
     scan.max_range = report.max_range;
     if (report.sensor)
       scan.sensor = protocol::V2SensorOffset{report.sensor->x, report.sensor->y, report.sensor->theta};
+    scan.stamp = report.time_s;  // the robot's own clock: simulated time
     status = protocol::encode_v2_scan(scan, settings_.limits, text_);
     if (status) send(e, e.report_topic, as_bytes(text_));
     if (e.link->connected() && (e.status_connects != e.link->connects() || e.driving != driving ||

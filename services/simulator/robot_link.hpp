@@ -56,9 +56,9 @@ class RobotLinks {
   // Stops speaking for it; a v2 robot says "offline" first.
   void remove(const std::string& robot_id);
 
-  // Publishes the robot's report (v1 adv, or v2 scan plus a status when `driving` changed, the
-  // connection is new, or kStatusPeriodS passed, so late subscribers learn it too). Unknown robots and failed
-  // publishes are counted, never fatal.
+  // Publishes the robot's report (v1 adv, or v2 scan stamped with the simulated time, plus a status
+  // when `driving` changed, the connection is new, or kStatusPeriodS passed, so late subscribers
+  // learn it too). Unknown robots and failed publishes are counted, never fatal.
   void publish(const RobotReport& report, bool driving);
 
   // Reconnection attempts that are due and the mqtt_connected gauge; call every loop iteration.

@@ -321,10 +321,13 @@ std::string format_path_reply(const PathReply& r) {
 }
 
 std::string describe(const RobotObservation& s) {
-  return fmt("observation %s seq %llu pose (%.2f, %.2f, %s) hits %zu misses %zu", s.robot_id().c_str(),
-             static_cast<unsigned long long>(s.seq()), s.pose().x(), s.pose().y(),
-             s.has_heading() ? fmt("%.2f", s.pose().theta()).c_str() : "-", s.hits().size(),
-             s.misses().size());
+  std::string line =
+      fmt("observation %s seq %llu pose (%.2f, %.2f, %s) hits %zu misses %zu", s.robot_id().c_str(),
+          static_cast<unsigned long long>(s.seq()), s.pose().x(), s.pose().y(),
+          s.has_heading() ? fmt("%.2f", s.pose().theta()).c_str() : "-", s.hits().size(), s.misses().size());
+  if (s.robot_stamp_ns() != 0)
+    line += fmt(" robot stamp %.6f s", static_cast<double>(s.robot_stamp_ns()) * 1e-9);
+  return line;
 }
 std::string describe(const RobotObservationBatch& s) {
   std::string out = fmt("observations of gateway %s batch %llu: %zu", s.gateway_id().c_str(),

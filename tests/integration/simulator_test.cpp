@@ -352,6 +352,7 @@ TEST_F(SimulatorTest, MultiplexedV2RobotSendsScansAndFollowsJsonWaypoints) {
   ASSERT_TRUE(protocol::decode_v2_scan(bytes_of(mqtt_->last(scan_topic)->payload), {}, obs).is_ok());
   EXPECT_TRUE(obs.has_heading);
   EXPECT_EQ(obs.hits.size() + obs.misses.size(), 16u);
+  EXPECT_GT(obs.robot_stamp_ns, 0) << "a v2 scan carries the robot's clock: the simulated time";
   EXPECT_TRUE(wait_until([&] { return mqtt_->last("v2/robot/" + id + "/status").has_value(); }, 10s));
 
   const std::string topic = "v2/server/" + id + "/waypoint";

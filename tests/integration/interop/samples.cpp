@@ -41,6 +41,7 @@ RobotObservationBatch sample_robot_observations() {
   s.robot_id("robot-ä7");
   s.seq(123456789012ULL);
   s.stamp_ns(1763800000123456789LL);
+  s.robot_stamp_ns(4321987654321LL);
   s.protocol(PROTOCOL_V2);
   s.pose(pose(1.5, -2.25, 3.0));
   s.has_heading(true);

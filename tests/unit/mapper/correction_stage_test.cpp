@@ -37,15 +37,16 @@ class CorrectionStageTest : public ::testing::Test {
     return mapper ? std::move(*mapper) : nullptr;
   }
 
-  // `robot` at odometry pose (x, y, theta) seeing the wall y = kWallY over x +- 0.3, at time `step`.
+  // `robot` at odometry pose (x, y, theta) seeing the wall y = kWallY over x +- 0.3, at time `step`
+  // (robot_stamp_ns: on the robot's own clock, 0 when it sends none).
   static void observe(CorrectionStage& stage, Mapper& mapper, const std::string& robot, int step, double x,
-                      double y = 0.0, double theta = 0.0) {
+                      double y = 0.0, double theta = 0.0, int64_t robot_stamp_ns = 0) {
     std::vector<Vec2> hits;
     for (int i = -3; i <= 3; ++i) hits.push_back({x + 0.1 * i + 0.03, kWallY});
     const int64_t stamp = step * kStepNs;
     stage.add(mapper,
               RobotScan{robot, static_cast<uint64_t>(step), stamp,
-                        ObservationView{x, y, theta, true, hits, {}}, 0, Pose{}},
+                        ObservationView{x, y, theta, true, hits, {}}, 0, Pose{}, robot_stamp_ns},
               stamp);
   }
 
@@ -264,6 +265,27 @@ TEST_F(CorrectionStageTest, ARobotResetDropsItsWaitingObservationsAndItsKeyframe
   step(stage, *mapper, 12 + 60);  // long after: the dropped keyframe would have gone stale
   EXPECT_FALSE(touched(*mapper, open_wall)) << "an observation held before the reset reached the grid";
   EXPECT_EQ(stage.stats().robots_reset, 1);
+}
+
+TEST_F(CorrectionStageTest, TheRobotStampWaitsWithItsObservationAndIsStoredWithIt) {
+  auto mapper = make_mapper();
+  ASSERT_TRUE(mapper);
+  CorrectionStage stage(true, corrector_);
+  const auto robot_stamp = [](int step) { return 1'000'000'000 + step * 37; };
+  for (int i = 0; i < 12; ++i) observe(stage, *mapper, "r1", i, -1.5 + kStepM * i, 0.0, 0.0, robot_stamp(i));
+  step(stage, *mapper, 12);
+  step(stage, *mapper, 12 + 60);  // the open keyframe goes stale: every observation is stored
+  EXPECT_EQ(stage.held_observations(), 0);
+  mapper->commit();
+  mapper.reset();
+  auto store = ObservationStore::open(options_.store);
+  ASSERT_TRUE(store.is_ok()) << store.message();
+  int stored = 0;
+  ASSERT_TRUE(store->for_each([&](const ObservationRecord& r) {
+    EXPECT_EQ(r.robot_stamp_ns, robot_stamp(static_cast<int>(r.seq))) << "seq " << r.seq;
+    ++stored;
+  }));
+  EXPECT_EQ(stored, 12);
 }
 
 }  // namespace

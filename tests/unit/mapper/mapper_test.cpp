@@ -1,5 +1,5 @@
 // Mapper without DDS: edit replies, rebuilds after a robot reset and a resolution change, a failed
-// import, and observations that arrive while a rebuild runs.
+// import, observations that arrive while a rebuild runs (their robot stamps too).
 #include "mapper/mapper.hpp"
 
 #include <gtest/gtest.h>
@@ -30,11 +30,14 @@ class MapperCore : public ::testing::Test {
     return mapper ? std::move(*mapper) : nullptr;
   }
 
-  // `robot` at (0, y) seeing a wall segment at x = wall_x.
-  static void observe(Mapper& mapper, const std::string& robot, uint64_t seq, double y, double wall_x) {
+  // `robot` at (0, y) seeing a wall segment at x = wall_x; robot_stamp_ns 0: the robot sent none.
+  static void observe(Mapper& mapper, const std::string& robot, uint64_t seq, double y, double wall_x,
+                      int64_t robot_stamp_ns = 0) {
     std::vector<Vec2> hits;
     for (int i = -3; i <= 3; ++i) hits.push_back({wall_x, y + 0.1 * i + 0.03});
-    mapper.integrate(RobotScan{robot, seq, 0, ObservationView{0.0, y, 0.0, false, hits, {}}, 0, Pose{}}, 0);
+    mapper.integrate(
+        RobotScan{robot, seq, 0, ObservationView{0.0, y, 0.0, false, hits, {}}, 0, Pose{}, robot_stamp_ns},
+        0);
   }
 
   static bool occupied(const Mapper& mapper, Vec2 p) {
@@ -47,6 +50,15 @@ class MapperCore : public ::testing::Test {
     std::vector<RequestReply> replies = mapper.take_replies();
     EXPECT_EQ(replies.size(), 1u);
     return replies.empty() ? RequestReply{} : replies.front();
+  }
+
+  // Every stored observation's robot stamp, in store order.
+  std::vector<int64_t> stored_robot_stamps() {
+    std::vector<int64_t> stamps;
+    auto store = ObservationStore::open(options_.store);
+    EXPECT_TRUE(store.is_ok());
+    EXPECT_TRUE(store->for_each([&](const ObservationRecord& r) { stamps.push_back(r.robot_stamp_ns); }));
+    return stamps;
   }
 
   int64_t stored_observations() {
@@ -188,6 +200,19 @@ TEST_F(MapperCore, ObservationsDuringARebuildAreKeptAndStored) {
   EXPECT_TRUE(occupied(*mapper, {-1.03, 0.53}));
   mapper->commit();
   EXPECT_EQ(stored_observations(), 2);
+}
+
+TEST_F(MapperCore, RobotStampsAreStoredAlsoWhenARebuildHeldTheObservationBack) {
+  auto mapper = make();
+  observe(*mapper, "r1", 1, 0.0, 1.03, 11);
+  const GridConfig c = mapper->grid().config();
+  mapper->submit(LayoutRequest{14, 0.05, c.origin_x, c.origin_y, 0.0, 0.0, -1.0, false});
+  ASSERT_TRUE(mapper->rebuilding());
+  observe(*mapper, "r2", 1, 0.5, -1.03, 22);
+  observe(*mapper, "r2", 2, 0.6, -1.03);
+  mapper->wait_for_rebuild();
+  mapper->commit();
+  EXPECT_EQ(stored_robot_stamps(), (std::vector<int64_t>{11, 22, 0}));
 }
 
 TEST_F(MapperCore, ReRenderAppliesTheKeyframeCorrectionsAndARestartKeepsThem) {

@@ -65,6 +65,7 @@ TEST(StoreKeyframes, ASchema1StoreOpensWithKeyframeZeroAndTakesKeyframes) {
                       EXPECT_EQ(r.robot_id, "old");
                       EXPECT_EQ(r.seq, 7u);
                       EXPECT_EQ(r.keyframe_id, 0u);
+                      EXPECT_EQ(r.robot_stamp_ns, 0);
                       hits.assign(r.obs.hits.begin(), r.obs.hits.end());
                     })
                     .is_ok());
@@ -73,7 +74,7 @@ TEST(StoreKeyframes, ASchema1StoreOpensWithKeyframeZeroAndTakesKeyframes) {
     ASSERT_TRUE(store->save_keyframes({&k, 1}).is_ok());
     ASSERT_TRUE(store->append("new", 1, 80, 3, ObservationView{}).is_ok());
   }
-  auto reopened = ObservationStore::open(path);  // now at schema 2: no second migration
+  auto reopened = ObservationStore::open(path);  // now at the current schema: no second migration
   ASSERT_TRUE(reopened.is_ok()) << reopened.message();
   EXPECT_EQ(keyframe_ids_of_observations(*reopened), (std::vector<KeyframeId>{0, 3}));
   auto keyframes = reopened->keyframes();

@@ -225,10 +225,11 @@ TEST(SlamctlFormat, ObservationBatchIsALineThenOneIndentedLinePerObservation) {
   batch.observations()[0].hits().resize(4);
   batch.observations()[1].robot_id("r2");
   batch.observations()[1].seq(9);
+  batch.observations()[1].robot_stamp_ns(12'500'000'000);
   EXPECT_EQ(describe(batch),
             "observations of gateway vm:42 batch 7: 2\n"
             "  observation r1 seq 3 pose (0.00, 0.00, -) hits 4 misses 0\n"
-            "  observation r2 seq 9 pose (0.00, 0.00, -) hits 0 misses 0");
+            "  observation r2 seq 9 pose (0.00, 0.00, -) hits 0 misses 0 robot stamp 12.500000 s");
 }
 
 TEST(SlamctlFormat, AlertLineAndJson) {
