@@ -1,7 +1,8 @@
 #pragma once
 // What the mapper does with files, shared by the DDS edge (MapFileRequest) and the offline commands
 // (--export/--import): opening the store, choosing the start-up layout, and ROS map export/import
-// with failures sorted into the kinds a MapReply distinguishes (bad request, I/O, bad file).
+// with failures sorted into the kinds a MapReply distinguishes (bad request, I/O, bad file, and for
+// trajectories, trajectory_export.hpp, unknown robot).
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -24,11 +25,11 @@ Result<GridConfig> startup_config(const GridConfig& defaults, ObservationStore& 
 // True when the fields a GridConfig request sets are equal (no rebuild needed).
 bool same_layout(const GridConfig& a, const GridConfig& b);
 
-enum class FileFailure { None, InvalidRequest, Io, BadFile };
+enum class FileFailure { None, InvalidRequest, Io, BadFile, UnknownRobot };
 
 struct FileOutcome {
   FileFailure failure = FileFailure::None;
-  std::string message;            // what was done, or what went wrong (naming the file)
+  std::string message;            // what was done, or what went wrong (naming the file or robot)
   std::optional<MapImage> image;  // read_map_file: the decoded map
   bool ok() const { return failure == FileFailure::None; }
 };

@@ -9,6 +9,7 @@
 
 #include "mapper/map_files.hpp"
 #include "mapper/rebuild.hpp"
+#include "mapper/trajectory_export.hpp"
 
 namespace slam::mapper {
 namespace {
@@ -38,6 +39,8 @@ RequestResult to_request_result(FileFailure failure) {
       return RequestResult::IoError;
     case FileFailure::BadFile:
       return RequestResult::BadFile;
+    case FileFailure::UnknownRobot:
+      return RequestResult::UnknownRobot;
   }
   return RequestResult::IoError;
 }
@@ -343,6 +346,15 @@ void Mapper::handle_file(const FileRequest& request) {
   const std::string& path = request.yaml_path;
   if (request.action == FileAction::Export) {
     const FileOutcome out = export_map_file(*grid_, path);
+    return reply(id, to_request_result(out.failure), out.message);
+  }
+  if (request.action == FileAction::ExportTrajectoryTum ||
+      request.action == FileAction::ExportTrajectoryCarmen) {
+    // The open batch is read through the same connection: every observation stored so far is in it
+    // (those still waiting for their keyframe's match are not stored yet).
+    const FileOutcome out = export_trajectory_file(
+        *store_, request.robot_id, path,
+        request.action == FileAction::ExportTrajectoryTum ? TrajectoryFormat::Tum : TrajectoryFormat::Carmen);
     return reply(id, to_request_result(out.failure), out.message);
   }
   if (request.action != FileAction::Import)

@@ -64,11 +64,12 @@ struct EditRequest {
 };
 
 // Values as map.idl's MapFileAction; others are answered "unknown action".
-enum class FileAction : int32_t { Export, Import };
+enum class FileAction : int32_t { Export, Import, ExportTrajectoryTum, ExportTrajectoryCarmen };
 struct FileRequest {
   uint64_t request_id = 0;
   FileAction action = FileAction::Export;
-  std::string yaml_path;
+  std::string yaml_path;      // the map's YAML, or the trajectory's text file
+  std::string robot_id = {};  // ExportTrajectory*: whose trajectory
 };
 
 using MapCommand = std::variant<LayoutRequest, EditRequest, FileRequest>;

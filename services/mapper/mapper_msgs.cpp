@@ -44,7 +44,8 @@ EditRequest to_request(const slam::MapEdit& in) {
 }
 
 FileRequest to_request(const slam::MapFileRequest& in) {
-  return FileRequest{in.request_id(), static_cast<FileAction>(in.action()), in.yaml_path().to_string()};
+  return FileRequest{in.request_id(), static_cast<FileAction>(in.action()), in.yaml_path().to_string(),
+                     in.robot_id().to_string()};
 }
 
 slam::MapReply to_reply(const RequestReply& in) {

@@ -1,4 +1,4 @@
-// slam-mapper --export / --import (see mapper_offline.hpp).
+// slam-mapper --export / --import / --export-trajectory (see mapper_offline.hpp).
 #include "mapper/mapper_offline.hpp"
 
 #include <filesystem>
@@ -6,6 +6,7 @@
 
 #include "mapper/map_files.hpp"
 #include "mapper/rebuild.hpp"
+#include "mapper/trajectory_export.hpp"
 
 namespace slam::mapper {
 namespace {
@@ -24,6 +25,14 @@ Result<std::string> export_store(const MapperOptions& o, ObservationStore& store
   return summary + ")";
 }
 
+Result<std::string> export_trajectory(const MapperOptions& o, ObservationStore& store) {
+  const auto format = trajectory_format_named(o.trajectory_format).value_or(TrajectoryFormat::Tum);
+  FileOutcome out = export_trajectory_file(store, o.export_trajectory, o.trajectory_out, format);
+  if (out.failure == FileFailure::UnknownRobot) return Error{out.message + " in " + o.store};
+  if (!out.ok()) return Error{out.message};
+  return out.message;
+}
+
 Result<std::string> import_prior(const MapperOptions& o, ObservationStore& store) {
   FileOutcome in = read_map_file(o.import_yaml);
   if (!in.ok()) return Error{in.message};
@@ -35,10 +44,12 @@ Result<std::string> import_prior(const MapperOptions& o, ObservationStore& store
 
 Result<std::string> run_offline(const MapperOptions& o) {
   std::error_code ec;
-  if (!o.export_yaml.empty() && !std::filesystem::is_regular_file(o.store, ec))
+  const bool exports = !o.export_yaml.empty() || !o.export_trajectory.empty();
+  if (exports && !std::filesystem::is_regular_file(o.store, ec))
     return Error{"observation store " + o.store + ": no such file (nothing to export)"};
   auto store = open_store(o.store, StoreOptions{o.store_batch});
   if (!store) return store.error();
+  if (!o.export_trajectory.empty()) return export_trajectory(o, *store);
   return o.export_yaml.empty() ? import_prior(o, *store) : export_store(o, *store);
 }
 

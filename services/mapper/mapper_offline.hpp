@@ -1,7 +1,8 @@
 #pragma once
-// slam-mapper's offline commands: --export (rebuild from the store, write a ROS map) and --import
-// (store a ROS map as the prior). No DDS: they work on a store no mapper has open, e.g. for backups
-// or to seed a new site's map before the fleet starts.
+// slam-mapper's offline commands: --export (rebuild from the store, write a ROS map), --import
+// (store a ROS map as the prior) and --export-trajectory (one robot's corrected trajectory as TUM or
+// CARMEN text). No DDS: they work on a store no mapper has open, e.g. for backups, to seed a new
+// site's map before the fleet starts, or to evaluate a stopped fleet's run.
 #include <string>
 
 #include "common/core/result.hpp"

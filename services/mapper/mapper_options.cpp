@@ -3,6 +3,8 @@
 
 #include <cmath>
 
+#include "mapper/trajectory_export.hpp"
+
 namespace slam::mapper {
 
 void add_mapper_options(CLI::App& app, MapperOptions& o) {
@@ -12,7 +14,10 @@ void add_mapper_options(CLI::App& app, MapperOptions& o) {
       "  slam-mapper --store map.db --export map.yaml   rebuild the map from the store, write map.yaml + "
       "map.pgm\n"
       "  slam-mapper --store map.db --import map.yaml   store a ROS map_server map as the prior (applied\n"
-      "                                                 under every observation at the next start/rebuild)");
+      "                                                 under every observation at the next start/rebuild)\n"
+      "  slam-mapper --store map.db --export-trajectory sim-1 --trajectory-out sim-1.tum\n"
+      "                                                 write a robot's corrected trajectory (TUM or "
+      "CARMEN)");
 
   app.add_option("--store", o.store, "SQLite file of every observation (created with its directory)")
       ->capture_default_str();
@@ -72,7 +77,16 @@ void add_mapper_options(CLI::App& app, MapperOptions& o) {
                                      "offline: write the stored map to FILE.yaml (+ .pgm) and exit");
   auto* import_flag =
       app.add_option("--import", o.import_yaml, "offline: store FILE.yaml (+ its PGM) as the prior and exit");
+  auto* trajectory_flag =
+      app.add_option("--export-trajectory", o.export_trajectory,
+                     "offline: write ROBOT's stored trajectory to --trajectory-out and exit");
+  app.add_option("--trajectory-out", o.trajectory_out, "the trajectory file --export-trajectory writes");
+  app.add_option("--trajectory-format", o.trajectory_format,
+                 "tum (stamp x y z qx qy qz qw) or carmen (ODOM lines)")
+      ->check(CLI::IsMember({"tum", "carmen"}))
+      ->capture_default_str();
   export_flag->excludes(import_flag);
+  trajectory_flag->excludes(export_flag)->excludes(import_flag);
 }
 
 Status validate(const MapperOptions& o) {
@@ -88,6 +102,9 @@ Status validate(const MapperOptions& o) {
   if (!std::isfinite(o.slam_old_age_s) || o.slam_old_age_s < 1.0 || o.slam_old_age_s > 86400.0)
     return Error{"slam_old_age_s: must be between 1 and 86400 s"};
   if (o.max_queued_observations < 1) return Error{"max_queued_observations: must be at least 1"};
+  if (!trajectory_format_named(o.trajectory_format)) return Error{"trajectory_format: must be tum or carmen"};
+  if (!o.export_trajectory.empty() && o.trajectory_out.empty())
+    return Error{"trajectory_out: --export-trajectory needs the file to write"};
   return Status::ok();
 }
 

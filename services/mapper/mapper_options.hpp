@@ -1,8 +1,8 @@
 #pragma once
 // slam-mapper's configuration: the store, the grid defaults (the core's GridConfig), the publishing
-// rates and the two offline commands (--export, --import), with defaults, CLI11/YAML binding and one
-// validator. Flags are named after the keys: `grid.resolution` is --grid-resolution on the command
-// line and `grid: {resolution: 0.05}` in a --config file.
+// rates and the offline commands (--export, --import, --export-trajectory), with defaults, CLI11/YAML
+// binding and one validator. Flags are named after the keys: `grid.resolution` is --grid-resolution
+// on the command line and `grid: {resolution: 0.05}` in a --config file.
 #include <CLI/CLI.hpp>
 #include <string>
 
@@ -31,12 +31,16 @@ struct MapperOptions {
   double slam_old_age_s = 60.0;          // own keyframes this old count as the old map (loop closure)
   std::string slam_wall_heading = "on";  // keyframe headings held to the walls' directions
   std::string slam_point_refine = "on";  // matches refined against the keyframes' own points
-  // Offline commands (no DDS): rebuild from the store and write a ROS map, or store a map as prior.
+  // Offline commands (no DDS): rebuild from the store and write a ROS map, store a map as prior, or
+  // write one robot's trajectory (to trajectory_out, as tum or carmen).
   std::string export_yaml;
   std::string import_yaml;
+  std::string export_trajectory;  // the robot
+  std::string trajectory_out;
+  std::string trajectory_format = "tum";
 
   bool slam_enabled() const { return slam == "on"; }
-  bool offline() const { return !export_yaml.empty() || !import_yaml.empty(); }
+  bool offline() const { return !export_yaml.empty() || !import_yaml.empty() || !export_trajectory.empty(); }
 };
 
 // Adds the common flags and every mapper flag to `app`, bound to `options`.

@@ -138,6 +138,10 @@ const std::vector<Subcommand>& subcommands() {
       {"missions", "each robot's mission: waypoint being driven to, laps done, status", add_missions},
       {"path", "plan a path: path x0 y0 x1 y1", add_path},
       {"map", "save or load the map (ROS map_server YAML + PGM, on the mapper's disk)", add_map},
+      {"trajectory",
+       "write a robot's corrected trajectory (TUM or CARMEN text, on the mapper's disk): trajectory ROBOT "
+       "FILE",
+       add_trajectory},
       {"grid", "change the grid layout (the mapper rebuilds from its store)", add_grid},
       {"obstruct", "mark the cell at x y occupied by hand", add_obstruct},
       {"unobstruct", "remove a manual obstruction at x y", add_unobstruct},

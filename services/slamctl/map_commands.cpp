@@ -28,6 +28,38 @@ Handler add_map(CLI::App& cli) {
 
 namespace {
 
+struct TrajectoryArgs {
+  std::string robot;
+  std::string file;
+  std::string format = "tum";
+};
+
+// The mapper writes the file and answers with how many poses, from which stamp to which.
+int cmd_trajectory(Session& s, const TrajectoryArgs& a) {
+  MapFileRequest req;
+  req.action(a.format == "carmen" ? MAP_EXPORT_TRAJECTORY_CARMEN : MAP_EXPORT_TRAJECTORY_TUM);
+  req.yaml_path(a.file);
+  req.robot_id(a.robot);
+  return map_request(s, dds::kMapFileRequest, req, "trajectory of " + a.robot + " written to " + a.file);
+}
+
+}  // namespace
+
+Handler add_trajectory(CLI::App& cli) {
+  auto a = std::make_shared<TrajectoryArgs>();
+  cli.add_option("robot", a->robot, "robot id")->required();
+  cli.add_option("file", a->file, "the file to write, on the mapper's disk (its directory must exist)")
+      ->required();
+  cli.add_option(
+         "--format", a->format,
+         "tum: 'stamp x y z qx qy qz qw' lines; carmen: 'ODOM x y theta 0 0 0 stamp host stamp' lines")
+      ->check(CLI::IsMember({"tum", "carmen"}))
+      ->capture_default_str();
+  return [a](Session& s) { return cmd_trajectory(s, *a); };
+}
+
+namespace {
+
 struct GridArgs {
   double resolution = 0.05;
   double width = 0;

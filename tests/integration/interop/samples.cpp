@@ -159,8 +159,9 @@ MapEdit sample_map_edit() {
 MapFileRequest sample_map_file_request() {
   MapFileRequest s;
   s.request_id(11);
-  s.action(MAP_IMPORT);
-  s.yaml_path("/tmp/maps/office floor/map.yaml");
+  s.action(MAP_EXPORT_TRAJECTORY_CARMEN);
+  s.yaml_path("/tmp/maps/office floor/sim-1.log");
+  s.robot_id("sim-ä1");
   return s;
 }
 

@@ -49,6 +49,26 @@ TEST(MapperOptions, ValidationNamesTheBadKey) {
   MapperOptions both;
   EXPECT_FALSE(parse(both, {"--export", "a.yaml", "--import", "b.yaml"}))
       << "--export and --import exclude each other";
+  MapperOptions no_file;
+  const Status needs_file = parse(no_file, {"--export-trajectory", "r1"});
+  EXPECT_NE(needs_file.message().find("trajectory_out"), std::string::npos) << needs_file.message();
+  MapperOptions bad_format;
+  EXPECT_FALSE(parse(bad_format, {"--export-trajectory", "r1", "--trajectory-out", "r1.txt",
+                                  "--trajectory-format", "kitti"}));
+  EXPECT_NE(error([](MapperOptions& o) { o.trajectory_format = "kitti"; }).find("trajectory_format"),
+            std::string::npos);
+}
+
+TEST(MapperOptions, TrajectoryExportIsAnOfflineCommand) {
+  MapperOptions o;
+  ASSERT_TRUE(parse(o, {"--export-trajectory", "sim-1", "--trajectory-out", "/tmp/sim-1.txt",
+                        "--trajectory-format", "carmen"}));
+  EXPECT_TRUE(o.offline());
+  EXPECT_EQ(o.export_trajectory, "sim-1");
+  EXPECT_EQ(o.trajectory_out, "/tmp/sim-1.txt");
+  EXPECT_EQ(o.trajectory_format, "carmen");
+  MapperOptions with_map;
+  EXPECT_FALSE(parse(with_map, {"--export-trajectory", "r1", "--trajectory-out", "t", "--export", "a.yaml"}));
 }
 
 }  // namespace

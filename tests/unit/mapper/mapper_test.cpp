@@ -1,5 +1,5 @@
 // Mapper without DDS: edit replies, rebuilds after a robot reset and a resolution change, a failed
-// import, observations that arrive while a rebuild runs (their robot stamps too).
+// import, observations that arrive while a rebuild runs (their robot stamps too), and trajectory requests.
 #include "mapper/mapper.hpp"
 
 #include <gtest/gtest.h>
@@ -213,6 +213,33 @@ TEST_F(MapperCore, RobotStampsAreStoredAlsoWhenARebuildHeldTheObservationBack) {
   mapper->wait_for_rebuild();
   mapper->commit();
   EXPECT_EQ(stored_robot_stamps(), (std::vector<int64_t>{11, 22, 0}));
+}
+
+TEST_F(MapperCore, ATrajectoryRequestWritesTheRobotsPosesWithItsStamps) {
+  auto mapper = make();
+  observe(*mapper, "r1", 1, 0.0, 1.03, 2'000'000'000);
+  observe(*mapper, "r2", 1, 0.5, -1.03, 9'000'000'000);
+  observe(*mapper, "r1", 2, 0.25, 1.03, 2'500'000'000);  // not committed yet: the request still sees it
+  const std::string path = (dir_.path() / "r1.tum").string();
+  mapper->submit(FileRequest{20, FileAction::ExportTrajectoryTum, path, "r1"});
+  const RequestReply done = only_reply(*mapper);
+  EXPECT_EQ(done.result, RequestResult::Ok) << done.message;
+  EXPECT_NE(done.message.find("wrote 2 poses of robot 'r1' (2.000000000 to 2.500000000 s)"),
+            std::string::npos)
+      << done.message;
+  std::ifstream in(path);
+  std::string first, second;
+  std::getline(in, first);
+  std::getline(in, second);
+  EXPECT_EQ(first, "2.000000000 0.000000 0.000000 0 0 0 0.000000000 1.000000000");
+  EXPECT_EQ(second, "2.500000000 0.000000 0.250000 0 0 0 0.000000000 1.000000000");
+
+  mapper->submit(FileRequest{21, FileAction::ExportTrajectoryCarmen, path, "ghost"});
+  EXPECT_EQ(only_reply(*mapper).result, RequestResult::UnknownRobot);
+  mapper->submit(FileRequest{22, FileAction::ExportTrajectoryTum, "/nonexistent-dir/r1.tum", "r1"});
+  EXPECT_EQ(only_reply(*mapper).result, RequestResult::IoError);
+  mapper->submit(FileRequest{23, FileAction::ExportTrajectoryTum, "", "r1"});
+  EXPECT_EQ(only_reply(*mapper).result, RequestResult::InvalidRequest);
 }
 
 TEST_F(MapperCore, ReRenderAppliesTheKeyframeCorrectionsAndARestartKeepsThem) {
