@@ -32,22 +32,23 @@ KeyframeBuilder::Step KeyframeBuilder::add(uint64_t id, uint32_t robot, int64_t 
     keyframe_.messages = 0;
     keyframe_.first_stamp_ns = stamp_ns;
     keyframe_.travel_m = keyframe_.turn_rad = 0.0;
+    keyframe_.scans = true;
     keyframe_.points.clear();
     open_ = true;
   }
   const Pose to_keyframe = keyframe_.odom.inverse();
   for (const Vec2& p : hits) keyframe_.points.push_back(to_keyframe.transform(p));
   ++keyframe_.messages;
+  keyframe_.scans = keyframe_.scans && static_cast<int>(hits.size()) >= options_.scan_points;
   keyframe_.last_stamp_ns = stamp_ns;
 
   const double travel = distance(pose.position(), keyframe_.odom.position());
   const double turn = std::abs(wrap_angle(pose.theta - keyframe_.odom.theta));
   keyframe_.travel_m = std::max(keyframe_.travel_m, travel);
   keyframe_.turn_rad = std::max(keyframe_.turn_rad, turn);
-  const bool dense =
-      static_cast<int>(keyframe_.points.size()) >= options_.enough_points &&
-      (keyframe_.travel_m >= options_.dense_travel_m || keyframe_.turn_rad >= options_.dense_turn_rad);
-  const bool complete = dense || travel >= options_.travel_m || turn >= options_.turn_rad ||
+  const bool scan_moved = keyframe_.scans && (keyframe_.travel_m >= options_.scan_travel_m ||
+                                              keyframe_.turn_rad >= options_.scan_turn_rad);
+  const bool complete = scan_moved || travel >= options_.travel_m || turn >= options_.turn_rad ||
                         keyframe_.messages >= options_.max_messages ||
                         stamp_ns - keyframe_.first_stamp_ns >= options_.max_span_ns;
   return complete ? Step::AddedAndClosed : Step::Added;

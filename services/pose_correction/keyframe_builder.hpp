@@ -22,14 +22,14 @@ struct KeyframeOptions {
   int max_messages = 30;                // ...or this many messages...
   int64_t max_span_ns = 4'000'000'000;  // ...or when its messages span this long
   double jump_m = 1.0;                  // an odometry step longer than this between two messages is a jump
-  // A laser scanner's scan can be matched alone: once a keyframe holds this many points it closes as
-  // soon as the robot has moved dense_travel_m or turned dense_turn_rad since it opened (a motion
-  // filter: a robot standing still keeps adding scans to one keyframe until one of the limits above).
-  // Each keyframe then carries odometry over centimetres, not the half metre a sparse robot needs,
-  // which matters on real robots whose odometry turns a few degrees off per metre.
-  int enough_points = 100;
-  double dense_travel_m = 0.1;
-  double dense_turn_rad = 0.05;
+  // A message with at least scan_points points is a laser scanner's scan, matchable alone. A keyframe
+  // of scans closes as soon as the robot has moved scan_travel_m or turned scan_turn_rad since it
+  // opened (a motion filter: a robot standing still keeps adding scans to one keyframe until one of
+  // the limits above). Its odometry then spans centimetres, not the half metre a sparse robot's
+  // keyframe needs, which matters on real robots whose odometry turns degrees off per metre.
+  int scan_points = 60;
+  double scan_travel_m = 0.1;
+  double scan_turn_rad = 0.05;
 };
 
 struct Keyframe {
@@ -45,6 +45,7 @@ struct Keyframe {
   // still: about zero of both).
   double travel_m = 0.0;
   double turn_rad = 0.0;
+  bool scans = true;         // every message was a laser scan (KeyframeOptions::scan_points)
   std::vector<Vec2> points;  // obstacle points in the keyframe's frame
 };
 

@@ -64,6 +64,12 @@ struct CorrectorOptions {
   // gate), which overstates a distinct match's error: at 1 tracking followed odometry through new
   // rooms and drifted twice as far (replayed runs, docs/mapping-quality.md).
   double track_variance_scale = 0.5;
+  // The same for a keyframe of laser scans (KeyframeOptions::scan_points), read with this many
+  // independent points: a scan pins its pose far better than the odometry of a 10 cm step, and
+  // fusing it at the sparse robots' weight left real robots' headings to drift (the benchmark logs,
+  // docs/mapping-quality.md).
+  double scan_track_variance_scale = 0.05;
+  double scan_independent_points = 100.0;
   double odom_sigma_m_per_sqrt_m = 0.03;  // odometry edge noise (a little above the usual drift)
   double odom_sigma_rad_per_m = 0.02;     // heading noise per metre travelled (edge and chain)
   // The walls' heading (wall_axes.hpp): each keyframe's heading is pulled toward the one its
@@ -77,6 +83,19 @@ struct CorrectorOptions {
   // Each match (tracking and tie) refined against the points of the keyframes around it
   // (point_refiner.hpp): the grid alone leaves walls up to half a cell off.
   bool point_refine = true;
+  // The keyframes around a match: those within local_reach_m (a sensor's useful reach) hold the
+  // points a tie's local grid and the point refinement read; at most tie_max_keyframes old ones
+  // (nearest first) for a tie, refine_max_keyframes for the refinement.
+  double local_reach_m = 10.0;
+  size_t tie_max_keyframes = 40;
+  size_t refine_max_keyframes = 60;
+  double window_margin_m = 0.3;  // beyond a keyframe's farthest point: the matcher's field blur
+  double tied_sigma_m = 0.05;    // chain uncertainty above which a tie searches the wide window
+  // A keyframe whose robot moved less than this since its previous one, and within it, was taken
+  // standing still: it sees what its previous keyframe saw, and matching it again adds nothing but
+  // the chance to be dragged by other robots' fresh keyframes (placed by odometry instead).
+  double standing_travel_m = 0.02;
+  double standing_turn_rad = 0.02;
   int optimise_every = 40;         // keyframes tied to the old map between optimisations
   double rerender_shift_m = 0.02;  // keyframe moves smaller than this are not re-rendered
   ScheduleOptions schedule;

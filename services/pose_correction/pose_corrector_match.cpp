@@ -12,20 +12,6 @@ namespace slam::correction {
 
 namespace {
 
-constexpr size_t kMaxNeighbours = 40;
-constexpr double kPointReach_m = 4.5;    // sensor range plus margin: local grids cover it
-constexpr double kWindowMargin_m = 0.3;  // beyond a keyframe's farthest point: the matcher's field blur
-constexpr double kTiedSigma_m = 0.05;    // chain uncertainty above which a wide search is needed
-// Keyframes whose points the tracking match is refined against: the nearest, which hold the walls
-// around a keyframe several times over.
-constexpr size_t kMaxWindowKeyframes = 60;
-// A keyframe whose robot moved less than this since its previous one, and within it, was taken
-// standing still. It sees the scene its previous keyframe saw: matching it again adds nothing but
-// the chance to be dragged by other robots' fresh keyframes, tied to it and to each other while
-// robots wait for one another (the office replays: a robot waiting 30 s slid 20 cm that way).
-constexpr double kStandingTravel_m = 0.02;
-constexpr double kStandingTurn_rad = 0.02;
-
 }  // namespace
 
 void PoseCorrector::old_neighbours(uint32_t robot, int64_t stamp_ns, Vec2 centre,
@@ -41,7 +27,7 @@ void PoseCorrector::old_neighbours(uint32_t robot, int64_t stamp_ns, Vec2 centre
   std::sort(out.begin(), out.end(), [&](uint32_t a, uint32_t b) {
     return distance(nodes_[a].estimate.position(), centre) < distance(nodes_[b].estimate.position(), centre);
   });
-  if (out.size() > kMaxNeighbours) out.resize(kMaxNeighbours);
+  if (out.size() > options_.tie_max_keyframes) out.resize(options_.tie_max_keyframes);
 }
 
 GridGeometry PoseCorrector::draw_local_grid(std::span<const uint32_t> slots, Vec2 centre, double half_extent,
@@ -64,16 +50,17 @@ void PoseCorrector::window_points(Vec2 centre, double half_extent, std::vector<V
   // Keyframes within a sensor's reach of the keyframe's origin see what it sees; a fixed radius
   // keeps the candidates bounded by the map's density, not its size.
   neighbours_.clear();
-  index_.near(centre, kPointReach_m, neighbours_);
+  index_.near(centre, options_.local_reach_m, neighbours_);
   std::erase_if(neighbours_,
                 [&](uint32_t slot) { return nodes_[slot].removed || nodes_[slot].points.empty(); });
-  if (neighbours_.size() > kMaxWindowKeyframes) {
-    std::nth_element(neighbours_.begin(), neighbours_.begin() + kMaxWindowKeyframes, neighbours_.end(),
+  if (neighbours_.size() > options_.refine_max_keyframes) {
+    std::nth_element(neighbours_.begin(), neighbours_.begin() + static_cast<std::ptrdiff_t>(options_.refine_max_keyframes),
+                     neighbours_.end(),
                      [&](uint32_t a, uint32_t b) {
                        return distance(nodes_[a].estimate.position(), centre) <
                               distance(nodes_[b].estimate.position(), centre);
                      });
-    neighbours_.resize(kMaxWindowKeyframes);
+    neighbours_.resize(options_.refine_max_keyframes);
   }
   gather_points(neighbours_, centre, half_extent, out);
 }
@@ -132,9 +119,9 @@ void PoseCorrector::prepare(Keyframe&& keyframe, const GridView& grid, bool matc
   job.standing = false;
   if (job.previous) {
     job.odom_relative = nodes_[*job.previous].odom.inverse().compose(keyframe.odom);
-    job.standing = keyframe.travel_m < kStandingTravel_m && keyframe.turn_rad < kStandingTurn_rad &&
-                   norm(job.odom_relative.position()) < kStandingTravel_m &&
-                   std::abs(job.odom_relative.theta) < kStandingTurn_rad;
+    job.standing = keyframe.travel_m < options_.standing_travel_m && keyframe.turn_rad < options_.standing_turn_rad &&
+                   norm(job.odom_relative.position()) < options_.standing_travel_m &&
+                   std::abs(job.odom_relative.theta) < options_.standing_turn_rad;
     job.odom_cov = rb.odometry_trust.scaled(odometry_covariance(job.odom_relative));
     const double d = norm(job.odom_relative.position());
     grow_by_motion(rb.chain_cov, job.odom_cov, d);
@@ -161,7 +148,7 @@ void PoseCorrector::prepare(Keyframe&& keyframe, const GridView& grid, bool matc
     // likelihood field's blur around it.
     double reach = 0.0;
     for (const Vec2& p : keyframe.points) reach = std::max(reach, norm(p));
-    const double half = reach + options_.track_window.linear_m + kWindowMargin_m;
+    const double half = reach + options_.track_window.linear_m + options_.window_margin_m;
     job.track_geometry = copy_window(grid, job.predicted.position(), half, job.track_cells);
     job.track_points.clear();
     if (options_.point_refine) window_points(job.predicted.position(), half, job.track_points);
@@ -172,7 +159,7 @@ void PoseCorrector::prepare(Keyframe&& keyframe, const GridView& grid, bool matc
     if (!rb.operator_pose && static_cast<int>(neighbours_.size()) >= options_.closure_min_keyframes) {
       if (schedule_.allow_tie(rb.schedule)) {
         const double chain_sigma = std::sqrt(std::max(rb.chain_cov(0, 0), rb.chain_cov(1, 1)));
-        job.wide_needed = chain_sigma > kTiedSigma_m;
+        job.wide_needed = chain_sigma > options_.tied_sigma_m;
         // Normal load: a wide search whenever tracking fails too; loaded: only the ones the
         // schedule grants, taken only when certainly needed.
         job.wide_permitted = schedule_.load() == Load::Normal ||
@@ -185,7 +172,7 @@ void PoseCorrector::prepare(Keyframe&& keyframe, const GridView& grid, bool matc
           job.neighbours = neighbours_.size();
           const double window =
               job.wide_permitted ? options_.closure_window.linear_m : options_.track_window.linear_m;
-          const double tie_half = kPointReach_m + window + options_.track_window.linear_m;
+          const double tie_half = options_.local_reach_m + window + options_.track_window.linear_m;
           job.tie_geometry = draw_local_grid(neighbours_, job.predicted.position(), tie_half,
                                              grid.geometry.resolution, job.tie_cells);
           job.tie_points.clear();
@@ -216,12 +203,15 @@ void PoseCorrector::match_keyframe(ScanMatcher& matcher, MatchJob& job) const {
   }
   // 1. Track: the keyframe against the grid, near the prediction.
   const auto& points = job.keyframe.points;
+  const bool scans = job.keyframe.scans;
+  const double independent = scans ? options_.scan_independent_points : 0.0;
   if (auto narrow = matcher.match(GridView{job.track_geometry, job.track_cells}, points, job.predicted,
-                                  options_.track_window)) {
+                                  options_.track_window, independent)) {
     // Fused with the odometry prediction by their covariances (a Kalman update): a sparse
     // keyframe's match is noisier than half a metre of odometry, and taking it as is would
     // random-walk the pose where the map is only the robot's own recent trail.
-    job.cov = with_floor(narrow->covariance * options_.track_variance_scale, 0.005, 0.002);
+    const double scale = scans ? options_.scan_track_variance_scale : options_.track_variance_scale;
+    job.cov = with_floor(narrow->covariance * scale, 0.005, 0.002);
     // The search read the grid's cells; the points of the keyframes around place the walls within them.
     if (options_.point_refine) {
       job.refiner.set_reference(job.track_points);
@@ -266,7 +256,7 @@ void PoseCorrector::match_keyframe(ScanMatcher& matcher, MatchJob& job) const {
   }
   job.wide = wide;
   if (auto tie = matcher.match(GridView{job.tie_geometry, job.tie_cells}, points, job.estimate,
-                               wide ? options_.closure_window : options_.track_window)) {
+                               wide ? options_.closure_window : options_.track_window, independent)) {
     if (options_.point_refine) {
       job.refiner.set_reference(job.tie_points);
       if (const auto refined = job.refiner.refine(points, tie->pose, tie->covariance))

@@ -106,7 +106,8 @@ bool DistinctMatch::accepts(const MatchResult& m) const {
 ScanMatcher::ScanMatcher(const MatcherOptions& options) : options_(options) {}
 
 Result<MatchResult> ScanMatcher::match(const GridView& grid, std::span<const Vec2> points,
-                                       const Pose& predicted, const SearchWindow& window) {
+                                       const Pose& predicted, const SearchWindow& window,
+                                       double independent_points) {
   SLAM_TRY(check_options(options_));
   const GridGeometry& geo = grid.geometry;
   if (geo.cells() == 0 || grid.classes.size() != geo.cells() || !(geo.resolution > 0.0))
@@ -267,7 +268,8 @@ Result<MatchResult> ScanMatcher::match(const GridView& grid, std::span<const Vec
   // likelihood relative to the best read as a log-likelihood; ambiguous directions keep many heavy
   // candidates. Worked in metres, heading counted as the arc it swings at the points' RMS range,
   // so a flat direction mixing position and heading (a ring) is found as one eigenvector.
-  const double temperature = std::max(1.0, static_cast<double>(n) / options_.independent_points);
+  const double independent = independent_points > 0.0 ? independent_points : options_.independent_points;
+  const double temperature = std::max(1.0, static_cast<double>(n) / independent);
   const Eigen::Vector3d best_scaled = best_offset.cwiseProduct(scale);
   double weight_sum = 0.0, distinct_sum = 0.0;
   Eigen::Vector3d first = Eigen::Vector3d::Zero();

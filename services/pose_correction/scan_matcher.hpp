@@ -76,8 +76,10 @@ class ScanMatcher {
   // `points` are in the keyframe's own frame; `predicted` is the keyframe's pose in the grid's frame.
   // Errors (as values): too few points, an empty grid view, a window that lies entirely off the
   // grid, non-finite input, best score below min_score.
+  // `independent_points` > 0 replaces MatcherOptions::independent_points for this match (a laser
+  // scan's points are far more independent than a sparse robot's gathered over half a metre).
   Result<MatchResult> match(const GridView& grid, std::span<const Vec2> points, const Pose& predicted,
-                            const SearchWindow& window);
+                            const SearchWindow& window, double independent_points = 0.0);
 
  private:
   MatcherOptions options_;

@@ -23,6 +23,7 @@
 #include "eval/replay.hpp"
 #include "mapper/map_files.hpp"
 #include "mapper/observation_store.hpp"
+#include "mapper/trajectory_export.hpp"
 #include "simulator/robot_log/carmen_log.hpp"
 #include "viewer/core/png_file.hpp"
 
@@ -164,6 +165,12 @@ Result<nlohmann::json> run(const Options& o) {
     j[key]["all"] = to_json(score_relations(*relations, poses));
     j[key]["short"] = to_json(score_relations(*relations, poses, 0.0, kShortRelation_s));
   }
+  // The final trajectory as TUM text, the robot's stamps (what `slamctl trajectory` writes live).
+  std::vector<mapper::TrajectoryPose> tum;
+  const std::vector<Pose> final_robot = robot_poses(played->final, log.sensor_in_robot);
+  for (size_t i = 0; i < final_robot.size(); ++i)
+    tum.push_back({static_cast<int64_t>(std::llround(log.stamps_s[i] * 1e9)), final_robot[i], true});
+  SLAM_TRY(mapper::write_trajectory(tum, base + ".tum", mapper::TrajectoryFormat::Tum));
   const correction::CorrectorStats& st = played->stats;
   j["slam"] = {{"keyframes", st.keyframes},
                {"matched", st.matched},
@@ -201,6 +208,7 @@ int main(int argc, char** argv) {
   app.add_option("--max-range", o.observations.max_range_m, "returns beyond this (m) count as no return")
       ->check(CLI::Range(0.5, 1000.0))
       ->capture_default_str();
+  app.add_option("--free-range", o.observations.free_range_m, "")->capture_default_str();
   app.add_flag("--v1", o.observations.v1, "as a legacy v1 robot: centimetre positions, no heading, <= 16 points");
   app.add_option("--log-level", o.log_level, "log level of the pose correction")
       ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error", "off"}))
@@ -209,21 +217,21 @@ int main(int argc, char** argv) {
   app.add_option("--keyframe-messages", k.max_messages, "a keyframe closes after this many scans")->capture_default_str();
   app.add_option("--keyframe-travel", k.travel_m, "...or this much travel (m)")->capture_default_str();
   app.add_option("--keyframe-turn", k.turn_rad, "...or this much turning (rad)")->capture_default_str();
-  app.add_option("--enough-points", k.enough_points, "")->capture_default_str();
-  app.add_option("--dense-travel", k.dense_travel_m, "")->capture_default_str();
-  app.add_option("--dense-turn", k.dense_turn_rad, "")->capture_default_str();
+  app.add_option("--scan-travel", k.scan_travel_m, "")->capture_default_str();
+  app.add_option("--scan-turn", k.scan_turn_rad, "")->capture_default_str();
   app.add_option("--track-window-m", o.slam.track_window.linear_m, "tracking search window (m)")->capture_default_str();
   app.add_option("--track-window-rad", o.slam.track_window.angular_rad, "tracking search window (rad)")
       ->capture_default_str();
   app.add_option("--wall-heading", o.slam.wall_heading, "the walls' heading (1/0)")->capture_default_str();
   app.add_option("--point-refine", o.slam.point_refine, "point refinement (1/0)")->capture_default_str();
-  app.add_option("--track-variance-scale", o.slam.track_variance_scale, "")->capture_default_str();
+  app.add_option("--track-variance-scale", o.slam.scan_track_variance_scale, "")->capture_default_str();
   app.add_option("--closure-window-m", o.slam.closure_window.linear_m, "")->capture_default_str();
   app.add_option("--closure-window-rad", o.slam.closure_window.angular_rad, "")->capture_default_str();
   app.add_option("--closure-radius", o.slam.closure_radius_m, "")->capture_default_str();
   app.add_option("--odom-sigma-m", o.slam.odom_sigma_m_per_sqrt_m, "")->capture_default_str();
   app.add_option("--odom-sigma-rad", o.slam.odom_sigma_rad_per_m, "")->capture_default_str();
-  app.add_option("--independent-points", o.slam.matcher.independent_points, "")->capture_default_str();
+  app.add_option("--independent-points", o.slam.scan_independent_points, "")->capture_default_str();
+  app.add_option("--local-reach", o.slam.local_reach_m, "")->capture_default_str();
   CLI11_PARSE(app, argc, argv);
   spdlog::set_level(spdlog::level::from_str(o.log_level));
 

@@ -51,7 +51,7 @@ LogObservations log_observations(std::span<const robot_log::LaserScan> scans, co
     for (size_t b : beams) {
       const double angle = sensor.theta + s.angle_min_rad + static_cast<double>(b) * s.angle_increment_rad;
       const bool hit = s.is_return(b) && s.ranges[b] <= o.max_range_m;
-      const double range = hit ? s.ranges[b] : o.max_range_m;
+      const double range = hit ? s.ranges[b] : std::min(o.max_range_m, o.free_range_m);
       const Vec2 end{sensor.x + range * std::cos(angle), sensor.y + range * std::sin(angle)};
       if (o.v1) {
         if (hit && obs.hits.size() < kV1MaxPoints)

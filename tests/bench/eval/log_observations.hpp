@@ -15,6 +15,7 @@ namespace slam::bench {
 struct LogObservationOptions {
   int beams = 0;              // thin each scan to this many evenly spaced beams; 0: all
   double max_range_m = 30.0;  // returns beyond this become misses (free up to it)
+  double free_range_m = 1e9;  // misses end here at most
   bool v1 = false;            // legacy messages: centimetre position, no heading, hits only (<= 16)
   std::string robot = "log";
 };
