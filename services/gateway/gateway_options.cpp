@@ -44,6 +44,9 @@ void add_gateway_options(CLI::App& app, GatewayOptions& o) {
       ->capture_default_str();
   app.add_option("--max-abs-angle-rad", l.max_abs_angle_rad, "largest |angle| accepted (rad)")
       ->capture_default_str();
+  app.add_option("--scan-free-range-m", l.scan_free_range_m,
+                 "a scan's beam without a return clears free space this far at most (m)")
+      ->capture_default_str();
 
   app.add_option("--offline-after-s", o.offline_after_s, "a robot silent this long (s) is offline")
       ->capture_default_str();

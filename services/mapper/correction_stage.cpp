@@ -31,7 +31,8 @@ void CorrectionStage::add(Mapper& mapper, const RobotScan& scan, int64_t now_mon
   if (!enabled_) return mapper.integrate(scan, now_mono_ns);
   const ObservationView& v = scan.view;
   auto keyframe =
-      corrector_.add(scan.robot_id, scan.stamp_ns, Pose{v.x, v.y, v.theta}, v.has_heading, v.hits);
+      corrector_.add(scan.robot_id, scan.stamp_ns, Pose{v.x, v.y, v.theta}, v.has_heading, v.hits,
+                     scan.robot_stamp_ns != 0 ? std::optional<int64_t>(scan.robot_stamp_ns) : std::nullopt);
   if (!keyframe) return mapper.reject(scan.robot_id, scan.seq, keyframe.message());
   // Recycled records: their strings and point buffers keep their capacity (no allocation per message).
   Held held;

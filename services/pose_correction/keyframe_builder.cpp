@@ -7,7 +7,9 @@ namespace slam::correction {
 
 KeyframeBuilder::Step KeyframeBuilder::add(uint64_t id, uint32_t robot, int64_t stamp_ns,
                                            const Pose& odom_pose, bool has_heading,
-                                           std::span<const Vec2> hits) {
+                                           std::span<const Vec2> hits,
+                                           std::optional<int64_t> robot_stamp_ns) {
+  const int64_t measured_ns = robot_stamp_ns.value_or(stamp_ns);
   const Pose pose{odom_pose.x, odom_pose.y, has_heading ? odom_pose.theta : 0.0};
   if (has_last_ && !jumped_) {
     // By distance only: receive stamps jitter (and a simulator may run faster than real time).
@@ -31,6 +33,7 @@ KeyframeBuilder::Step KeyframeBuilder::add(uint64_t id, uint32_t robot, int64_t 
     keyframe_.has_heading = has_heading;
     keyframe_.messages = 0;
     keyframe_.first_stamp_ns = stamp_ns;
+    keyframe_.first_robot_stamp_ns = measured_ns;
     keyframe_.travel_m = keyframe_.turn_rad = 0.0;
     keyframe_.scans = true;
     keyframe_.points.clear();
@@ -50,7 +53,7 @@ KeyframeBuilder::Step KeyframeBuilder::add(uint64_t id, uint32_t robot, int64_t 
                                               keyframe_.turn_rad >= options_.scan_turn_rad);
   const bool complete = scan_moved || travel >= options_.travel_m || turn >= options_.turn_rad ||
                         keyframe_.messages >= options_.max_messages ||
-                        stamp_ns - keyframe_.first_stamp_ns >= options_.max_span_ns;
+                        measured_ns - keyframe_.first_robot_stamp_ns >= options_.max_span_ns;
   return complete ? Step::AddedAndClosed : Step::Added;
 }
 

@@ -9,6 +9,7 @@
 // step no robot can drive (a reset, a teleport) closes it and starts a new trajectory segment, so
 // the jump never becomes a motion in the pose graph.
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -39,8 +40,10 @@ struct Keyframe {
   Pose odom;             // origin in the robot's odometry frame (heading 0 without one)
   bool has_heading = false;
   int messages = 0;
-  int64_t first_stamp_ns = 0;
+  int64_t first_stamp_ns = 0;  // arrival clock (the corrector's)
   int64_t last_stamp_ns = 0;
+  // The robot's own clock when its messages carry one (else the arrival clock): the span it covers.
+  int64_t first_robot_stamp_ns = 0;
   // The farthest the robot got from the origin while the keyframe was open (a robot standing
   // still: about zero of both).
   double travel_m = 0.0;
@@ -61,9 +64,11 @@ class KeyframeBuilder {
 
   explicit KeyframeBuilder(const KeyframeOptions& options) : options_(options) {}
 
-  // `id` is used when the observation opens a new keyframe.
+  // `id` is used when the observation opens a new keyframe. `stamp_ns` is the arrival clock (what
+  // stale() is asked against); `robot_stamp_ns`, when the robot sent one, measures the keyframe's
+  // span: messages that queued in a broker or a log played fast arrive bunched, not as measured.
   Step add(uint64_t id, uint32_t robot, int64_t stamp_ns, const Pose& odom_pose, bool has_heading,
-           std::span<const Vec2> hits);
+           std::span<const Vec2> hits, std::optional<int64_t> robot_stamp_ns = std::nullopt);
   // Starts a new segment: the next observation opens a keyframe whatever its distance to the last.
   void start_segment();
 

@@ -60,7 +60,8 @@ uint32_t PoseCorrector::robot_index(std::string_view robot) {
 }
 
 Result<uint64_t> PoseCorrector::add(std::string_view robot, int64_t stamp_ns, const Pose& odom_pose,
-                                    bool has_heading, std::span<const Vec2> hits) {
+                                    bool has_heading, std::span<const Vec2> hits,
+                                    std::optional<int64_t> robot_stamp_ns) {
   const bool points_finite =
       std::all_of(hits.begin(), hits.end(), [](Vec2 p) { return std::isfinite(p.x) && std::isfinite(p.y); });
   if (!finite(odom_pose) || !points_finite) {
@@ -70,11 +71,18 @@ Result<uint64_t> PoseCorrector::add(std::string_view robot, int64_t stamp_ns, co
   const uint32_t r = robot_index(robot);
   Robot& rb = robots_[r];
   rb.has_heading = has_heading;
-  auto step = rb.builder.add(next_id_, r, stamp_ns, odom_pose, has_heading, hits);
+  if (!rb.builder.has_last() && rb.state.keyframes == 0 && !rb.operator_pose &&
+      norm(odom_pose.position()) > options_.far_start_m) {
+    rb.state.map_from_odom = Pose{-odom_pose.x, -odom_pose.y, 0.0};
+    mark_changed(rb, CorrectionSource::Identity);
+    spdlog::info("pose correction: robot {} starts {:.0f} m from the map's origin: placed at the origin",
+                 rb.name, norm(odom_pose.position()));
+  }
+  auto step = rb.builder.add(next_id_, r, stamp_ns, odom_pose, has_heading, hits, robot_stamp_ns);
   if (step == KeyframeBuilder::Step::Jump) {
     if (rb.builder.open()) closed_.push_back(rb.builder.take());
     ++stats_.segments;
-    step = rb.builder.add(next_id_, r, stamp_ns, odom_pose, has_heading, hits);
+    step = rb.builder.add(next_id_, r, stamp_ns, odom_pose, has_heading, hits, robot_stamp_ns);
   }
   const uint64_t id = rb.builder.open_id();
   if (id == next_id_) ++next_id_;

@@ -83,7 +83,7 @@ struct CorrectorOptions {
   // Each match (tracking and tie) refined against the points of the keyframes around it
   // (point_refiner.hpp): the grid alone leaves walls up to half a cell off.
   bool point_refine = true;
-  // The keyframes around a match: those within local_reach_m (a sensor's useful reach) hold the
+  // The keyframes around a match: those within its farthest point, at most local_reach_m, hold the
   // points a tie's local grid and the point refinement read; at most tie_max_keyframes old ones
   // (nearest first) for a tie, refine_max_keyframes for the refinement.
   double local_reach_m = 10.0;
@@ -96,6 +96,10 @@ struct CorrectorOptions {
   // the chance to be dragged by other robots' fresh keyframes (placed by odometry instead).
   double standing_travel_m = 0.02;
   double standing_turn_rad = 0.02;
+  // A robot whose odometry starts farther than this from the map's origin (a real robot's counters
+  // start wherever they were last reset: the MIT CSAIL log's at x = 600 m) starts with its first pose
+  // moved to the origin, heading kept, instead of beyond the map's extent.
+  double far_start_m = 100.0;
   int optimise_every = 40;         // keyframes tied to the old map between optimisations
   double rerender_shift_m = 0.02;  // keyframe moves smaller than this are not re-rendered
   ScheduleOptions schedule;
@@ -174,10 +178,12 @@ class PoseCorrector {
   PoseCorrector(const PoseCorrector&) = delete;
   PoseCorrector& operator=(const PoseCorrector&) = delete;
 
-  // A raw observation (pose and hits in the robot's odometry frame). Returns the id of the
-  // keyframe it belongs to. Non-finite values: an error, nothing changed, counted.
+  // A raw observation (pose and hits in the robot's odometry frame), `stamp_ns` on the clock
+  // process() is given (arrival), `robot_stamp_ns` the robot's own when it sent one (it groups
+  // keyframes). Returns the id of the keyframe it belongs to. Non-finite values: an error, nothing
+  // changed, counted.
   Result<uint64_t> add(std::string_view robot, int64_t stamp_ns, const Pose& odom_pose, bool has_heading,
-                       std::span<const Vec2> hits);
+                       std::span<const Vec2> hits, std::optional<int64_t> robot_stamp_ns = std::nullopt);
 
   // Closes keyframes of robots silent since max_span, applies the matches that landed, starts
   // matching closed keyframes against `grid` (up to the pass budget) and appends the finalised ones
@@ -285,9 +291,9 @@ class PoseCorrector {
   void recycle(std::unique_ptr<MatchJob> job);
   // Old keyframes (another robot's, or older than old_age_s) near `centre`, nearest first.
   void old_neighbours(uint32_t robot, int64_t stamp_ns, Vec2 centre, std::vector<uint32_t>& out);
-  // The points (map frame) within the square of half_extent around `centre` of the keyframes nearest
-  // it: what a match there is refined against.
-  void window_points(Vec2 centre, double half_extent, std::vector<Vec2>& out);
+  // The points (map frame) within the square of half_extent around `centre` of the keyframes within
+  // `reach` of it (the nearest ones): what a match there is refined against.
+  void window_points(Vec2 centre, double reach, double half_extent, std::vector<Vec2>& out);
   // The points of `slots` (map frame, at their current estimates) within the square of half_extent.
   void gather_points(std::span<const uint32_t> slots, Vec2 centre, double half_extent,
                      std::vector<Vec2>& out) const;

@@ -12,7 +12,12 @@ namespace slam::correction {
 
 namespace {
 
+// Beyond a keyframe's farthest point: the keyframes around it that see what it sees.
+constexpr double kLocalReachMargin_m = 0.5;
+
 }  // namespace
+
+namespace {}  // namespace
 
 void PoseCorrector::old_neighbours(uint32_t robot, int64_t stamp_ns, Vec2 centre,
                                    std::vector<uint32_t>& out) {
@@ -46,17 +51,17 @@ GridGeometry PoseCorrector::draw_local_grid(std::span<const uint32_t> slots, Vec
   return g;
 }
 
-void PoseCorrector::window_points(Vec2 centre, double half_extent, std::vector<Vec2>& out) {
+void PoseCorrector::window_points(Vec2 centre, double reach, double half_extent, std::vector<Vec2>& out) {
   // Keyframes within a sensor's reach of the keyframe's origin see what it sees; a fixed radius
   // keeps the candidates bounded by the map's density, not its size.
   neighbours_.clear();
-  index_.near(centre, options_.local_reach_m, neighbours_);
+  index_.near(centre, reach, neighbours_);
   std::erase_if(neighbours_,
                 [&](uint32_t slot) { return nodes_[slot].removed || nodes_[slot].points.empty(); });
   if (neighbours_.size() > options_.refine_max_keyframes) {
-    std::nth_element(neighbours_.begin(), neighbours_.begin() + static_cast<std::ptrdiff_t>(options_.refine_max_keyframes),
-                     neighbours_.end(),
-                     [&](uint32_t a, uint32_t b) {
+    std::nth_element(neighbours_.begin(),
+                     neighbours_.begin() + static_cast<std::ptrdiff_t>(options_.refine_max_keyframes),
+                     neighbours_.end(), [&](uint32_t a, uint32_t b) {
                        return distance(nodes_[a].estimate.position(), centre) <
                               distance(nodes_[b].estimate.position(), centre);
                      });
@@ -119,7 +124,8 @@ void PoseCorrector::prepare(Keyframe&& keyframe, const GridView& grid, bool matc
   job.standing = false;
   if (job.previous) {
     job.odom_relative = nodes_[*job.previous].odom.inverse().compose(keyframe.odom);
-    job.standing = keyframe.travel_m < options_.standing_travel_m && keyframe.turn_rad < options_.standing_turn_rad &&
+    job.standing = keyframe.travel_m < options_.standing_travel_m &&
+                   keyframe.turn_rad < options_.standing_turn_rad &&
                    norm(job.odom_relative.position()) < options_.standing_travel_m &&
                    std::abs(job.odom_relative.theta) < options_.standing_turn_rad;
     job.odom_cov = rb.odometry_trust.scaled(odometry_covariance(job.odom_relative));
@@ -151,7 +157,9 @@ void PoseCorrector::prepare(Keyframe&& keyframe, const GridView& grid, bool matc
     const double half = reach + options_.track_window.linear_m + options_.window_margin_m;
     job.track_geometry = copy_window(grid, job.predicted.position(), half, job.track_cells);
     job.track_points.clear();
-    if (options_.point_refine) window_points(job.predicted.position(), half, job.track_points);
+    // What the keyframe can see, up to local_reach_m: a 4 m sensor's local map stays as small as it was.
+    const double local_reach = std::min(options_.local_reach_m, reach + kLocalReachMargin_m);
+    if (options_.point_refine) window_points(job.predicted.position(), local_reach, half, job.track_points);
 
     // The tie to the old map, planned here where the pose graph lives (around the prediction: the
     // narrow match moves the keyframe by at most the tracking window, which the grid covers).
@@ -172,7 +180,7 @@ void PoseCorrector::prepare(Keyframe&& keyframe, const GridView& grid, bool matc
           job.neighbours = neighbours_.size();
           const double window =
               job.wide_permitted ? options_.closure_window.linear_m : options_.track_window.linear_m;
-          const double tie_half = options_.local_reach_m + window + options_.track_window.linear_m;
+          const double tie_half = local_reach + window + options_.track_window.linear_m;
           job.tie_geometry = draw_local_grid(neighbours_, job.predicted.position(), tie_half,
                                              grid.geometry.resolution, job.tie_cells);
           job.tie_points.clear();

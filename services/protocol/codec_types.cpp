@@ -16,6 +16,9 @@ Status validate(const CodecLimits& limits) {
   if (!positive_finite(limits.max_abs_coordinate_m))
     return Error{"max_abs_coordinate_m must be a finite number > 0, got " +
                  std::to_string(limits.max_abs_coordinate_m)};
+  if (!positive_finite(limits.scan_free_range_m))
+    return Error{"scan_free_range_m must be a finite number > 0, got " +
+                 std::to_string(limits.scan_free_range_m)};
   if (!positive_finite(limits.max_abs_angle_rad))
     return Error{"max_abs_angle_rad must be a finite number > 0, got " +
                  std::to_string(limits.max_abs_angle_rad)};

@@ -66,6 +66,10 @@ struct CodecLimits {
   std::size_t max_payload_bytes = 256 * 1024;
   double max_abs_coordinate_m = 10'000.0;  // any x or y, in metres
   double max_abs_angle_rad = 100.0;        // headings and beam angles need not be normalised
+  // A scan's beam without a return clears free space this far at most (m): a real laser reads
+  // nothing through glass and open doors, and free rays tens of metres long through a building's
+  // gaps wore its walls away (the benchmark logs, docs/mapping-quality.md).
+  double scan_free_range_m = 8.0;
 };
 
 // Rejects limits the codecs cannot work with, naming the key: "units_per_meter must be ...".

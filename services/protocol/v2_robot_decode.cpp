@@ -211,8 +211,8 @@ CodecStatus decode_v2_scan(std::span<const std::uint8_t> payload, const CodecLim
       if (range < 0.0)
         return {RejectReason::OutOfRange, fmt::format("ranges[{}] is {}, must be >= 0", i, range)};
       hit = range < max_range;
-      if (!hit) range = max_range;
     }
+    if (!hit) range = std::min(max_range, limits.scan_free_range_m);
     const double a = heading + angle;
     const Point end{ox + range * std::cos(a), oy + range * std::sin(a)};
     if (auto s = check_endpoint(end, i, limits); !s) return s;

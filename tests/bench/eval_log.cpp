@@ -50,7 +50,8 @@ struct Options {
 
   std::string run_name() const {
     if (!name.empty()) return name;
-    return strip_log_extension(std::filesystem::path(log).filename().string()) + (observations.v1 ? "-v1" : "") +
+    return strip_log_extension(std::filesystem::path(log).filename().string()) +
+           (observations.v1 ? "-v1" : "") +
            (observations.beams > 0 ? fmt::format("-{}beams", observations.beams) : "");
   }
   std::string relation_path() const {
@@ -197,7 +198,8 @@ std::string row(const nlohmann::json& j, const char* key) {
 
 int main(int argc, char** argv) {
   slam::bench::Options o;
-  CLI::App app{"eval_log: a robot's CARMEN log through the pose correction, offline, scored with its relation file"};
+  CLI::App app{
+      "eval_log: a robot's CARMEN log through the pose correction, offline, scored with its relation file"};
   app.add_option("log", o.log, "CARMEN log (.clf or .clf.gz)")->required()->check(CLI::ExistingFile);
   app.add_option("--relations", o.relations, "relation file (default: the log's name with .relations)");
   app.add_option("--out", o.out_dir, "directory of the results")->capture_default_str();
@@ -209,17 +211,20 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0.5, 1000.0))
       ->capture_default_str();
   app.add_option("--free-range", o.observations.free_range_m, "")->capture_default_str();
-  app.add_flag("--v1", o.observations.v1, "as a legacy v1 robot: centimetre positions, no heading, <= 16 points");
+  app.add_flag("--v1", o.observations.v1,
+               "as a legacy v1 robot: centimetre positions, no heading, <= 16 points");
   app.add_option("--log-level", o.log_level, "log level of the pose correction")
       ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error", "off"}))
       ->capture_default_str();
   auto& k = o.slam.keyframe;
-  app.add_option("--keyframe-messages", k.max_messages, "a keyframe closes after this many scans")->capture_default_str();
+  app.add_option("--keyframe-messages", k.max_messages, "a keyframe closes after this many scans")
+      ->capture_default_str();
   app.add_option("--keyframe-travel", k.travel_m, "...or this much travel (m)")->capture_default_str();
   app.add_option("--keyframe-turn", k.turn_rad, "...or this much turning (rad)")->capture_default_str();
   app.add_option("--scan-travel", k.scan_travel_m, "")->capture_default_str();
   app.add_option("--scan-turn", k.scan_turn_rad, "")->capture_default_str();
-  app.add_option("--track-window-m", o.slam.track_window.linear_m, "tracking search window (m)")->capture_default_str();
+  app.add_option("--track-window-m", o.slam.track_window.linear_m, "tracking search window (m)")
+      ->capture_default_str();
   app.add_option("--track-window-rad", o.slam.track_window.angular_rad, "tracking search window (rad)")
       ->capture_default_str();
   app.add_option("--wall-heading", o.slam.wall_heading, "the walls' heading (1/0)")->capture_default_str();
@@ -243,8 +248,9 @@ int main(int argc, char** argv) {
   std::ofstream(o.out_dir + "/" + o.run_name() + ".json") << result->dump(2) << "\n";
   const auto& j = *result;
   std::printf("%s: final %s | published %s | odometry %s | %d keyframes, %d closures, %.0f s for %.0f s\n",
-              o.run_name().c_str(), slam::bench::row(j, "final").c_str(), slam::bench::row(j, "published").c_str(),
-              slam::bench::row(j, "odometry").c_str(), j["slam"]["keyframes"].get<int>(),
-              j["slam"]["closures_accepted"].get<int>(), j["wall_s"].get<double>(), j["log_s"].get<double>());
+              o.run_name().c_str(), slam::bench::row(j, "final").c_str(),
+              slam::bench::row(j, "published").c_str(), slam::bench::row(j, "odometry").c_str(),
+              j["slam"]["keyframes"].get<int>(), j["slam"]["closures_accepted"].get<int>(),
+              j["wall_s"].get<double>(), j["log_s"].get<double>());
   return 0;
 }

@@ -10,7 +10,9 @@ namespace {
 
 constexpr size_t kV1MaxPoints = 16;  // a legacy robot's message: its position and up to 16 points
 
-double to_centimetres(double m) { return std::round(m * 100.0) / 100.0; }
+double to_centimetres(double m) {
+  return std::round(m * 100.0) / 100.0;
+}
 
 }  // namespace
 
@@ -26,7 +28,8 @@ std::vector<size_t> thinned_beams(size_t total, int count) {
   return out;
 }
 
-LogObservations log_observations(std::span<const robot_log::LaserScan> scans, const LogObservationOptions& o) {
+LogObservations log_observations(std::span<const robot_log::LaserScan> scans,
+                                 const LogObservationOptions& o) {
   LogObservations out;
   out.observations.reserve(scans.size());
   int64_t arrival = 0;
@@ -43,6 +46,7 @@ LogObservations log_observations(std::span<const robot_log::LaserScan> scans, co
     obs.robot_id = o.robot;
     obs.seq = i + 1;
     obs.stamp_ns = arrival;
+    obs.robot_stamp_ns = static_cast<int64_t>(std::llround(s.stamp_s * 1e9));
     obs.x = o.v1 ? to_centimetres(sensor.x) : sensor.x;
     obs.y = o.v1 ? to_centimetres(sensor.y) : sensor.y;
     obs.theta = o.v1 ? 0.0 : sensor.theta;

@@ -8,6 +8,7 @@
 
 #include "common/core/geometry.hpp"
 #include "mapper/mapper.hpp"
+#include "protocol/codec_types.hpp"
 #include "simulator/robot_log/robot_log.hpp"
 
 namespace slam::bench {
@@ -15,8 +16,8 @@ namespace slam::bench {
 struct LogObservationOptions {
   int beams = 0;              // thin each scan to this many evenly spaced beams; 0: all
   double max_range_m = 30.0;  // returns beyond this become misses (free up to it)
-  double free_range_m = 1e9;  // misses end here at most
-  bool v1 = false;            // legacy messages: centimetre position, no heading, hits only (<= 16)
+  double free_range_m = protocol::CodecLimits{}.scan_free_range_m;  // misses end here at most (the gateway's)
+  bool v1 = false;  // legacy messages: centimetre position, no heading, hits only (<= 16)
   std::string robot = "log";
 };
 
@@ -29,7 +30,8 @@ struct LogObservations {
 
 // The observations of `scans`. Their stamp_ns is the arrival clock: the robot's stamps made
 // non-decreasing (a log's stamps may step back; a message cannot arrive before the one before it).
-LogObservations log_observations(std::span<const robot_log::LaserScan> scans, const LogObservationOptions& options);
+LogObservations log_observations(std::span<const robot_log::LaserScan> scans,
+                                 const LogObservationOptions& options);
 
 // The indices of `count` beams evenly spaced over `total` (all of them when count is 0 or >= total).
 std::vector<size_t> thinned_beams(size_t total, int count);

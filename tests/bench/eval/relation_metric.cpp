@@ -47,7 +47,8 @@ MeanStd mean_std(std::span<const double> values) {
 Result<Relation> parse_relation(std::string_view line) {
   const auto fields = numbers(line);
   if (!fields) return Error{"a field is not a finite number"};
-  if (fields->size() != 8) return Error{fmt::format("{} fields, expected 8 (t1 t2 x y z roll pitch yaw)", fields->size())};
+  if (fields->size() != 8)
+    return Error{fmt::format("{} fields, expected 8 (t1 t2 x y z roll pitch yaw)", fields->size())};
   const auto& f = *fields;
   return Relation{f[0], f[1], Pose{f[2], f[3], wrap_angle(f[7])}};
 }

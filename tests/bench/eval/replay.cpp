@@ -78,7 +78,7 @@ Result<std::vector<mapper::OwnedObservation>> read_observations(const std::files
   if (!opened) return opened.error();
   std::vector<mapper::OwnedObservation> out;
   SLAM_TRY(opened->for_each([&](const mapper::ObservationRecord& r) {
-    out.emplace_back().assign(r.robot_id, r.seq, r.stamp_ns, r.obs);
+    out.emplace_back().assign(r.robot_id, r.seq, r.stamp_ns, r.obs, r.robot_stamp_ns);
   }));
   if (out.empty()) return Error{store.string() + " holds no observation"};
   return out;
@@ -106,7 +106,8 @@ DeterministicMapLoop::~DeterministicMapLoop() {
 }
 
 void DeterministicMapLoop::add(const mapper::OwnedObservation& o, int64_t mono_ns) {
-  stage_->add(*map_, mapper::RobotScan{o.robot_id, o.seq, o.stamp_ns, o.view(), 0, Pose{}}, mono_ns);
+  stage_->add(*map_, mapper::RobotScan{o.robot_id, o.seq, o.stamp_ns, o.view(), 0, Pose{}, o.robot_stamp_ns},
+              mono_ns);
 }
 
 void DeterministicMapLoop::step(int64_t tick_ns, int64_t mono_ns,

@@ -35,6 +35,40 @@ TEST(KeyframeBuilder, ClosesAfterTheConfiguredTravelWithPointsInItsOwnFrame) {
   EXPECT_NEAR(k.points[0].y, -1.0, 1e-12);
 }
 
+TEST(KeyframeBuilder, AKeyframeOfLaserScansClosesAfterAShortMove) {
+  KeyframeOptions options;  // scan_points 60, scan_travel_m 0.1
+  KeyframeBuilder scans(options);
+  KeyframeBuilder sparse(options);
+  const std::vector<Vec2> scan(options.scan_points, Vec2{2.0, 1.0});
+  const std::vector<Vec2> few(options.scan_points - 1, Vec2{2.0, 1.0});
+  int scan_messages = 0, sparse_messages = 0;
+  for (auto step = KeyframeBuilder::Step::Added; step == KeyframeBuilder::Step::Added; ++scan_messages)
+    step = scans.add(1, 0, scan_messages * kStep, Pose{0.04 * scan_messages, 0.0, 0.0}, true, scan);
+  for (auto step = KeyframeBuilder::Step::Added; step == KeyframeBuilder::Step::Added; ++sparse_messages)
+    step = sparse.add(1, 0, sparse_messages * kStep, Pose{0.04 * sparse_messages, 0.0, 0.0}, true, few);
+  EXPECT_EQ(scan_messages, 4);     // 0.12 m after the third step
+  EXPECT_EQ(sparse_messages, 11);  // the sparse limit: 0.40 m
+  EXPECT_TRUE(scans.take().scans);
+  EXPECT_FALSE(sparse.take().scans);
+  // Standing still, scans keep joining one keyframe until the message limit.
+  int standing = 0;
+  for (auto step = KeyframeBuilder::Step::Added; step == KeyframeBuilder::Step::Added; ++standing)
+    step = scans.add(2, 0, standing * kStep / 100, Pose{}, true, scan);
+  EXPECT_EQ(standing, options.max_messages);
+}
+
+TEST(KeyframeBuilder, TheRobotsOwnStampsMeasureTheSpan) {
+  // A robot standing still sends one message a second; they arrive bunched (a log played fast): the
+  // keyframe spans 4 s of the robot's time, not of arrival.
+  KeyframeBuilder builder(KeyframeOptions{});  // max_span_ns 4 s
+  const std::vector<Vec2> hit{{2.0, 1.0}};
+  int messages = 0;
+  for (auto step = KeyframeBuilder::Step::Added; step == KeyframeBuilder::Step::Added; ++messages)
+    step = builder.add(1, 0, 1000 + messages, Pose{}, true, hit, int64_t{messages} * 1'000'000'000);
+  EXPECT_EQ(messages, 5);
+  EXPECT_FALSE(builder.stale(1000 + messages));  // staleness stays on the arrival clock
+}
+
 TEST(KeyframeBuilder, RobotsWithoutHeadingKeepTheOdometryAxes) {
   KeyframeBuilder builder(KeyframeOptions{});
   const std::vector<Vec2> hit{{3.0, 4.0}};

@@ -229,6 +229,18 @@ TEST(PoseCorrector, ARobotStandingStillIsNeitherMatchedNorMoved) {
   EXPECT_GT(corrector.stats().matched, matched_before);  // matched again once it moves
 }
 
+TEST(PoseCorrector, ARobotWhoseOdometryStartsFarAwayStartsAtTheOrigin) {
+  PoseCorrector corrector;
+  const std::vector<Vec2> hits{{601.0, -200.0}};
+  ASSERT_TRUE(corrector.add("far", 1, Pose{600.0, -200.0, 0.5}, true, hits));
+  const Pose c = corrector.correction("far");
+  EXPECT_NEAR(c.compose(Pose{600.0, -200.0, 0.5}).x, 0.0, 1e-9);
+  EXPECT_NEAR(c.compose(Pose{600.0, -200.0, 0.5}).y, 0.0, 1e-9);
+  EXPECT_NEAR(c.theta, 0.0, 1e-12);  // heading kept
+  ASSERT_TRUE(corrector.add("near", 1, Pose{30.0, 4.0, 0.0}, true, hits));
+  EXPECT_EQ(corrector.correction("near"), Pose{});  // within far_start_m: the odometry frame as it is
+}
+
 TEST(PoseCorrector, TheObserverSeesEveryKeyframeWhereItWasPlaced) {
   const TrueMap map(room());
   PoseCorrector corrector;

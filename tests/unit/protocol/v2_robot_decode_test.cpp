@@ -168,6 +168,22 @@ TEST(DecodeV2Scan, RangeEqualToMaxIsAMiss) {
   EXPECT_EQ(out.hits.size(), 1u);
 }
 
+TEST(DecodeV2Scan, FreeSpaceWithoutAReturnEndsAtTheFreeRange) {
+  // A 30 m laser: a return at 20 m stays a hit; a beam without one clears 8 m only (the default).
+  DecodedObservation out;
+  ASSERT_TRUE(scan(R"({"pose": {"x": 0, "y": 0, "heading": 0}, "angles": [0, 1.5707963267948966],
+      "ranges": [20.0, null], "max_range": 30.0})",
+                   out)
+                  .is_ok());
+  ASSERT_EQ(out.hits.size(), 1u);
+  EXPECT_NEAR(out.hits[0].x, 20.0, 1e-12);
+  ASSERT_EQ(out.misses.size(), 1u);
+  EXPECT_NEAR(out.misses[0].y, CodecLimits{}.scan_free_range_m, 1e-12);
+  CodecLimits bad;
+  bad.scan_free_range_m = 0.0;
+  EXPECT_FALSE(validate(bad).is_ok());
+}
+
 TEST(DecodeV2Scan, SensorOffsetMovesTheOrigin) {
   // Robot at (10, 0) facing +y with the sensor mounted 0.5 m ahead, turned +90 degrees (facing -x).
   DecodedObservation out;
