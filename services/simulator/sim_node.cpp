@@ -61,6 +61,12 @@ Result<std::unique_ptr<SimNode>> SimNode::create(const SimOptions& options, Worl
   if (!links) return Error{"MQTT: " + links.message()};
   node->links_ = std::move(*links);
 
+  if (!options.record_log.empty()) {
+    auto recorder = LogRecorder::create(options.record_log, node->sim_.world().name());
+    if (!recorder) return Error{"--record-log: " + recorder.message()};
+    node->recorder_ = std::move(*recorder);
+  }
+
   auto ids = node->sim_.spawn_random(static_cast<size_t>(options.robots));
   if (!ids) return Error{"--robots: " + ids.message()};
   node->add_robots(*ids);
@@ -168,6 +174,8 @@ void SimNode::run_steps(double wall_seconds) {
     for (const RobotReport& r : reports) {
       while (j < robots.size() && robots[j].id != r.robot_id) ++j;
       links_->publish(r, j < robots.size() && robots[j].waypoint.has_value());
+      if (recorder_)
+        if (auto s = recorder_->add(r); !s) warn("record", "--record-log: " + s.message());
     }
   }
   robot_contacts_.store(static_cast<int64_t>(sim_.contacts()), std::memory_order_relaxed);
@@ -178,6 +186,17 @@ void SimNode::publish_truth() {
     bump(dds_write_failures_);
     warn("truth", s.message());
   }
+}
+
+void SimNode::finish_recording() {
+  if (!recorder_) return;
+  if (auto s = recorder_->finish(); !s) {
+    spdlog::error("--record-log: {}", s.message());
+    return;
+  }
+  spdlog::info("recorded {} scans of {} robots to {}-<robot>.clf, {} relations to {}-<robot>.relations",
+               recorder_->scans(), recorder_->robots(), options_.record_log, recorder_->relations(),
+               options_.record_log);
 }
 
 void SimNode::run() {
@@ -212,6 +231,7 @@ void SimNode::run() {
     wait_for_shutdown(std::chrono::duration_cast<std::chrono::milliseconds>(tick - spent));
   }
   heartbeat_->set_state(slam_SERVICE_STOPPING);
+  finish_recording();
 }
 
 }  // namespace slam::sim

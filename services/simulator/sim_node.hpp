@@ -2,8 +2,10 @@
 // slam-simulator's service object: owns the Simulation and drives it from one thread. Each loop
 // iteration applies operator commands (Cyclone; each gets a SimReply) and waypoints (MQTT intake), runs the
 // steps due for the elapsed wall time, publishes every report over MQTT and, at its own rate, ground truth.
+// With --record-log each report also goes to its robot's log; the relation files are written at the end.
 #include <chrono>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -12,6 +14,7 @@
 #include "common/core/reply_cache.hpp"
 #include "common/core/result.hpp"
 #include "common/cyclone/heartbeat.hpp"
+#include "simulator/log_recorder.hpp"
 #include "simulator/robot_link.hpp"
 #include "simulator/sim_dds.hpp"
 #include "simulator/sim_options.hpp"
@@ -37,6 +40,7 @@ class SimNode {
   void apply_orders();
   void run_steps(double wall_seconds);
   void publish_truth();
+  void finish_recording();
   void warn(const std::string& key, const std::string& text);
 
   SimOptions options_;
@@ -59,6 +63,7 @@ class SimNode {
   std::unique_ptr<SimDds> dds_;
   std::unique_ptr<cyclone::HeartbeatPublisher> heartbeat_;
   std::unique_ptr<RobotLinks> links_;
+  std::optional<LogRecorder> recorder_;  // --record-log
 
   ReplyCache<Status> replies_sent_;
   std::vector<ControlCommand> controls_;

@@ -70,6 +70,9 @@ void add_sim_options(CLI::App& app, SimOptions& o) {
   app.add_option("--max-range", o.max_range, "range sensor reach (m)")
       ->check(CLI::Range(0.1, 1000.0))
       ->capture_default_str();
+  app.add_option("--record-log", o.record_log,
+                 "write each simulated robot's scans and odometry as a CARMEN log PREFIX-<robot>.clf while "
+                 "running, and the relations of its true poses as PREFIX-<robot>.relations on exit");
   add_play_options(app, o.play);
 }
 
@@ -109,6 +112,8 @@ Status validate(const SimOptions& o) {
   if (auto c = simulation_config(o); !c) return c.status();
   if (auto s = protocol::validate(codec_limits(o)); !s) return Error{"--units-per-meter: " + s.message()};
   SLAM_TRY(validate(o.play));
+  if (o.play.enabled() && !o.record_log.empty())
+    return Error{"--record-log records simulated robots: it cannot be combined with --play"};
   return {};
 }
 

@@ -37,7 +37,8 @@ struct SimOptions {
   double truth_rate_hz = 5.0;  // SimGroundTruth publications per second
   int beams = 16;
   double max_range = 4.0;
-  PlayOptions play;  // --play LOG: play recorded logs instead of simulating (log_player.hpp)
+  PlayOptions play;        // --play LOG: play recorded logs instead of simulating (log_player.hpp)
+  std::string record_log;  // --record-log PREFIX: each robot's CARMEN log and relations (log_recorder.hpp)
 
   RobotProtocol robot_protocol() const { return protocol == "v2" ? RobotProtocol::V2 : RobotProtocol::V1; }
 };

@@ -105,5 +105,14 @@ TEST(SimOptions, PasswordNeedsOneConnectionPerRobot) {
   EXPECT_THAT(validate(o).message(), HasSubstr("--mqtt-password"));
 }
 
+TEST(SimOptions, RecordingIsOfSimulatedRobotsOnly) {
+  SimOptions o;
+  ASSERT_EQ(parse(o, {"--record-log", "runs/office"}), "");
+  EXPECT_EQ(o.record_log, "runs/office");
+  EXPECT_TRUE(validate(o));
+  o.play.logs = {"robot.clf"};  // a played log is already a log
+  EXPECT_THAT(validate(o).message(), HasSubstr("--record-log"));
+}
+
 }  // namespace
 }  // namespace slam::sim
