@@ -261,7 +261,7 @@ void PoseCorrector::apply(MatchJob& job, std::vector<KeyframeCorrection>& out) {
       const ConsistencyCheck check;
       // A closure must be unambiguous (one clear peak: not a ring, a corridor or a row of identical
       // rooms) and agree with the uncertainty accumulated since the last tie.
-      const bool distinct = DistinctMatch{}.accepts(*tie);
+      const bool distinct = (keyframe.scans ? options_.scan_distinct : options_.distinct).accepts(*tie);
       const bool consistent = check.accepts(estimate, tie->pose, rb.chain_cov + tie_cov);
       if (!wide || (distinct && consistent)) {
         anchor = job.anchor;

@@ -70,6 +70,11 @@ struct CorrectorOptions {
   // docs/mapping-quality.md).
   double scan_track_variance_scale = 0.05;
   double scan_independent_points = 100.0;
+  // What makes a loop closure's match distinct. A scan's hundreds of points put a second peak that
+  // sums nine tenths of the best far below it (its weight under the response's reading is e^-8 at
+  // 700 points), where a sparse keyframe's would still be a real rival.
+  DistinctMatch distinct;
+  DistinctMatch scan_distinct{0.95, 0.05, 0.035};
   double odom_sigma_m_per_sqrt_m = 0.03;  // odometry edge noise (a little above the usual drift)
   double odom_sigma_rad_per_m = 0.02;     // heading noise per metre travelled (edge and chain)
   // The walls' heading (wall_axes.hpp): each keyframe's heading is pulled toward the one its

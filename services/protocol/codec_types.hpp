@@ -69,7 +69,7 @@ struct CodecLimits {
   // A scan's beam without a return clears free space this far at most (m): a real laser reads
   // nothing through glass and open doors, and free rays tens of metres long through a building's
   // gaps wore its walls away (the benchmark logs, docs/mapping-quality.md).
-  double scan_free_range_m = 8.0;
+  double scan_free_range_m = 5.0;
 };
 
 // Rejects limits the codecs cannot work with, naming the key: "units_per_meter must be ...".

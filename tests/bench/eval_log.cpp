@@ -237,6 +237,7 @@ int main(int argc, char** argv) {
   app.add_option("--odom-sigma-rad", o.slam.odom_sigma_rad_per_m, "")->capture_default_str();
   app.add_option("--independent-points", o.slam.scan_independent_points, "")->capture_default_str();
   app.add_option("--local-reach", o.slam.local_reach_m, "")->capture_default_str();
+  app.add_option("--scan-max-ambiguity", o.slam.scan_distinct.max_ambiguity, "")->capture_default_str();
   CLI11_PARSE(app, argc, argv);
   spdlog::set_level(spdlog::level::from_str(o.log_level));
 

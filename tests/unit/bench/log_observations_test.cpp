@@ -23,10 +23,11 @@ robot_log::LaserScan scan(double stamp, Pose odom) {
 }
 
 TEST(LogObservations, ScansBecomeSensorPosesHitsAndMissesInTheOdometryFrame) {
-  const std::vector<robot_log::LaserScan> scans{scan(10.0, {1, 2, std::numbers::pi / 2}), scan(9.5, {1, 2, 0})};
+  const std::vector<robot_log::LaserScan> scans{scan(10.0, {1, 2, std::numbers::pi / 2}),
+                                                scan(9.5, {1, 2, 0})};
   LogObservationOptions options;
   options.max_range_m = 30.0;
-  options.free_range_m = 8.0;
+  options.free_range_m = 8.0;  // (the gateway default is 5 m)
   const LogObservations out = log_observations(scans, options);
   ASSERT_EQ(out.observations.size(), 2u);
   const auto& o = out.observations[0];

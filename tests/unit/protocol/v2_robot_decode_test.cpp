@@ -169,7 +169,7 @@ TEST(DecodeV2Scan, RangeEqualToMaxIsAMiss) {
 }
 
 TEST(DecodeV2Scan, FreeSpaceWithoutAReturnEndsAtTheFreeRange) {
-  // A 30 m laser: a return at 20 m stays a hit; a beam without one clears 8 m only (the default).
+  // A 30 m laser: a return at 20 m stays a hit; a beam without one clears 5 m only (the default).
   DecodedObservation out;
   ASSERT_TRUE(scan(R"({"pose": {"x": 0, "y": 0, "heading": 0}, "angles": [0, 1.5707963267948966],
       "ranges": [20.0, null], "max_range": 30.0})",
