@@ -15,7 +15,8 @@ namespace slam::bench {
 namespace {
 
 TEST(RelationMetric, ParsesALineAndRefusesBadOnes) {
-  auto r = parse_relation("976052905.167303 976052911.885496 -0.056990 -0.128430 0.000000 0.000000 0.000000 -1.682210");
+  auto r = parse_relation(
+      "976052905.167303 976052911.885496 -0.056990 -0.128430 0.000000 0.000000 0.000000 -1.682210");
   ASSERT_TRUE(r) << r.message();
   EXPECT_DOUBLE_EQ(r->t1, 976052905.167303);
   EXPECT_DOUBLE_EQ(r->motion.y, -0.128430);
