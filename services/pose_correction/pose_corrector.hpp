@@ -70,6 +70,9 @@ struct CorrectorOptions {
   // docs/mapping-quality.md).
   double scan_track_variance_scale = 0.05;
   double scan_independent_points = 100.0;
+  // A keyframe of scans spans a few degrees of turning, over which real odometry can be off by as
+  // much again (Freiburg 079's by 5-10 degrees a second): its heading is searched wider.
+  SearchWindow scan_track_window{0.15, 0.2};
   // What makes a loop closure's match distinct. A scan's hundreds of points put a second peak that
   // sums nine tenths of the best far below it (its weight under the response's reading is e^-8 at
   // 700 points), where a sparse keyframe's would still be a real rival.

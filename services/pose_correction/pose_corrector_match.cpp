@@ -213,8 +213,9 @@ void PoseCorrector::match_keyframe(ScanMatcher& matcher, MatchJob& job) const {
   const auto& points = job.keyframe.points;
   const bool scans = job.keyframe.scans;
   const double independent = scans ? options_.scan_independent_points : 0.0;
+  const SearchWindow& track_window = scans ? options_.scan_track_window : options_.track_window;
   if (auto narrow = matcher.match(GridView{job.track_geometry, job.track_cells}, points, job.predicted,
-                                  options_.track_window, independent)) {
+                                  track_window, independent)) {
     // Fused with the odometry prediction by their covariances (a Kalman update): a sparse
     // keyframe's match is noisier than half a metre of odometry, and taking it as is would
     // random-walk the pose where the map is only the robot's own recent trail.
@@ -264,7 +265,7 @@ void PoseCorrector::match_keyframe(ScanMatcher& matcher, MatchJob& job) const {
   }
   job.wide = wide;
   if (auto tie = matcher.match(GridView{job.tie_geometry, job.tie_cells}, points, job.estimate,
-                               wide ? options_.closure_window : options_.track_window, independent)) {
+                               wide ? options_.closure_window : track_window, independent)) {
     if (options_.point_refine) {
       job.refiner.set_reference(job.tie_points);
       if (const auto refined = job.refiner.refine(points, tie->pose, tie->covariance))

@@ -185,6 +185,33 @@ Result<nlohmann::json> run(const Options& o) {
   return j;
 }
 
+// The pose correction's tuning knobs (CorrectorOptions, pose_corrector.hpp), to try a change on the
+// logs before it becomes a default; the defaults are the service's.
+void add_slam_options(CLI::App& app, correction::CorrectorOptions& s) {
+  auto* g = app.add_option_group("pose correction", "CorrectorOptions fields (defaults: the mapper's)");
+  auto add = [&](const char* name, auto& value, const char* help) {
+    g->add_option(name, value, help)->capture_default_str();
+  };
+  add("--scan-travel", s.keyframe.scan_travel_m, "a keyframe of scans closes after this travel (m)");
+  add("--scan-turn", s.keyframe.scan_turn_rad, "...or this turn (rad)");
+  add("--keyframe-travel", s.keyframe.travel_m, "a sparse keyframe closes after this travel (m)");
+  add("--keyframe-messages", s.keyframe.max_messages, "...or this many messages");
+  add("--scan-track-window-m", s.scan_track_window.linear_m, "tracking search of a scan keyframe (m)");
+  add("--scan-track-window-rad", s.scan_track_window.angular_rad, "...and its heading (rad)");
+  add("--scan-track-variance-scale", s.scan_track_variance_scale, "a scan match's covariance scale");
+  add("--scan-independent-points", s.scan_independent_points, "independent points of a scan keyframe");
+  add("--scan-max-ambiguity", s.scan_distinct.max_ambiguity, "a scan closure's largest ambiguity");
+  add("--track-variance-scale", s.track_variance_scale, "a sparse match's covariance scale");
+  add("--closure-window-m", s.closure_window.linear_m, "loop-closure search (m)");
+  add("--closure-window-rad", s.closure_window.angular_rad, "...and its heading (rad)");
+  add("--closure-radius", s.closure_radius_m, "old keyframes this near are closure candidates (m)");
+  add("--local-reach", s.local_reach_m, "the local maps' largest reach (m)");
+  add("--odom-sigma-m", s.odom_sigma_m_per_sqrt_m, "odometry noise (m per sqrt m)");
+  add("--odom-sigma-rad", s.odom_sigma_rad_per_m, "odometry heading noise (rad per m)");
+  add("--wall-heading", s.wall_heading, "hold headings to the walls' axes (true/false)");
+  add("--point-refine", s.point_refine, "refine matches against the points (true/false)");
+}
+
 std::string row(const nlohmann::json& j, const char* key) {
   const auto& a = j[key]["all"];
   const auto& s = j[key]["short"];
@@ -210,34 +237,16 @@ int main(int argc, char** argv) {
   app.add_option("--max-range", o.observations.max_range_m, "returns beyond this (m) count as no return")
       ->check(CLI::Range(0.5, 1000.0))
       ->capture_default_str();
-  app.add_option("--free-range", o.observations.free_range_m, "")->capture_default_str();
+  app.add_option("--free-range", o.observations.free_range_m,
+                 "a beam without a return clears this far (m), as the gateway's --scan-free-range-m")
+      ->check(CLI::Range(0.1, 1000.0))
+      ->capture_default_str();
   app.add_flag("--v1", o.observations.v1,
                "as a legacy v1 robot: centimetre positions, no heading, <= 16 points");
   app.add_option("--log-level", o.log_level, "log level of the pose correction")
       ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error", "off"}))
       ->capture_default_str();
-  auto& k = o.slam.keyframe;
-  app.add_option("--keyframe-messages", k.max_messages, "a keyframe closes after this many scans")
-      ->capture_default_str();
-  app.add_option("--keyframe-travel", k.travel_m, "...or this much travel (m)")->capture_default_str();
-  app.add_option("--keyframe-turn", k.turn_rad, "...or this much turning (rad)")->capture_default_str();
-  app.add_option("--scan-travel", k.scan_travel_m, "")->capture_default_str();
-  app.add_option("--scan-turn", k.scan_turn_rad, "")->capture_default_str();
-  app.add_option("--track-window-m", o.slam.track_window.linear_m, "tracking search window (m)")
-      ->capture_default_str();
-  app.add_option("--track-window-rad", o.slam.track_window.angular_rad, "tracking search window (rad)")
-      ->capture_default_str();
-  app.add_option("--wall-heading", o.slam.wall_heading, "the walls' heading (1/0)")->capture_default_str();
-  app.add_option("--point-refine", o.slam.point_refine, "point refinement (1/0)")->capture_default_str();
-  app.add_option("--track-variance-scale", o.slam.scan_track_variance_scale, "")->capture_default_str();
-  app.add_option("--closure-window-m", o.slam.closure_window.linear_m, "")->capture_default_str();
-  app.add_option("--closure-window-rad", o.slam.closure_window.angular_rad, "")->capture_default_str();
-  app.add_option("--closure-radius", o.slam.closure_radius_m, "")->capture_default_str();
-  app.add_option("--odom-sigma-m", o.slam.odom_sigma_m_per_sqrt_m, "")->capture_default_str();
-  app.add_option("--odom-sigma-rad", o.slam.odom_sigma_rad_per_m, "")->capture_default_str();
-  app.add_option("--independent-points", o.slam.scan_independent_points, "")->capture_default_str();
-  app.add_option("--local-reach", o.slam.local_reach_m, "")->capture_default_str();
-  app.add_option("--scan-max-ambiguity", o.slam.scan_distinct.max_ambiguity, "")->capture_default_str();
+  slam::bench::add_slam_options(app, o.slam);
   CLI11_PARSE(app, argc, argv);
   spdlog::set_level(spdlog::level::from_str(o.log_level));
 
