@@ -114,10 +114,13 @@ TEST_F(SimulatorPlayTest, EveryScanArrivesAsAV2ScanFromTheRecordedPose) {
     EXPECT_NEAR(static_cast<double>(obs.robot_stamp_ns), e.stamp * 1e9, 1e3);  // the log's clock
     ASSERT_EQ(obs.hits.size(), 3u);
     ASSERT_EQ(obs.misses.size(), 1u);
-    // The beam at -90 degrees read 1 m; the one at 0 saw nothing up to 81 m.
+    // The beam at -90 degrees read 1 m; the one at 0 saw nothing up to 81 m, which the decoder reads as
+    // free space up to the gateway's scan_free_range_m.
     EXPECT_NEAR(obs.hits[0].x, obs.x + std::cos(e.theta - kPi / 2), 1e-4);
     EXPECT_NEAR(obs.hits[0].y, obs.y + std::sin(e.theta - kPi / 2), 1e-4);
-    EXPECT_NEAR(obs.misses[0].x, obs.x + 81.0 * std::cos(e.theta), 1e-4);
+    const double free_range = protocol::CodecLimits{}.scan_free_range_m;
+    EXPECT_NEAR(obs.misses[0].x, obs.x + free_range * std::cos(e.theta), 1e-4);
+    EXPECT_NEAR(obs.misses[0].y, obs.y + free_range * std::sin(e.theta), 1e-4);
   }
   // A v2 robot says what it is doing, and "offline" when it stops.
   const auto status = mqtt_->wait_for("v2/robot/corridor/status", 5s);
