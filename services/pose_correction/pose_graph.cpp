@@ -20,10 +20,6 @@ T wrap_residual_angle(const T& a) {
   return a - two_pi * floor((a + std::numbers::pi) / two_pi);
 }
 
-bool finite(const Pose& p) {
-  return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.theta);
-}
-
 // Upper-triangular U with U^T U = information, so |U e|^2 is the Mahalanobis cost of e; nullopt when
 // the information is not finite, not symmetric or not positive definite.
 std::optional<Eigen::Matrix3d> sqrt_information(const Eigen::Matrix3d& information) {
@@ -121,7 +117,7 @@ std::optional<size_t> PoseGraph::index_of(NodeId id) const {
 
 Status PoseGraph::add_node(NodeId id, const Pose& estimate, bool fixed) {
   if (index_.contains(id)) return Error{node_name(id) + " already exists"};
-  if (!finite(estimate)) return Error{node_name(id) + ": estimate is not finite"};
+  if (!is_finite(estimate)) return Error{node_name(id) + ": estimate is not finite"};
   index_.emplace(id, ids_.size());
   ids_.push_back(id);
   poses_.insert(poses_.end(), {estimate.x, estimate.y, wrap_angle(estimate.theta)});
@@ -143,7 +139,7 @@ Status PoseGraph::add_edge(const GraphEdge& edge) {
     if (!index_.contains(edge.to)) return Error{"edge to unknown " + node_name(edge.to)};
     if (edge.from == edge.to) return Error{"relative edge joins " + node_name(edge.from) + " to itself"};
   }
-  if (!finite(edge.measurement)) return Error{"edge measurement is not finite"};
+  if (!is_finite(edge.measurement)) return Error{"edge measurement is not finite"};
   if (!sqrt_information(edge.information)) {
     return Error{"edge information is not symmetric positive definite"};
   }
@@ -307,7 +303,8 @@ Result<UncertainPose> accumulate_chain(std::span<const GraphEdge> edges) {
 
 bool ConsistencyCheck::accepts(const Pose& predicted_relative, const Pose& measured_relative,
                                const Eigen::Matrix3d& uncertainty) const {
-  if (!finite(predicted_relative) || !finite(measured_relative) || !uncertainty.allFinite()) return false;
+  if (!is_finite(predicted_relative) || !is_finite(measured_relative) || !uncertainty.allFinite())
+    return false;
   const Eigen::LLT<Eigen::Matrix3d> llt(0.5 * (uncertainty + uncertainty.transpose()));
   if (llt.info() != Eigen::Success) return false;
   const Pose difference = predicted_relative.inverse().compose(measured_relative);

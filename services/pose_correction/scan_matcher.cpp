@@ -36,10 +36,6 @@ bool is_occupied(uint8_t cell_class) {
   return (cell_class & kCellStateMask) == kCellOccupied || (cell_class & kCellObstructed) != 0;
 }
 
-bool finite(const Pose& p) {
-  return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.theta);
-}
-
 using FieldGrid = ceres::Grid2D<float, 1>;
 using FieldInterpolator = ceres::BiCubicInterpolator<FieldGrid>;
 
@@ -115,7 +111,7 @@ Result<MatchResult> ScanMatcher::match(const GridView& grid, std::span<const Vec
   if (points.size() < static_cast<size_t>(options_.min_points))
     return Error{"scan match: " + std::to_string(points.size()) + " points, at least " +
                  std::to_string(options_.min_points) + " needed"};
-  if (!finite(predicted)) return Error{"scan match: predicted pose is not finite"};
+  if (!is_finite(predicted)) return Error{"scan match: predicted pose is not finite"};
   if (!(window.linear_m >= 0.0) || !(window.angular_rad >= 0.0) || !std::isfinite(window.linear_m) ||
       !std::isfinite(window.angular_rad))
     return Error{"scan match: search window must be finite and >= 0"};
@@ -336,7 +332,7 @@ Result<MatchResult> ScanMatcher::match(const GridView& grid, std::span<const Vec
       std::abs(refined.y - predicted.y) <= window.linear_m + step_m &&
       std::abs(wrap_angle(refined.theta - predicted.theta)) <= window.angular_rad + angular_step;
   const bool use_refined =
-      summary.IsSolutionUsable() && refined_inside && finite(refined) && refined_score >= best_score;
+      summary.IsSolutionUsable() && refined_inside && is_finite(refined) && refined_score >= best_score;
 
   MatchResult result;
   result.pose = use_refined ? refined : best;

@@ -87,6 +87,10 @@ struct Pose {
   }
 };
 
+inline bool is_finite(const Pose& p) {
+  return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.theta);
+}
+
 // Integer cell coordinates in a grid; (0, 0) is the lowest-left cell, y grows with rows.
 struct Cell {
   int32_t x = 0;
