@@ -1,12 +1,11 @@
 #pragma once
-// Matches a keyframe (a few dozen obstacle points in the keyframe's own frame) against an occupancy
-// grid near a predicted pose: a correlative brute-force search over x, y and theta on a smoothed
-// likelihood field of the occupied cells, then a least-squares refinement (Ceres) of the best
-// candidate. The covariance comes from the whole search response (every candidate weighed by its
-// likelihood), so an ambiguous match (a corridor, one wall, a ring) reports a large uncertainty along
-// the ambiguous direction; a direction along which the response stays flat to the window's edge is
-// counted as flat. A second good peak far from the best one is reported as `ambiguity`. Among
-// equally good candidates the one nearest the prediction is taken.
+// Matches a keyframe (a few dozen obstacle points, or a laser scan, in the keyframe's own frame)
+// against an occupancy grid near a predicted pose, in four steps each in its own unit: the
+// likelihood field of the occupied cells (likelihood_field), a correlative search over x, y and
+// theta (correlative_search), the uncertainty read from the whole search response
+// (response_spread: a corridor, one wall or a ring reports a large or flat spread, a second good peak
+// an `ambiguity`), and a least-squares refinement of the best candidate (field_refinement, Ceres).
+// Among equally good candidates the one nearest the prediction is taken.
 #include <Eigen/Core>
 #include <cstdint>
 #include <span>
@@ -14,14 +13,11 @@
 
 #include "common/core/geometry.hpp"
 #include "common/core/result.hpp"
+#include "pose_correction/correlative_search.hpp"
 #include "pose_correction/grid_view.hpp"
+#include "pose_correction/likelihood_field.hpp"
 
 namespace slam::correction {
-
-struct SearchWindow {
-  double linear_m = 0.15;     // +- around the prediction in x and y
-  double angular_rad = 0.08;  // +- around the predicted heading
-};
 
 struct MatcherOptions {
   double linear_step_m = 0.0;     // 0: the grid's resolution (rounded to whole cells)
@@ -85,13 +81,8 @@ class ScanMatcher {
   MatcherOptions options_;
   // Reused between matches, so the search allocates nothing once they have grown to the largest
   // window seen (the Ceres refinement still builds its small problem per match).
-  std::vector<float> kernel_;     // likelihood by cell offset from an occupied cell
-  int kernel_radius_ = 0;         // cells; kernel_ is (2r + 1)^2
-  double kernel_resolution_ = 0;  // resolution kernel_ was built for
-  std::vector<float> field_;      // likelihood at the cell centres of field_box_, row-major
-  CellBox field_box_;             // in grid cells
-  std::vector<int32_t> lookup_;   // per point: field_ index of its cell at the current heading
-  std::vector<float> sums_;       // per candidate (heading, y, x): summed likelihood
+  LikelihoodField field_;
+  CorrelativeSearch search_;
 };
 
 }  // namespace slam::correction
