@@ -292,7 +292,38 @@ class PoseCorrector {
   void prepare(Keyframe&& keyframe, const GridView& grid, bool match, MatchJob& job);
   // The matching itself: reads and writes only `job` (and the options), so it may run on the worker.
   void match_keyframe(ScanMatcher& matcher, MatchJob& job) const;
+  // A matched keyframe into the graph and its robot's correction (pose_corrector_apply.cpp), by the
+  // steps below.
   void apply(MatchJob& job, std::vector<KeyframeCorrection>& out);
+  // What apply() decided about the old keyframes the job matched against.
+  struct TieDecision {
+    std::optional<uint32_t> anchor;  // slot of the old keyframe it is tied to; none: no tie
+    Pose estimate;                   // where the tie puts the keyframe
+    Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+    bool closure = false;  // a wide match that moved the keyframe: a loop closure, bends the chain
+  };
+  // An optimisation that landed while the job was matched moved the robot's correction from the
+  // one the job was prepared with to `correction`: moves the job's poses with it.
+  void carry_into_correction(MatchJob& job, const Pose& correction) const;
+  // Counts the tracking match (or its absence) and teaches the robot's odometry trust from it.
+  // Returns the robot's correction source after it.
+  CorrectionSource learn_from_tracking(const MatchJob& job, Robot& rb);
+  // Whether the tie match is taken, and as a loop closure (counted and logged).
+  TieDecision decide_tie(const MatchJob& job, const Robot& rb, bool operator_set);
+  // Moves `estimate` by the tie (fused) or closure (taken, the chain bent), and the robot's
+  // uncertainty with it. Returns the new estimate.
+  Pose apply_tie(const Keyframe& keyframe, Robot& rb, const TieDecision& tie, const Pose& estimate);
+  // An operator's pose for the robot's next keyframe: the estimate it gives, the robot known as well.
+  Pose apply_operator_pose(const MatchJob& job, Robot& rb);
+  // The keyframe's node (its points moved out of the job) and its edges: sequential, tie, walls'
+  // heading, prior. Returns its slot.
+  uint32_t add_node_and_edges(MatchJob& job, const Robot& rb, const Pose& estimate,
+                              const Pose& tracked_motion, const TieDecision& tie, bool operator_set);
+  // The keyframe's walls into the map's axes (anchoring them at the robot's first keyframes).
+  void learn_wall_axes(const MatchJob& job, Robot& rb, const Pose& estimate);
+  // The robot's correction and published state moved to the keyframe; the keyframe appended to `out`.
+  void publish_keyframe(const MatchJob& job, Robot& rb, const Pose& estimate, CorrectionSource source,
+                        const TieDecision& tie, std::vector<KeyframeCorrection>& out);
   // Applies the jobs the worker finished.
   void land(std::vector<KeyframeCorrection>& out);
   std::unique_ptr<MatchJob> take_job();
