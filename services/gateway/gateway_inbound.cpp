@@ -38,6 +38,7 @@ void GatewayNode::on_mqtt_message(std::string_view topic, std::span<const std::u
   switch (kind) {
     case InboundKind::Observation: {
       const protocol::DecodedObservation& observation = decoder_.observation();
+      if (observation.error_beams > 0) bump(metrics_.scan_error_beams, observation.error_beams);
       const std::size_t points = observation.hits.size() + observation.misses.size();
       if (!batch_policy_.fits(points)) write_batch();
       const bool first = batch_policy_.empty();

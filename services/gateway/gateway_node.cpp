@@ -65,7 +65,8 @@ GatewayNode::Metrics::Metrics(Counters& c)
       robot_protocols_refused(c.get("robot_protocols_refused")),
       robots_forgotten(c.get("robots_forgotten")),
       fleet_digests(c.get("fleet_digests")),
-      observation_batches(c.get("observation_batches")) {
+      observation_batches(c.get("observation_batches")),
+      scan_error_beams(c.get("scan_error_beams")) {
   for (protocol::RejectReason r : protocol::kAllRejectReasons) {
     rejected[static_cast<size_t>(r)] = &c.get(std::string(protocol::reason_counter(r)));
   }

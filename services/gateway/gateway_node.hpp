@@ -98,6 +98,7 @@ class GatewayNode {
     std::atomic<int64_t>& robots_forgotten;
     std::atomic<int64_t>& fleet_digests;
     std::atomic<int64_t>& observation_batches;
+    std::atomic<int64_t>& scan_error_beams;  // v2 scan beams with range 0, left out
   };
 
   GatewayNode(const GatewayOptions& options, Counters& counters);

@@ -278,6 +278,7 @@ void MapperNode::update_periodic_counters() {
   counters_.get("slam_wall_headings").store(st.wall_headings, std::memory_order_relaxed);
   counters_.get("slam_point_refined").store(st.point_refined, std::memory_order_relaxed);
   counters_.get("slam_rejected_inputs").store(st.rejected_inputs, std::memory_order_relaxed);
+  counters_.get("slam_clock_steps").store(st.clock_steps, std::memory_order_relaxed);
   counters_.get("slam_ties_tried").store(st.ties_tried, std::memory_order_relaxed);
   counters_.get("slam_ties_skipped").store(st.ties_skipped, std::memory_order_relaxed);
   counters_.get("slam_wide_skipped").store(st.wide_skipped, std::memory_order_relaxed);

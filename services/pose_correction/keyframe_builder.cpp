@@ -51,9 +51,11 @@ KeyframeBuilder::Step KeyframeBuilder::add(uint64_t id, uint32_t robot, int64_t 
   keyframe_.turn_rad = std::max(keyframe_.turn_rad, turn);
   const bool scan_moved = keyframe_.scans && (keyframe_.travel_m >= options_.scan_travel_m ||
                                               keyframe_.turn_rad >= options_.scan_turn_rad);
+  // A robot clock set back by more than a span leaves the keyframe's span unknown: it closes too.
+  const int64_t span_ns = measured_ns - keyframe_.first_robot_stamp_ns;
   const bool complete = scan_moved || travel >= options_.travel_m || turn >= options_.turn_rad ||
-                        keyframe_.messages >= options_.max_messages ||
-                        measured_ns - keyframe_.first_robot_stamp_ns >= options_.max_span_ns;
+                        keyframe_.messages >= options_.max_messages || span_ns >= options_.max_span_ns ||
+                        span_ns <= -options_.max_span_ns;
   return complete ? Step::AddedAndClosed : Step::Added;
 }
 

@@ -48,6 +48,7 @@ Result<uint64_t> PoseCorrector::add(std::string_view robot, int64_t stamp_ns, co
     ++stats_.rejected_inputs;
     return Error{"observation has a non-finite pose or point"};
   }
+  stamp_ns = take_out_clock_steps(stamp_clock_, stamp_ns, "the observations' stamps");
   const uint32_t r = robot_index(robot);
   Robot& rb = robots_[r];
   rb.has_heading = has_heading;
@@ -70,7 +71,19 @@ Result<uint64_t> PoseCorrector::add(std::string_view robot, int64_t stamp_ns, co
   return id;
 }
 
+int64_t PoseCorrector::take_out_clock_steps(ClockSteps& clock, int64_t t_ns, std::string_view what) {
+  const int64_t offset = clock.offset_ns();
+  const int64_t steady = clock(t_ns);
+  if (clock.offset_ns() != offset) {
+    ++stats_.clock_steps;
+    spdlog::warn("pose correction: {} went back {:.0f} s: taken as a clock set back", what,
+                 static_cast<double>(clock.offset_ns() - offset) * 1e-9);
+  }
+  return steady;
+}
+
 void PoseCorrector::process(const GridView& grid, int64_t now_ns, std::vector<KeyframeCorrection>& out) {
+  now_ns = take_out_clock_steps(process_clock_, now_ns, "the time of process()");
   last_process_ns_ = now_ns;
   land(out);
   int64_t open_messages = 0;

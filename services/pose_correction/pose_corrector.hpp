@@ -34,6 +34,7 @@
 
 #include "common/core/geometry.hpp"
 #include "common/core/result.hpp"
+#include "pose_correction/clock_steps.hpp"
 #include "pose_correction/correction_schedule.hpp"
 #include "pose_correction/grid_view.hpp"
 #include "pose_correction/keyframe_builder.hpp"
@@ -146,6 +147,7 @@ struct CorrectorStats {
   int64_t failed_optimisations = 0;
   int64_t segments = 0;         // odometry jumps that started a new segment
   int64_t rejected_inputs = 0;  // non-finite observations, bad initial poses
+  int64_t clock_steps = 0;      // stamps or process() times set back by more than 10 s (clock_steps.hpp)
   int64_t wall_headings = 0;    // keyframes whose heading the walls corrected
   int64_t point_refined = 0;    // matched keyframes refined against the points of the keyframes around
   // Scheduling under load (CorrectionSchedule).
@@ -284,8 +286,13 @@ class PoseCorrector {
   static constexpr int kAnchoringKeyframes = 3;
   // A correction moving a robot this far (by a keyframe or an optimisation) is logged as a warning.
   static constexpr double kJumpWarning_m = 0.3;
+  // The observations' stamps or process()'s clock going back further than this were set back: the
+  // step is taken out (ClockSteps).
+  static constexpr int64_t kClockStepBack_ns = 10'000'000'000;
 
   uint32_t robot_index(std::string_view robot);
+  // `t_ns` on `clock` with its steps back taken out; a step is counted and logged as `what`'s.
+  int64_t take_out_clock_steps(ClockSteps& clock, int64_t t_ns, std::string_view what);
   // A closed keyframe: prepared on the loop thread, matched (inline or on the worker), applied on
   // the loop thread. match = false: placed by odometry alone.
   void start(Keyframe&& keyframe, const GridView& grid, bool match, std::vector<KeyframeCorrection>& out);
@@ -371,6 +378,9 @@ class PoseCorrector {
   int64_t last_process_ns_ = 0;            // now_ns of the latest process()
   int64_t submitted_ns_ = 0;               // ...when the running optimisation started
   size_t submitted_nodes_ = 0;
+  // add()'s stamps and process()'s now_ns, their steps back taken out.
+  ClockSteps stamp_clock_{kClockStepBack_ns};
+  ClockSteps process_clock_{kClockStepBack_ns};
   std::function<void(const KeyframeDecision&)> keyframe_observer_;
   CorrectorStats stats_;
   size_t removed_nodes_ = 0;

@@ -30,6 +30,9 @@ struct DecodedObservation {
   std::int64_t robot_stamp_ns = 0;
   std::vector<Point> hits;    // obstacle points: ray end is occupied
   std::vector<Point> misses;  // beams that saw nothing up to max range: ray is free, end unknown
+  // Scan beams with a range of 0: an error reading (a laser's "no measurement"), neither a hit at the
+  // sensor nor free space; left out.
+  std::uint32_t error_beams = 0;
 
   void clear() {
     x = y = theta = 0.0;
@@ -37,6 +40,7 @@ struct DecodedObservation {
     robot_stamp_ns = 0;
     hits.clear();
     misses.clear();
+    error_beams = 0;
   }
 };
 

@@ -210,6 +210,10 @@ CodecStatus decode_v2_scan(std::span<const std::uint8_t> payload, const CodecLim
       if (auto s = json_fields::number(r, {"ranges", i}, limits.max_abs_coordinate_m, range); !s) return s;
       if (range < 0.0)
         return {RejectReason::OutOfRange, fmt::format("ranges[{}] is {}, must be >= 0", i, range)};
+      if (range == 0.0) {
+        ++out.error_beams;  // an error reading: not an obstacle at the sensor, not free space
+        continue;
+      }
       hit = range < max_range;
     }
     if (!hit) range = std::min(max_range, limits.scan_free_range_m);

@@ -42,6 +42,8 @@ struct Track {
 std::string stats_line(const std::string& path, const robot_log::LogStats& s) {
   std::string line = fmt::format("{}: {} scans, {} odometry, {} lines; {} bad lines, {} stamps back", path,
                                  s.scans, s.odometry, s.lines, s.bad_lines, s.stamps_back);
+  if (s.stamp_jumps > 0) line += fmt::format(", {} stamp jumps (not waited out)", s.stamp_jumps);
+  if (s.error_readings > 0) line += fmt::format(", {} error readings (left out)", s.error_readings);
   if (s.unknown_kinds > 0) line += fmt::format(", {} of kinds not played", s.unknown_kinds);
   if (!s.first_bad.empty()) line += fmt::format(" (first bad: {})", s.first_bad);
   return line;

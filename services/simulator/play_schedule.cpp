@@ -40,11 +40,16 @@ Result<std::vector<PlayPiece>> plan_pieces(const robot_log::RobotLog& log, size_
 std::vector<double> send_times(const robot_log::RobotLog& log, const PlayPiece& piece, double rate) {
   std::vector<double> out(piece.size());
   if (out.empty()) return out;
-  const double t0 = log.scans[piece.first].stamp_s;
+  double t0 = log.scans[piece.first].stamp_s;  // the stamp sent at `base`
+  double base = 0;
   double last = 0;
   for (size_t i = 0; i < out.size(); ++i) {
-    const double t =
-        rate > 0 ? (log.scans[piece.first + i].stamp_s - t0) / rate : kFastPaceS * static_cast<double>(i);
+    const double stamp = log.scans[piece.first + i].stamp_s;
+    if (i > 0 && std::abs(stamp - log.scans[piece.first + i - 1].stamp_s) > robot_log::kStampJumpS) {
+      t0 = stamp;
+      base = last;
+    }
+    const double t = rate > 0 ? base + (stamp - t0) / rate : kFastPaceS * static_cast<double>(i);
     last = std::max(last, t);
     out[i] = last;
   }

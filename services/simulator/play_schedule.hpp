@@ -29,7 +29,9 @@ Result<std::vector<PlayPiece>> plan_pieces(const robot_log::RobotLog& log, size_
 
 // When each scan of a piece goes out, in seconds from the start of playback: the time since the
 // piece's first stamp divided by `rate`, held when a stamp steps back (file order is kept), or
-// one every kFastPaceS at rate 0.
+// one every kFastPaceS at rate 0. A step of more than robot_log::kStampJumpS either way (a clock
+// set, a recording resumed hours later) is not waited out: the scan after it goes out right after
+// the one before, and the time counts on from it.
 std::vector<double> send_times(const robot_log::RobotLog& log, const PlayPiece& piece, double rate);
 
 // A scan as it goes out: beams in the sensor frame, each range either a return (< max_range) or

@@ -27,13 +27,14 @@ using testkit::wait_until;
 constexpr double kPi = std::numbers::pi;
 
 // Four beams at -90, -45, 0 and 45 degrees read 1, 2, nothing (81.91) and 3 m; the laser sits 0.1 m
-// ahead of the robot. Line 5 is junk, the scan stamped 10.1 steps back.
+// ahead of the robot. Line 5 is junk (a scan without a usable odometry pose), the scan stamped
+// 10.1 steps back.
 constexpr const char* kLog =
     "# a small CARMEN log\n"
     "PARAM robot_frontlaser_offset 0.1 host 0\n"
     "FLASER 4 1.0 2.0 81.91 3.0 0.1 0 0 0 0 0 10.0 host 10.0\n"
     "ODOM 0.5 0 0.2 0 0 0 10.1 host 10.1\n"
-    "FLASER 4 1.0 2.0 nan 3.0 0 0 0 0 0 0 10.1 host 10.1\n"
+    "FLASER 4 1.0 2.0 81.91 3.0 0 0 0 nan 0 0 10.1 host 10.1\n"
     "FLASER 4 1.0 2.0 81.91 3.0 1.1 0 0.5 1 0 0.5 10.2 host 10.2\n"
     "FLASER 4 1.0 2.0 81.91 3.0 2.1 0 1 2 0 1 10.1 host 10.1\n"
     "FLASER 4 1.0 2.0 81.91 3.0 3.1 0 1 3 0 1 10.4 host 10.4\n";

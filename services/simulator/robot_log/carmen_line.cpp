@@ -30,10 +30,15 @@ Fields split_fields(std::string_view line) {
   return fields;
 }
 
-// A finite number filling the whole field; from_chars also reads "nan" and "inf", refused here.
-bool read_number(std::string_view field, double& out) {
+// A number filling the whole field; from_chars also reads "nan", "inf" and "-inf".
+bool read_any_number(std::string_view field, double& out) {
   const auto [end, ec] = std::from_chars(field.data(), field.data() + field.size(), out);
-  return ec == std::errc{} && end == field.data() + field.size() && std::isfinite(out);
+  return ec == std::errc{} && end == field.data() + field.size();
+}
+
+// A finite number filling the whole field.
+bool read_number(std::string_view field, double& out) {
+  return read_any_number(field, out) && std::isfinite(out);
 }
 
 bool read_count(std::string_view field, int64_t& out) {
@@ -62,16 +67,31 @@ Status read_numbers(const Fields& fields, size_t first, size_t count, std::strin
   return Status::ok();
 }
 
+// Reads a scan's readings: numbers, but "nan" (an error reading) and "inf" (no return) as well, as
+// a log converted from ROS writes them: one bad beam says nothing about the others.
+Status read_readings(const Fields& fields, size_t first, size_t count, std::string_view kind,
+                     std::vector<double>& out) {
+  out.resize(count);
+  for (size_t i = 0; i < count; ++i) {
+    if (!read_any_number(fields[first + i], out[i]))
+      return bad(kind, fmt::format("reading {} is not a number ('{:.20}')", i, fields[first + i]));
+  }
+  return Status::ok();
+}
+
 Pose pose_at(const std::vector<double>& v, size_t i) {
   return {v[i], v[i + 1], wrap_angle(v[i + 2])};
 }
 
-// Ranges as floats; a finite double beyond float's reach would be undefined to convert, and any
-// such reading is "no return" anyway.
+// Ranges as floats; a double beyond float's reach would be undefined to convert, and any such
+// reading is "no return" (or, negative, an error reading) anyway. NaN stays NaN.
 std::vector<float> to_ranges(const std::vector<double>& v) {
   std::vector<float> out(v.size());
   constexpr double kFloatMax = std::numeric_limits<float>::max();
-  for (size_t i = 0; i < v.size(); ++i) out[i] = static_cast<float>(std::clamp(v[i], -kFloatMax, kFloatMax));
+  for (size_t i = 0; i < v.size(); ++i) {
+    out[i] = std::isnan(v[i]) ? std::numeric_limits<float>::quiet_NaN()
+                              : static_cast<float>(std::clamp(v[i], -kFloatMax, kFloatMax));
+  }
   return out;
 }
 
@@ -92,7 +112,7 @@ Result<CarmenRecord> parse_flaser(const Fields& f, const CarmenContext& context,
   if (beams > f.size() || f.size() != beams + 11)
     return bad(kind, fmt::format("{} fields for {} readings, expected {}", f.size(), n, beams + 11));
   std::vector<double> ranges, tail;
-  SLAM_TRY(read_numbers(f, 2, beams, kind, "reading", ranges));
+  SLAM_TRY(read_readings(f, 2, beams, kind, ranges));
   SLAM_TRY(read_numbers(f, 2 + beams, 7, kind, "pose or stamp field", tail));
   double logger_stamp = 0;
   if (!read_number(f[beams + 10], logger_stamp)) return bad(kind, "logger_timestamp is not a finite number");
@@ -126,7 +146,7 @@ Result<CarmenRecord> parse_robotlaser(const Fields& f) {
   if (rems > f.size() || f.size() != beams + rems + 24)
     return bad(kind, fmt::format("{} fields for {} readings and {} remissions, expected {}", f.size(), n, m,
                                  beams + rems + 24));
-  SLAM_TRY(read_numbers(f, 9, beams, kind, "reading", ranges));
+  SLAM_TRY(read_readings(f, 9, beams, kind, ranges));
   SLAM_TRY(read_numbers(f, 10 + beams, rems, kind, "remission", remissions));
   SLAM_TRY(read_numbers(f, 10 + beams + rems, 12, kind, "pose, velocity or stamp field", tail));
   double logger_stamp = 0;

@@ -7,6 +7,10 @@
 // ROBOTLASER1 (explicit angles, maximum range, laser and robot poses), ODOM (counted) and
 // PARAM robot_frontlaser_offset / robot_rearlaser_offset (the laser's x on the robot, for the
 // FLASER / RLASER lines that follow).
+//
+// A laser line's readings may be "nan" (an error reading) or "inf" (no return), as logs converted
+// from ROS write them: the scan is kept and the reader counts them. Its pose and stamp fields must
+// be finite numbers: a scan without a usable pose is an error (the reader skips and counts it).
 #include <optional>
 #include <string_view>
 

@@ -54,8 +54,7 @@ void CarmenLogBuilder::add_line(std::string_view line) {
     case CarmenKind::Param:
       break;
     case CarmenKind::Scan:
-      if (!log_.scans.empty() && record->scan->stamp_s < log_.scans.back().stamp_s) ++s.stamps_back;
-      ++s.scans;
+      count_scan(*record->scan, log_.scans.empty() ? nullptr : &log_.scans.back(), s);
       log_.scans.push_back(std::move(*record->scan));
       break;
   }

@@ -148,9 +148,9 @@ Result<RobotLog> ros2_log_from_mcap(const mcap::Contents& contents, const Ros2Mc
       mount_frame = p.scan.header.frame_id;
       mount = frames.mount(base_frame, mount_frame);
     }
-    if (!log.scans.empty() && p.scan.header.stamp_s < log.scans.back().stamp_s) ++stats.stamps_back;
-    log.scans.push_back(to_laser_scan(std::move(p.scan), *odom, mount));
-    ++stats.scans;
+    LaserScan scan = to_laser_scan(std::move(p.scan), *odom, mount);
+    count_scan(scan, log.scans.empty() ? nullptr : &log.scans.back(), stats);
+    log.scans.push_back(std::move(scan));
   }
   return log;
 }

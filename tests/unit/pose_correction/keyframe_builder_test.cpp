@@ -69,6 +69,23 @@ TEST(KeyframeBuilder, TheRobotsOwnStampsMeasureTheSpan) {
   EXPECT_FALSE(builder.stale(1000 + messages));  // staleness stays on the arrival clock
 }
 
+TEST(KeyframeBuilder, ARobotClockSetBackClosesTheKeyframe) {
+  // The robot's stamps go back two hours (its clock was set): how long the keyframe spans is
+  // unknown, it closes; the next one starts on the new clock. A small step back (a log's stamps
+  // out of order by a second) changes nothing.
+  KeyframeBuilder builder(KeyframeOptions{});
+  const std::vector<Vec2> hit{{2.0, 1.0}};
+  constexpr int64_t kT = 10'000'000'000'000;
+  ASSERT_EQ(builder.add(1, 0, 0, Pose{}, true, hit, kT), KeyframeBuilder::Step::Added);
+  EXPECT_EQ(builder.add(1, 0, kStep, Pose{}, true, hit, kT - 1'000'000'000), KeyframeBuilder::Step::Added);
+  EXPECT_EQ(builder.add(1, 0, 2 * kStep, Pose{}, true, hit, kT - 7'200'000'000'000),
+            KeyframeBuilder::Step::AddedAndClosed);
+  EXPECT_EQ(builder.take().messages, 3);
+  EXPECT_EQ(builder.add(2, 0, 3 * kStep, Pose{}, true, hit, kT - 7'199'900'000'000),
+            KeyframeBuilder::Step::Added);
+  EXPECT_EQ(builder.segment(), 0u);  // the odometry did not jump
+}
+
 TEST(KeyframeBuilder, RobotsWithoutHeadingKeepTheOdometryAxes) {
   KeyframeBuilder builder(KeyframeOptions{});
   const std::vector<Vec2> hit{{3.0, 4.0}};

@@ -168,6 +168,25 @@ TEST(DecodeV2Scan, RangeEqualToMaxIsAMiss) {
   EXPECT_EQ(out.hits.size(), 1u);
 }
 
+TEST(DecodeV2Scan, AZeroRangeIsAnErrorReadingLeftOut) {
+  // Many lasers report 0 for "no measurement": no obstacle at the sensor, no free space; counted.
+  DecodedObservation out;
+  ASSERT_TRUE(scan(R"({"pose": {"x": 0, "y": 0, "heading": 0}, "angles": [0, 0.5, 1, 1.5],
+      "ranges": [0, 2.0, 0.0, 9.0], "max_range": 4.0})",
+                   out)
+                  .is_ok());
+  ASSERT_EQ(out.hits.size(), 1u);
+  EXPECT_NEAR(out.hits[0].x, 2.0 * std::cos(0.5), 1e-12);
+  EXPECT_EQ(out.misses.size(), 1u);  // 9 m: beyond the maximum, no return
+  EXPECT_EQ(out.error_beams, 2u);
+  // A negative range is no reading at all: the message is refused.
+  EXPECT_EQ(
+      scan(R"({"pose": {"x": 0, "y": 0, "heading": 0}, "angles": [0], "ranges": [-1], "max_range": 4})", out)
+          .reason(),
+      RejectReason::OutOfRange);
+  EXPECT_EQ(out.error_beams, 0u);
+}
+
 TEST(DecodeV2Scan, FreeSpaceWithoutAReturnEndsAtTheFreeRange) {
   // A 30 m laser: a return at 20 m stays a hit; a beam without one clears 5 m only (the default).
   DecodedObservation out;

@@ -5,6 +5,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <numbers>
 #include <string>
 
@@ -62,6 +63,29 @@ TEST(CarmenLine, MaxRangeIsAnOption) {
   options.flaser_max_range_m = 0;
   EXPECT_FALSE(options.validate());
   EXPECT_TRUE(CarmenOptions{}.validate());
+}
+
+TEST(CarmenLine, ReadingsThatSayNothingKeepTheScan) {
+  // NaN (an error reading), negative and zero readings say nothing; inf and readings at or beyond
+  // the maximum are no return. The scan keeps them all as read, and its good beams.
+  CarmenContext context;
+  auto r = parse_carmen_line("FLASER 8 1.5 nan -nan -1 0 inf 90 -inf 0 0 0 1 2 0.5 7.5 host 7.5", context);
+  ASSERT_TRUE(r) << r.message();
+  const LaserScan& s = *r->scan;
+  ASSERT_EQ(s.ranges.size(), 8u);
+  EXPECT_TRUE(s.is_return(0));
+  for (size_t i = 1; i < 8; ++i) EXPECT_FALSE(s.is_return(i)) << "beam " << i;
+  EXPECT_TRUE(std::isnan(s.ranges[1]) && std::isnan(s.ranges[2]));
+  EXPECT_FLOAT_EQ(s.ranges[3], -1.0f);
+  EXPECT_GE(s.ranges[5], s.max_range_m);  // inf: no return
+  EXPECT_LE(s.ranges[7], 0.0f);           // -inf: an error reading
+  EXPECT_EQ(s.odom, (Pose{1, 2, 0.5}));
+  auto robot = parse_carmen_line(
+      "ROBOTLASER1 0 -1 2 1 50 0.01 0 3 nan 60 2 0 0 0 0 0 0 0 0 0 0 0 0 1.4 host 1.4", context);
+  ASSERT_TRUE(robot) << robot.message();
+  EXPECT_TRUE(std::isnan(robot->scan->ranges[0]));
+  EXPECT_FALSE(robot->scan->is_return(1));  // 60 m: beyond its 50 m
+  EXPECT_TRUE(robot->scan->is_return(2));
 }
 
 TEST(CarmenLine, ParamOffsetsPlaceTheLasers) {
@@ -124,8 +148,12 @@ TEST(CarmenLine, JunkIsAnError) {
   };
   EXPECT_THAT(reason("FLASER 3 1 2 0 0 0 0 0 0 1 h 1"), HasSubstr("expected 14"));    // one reading short
   EXPECT_THAT(reason("FLASER 2 1 2 0 0 0 0 0 0 1 h 1 9"), HasSubstr("expected 13"));  // one field too many
-  EXPECT_THAT(reason("FLASER 2 1 nan 0 0 0 0 0 0 1 h 1"), HasSubstr("reading 1"));
+  EXPECT_THAT(reason("FLASER 2 1 x 0 0 0 0 0 0 1 h 1"), HasSubstr("reading 1 is not a number"));
   EXPECT_THAT(reason("FLASER 2 1 2 0 0 inf 0 0 0 1 h 1"), HasSubstr("not a finite number"));
+  // A scan without a usable pose or stamp.
+  EXPECT_THAT(reason("FLASER 2 1 2 0 0 0 nan 0 0 1 h 1"), HasSubstr("not a finite number"));
+  EXPECT_THAT(reason("FLASER 2 1 2 0 0 0 0 0 0 nan h 1"), HasSubstr("not a finite number"));
+  EXPECT_THAT(reason("FLASER 2 1 2 0 0 0 1 h 1"), HasSubstr("expected 13"));  // no odometry pose
   EXPECT_THAT(reason("FLASER 2 1 2 0 0 0 0 0 0 x h 1"), HasSubstr("not a finite number"));
   EXPECT_THAT(reason("FLASER -2 1 2"), HasSubstr("reading count"));
   EXPECT_THAT(reason("FLASER 99999999999999999999"), HasSubstr("reading count"));

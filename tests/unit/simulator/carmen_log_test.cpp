@@ -29,8 +29,8 @@ constexpr std::string_view kLog =
     "ROBOTLASER1 0 -1 2 1 50 0.01 0 3 1 2 3 0 0.2 0 0 0.2 0 0 0 0 0 0 0 1.4 host 1.4\n"
     "SONAR 1 2 3\n"
     "\n"
-    "FLASER 2 1 nan 0 0 0 0 0 0 1.5 host 1.5\r\n"
-    "ODOM 0.3 0 0 0 0 0 1.6 host 1.6";  // no newline at the end
+    "FLASER 2 1 2 0 0 0 nan 0 0 1.5 host 1.5\r\n"  // no usable odometry pose
+    "ODOM 0.3 0 0 0 0 0 1.6 host 1.6";             // no newline at the end
 
 void expect_log(const RobotLog& log) {
   const LogStats& s = log.stats;
@@ -41,6 +41,9 @@ void expect_log(const RobotLog& log) {
   EXPECT_EQ(s.unknown_kinds, 1);
   EXPECT_EQ(s.bad_lines, 2);
   EXPECT_EQ(s.stamps_back, 1);
+  EXPECT_EQ(s.stamp_jumps, 0);
+  EXPECT_EQ(s.error_readings, 0);
+  EXPECT_EQ(s.far_readings, 1);  // 81.91
   EXPECT_THAT(s.first_bad, HasSubstr("line 8: FLASER"));
   ASSERT_EQ(log.scans.size(), 5u);
   EXPECT_DOUBLE_EQ(log.scans[1].stamp_s, 1.1);
@@ -53,6 +56,30 @@ void expect_log(const RobotLog& log) {
 
 TEST(CarmenLog, CountsEveryKind) {
   expect_log(parse_carmen_text(kLog));
+}
+
+TEST(CarmenLog, ReadingsAndStampsThatSayNothingAreCountedNotFatal) {
+  const RobotLog log = parse_carmen_text(
+      "FLASER 4 1 2 3 4 0 0 0 0 0 0 100 host 100\n"
+      "FLASER 4 nan -1 0 90 0 0 0 0.1 0 0 100.1 host 100.1\n"     // error readings; 90 m: beyond 81
+      "FLASER 4 1 inf 2 -inf 0 0 0 0.2 0 0 100.05 host 100.05\n"  // stamp back 0.05 s
+      "FLASER 4 1 2 3 4 0 0 0 0.3 0 0 10900 host 10900\n"         // three hours later
+      "FLASER 4 1 2 3 4 0 0 0 0.4 0 0 3700 host 3700\n"           // two hours back
+      "FLASER 4 1 2 3 4 nan 0 0 0.5 0 0 3700.1 host 3700.1\n"     // no laser pose
+      "FLASER 4 1 2 3 4 0 0 0 3800 host 3800\n");                 // no odometry pose
+  const LogStats& s = log.stats;
+  EXPECT_EQ(s.scans, 5);
+  EXPECT_EQ(s.bad_lines, 2);
+  EXPECT_THAT(s.first_bad, HasSubstr("line 6: FLASER: pose or stamp field 0"));
+  EXPECT_EQ(s.error_readings, 4);  // nan, -1, 0, -inf
+  EXPECT_EQ(s.far_readings, 2);    // 90, inf
+  EXPECT_EQ(s.stamps_back, 2);
+  EXPECT_EQ(s.stamp_jumps, 2);
+  ASSERT_EQ(log.scans.size(), 5u);
+  const LaserScan& bad = log.scans[1];
+  EXPECT_FALSE(bad.is_return(0) || bad.is_return(1) || bad.is_return(2) || bad.is_return(3));
+  EXPECT_TRUE(log.scans[2].is_return(0) && log.scans[2].is_return(2));
+  EXPECT_DOUBLE_EQ(log.scans[4].stamp_s, 3700);  // file order kept
 }
 
 TEST(CarmenLog, PlainAndGzipFilesReadAlike) {

@@ -82,6 +82,19 @@ TEST(PlaySchedule, SendTimesFollowTheStampsAtTheRate) {
   EXPECT_TRUE(send_times(log, PlayPiece{"r", 0, 2, 2}, 1.0).empty());
 }
 
+TEST(PlaySchedule, StampJumpsOfHoursAreNotWaitedOut) {
+  // The clock jumps three hours ahead, later two hours back: each scan after a jump goes out right
+  // after the one before it, and the log's spacing resumes from there. Neither hours of waiting
+  // nor the rest of the log at once.
+  RobotLog log = log_of(6);  // 100, 100.5, ... 102.5
+  log.scans[2].stamp_s = 100.5 + 3 * 3600;
+  log.scans[3].stamp_s = log.scans[2].stamp_s + 0.5;
+  log.scans[4].stamp_s = log.scans[3].stamp_s - 2 * 3600;
+  log.scans[5].stamp_s = log.scans[4].stamp_s + 0.5;
+  EXPECT_THAT(send_times(log, PlayPiece{"r", 0, 0, 6}, 1.0), ElementsAre(0.0, 0.5, 0.5, 1.0, 1.0, 1.5));
+  EXPECT_THAT(send_times(log, PlayPiece{"r", 0, 0, 6}, 2.0), ElementsAre(0.0, 0.25, 0.25, 0.5, 0.5, 0.75));
+}
+
 LaserScan scan_with(std::vector<float> ranges) {
   LaserScan s;
   s.stamp_s = 7.5;

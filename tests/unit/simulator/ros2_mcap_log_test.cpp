@@ -9,7 +9,9 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <limits>
 #include <string>
+#include <vector>
 
 #include "cdr_bytes.hpp"
 #include "common/core/mcap_writer.hpp"
@@ -120,6 +122,42 @@ TEST(Ros2McapLog, TopicChoice) {
   EXPECT_THAT(read_ros2_mcap_log(recording(dir, {})).message(),
               HasSubstr("no sensor_msgs/msg/LaserScan topic"));
   EXPECT_THAT(read_ros2_mcap_log(dir / "missing.mcap").message(), HasSubstr("cannot open"));
+}
+
+TEST(Ros2McapLog, ReadingsThatSayNothingAndScansWithoutOdometryAreCounted) {
+  const testkit::TempDir dir("ros2-mcap");
+  const auto path = dir / "bad.mcap";
+  auto writer = mcap::Writer::create(path.string(), "ros2_mcap_log_test");
+  ASSERT_TRUE(writer);
+  auto& w = **writer;
+  const uint16_t scan_schema = *w.add_schema(kLaserScanType, "ros2msg", "");
+  const uint16_t odom_schema = *w.add_schema(kOdometryType, "ros2msg", "");
+  const uint16_t odom = *w.add_channel(odom_schema, "/odom", "cdr");
+  const uint16_t scans = *w.add_channel(scan_schema, "/scan", "cdr");
+  for (int t = 0; t < 3; ++t) EXPECT_TRUE(w.write_message(odom, t, t, odom_cdr(t)));
+  // range_min 0.1 m, range_max 5 m: NaN, -inf and 0.05 say nothing; 7 and inf are no return.
+  const float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
+  const std::vector<float> ranges{1, nan, -inf, 0.05f, 7, inf, 2};
+  CdrBytes c;
+  c.header(1, 0, "laser").f32(-1).f32(1).f32(0.5).f32(0).f32(0).f32(0.1f).f32(5);
+  c.u32(static_cast<uint32_t>(ranges.size()));
+  for (float r : ranges) c.f32(r);
+  c.u32(0);
+  EXPECT_TRUE(w.write_message(scans, 1, 1, c.bytes()));
+  EXPECT_TRUE(w.write_message(scans, 60, 60, scan_cdr(60, "laser")));  // a minute after the odometry ends
+  EXPECT_TRUE(w.close());
+
+  auto log = read_ros2_mcap_log(path);
+  ASSERT_TRUE(log) << log.message();
+  const LogStats& s = log->stats;
+  EXPECT_EQ(s.scans, 1);
+  EXPECT_EQ(s.bad_lines, 1);  // the scan without a pose
+  EXPECT_THAT(s.first_bad, HasSubstr("has no odometry within"));
+  EXPECT_EQ(s.error_readings, 3);
+  EXPECT_EQ(s.far_readings, 2);
+  ASSERT_EQ(log->scans.size(), 1u);
+  const LaserScan& scan = log->scans[0];
+  for (size_t i = 0; i < ranges.size(); ++i) EXPECT_EQ(scan.is_return(i), i == 0 || i == 6) << "beam " << i;
 }
 
 TEST(Ros2McapLog, UpsideDownLaserIsMirrored) {
