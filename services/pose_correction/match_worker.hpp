@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "common/core/geometry.hpp"
+#include "pose_correction/branch_and_bound_search.hpp"
 #include "pose_correction/keyframe_builder.hpp"
 #include "pose_correction/point_refiner.hpp"
 #include "pose_correction/scan_matcher.hpp"
@@ -60,11 +61,12 @@ struct MatchJob {
   Pose tracked;   // the prediction, fused with the narrow match when there is one
   Pose estimate;  // `tracked`, its heading pulled toward the walls' when they gave one
   std::optional<WallAxisReading> wall_reading;
-  std::optional<double> wall_heading;  // the heading the walls gave, when it was taken
-  double wall_variance = 0.0;          // ...and its variance
-  WallAxisReader wall_reader;          // scratch
-  PointRefiner refiner;                // scratch
-  bool point_refined = false;          // the narrow match was refined against track_points
+  std::optional<double> wall_heading;    // the heading the walls gave, when it was taken
+  double wall_variance = 0.0;            // ...and its variance
+  WallAxisReader wall_reader;            // scratch
+  PointRefiner refiner;                  // scratch
+  BranchAndBoundSearch recovery_search;  // scratch: a tracking match off its window's edge
+  bool point_refined = false;            // the narrow match was refined against track_points
   Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
   bool wide = false;          // the tie searched the wide window
   bool wide_skipped = false;  // a wide search was needed but not permitted

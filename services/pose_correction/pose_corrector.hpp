@@ -74,6 +74,12 @@ struct CorrectorOptions {
   // A keyframe of scans spans a few degrees of turning, over which real odometry can be off by as
   // much again (Freiburg 079's by 5-10 degrees a second): its heading is searched wider.
   SearchWindow scan_track_window{0.15, 0.2};
+  // A scan keyframe whose tracking match lies on its window's edge (odometry off by more than the
+  // window: Freiburg 079's odometry integrates forward while the robot backs up at 0.5 m/s) is
+  // searched again by branch and bound in this wider window, and the tracking window's match around
+  // what it finds is taken when it is no longer on the edge and scores better.
+  SearchWindow scan_recovery_window{0.6, 0.4};
+  double scan_recovery_gain = 0.05;  // ...by at least this much more mean likelihood (0..1)
   // What makes a loop closure's match distinct. A scan's hundreds of points put a second peak that
   // sums nine tenths of the best far below it (its weight under the response's reading is e^-8 at
   // 700 points), where a sparse keyframe's would still be a real rival.
@@ -299,6 +305,9 @@ class PoseCorrector {
   void prepare(Keyframe&& keyframe, const GridView& grid, bool match, MatchJob& job);
   // The matching itself: reads and writes only `job` (and the options), so it may run on the worker.
   void match_keyframe(ScanMatcher& matcher, MatchJob& job) const;
+  // A scan keyframe's tracking match off its window's edge, searched again wider (scan_recovery_window).
+  void recover_track(ScanMatcher& matcher, const GridView& view, MatchJob& job,
+                     Result<MatchResult>& narrow) const;
   // A matched keyframe into the graph and its robot's correction (pose_corrector_apply.cpp), by the
   // steps below.
   void apply(MatchJob& job, std::vector<KeyframeCorrection>& out);

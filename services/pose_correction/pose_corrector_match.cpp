@@ -154,7 +154,10 @@ void PoseCorrector::prepare(Keyframe&& keyframe, const GridView& grid, bool matc
     // likelihood field's blur around it.
     double reach = 0.0;
     for (const Vec2& p : keyframe.points) reach = std::max(reach, norm(p));
-    const double half = reach + options_.track_window.linear_m + options_.window_margin_m;
+    const double track_reach =
+        keyframe.scans ? std::max(options_.scan_track_window.linear_m, options_.scan_recovery_window.linear_m)
+                       : options_.track_window.linear_m;
+    const double half = reach + track_reach + options_.window_margin_m;
     job.track_geometry = copy_window(grid, job.predicted.position(), half, job.track_cells);
     job.track_points.clear();
     // What the keyframe can see, up to local_reach_m: a 4 m sensor's local map stays as small as it was.
@@ -195,6 +198,20 @@ void PoseCorrector::prepare(Keyframe&& keyframe, const GridView& grid, bool matc
   job.keyframe = std::move(keyframe);
 }
 
+void PoseCorrector::recover_track(ScanMatcher& matcher, const GridView& view, MatchJob& job,
+                                  Result<MatchResult>& narrow) const {
+  const SearchWindow& wide = options_.scan_recovery_window;
+  if (!job.recovery_search.set_map(view)) return;
+  const auto found =
+      job.recovery_search.search(job.keyframe.points, {job.predicted, wide.linear_m, wide.angular_rad});
+  if (!found) return;
+  auto again = matcher.match(view, job.keyframe.points, found->pose, options_.scan_track_window,
+                             options_.scan_independent_points);
+  if (again && !again->at_window_edge &&
+      (!narrow || again->score > narrow->score + options_.scan_recovery_gain))
+    narrow = std::move(again);
+}
+
 void PoseCorrector::match_keyframe(ScanMatcher& matcher, MatchJob& job) const {
   job.narrow.reset();
   job.point_refined = false;
@@ -214,8 +231,10 @@ void PoseCorrector::match_keyframe(ScanMatcher& matcher, MatchJob& job) const {
   const bool scans = job.keyframe.scans;
   const double independent = scans ? options_.scan_independent_points : 0.0;
   const SearchWindow& track_window = scans ? options_.scan_track_window : options_.track_window;
-  if (auto narrow = matcher.match(GridView{job.track_geometry, job.track_cells}, points, job.predicted,
-                                  track_window, independent)) {
+  const GridView track_view{job.track_geometry, job.track_cells};
+  auto narrow = matcher.match(track_view, points, job.predicted, track_window, independent);
+  if (scans && (!narrow || narrow->at_window_edge)) recover_track(matcher, track_view, job, narrow);
+  if (narrow) {
     // Fused with the odometry prediction by their covariances (a Kalman update): a sparse
     // keyframe's match is noisier than half a metre of odometry, and taking it as is would
     // random-walk the pose where the map is only the robot's own recent trail.

@@ -204,6 +204,10 @@ void add_slam_options(CLI::App& app, correction::CorrectorOptions& s) {
   add("--track-variance-scale", s.track_variance_scale, "a sparse match's covariance scale");
   add("--closure-window-m", s.closure_window.linear_m, "loop-closure search (m)");
   add("--closure-window-rad", s.closure_window.angular_rad, "...and its heading (rad)");
+  add("--scan-recovery-window-m", s.scan_recovery_window.linear_m,
+      "a scan match on its window's edge searched again this wide (m)");
+  add("--scan-recovery-window-rad", s.scan_recovery_window.angular_rad, "...and its heading (rad)");
+  add("--scan-recovery-gain", s.scan_recovery_gain, "...and taken when it scores this much better");
   add("--closure-radius", s.closure_radius_m, "old keyframes this near are closure candidates (m)");
   add("--local-reach", s.local_reach_m, "the local maps' largest reach (m)");
   add("--odom-sigma-m", s.odom_sigma_m_per_sqrt_m, "odometry noise (m per sqrt m)");
