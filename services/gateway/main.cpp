@@ -1,8 +1,8 @@
 // slam-gateway: translates robots' MQTT traffic (v1 binary, v2 JSON) to DDS and waypoint commands
 // back. Only wiring: the common service skeleton around GatewayNode.
 #include "common/fastdds/run_service.hpp"
-#include "gateway/gateway_node.hpp"
-#include "gateway/gateway_options.hpp"
+#include "gateway/core/gateway_options.hpp"
+#include "gateway/dds/gateway_node.hpp"
 
 int main(int argc, char** argv) {
   using namespace slam::gateway;

@@ -9,7 +9,9 @@
 // is measured is the pipeline's sustained rate, with no message lost to a queue overflowing.
 // Message count: SLAM_BENCH_GATEWAY_MESSAGES (default 1000000). The gateway runs with --batch-ms
 // SLAM_BENCH_GATEWAY_BATCH_MS (default 0: every observation in a sample of its own, so (c) is the
-// gateway's own latency; its default of 10 ms adds up to that much by design). Run:
+// gateway's own latency; its default of 10 ms adds up to that much by design). The gateway is the
+// build's slam-gateway, or SLAM_BENCH_GATEWAY_BIN (another build of it: before/after comparisons with
+// one bench binary, runs interleaved). Run:
 //   build/bin/bench_gateway --benchmark_format=json
 #include <MQTTAsync.h>
 #include <benchmark/benchmark.h>
@@ -41,6 +43,11 @@ constexpr int64_t kWindow = 256;  // below the DDS stream history (1000): nothin
 constexpr char kBaselineTopic[] = "bench/baseline";  // the gateway does not subscribe this
 constexpr char kThroughputTopic[] = "v1/robot/tp/adv";
 constexpr char kLatencyTopic[] = "v1/robot/lat/adv";
+
+std::string gateway_bin() {
+  const char* env = std::getenv("SLAM_BENCH_GATEWAY_BIN");
+  return env && *env ? env : SLAM_GATEWAY_BIN;
+}
 
 std::string batch_ms() {
   const char* env = std::getenv("SLAM_BENCH_GATEWAY_BATCH_MS");
@@ -208,7 +215,7 @@ class Rig {
   Rig() {
     port_ = group_.start_mosquitto();
     group_.start("gateway", slam::testkit::with_dds_identity(
-                                "gateway", {SLAM_GATEWAY_BIN, "--domain", std::to_string(domain_.id()),
+                                "gateway", {gateway_bin(), "--domain", std::to_string(domain_.id()),
                                             "--broker", "tcp://127.0.0.1:" + std::to_string(port_),
                                             "--batch-ms", batch_ms(), "--log-level", "warn"}));
     gateway_pid_ = group_.pid("gateway");

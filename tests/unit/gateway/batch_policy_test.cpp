@@ -1,5 +1,5 @@
 // When the gateway's batch of observations must be written: full by count, full by points, or due.
-#include "gateway/batch_policy.hpp"
+#include "gateway/core/batch_policy.hpp"
 
 #include <gtest/gtest.h>
 
@@ -51,6 +51,25 @@ TEST(BatchPolicy, OneObservationPerBatchWritesEachAtOnce) {
   EXPECT_TRUE(policy.add(0, 0));
   policy.written();
   EXPECT_TRUE(policy.add(3, 1));
+}
+
+}  // namespace
+}  // namespace slam::gateway
+
+namespace slam::gateway {
+namespace {
+
+TEST(BatchPolicy, SaysWhatStillGoesInBeforeItIsFull) {
+  BatchPolicy policy({.max_observations = 4, .max_points = 100, .max_wait_ns = 10});
+  EXPECT_EQ(policy.observations_left(), 4u);
+  EXPECT_EQ(policy.points_left(), 100u);
+  policy.add(30, 0);
+  policy.add(60, 1);
+  EXPECT_EQ(policy.observations_left(), 2u);
+  EXPECT_EQ(policy.points_left(), 10u);
+  policy.written();
+  EXPECT_EQ(policy.observations_left(), 4u);
+  EXPECT_EQ(policy.points_left(), 100u);
 }
 
 }  // namespace

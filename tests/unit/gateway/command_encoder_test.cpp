@@ -1,6 +1,6 @@
 // CommandEncoder: exact v1 bytes, v2 JSON, and errors instead of wrapped values. Frame conversion
 // of commands is covered in frame_correction_test.cpp.
-#include "gateway/command_encoder.hpp"
+#include "gateway/core/command_encoder.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // The gateway's fleet digests: every known robot with its map-frame pose and presence, and each
 // robot's latest hits since the previous points digest, in the map frame.
-#include "gateway/fleet_digest.hpp"
+#include "gateway/core/fleet_digest.hpp"
 
 #include <gtest/gtest.h>
 

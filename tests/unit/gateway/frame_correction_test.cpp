@@ -1,6 +1,6 @@
 // The gateway's side of the frames contract: the per-robot correction table, reported poses into
 // the map frame, and commands into the robot's odometry frame (exact v1 bytes, v2 JSON).
-#include "gateway/frame_correction.hpp"
+#include "gateway/core/frame_correction.hpp"
 
 #include <gtest/gtest.h>
 
@@ -10,7 +10,7 @@
 #include <numbers>
 #include <vector>
 
-#include "gateway/command_encoder.hpp"
+#include "gateway/core/command_encoder.hpp"
 
 namespace slam::gateway {
 namespace {

@@ -1,12 +1,12 @@
 // GatewayOptions: defaults are valid, flags bind, each bad value names its key; topic filters.
-#include "gateway/gateway_options.hpp"
+#include "gateway/core/gateway_options.hpp"
 
 #include <gtest/gtest.h>
 
 #include <string>
 #include <vector>
 
-#include "gateway/topic_filter.hpp"
+#include "gateway/core/topic_filter.hpp"
 
 namespace slam::gateway {
 namespace {

@@ -1,6 +1,6 @@
 // RobotProtocols: the owner of a robot answers in the protocol of the freshest report, whichever
 // gateway received the robot's messages.
-#include "gateway/robot_protocols.hpp"
+#include "gateway/core/robot_protocols.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
 // RobotRegistry: first sight, sequence numbers, presence transitions, counters, bounds.
-#include "gateway/robot_registry.hpp"
+#include "gateway/core/robot_registry.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
 // TrafficQueue and TokenBucket: truncation, bounds, rate, drop accounting through seq gaps.
-#include "gateway/traffic_queue.hpp"
+#include "gateway/core/traffic_queue.hpp"
 
 #include <gtest/gtest.h>
 

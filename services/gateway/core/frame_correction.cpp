@@ -1,5 +1,5 @@
 // CorrectionTable and the two frame conversions.
-#include "gateway/frame_correction.hpp"
+#include "gateway/core/frame_correction.hpp"
 
 #include <cmath>
 

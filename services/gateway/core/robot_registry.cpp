@@ -1,5 +1,5 @@
 // RobotRegistry: first sight, presence transitions and per-robot counters.
-#include "gateway/robot_registry.hpp"
+#include "gateway/core/robot_registry.hpp"
 
 #include <utility>
 

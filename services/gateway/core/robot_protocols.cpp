@@ -1,4 +1,4 @@
-#include "gateway/robot_protocols.hpp"
+#include "gateway/core/robot_protocols.hpp"
 
 namespace slam::gateway {
 

@@ -15,10 +15,11 @@
 #include <vector>
 
 #include "common/core/bounded_text.hpp"
-#include "gateway/fleet_digest.hpp"
-#include "gateway/frame_correction.hpp"
-#include "gateway/robot_registry.hpp"
-#include "gateway/traffic_queue.hpp"
+#include "gateway/core/fleet_digest.hpp"
+#include "gateway/core/frame_correction.hpp"
+#include "gateway/core/gateway_intake.hpp"
+#include "gateway/core/robot_registry.hpp"
+#include "gateway/core/traffic_queue.hpp"
 #include "protocol/codec_types.hpp"
 
 namespace slam::gateway {
@@ -53,6 +54,11 @@ void fill_state(const RobotRecord& in, const Pose& map_pose, slam::RobotState& o
 void fill_odometry(const RobotRecord& in, std::uint64_t correction_version, slam::RobotOdometry& out);
 // A PoseCorrection sample as the gateway keeps it.
 Correction to_correction(const slam::PoseCorrection& in);
+// The readers' samples as the loop takes them from the intake.
+CorrectionInput to_input(const slam::PoseCorrection& in);
+WaypointInput to_input(const slam::WaypointCommand& in);
+MqttRequestInput to_input(const slam::MqttRequest& in);
+ProtocolReport to_input(const slam::RobotState& in);
 void fill_traffic(const TrafficRecord& in, slam::MqttTraffic& out);
 // A fleet digest of gateway `gateway_id` (robots already placed in the map frame).
 void fill_digest(std::string_view gateway_id, std::int64_t stamp_ns, std::span<const DigestRobotEntry> robots,

@@ -1,4 +1,4 @@
-#include "gateway/batch_policy.hpp"
+#include "gateway/core/batch_policy.hpp"
 
 namespace slam::gateway {
 

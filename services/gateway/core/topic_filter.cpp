@@ -1,5 +1,5 @@
 // Topic and filter checks shared by the options validator and the viewer's requests.
-#include "gateway/topic_filter.hpp"
+#include "gateway/core/topic_filter.hpp"
 
 #include <string>
 

@@ -1,10 +1,10 @@
 // CLI11 binding and validation of GatewayOptions.
-#include "gateway/gateway_options.hpp"
+#include "gateway/core/gateway_options.hpp"
 
 #include <cmath>
 
 #include "common/core/service_options.hpp"
-#include "gateway/topic_filter.hpp"
+#include "gateway/core/topic_filter.hpp"
 
 namespace slam::gateway {
 

@@ -29,6 +29,11 @@ class BatchPolicy {
   // When the oldest observation must have left (monotonic); only meaningful when not empty().
   std::int64_t due_ns() const { return first_ns_ + limits_.max_wait_ns; }
   bool due(std::int64_t now_mono_ns) const { return !empty() && now_mono_ns >= due_ns(); }
+  // What still goes in before the batch is full: observations, and points (either one fills it).
+  std::size_t observations_left() const {
+    return limits_.max_observations > observations_ ? limits_.max_observations - observations_ : 0;
+  }
+  std::size_t points_left() const { return limits_.max_points > points_ ? limits_.max_points - points_ : 0; }
   // The batch was written: the next observation starts a new one.
   void written();
 

@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "common/core/geometry.hpp"
-#include "gateway/robot_registry.hpp"
+#include "gateway/core/robot_registry.hpp"
 #include "protocol/codec_types.hpp"
 #include "protocol/reject_reason.hpp"
 

@@ -1,5 +1,5 @@
 // TrafficQueue: token bucket in front of a fixed ring of preallocated records.
-#include "gateway/traffic_queue.hpp"
+#include "gateway/core/traffic_queue.hpp"
 
 #include <algorithm>
 #include <utility>

@@ -1,5 +1,5 @@
 // FleetDigestBuilder: per-robot rings of hits, registry copies, frame placement.
-#include "gateway/fleet_digest.hpp"
+#include "gateway/core/fleet_digest.hpp"
 
 namespace slam::gateway {
 

@@ -2,7 +2,7 @@
 // The protocol each robot speaks as every gateway learnt it, from the RobotStates on DDS. With
 // shared subscriptions a robot's messages are spread over the gateways, so the one that owns the
 // robot (and sends its waypoints) may have received none of them: it answers in the protocol the
-// freshest report, its own registry's or a peer's RobotState, says. Plain; the node locks around it.
+// freshest report, its own registry's or a peer's RobotState, says. Plain; the loop owns it.
 #include <cstddef>
 #include <cstdint>
 #include <functional>
@@ -11,7 +11,7 @@
 #include <string_view>
 #include <unordered_map>
 
-#include "gateway/robot_registry.hpp"
+#include "gateway/core/robot_registry.hpp"
 
 namespace slam::gateway {
 

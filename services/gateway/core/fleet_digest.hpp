@@ -2,9 +2,7 @@
 // The gateway's fleet digests: every robot this gateway knows (map-frame pose, presence, last
 // message) and each robot's latest obstacle points, gathered into one sample per period for the
 // bridge, which would otherwise take every RobotState and RobotObservation (one datagram each).
-// Plain and single-threaded per part: the node calls add_hits, forget, collect and take_points under
-// its registry lock; robots(), points() and the place_* calls belong to the loop thread alone (collect and
-// take_points are the only writers of what they read). Buffers are reused: once every robot has
+// Plain and single-threaded: the gateway's loop alone calls it. Buffers are reused: once every robot has
 // been seen, building a digest allocates nothing.
 #include <cstddef>
 #include <cstdint>
@@ -16,8 +14,8 @@
 #include <vector>
 
 #include "common/core/geometry.hpp"
-#include "gateway/frame_correction.hpp"
-#include "gateway/robot_registry.hpp"
+#include "gateway/core/frame_correction.hpp"
+#include "gateway/core/robot_registry.hpp"
 #include "protocol/codec_types.hpp"
 
 namespace slam::gateway {

@@ -1,6 +1,6 @@
 #pragma once
 // Everything the gateway knows about each robot: protocol, presence, last pose, counters and the
-// per-robot observation sequence. Pure and single-threaded (the node locks around it), so the
+// per-robot observation sequence. Pure and single-threaded (the gateway's loop owns it), so the
 // rules for "online", "offline" and "which protocol do I answer in" are unit-tested without MQTT.
 #include <cstddef>
 #include <cstdint>

@@ -1,5 +1,5 @@
 // Core structs <-> generated DDS types.
-#include "gateway/gateway_msgs.hpp"
+#include "gateway/dds/gateway_msgs.hpp"
 
 namespace slam::gateway {
 
@@ -77,6 +77,37 @@ void fill_odometry(const RobotRecord& in, std::uint64_t correction_version, slam
 Correction to_correction(const slam::PoseCorrection& in) {
   const slam::Pose2& t = in.map_from_odom();
   return {{t.x(), t.y(), t.theta()}, in.version()};
+}
+
+CorrectionInput to_input(const slam::PoseCorrection& in) {
+  return {in.robot_id().to_string(), to_correction(in)};
+}
+
+WaypointInput to_input(const slam::WaypointCommand& in) {
+  WaypointInput out{in.robot_id().to_string(), in.seq(), {in.waypoint().x(), in.waypoint().y()}, {}};
+  to_points(in.remaining(), out.remaining);
+  return out;
+}
+
+MqttRequestInput to_input(const slam::MqttRequest& in) {
+  RequestKind kind = static_cast<RequestKind>(static_cast<std::uint32_t>(in.kind()));
+  switch (in.kind()) {
+    case slam::MQTT_PUBLISH:
+      kind = RequestKind::Publish;
+      break;
+    case slam::MQTT_SUBSCRIBE:
+      kind = RequestKind::Subscribe;
+      break;
+    case slam::MQTT_UNSUBSCRIBE:
+      kind = RequestKind::Unsubscribe;
+      break;
+  }
+  return {in.request_id(), kind, in.topic().to_string(), in.payload(), in.qos(), in.retain()};
+}
+
+ProtocolReport to_input(const slam::RobotState& in) {
+  return {in.robot_id().to_string(),
+          {in.protocol() == slam::PROTOCOL_V1 ? Protocol::V1 : Protocol::V2, in.last_seen_ns()}};
 }
 
 void fill_traffic(const TrafficRecord& in, slam::MqttTraffic& out) {

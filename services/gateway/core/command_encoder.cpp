@@ -1,8 +1,8 @@
 // CommandEncoder: one frame conversion for every protocol, then topics and payloads per protocol,
 // with every codec error passed through.
-#include "gateway/command_encoder.hpp"
+#include "gateway/core/command_encoder.hpp"
 
-#include "gateway/frame_correction.hpp"
+#include "gateway/core/frame_correction.hpp"
 #include "protocol/topic.hpp"
 #include "protocol/v1_codec.hpp"
 #include "protocol/v2_server_codec.hpp"

@@ -1,10 +1,10 @@
 // TrafficPublisher: drain in batches, write each record, stop when asked.
-#include "gateway/traffic_publisher.hpp"
+#include "gateway/dds/traffic_publisher.hpp"
 
 #include <chrono>
 
 #include "common/core/guarded_callback.hpp"
-#include "gateway/gateway_msgs.hpp"
+#include "gateway/dds/gateway_msgs.hpp"
 
 namespace slam::gateway {
 

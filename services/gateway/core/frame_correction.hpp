@@ -2,7 +2,7 @@
 // The frames contract at the gateway: each robot speaks in its own odometry frame, the mapper
 // publishes per robot map_from_odom (PoseCorrection), and the gateway applies it both ways —
 // reported poses into the map frame, waypoints and paths into the robot's odometry frame. Plain
-// and single-threaded (the node locks around the table), so the arithmetic is unit-tested alone.
+// and single-threaded (the gateway's loop owns the table), so the arithmetic is unit-tested alone.
 #include <cstddef>
 #include <cstdint>
 #include <functional>

@@ -8,7 +8,7 @@
 
 #include "common/core/counters.hpp"
 #include "common/fastdds/fast_topics.hpp"
-#include "gateway/traffic_queue.hpp"
+#include "gateway/core/traffic_queue.hpp"
 
 namespace slam::gateway {
 
