@@ -65,6 +65,7 @@ Status MapperNode::configure() {
   correction::CorrectorOptions slam_options;
   slam_options.old_age_s = options_.slam_old_age_s;
   slam_options.wall_heading = options_.slam_wall_heading == "on";
+  slam_options.global_localisation = options_.slam_global_localisation == "on";
   slam_options.point_refine = options_.slam_point_refine == "on";
   slam_options.match_threads = 1;  // the map loop keeps integrating while keyframes are matched
   corrections_ = std::make_unique<CorrectionStage>(options_.slam_enabled(), slam_options);
@@ -279,6 +280,9 @@ void MapperNode::update_periodic_counters() {
   counters_.get("slam_point_refined").store(st.point_refined, std::memory_order_relaxed);
   counters_.get("slam_rejected_inputs").store(st.rejected_inputs, std::memory_order_relaxed);
   counters_.get("slam_clock_steps").store(st.clock_steps, std::memory_order_relaxed);
+  counters_.get("slam_placement_searches").store(st.placement_searches, std::memory_order_relaxed);
+  counters_.get("slam_robots_placed").store(st.robots_placed, std::memory_order_relaxed);
+  counters_.get("slam_placements_given_up").store(st.placements_given_up, std::memory_order_relaxed);
   counters_.get("slam_ties_tried").store(st.ties_tried, std::memory_order_relaxed);
   counters_.get("slam_ties_skipped").store(st.ties_skipped, std::memory_order_relaxed);
   counters_.get("slam_wide_skipped").store(st.wide_skipped, std::memory_order_relaxed);

@@ -61,6 +61,11 @@ void add_mapper_options(CLI::App& app, MapperOptions& o) {
   app.add_option("--slam-old-age-s", o.slam_old_age_s,
                  "a robot's own keyframes this old are matched as the old map (loop closure)")
       ->capture_default_str();
+  app.add_option("--slam-global-localisation", o.slam_global_localisation,
+                 "a robot that joins a map others have built is searched for on the whole map (every place "
+                 "and heading) and drawn only once found; not found within 30 s: placed by its odometry")
+      ->check(CLI::IsMember({"on", "off"}))
+      ->capture_default_str();
   app.add_option("--slam-wall-heading", o.slam_wall_heading,
                  "hold each keyframe's heading to the walls' directions once the map's walls agree on two "
                  "perpendicular ones (off: a building whose walls are square only in places)")

@@ -28,9 +28,10 @@ struct MapperOptions {
   // Pose correction (SLAM): "on" corrects every robot's odometry against the map, "off" trusts the
   // reported poses (odometry frame = map frame).
   std::string slam = "on";
-  double slam_old_age_s = 60.0;          // own keyframes this old count as the old map (loop closure)
-  std::string slam_wall_heading = "on";  // keyframe headings held to the walls' directions
-  std::string slam_point_refine = "on";  // matches refined against the keyframes' own points
+  double slam_old_age_s = 60.0;                  // own keyframes this old count as the old map (loop closure)
+  std::string slam_global_localisation = "off";  // a robot joining a mapped building is searched for on it
+  std::string slam_wall_heading = "on";          // keyframe headings held to the walls' directions
+  std::string slam_point_refine = "on";          // matches refined against the keyframes' own points
   // Offline commands (no DDS): rebuild from the store and write a ROS map, store a map as prior, or
   // write one robot's trajectory (to trajectory_out, as tum or carmen).
   std::string export_yaml;

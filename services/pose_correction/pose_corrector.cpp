@@ -34,6 +34,11 @@ uint32_t PoseCorrector::robot_index(std::string_view robot) {
   const auto index = static_cast<uint32_t>(robots_.size());
   Robot robot_state(key, options_.keyframe);
   robot_state.state.robot = key;
+  // Others have mapped already: where this one is must be found before it draws anything.
+  if (options_.global_localisation && graph_keyframes() > 0) {
+    robot_state.state.placement = Placement::Unplaced;
+    robot_state.state.localisation_score = 0.0;
+  }
   robots_.push_back(std::move(robot_state));
   robot_ids_.emplace(key, index);
   return index;
@@ -99,8 +104,14 @@ void PoseCorrector::process(const GridView& grid, int64_t now_ns, std::vector<Ke
   // In order; a keyframe whose robot has one in matching waits (its prediction needs that result),
   // and so does everything after the budget. The oldest ones past the backlog cap go by odometry.
   size_t kept = 0;
+  searching_.clear();
   for (size_t i = 0; i < closed_.size(); ++i) {
     Keyframe& keyframe = closed_[i];
+    if (Robot& owner = robots_[keyframe.robot]; owner.state.placement != Placement::Placed) {
+      if (searching_.empty() || searching_.back() != keyframe.robot) searching_.push_back(keyframe.robot);
+      owner.held.push_back(std::move(keyframe));
+      continue;
+    }
     const bool waits = robots_[keyframe.robot].matching || (overflow == 0 && budget == 0);
     if (waits) {
       if (kept != i) closed_[kept] = std::move(keyframe);
@@ -116,6 +127,7 @@ void PoseCorrector::process(const GridView& grid, int64_t now_ns, std::vector<Ke
     start(std::move(keyframe), grid, match, out);
   }
   closed_.resize(kept);
+  for (uint32_t robot : searching_) search_placement(robots_[robot], grid, now_ns);
   stats_.backlog = static_cast<int64_t>(closed_.size() + in_flight_);
   const bool due = closure_since_optimise_ || tied_since_optimise_ >= options_.optimise_every;
   if ((finish_requested_ && closed_.empty() && in_flight_ == 0 && !optimising_) ||
@@ -128,6 +140,7 @@ void PoseCorrector::process(const GridView& grid, int64_t now_ns, std::vector<Ke
 void PoseCorrector::finish() {
   for (Robot& rb : robots_) {
     if (rb.builder.open()) closed_.push_back(rb.builder.take());
+    if (rb.state.placement != Placement::Placed) place(rb, std::nullopt, 0.0);  // not found: by odometry
   }
   finish_requested_ = true;
 }

@@ -34,6 +34,7 @@
 
 #include "common/core/geometry.hpp"
 #include "common/core/result.hpp"
+#include "pose_correction/branch_and_bound_search.hpp"
 #include "pose_correction/clock_steps.hpp"
 #include "pose_correction/correction_schedule.hpp"
 #include "pose_correction/grid_view.hpp"
@@ -115,8 +116,27 @@ struct CorrectorOptions {
   // start wherever they were last reset: the MIT CSAIL log's at x = 600 m) starts with its first pose
   // moved to the origin, heading kept, instead of beyond the map's extent.
   double far_start_m = 100.0;
-  int optimise_every = 40;         // keyframes tied to the old map between optimisations
-  double rerender_shift_m = 0.02;  // keyframe moves smaller than this are not re-rendered
+  // A robot that joins a map others have built is first searched for on it (global localisation,
+  // branch_and_bound_search.hpp over the whole map and every heading). Until it is placed its
+  // keyframes wait, unmatched and unfinalised, so nothing of it is drawn into the shared map; it is
+  // placed when placement_confirmations keyframes in a row agree on where its odometry frame lies,
+  // each match distinct (runner-up at most placement_max_ambiguity of the best) and scoring at least
+  // placement_min_score. A robot not found within placement_max_keyframes or placement_max_wait_s
+  // is placed where its odometry says, as a robot on an empty map is. Off by default (the mapper's
+  // --slam-global-localisation): until an unplaced robot maps into a submap of its own, waiting
+  // delays a robot's share of the map by its first few metres.
+  bool global_localisation = false;
+  int placement_confirmations = 3;
+  double placement_min_score = 0.6;
+  double placement_max_ambiguity = 0.85;
+  double placement_agree_m = 0.3;  // a later keyframe's match this close to the hypothesis agrees
+  double placement_agree_rad = 0.1;
+  int placement_max_keyframes = 40;
+  double placement_max_wait_s = 30.0;
+  size_t placement_max_points = 300;         // a keyframe's points searched, evenly thinned
+  size_t placement_max_map_cells = 1 << 21;  // a larger map is searched at a coarser resolution
+  int optimise_every = 40;                   // keyframes tied to the old map between optimisations
+  double rerender_shift_m = 0.02;            // keyframe moves smaller than this are not re-rendered
   ScheduleOptions schedule;
   int match_threads = 0;  // 0: match inside process() (deterministic: tests, offline); 1: on a worker
 };
@@ -130,8 +150,15 @@ struct KeyframeCorrection {
   Pose correction;  // map_from_odom for every observation of the keyframe
 };
 
+// Whether the robot's place in the map is known: searched for (Unplaced: no hypothesis yet; Placing:
+// a hypothesis, being confirmed) or Placed (by its start on an empty map, by the search, by an
+// operator, or by its odometry after the search gave up).
+enum class Placement : uint8_t { Placed, Placing, Unplaced };
+
 struct RobotCorrection {
   std::string robot;
+  Placement placement = Placement::Placed;
+  double localisation_score = 1.0;  // the latest placement search's: score x (1 - ambiguity), 0..1
   Pose map_from_odom;
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();  // how well it is known in the map (correction.idl)
   uint64_t version = 0;
@@ -165,6 +192,11 @@ struct CorrectorStats {
   int64_t open_messages = 0;       // observations in the robots' open keyframes (now)
   int64_t load = 0;                // the schedule's load now: 0 normal, 1 loaded, 2 shedding
   int64_t robots_reset = 0;
+  // Global localisation (CorrectorOptions::global_localisation).
+  int64_t placement_searches = 0;
+  int64_t robots_placed = 0;           // found on the map
+  int64_t placements_given_up = 0;     // not found: placed by their odometry
+  int64_t placement_contradicted = 0;  // a hypothesis a later keyframe disagreed with
 };
 
 // How one keyframe was placed, for diagnostics (eval_replay --trace-keyframes compares each pose
@@ -273,6 +305,11 @@ class PoseCorrector {
     CorrectionSchedule::RobotState schedule;
     uint32_t generation = 0;  // bumped by a reset: its keyframes in matching are dropped
     bool matching = false;    // a keyframe of it is on the worker
+    // While it is searched for on the map: its closed keyframes, waiting; the correction its
+    // keyframes' matches agree on so far, and how many agreed.
+    std::vector<Keyframe> held;
+    std::optional<Pose> hypothesis;
+    int confirmations = 0;
   };
   // One pose-graph node per finalised keyframe.
   struct Node {
@@ -295,8 +332,14 @@ class PoseCorrector {
   // The observations' stamps or process()'s clock going back further than this were set back: the
   // step is taken out (ClockSteps).
   static constexpr int64_t kClockStepBack_ns = 10'000'000'000;
+  static constexpr int64_t kPlacementMapAge_ns = 10'000'000'000;
 
   uint32_t robot_index(std::string_view robot);
+  // Global localisation (pose_corrector_placement.cpp): a robot's newest held keyframe searched for
+  // on `grid`; placed once enough agree, or by its odometry once it has waited too long.
+  void search_placement(Robot& rb, const GridView& grid, int64_t now_ns);
+  void prepare_placement_map(const GridView& grid);
+  void place(Robot& rb, std::optional<Pose> map_from_odom, double score);
   // `t_ns` on `clock` with its steps back taken out; a step is counted and logged as `what`'s.
   int64_t take_out_clock_steps(ClockSteps& clock, int64_t t_ns, std::string_view what);
   // A closed keyframe: prepared on the loop thread, matched (inline or on the worker), applied on
@@ -384,8 +427,16 @@ class PoseCorrector {
   double pending_shift_ = 0.0;
   std::unique_ptr<GraphOptimizer> optimizer_;
   std::vector<Pose> submitted_estimates_;  // node estimates when the running optimisation started
-  int64_t last_process_ns_ = 0;            // now_ns of the latest process()
-  int64_t submitted_ns_ = 0;               // ...when the running optimisation started
+  // The map global localisation searches: built from the live grid when a search needs it and
+  // the last build is older than kPlacementMapAge_ns.
+  BranchAndBoundSearch placement_search_;
+  int64_t placement_map_ns_ = 0;
+  bool placement_map_ready_ = false;
+  std::vector<uint8_t> placement_cells_;  // scratch: the grid's occupied part, maybe coarsened
+  std::vector<Vec2> placement_points_;    // scratch: a keyframe's points, thinned
+  std::vector<uint32_t> searching_;       // scratch: robots with a keyframe held in this pass
+  int64_t last_process_ns_ = 0;           // now_ns of the latest process()
+  int64_t submitted_ns_ = 0;              // ...when the running optimisation started
   size_t submitted_nodes_ = 0;
   // add()'s stamps and process()'s now_ns, their steps back taken out.
   ClockSteps stamp_clock_{kClockStepBack_ns};

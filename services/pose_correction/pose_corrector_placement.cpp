@@ -1,0 +1,156 @@
+// Global localisation for PoseCorrector: a robot joining a map others have built is searched for on
+// the whole map before anything of it is drawn (CorrectorOptions::global_localisation).
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "common/core/cell_class.hpp"
+#include "pose_correction/pose_corrector.hpp"
+
+namespace slam::correction {
+namespace {
+
+// The occupied part of `grid` (cells of a wall or an obstruction), with a margin: what a keyframe
+// can be placed against. Empty when nothing is occupied.
+CellBox occupied_box(const GridView& grid, int32_t margin) {
+  const GridGeometry& g = grid.geometry;
+  int32_t x0 = g.width, y0 = g.height, x1 = -1, y1 = -1;
+  for (int32_t y = 0; y < g.height; ++y) {
+    const uint8_t* row = grid.classes.data() + static_cast<size_t>(y) * static_cast<size_t>(g.width);
+    for (int32_t x = 0; x < g.width; ++x) {
+      if (!is_occupied_class(row[x])) continue;
+      x0 = std::min(x0, x);
+      x1 = std::max(x1, x);
+      y0 = std::min(y0, y);
+      y1 = std::max(y1, y);
+    }
+  }
+  if (x1 < 0) return {};
+  x0 = std::max(0, x0 - margin);
+  y0 = std::max(0, y0 - margin);
+  x1 = std::min(g.width - 1, x1 + margin);
+  y1 = std::min(g.height - 1, y1 + margin);
+  return {x0, y0, x1 - x0 + 1, y1 - y0 + 1};
+}
+
+// Map a correction found for `keyframe` (its origin at `pose`) gives its robot's odometry frame.
+Pose frame_of(const Pose& pose, const Keyframe& keyframe) {
+  return pose.compose(keyframe.odom.inverse());
+}
+
+}  // namespace
+
+void PoseCorrector::prepare_placement_map(const GridView& grid) {
+  placement_map_ready_ = false;
+  const GridGeometry& g = grid.geometry;
+  if (g.cells() == 0 || grid.classes.size() != g.cells()) return;
+  const CellBox box = occupied_box(grid, 4);
+  if (box.empty()) return;
+  // Coarser cells (each the occupancy of a square of grid cells) until the map fits the budget.
+  int32_t factor = 1;
+  while (box.cells() / static_cast<size_t>(factor * factor) > options_.placement_max_map_cells) factor *= 2;
+  GridGeometry coarse;
+  coarse.resolution = g.resolution * factor;
+  coarse.origin = g.corner({box.x0, box.y0});
+  coarse.width = (box.width + factor - 1) / factor;
+  coarse.height = (box.height + factor - 1) / factor;
+  placement_cells_.assign(coarse.cells(), kCellFree);
+  for (int32_t y = 0; y < box.height; ++y) {
+    const uint8_t* row = grid.classes.data() + g.index({box.x0, box.y0 + y});
+    for (int32_t x = 0; x < box.width; ++x)
+      if (is_occupied_class(row[x])) placement_cells_[coarse.index({x / factor, y / factor})] = kCellOccupied;
+  }
+  placement_map_ready_ = static_cast<bool>(placement_search_.set_map(GridView{coarse, placement_cells_}));
+}
+
+void PoseCorrector::search_placement(Robot& rb, const GridView& grid, int64_t now_ns) {
+  if (rb.held.empty()) return;
+  const double waited_s = static_cast<double>(now_ns - rb.held.front().first_stamp_ns) * 1e-9;
+  if (static_cast<int>(rb.held.size()) >= options_.placement_max_keyframes ||
+      waited_s > options_.placement_max_wait_s) {
+    ++stats_.placements_given_up;
+    spdlog::warn(
+        "pose correction: robot {} not found on the map in {} keyframes, {:.0f} s: placed where its "
+        "odometry says",
+        rb.name, rb.held.size(), waited_s);
+    place(rb, std::nullopt, 0.0);
+    return;
+  }
+  const Keyframe& keyframe = rb.held.back();
+  if (!placement_map_ready_ || now_ns - placement_map_ns_ > kPlacementMapAge_ns) {
+    prepare_placement_map(grid);
+    placement_map_ns_ = now_ns;
+  }
+  if (!placement_map_ready_) {  // nothing on the map to find it on: it starts the map where it is
+    place(rb, std::nullopt, 0.0);
+    return;
+  }
+  // Evenly thinned: the search's cost follows the points, and a few hundred pin a place.
+  placement_points_.clear();
+  const size_t n = keyframe.points.size();
+  const size_t stride =
+      std::max<size_t>(1, (n + options_.placement_max_points - 1) / options_.placement_max_points);
+  for (size_t i = 0; i < n; i += stride) placement_points_.push_back(keyframe.points[i]);
+
+  // No hypothesis: the whole map at every heading. A hypothesis: around where it puts this keyframe.
+  const GridGeometry& map = placement_search_.geometry();
+  SearchRegion region;
+  if (rb.hypothesis) {
+    region = {rb.hypothesis->compose(keyframe.odom), options_.placement_agree_m,
+              options_.placement_agree_rad};
+  } else {
+    const double half_width = 0.5 * map.width * map.resolution,
+                 half_height = 0.5 * map.height * map.resolution;
+    region = {{map.origin.x + half_width, map.origin.y + half_height, 0.0},
+              std::max(half_width, half_height),
+              2.0 * std::numbers::pi};
+  }
+  ++stats_.placement_searches;
+  const auto found = placement_search_.search(placement_points_, region);
+  const bool good = found && found->score >= options_.placement_min_score &&
+                    (rb.hypothesis || found->ambiguity() <= options_.placement_max_ambiguity);
+  rb.state.localisation_score = found ? found->score * (1.0 - found->ambiguity()) : 0.0;
+  if (good) {
+    const Pose frame = frame_of(found->pose, keyframe);
+    rb.hypothesis = frame;
+    ++rb.confirmations;
+  } else if (rb.hypothesis) {
+    ++stats_.placement_contradicted;
+    spdlog::info(
+        "pose correction: robot {}: keyframe {} disagrees with where it was thought to be; searching again",
+        rb.name, keyframe.id);
+    rb.hypothesis.reset();
+    rb.confirmations = 0;
+  }
+  const Placement state = rb.hypothesis ? Placement::Placing : Placement::Unplaced;
+  if (state != rb.state.placement) {
+    rb.state.placement = state;
+    mark_changed(rb, rb.state.source);
+  }
+  if (rb.hypothesis && rb.confirmations >= options_.placement_confirmations) {
+    ++stats_.robots_placed;
+    place(rb, rb.hypothesis, rb.state.localisation_score);
+  }
+}
+
+void PoseCorrector::place(Robot& rb, std::optional<Pose> map_from_odom, double score) {
+  if (map_from_odom) {
+    rb.state.map_from_odom = *map_from_odom;
+    spdlog::info(
+        "pose correction: robot {} found on the map (score {:.2f}): its odometry origin is at "
+        "({:.2f}, {:.2f}, {:.1f} deg)",
+        rb.name, score, map_from_odom->x, map_from_odom->y, to_degrees(map_from_odom->theta));
+  }
+  rb.state.placement = Placement::Placed;
+  rb.state.localisation_score = score;
+  rb.hypothesis.reset();
+  rb.confirmations = 0;
+  // The waiting keyframes go the usual way now, oldest first, predicted from the placement.
+  for (Keyframe& keyframe : rb.held) closed_.push_back(std::move(keyframe));
+  rb.held.clear();
+  mark_changed(rb, map_from_odom ? CorrectionSource::Match : rb.state.source);
+}
+
+}  // namespace slam::correction
