@@ -3,6 +3,7 @@
 
 #include "common/core/clock.hpp"
 #include "common/core/log.hpp"
+#include "common/fastdds/fleet_messages.hpp"
 
 namespace slam::planner {
 
@@ -64,7 +65,7 @@ void AlertNode::tick(int64_t now_mono_ns, const std::function<bool(const std::st
 
 void AlertNode::publish(const AlertChange& c) {
   sample_.alert_id(c.alert_id);
-  sample_.kind(static_cast<slam::AlertKind>(c.kind));
+  sample_.kind(msg::to_idl(c.kind));
   sample_.subject(c.subject);
   sample_.active(c.change == AlertChange::Kind::Raised);
   sample_.raised_ns(c.raised_ns);

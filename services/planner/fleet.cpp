@@ -133,7 +133,7 @@ void Fleet::plan_paths(const PlanningGrid& grid, int64_t now_ns) {
     }
     // A blocked start says nothing about the frontier: only its own failures give it up.
     if (t.has_frontier() && result.status != PlanStatus::StartBlocked) give_up(t.plan_target(), now_ns);
-    t.plan_failed(std::string(to_string(result.status)) + ": " + result.reason);
+    t.plan_failed(std::string(msg::plan_status_name(result.status)) + ": " + result.reason);
   }
 }
 

@@ -21,11 +21,6 @@ constexpr const char* kFormat = "slam-planner-goals";
 constexpr int kVersion = 1;
 constexpr size_t kMaxRobotId = 64;  // NavGoal.robot_id is a string<64>
 
-constexpr std::array<const char*, 7> kModeNames{"idle",    "direct", "planned", "square",
-                                                "explore", "home",   "stop"};
-constexpr std::array<const char*, 2> kAnchorNames{"corner", "centred"};
-constexpr std::array<const char*, 4> kMissionStatusNames{"active", "done", "failed", "cancelled"};
-
 template <size_t N>
 Result<size_t> name_index(const json& value, const std::array<const char*, N>& names, const char* what) {
   if (value.is_string()) {
@@ -65,7 +60,7 @@ Result<StoredGoal> to_stored_goal(const json& item, size_t index) {
   out.robot_id = *id;
   if (!item["goal_id"].is_number_unsigned()) return Error{where + ".goal_id must be a non-negative integer"};
   out.goal.goal_id = item["goal_id"].get<uint64_t>();
-  auto mode = name_index(item["mode"], kModeNames, (where + ".mode").c_str());
+  auto mode = name_index(item["mode"], msg::kGoalModeNames, (where + ".mode").c_str());
   if (!mode) return mode.error();
   out.goal.mode = static_cast<GoalMode>(*mode);
   auto target = to_point(item["target"], where + ".target");
@@ -78,7 +73,8 @@ Result<StoredGoal> to_stored_goal(const json& item, size_t index) {
     out.goal.square_size = size.get<double>();
   }
   if (item.contains("square_anchor")) {
-    auto anchor = name_index(item["square_anchor"], kAnchorNames, (where + ".square_anchor").c_str());
+    auto anchor =
+        name_index(item["square_anchor"], msg::kSquareAnchorNames, (where + ".square_anchor").c_str());
     if (!anchor) return anchor.error();
     out.goal.square_anchor = static_cast<SquareAnchor>(*anchor);
   }
@@ -117,7 +113,7 @@ Result<StoredMission> to_stored_mission(const json& item, size_t index) {
   out.progress.current = item["current"].get<size_t>();
   if (!item["laps"].is_number_unsigned()) return Error{where + ".laps must be a non-negative integer"};
   out.progress.laps = item["laps"].get<uint32_t>();
-  auto status = name_index(item["status"], kMissionStatusNames, (where + ".status").c_str());
+  auto status = name_index(item["status"], msg::kMissionStatusNames, (where + ".status").c_str());
   if (!status) return status.error();
   out.progress.status = static_cast<MissionStatus>(*status);
   if (item.contains("reason")) {
@@ -186,31 +182,29 @@ std::string format_goal_record(const GoalRecord& record) {
   // One goal per line: small enough to read and to diff by hand.
   std::string goals;
   for (const auto& [id, g] : record.goals) {
-    const nlohmann::ordered_json goal{
-        {"robot_id", id},
-        {"goal_id", g.goal.goal_id},
-        {"mode", kModeNames[static_cast<size_t>(g.goal.mode)]},
-        {"target", {g.goal.target.x, g.goal.target.y}},
-        {"square_size", g.goal.square_size},
-        {"square_anchor", kAnchorNames[static_cast<size_t>(g.goal.square_anchor)]},
-        {"sent_ns", g.sent_ns},
-        {"finished", g.finished}};
+    const nlohmann::ordered_json goal{{"robot_id", id},
+                                      {"goal_id", g.goal.goal_id},
+                                      {"mode", msg::goal_mode_name(g.goal.mode)},
+                                      {"target", {g.goal.target.x, g.goal.target.y}},
+                                      {"square_size", g.goal.square_size},
+                                      {"square_anchor", msg::square_anchor_name(g.goal.square_anchor)},
+                                      {"sent_ns", g.sent_ns},
+                                      {"finished", g.finished}};
     goals += (goals.empty() ? "\n  " : ",\n  ") + dump(goal);
   }
   std::string missions;
   for (const auto& [id, m] : record.missions) {
     nlohmann::ordered_json waypoints = nlohmann::ordered_json::array();
     for (const Vec2& p : m.mission.waypoints) waypoints.push_back({p.x, p.y});
-    const nlohmann::ordered_json mission{
-        {"robot_id", id},
-        {"mission_id", m.mission.mission_id},
-        {"waypoints", waypoints},
-        {"loop", m.mission.loop},
-        {"current", m.progress.current},
-        {"laps", m.progress.laps},
-        {"status", kMissionStatusNames[static_cast<size_t>(m.progress.status)]},
-        {"reason", m.progress.reason},
-        {"sent_ns", m.sent_ns}};
+    const nlohmann::ordered_json mission{{"robot_id", id},
+                                         {"mission_id", m.mission.mission_id},
+                                         {"waypoints", waypoints},
+                                         {"loop", m.mission.loop},
+                                         {"current", m.progress.current},
+                                         {"laps", m.progress.laps},
+                                         {"status", msg::mission_status_name(m.progress.status)},
+                                         {"reason", m.progress.reason},
+                                         {"sent_ns", m.sent_ns}};
     missions += (missions.empty() ? "\n  " : ",\n  ") + dump(mission);
   }
   nlohmann::ordered_json homes = nlohmann::ordered_json::object();

@@ -8,16 +8,16 @@
 #include <string>
 #include <vector>
 
+#include "common/core/fleet_messages.hpp"
 #include "common/core/result.hpp"
 #include "planner/plan_types.hpp"
 #include "planner/planning_grid.hpp"
 
 namespace slam::planner {
 
-// Mirrors slam::GoalMode, SquareAnchor and GoalStatus in nav.idl, in the same order.
-enum class GoalMode : uint8_t { Idle, Direct, Planned, Square, Explore, Home, Stop };
-enum class SquareAnchor : uint8_t { Corner, Centred };
-enum class GoalStatus : uint8_t { None, Active, Reached, Failed };
+using msg::GoalMode;
+using msg::GoalStatus;
+using msg::SquareAnchor;
 
 struct Goal {
   uint64_t goal_id = 0;

@@ -8,16 +8,16 @@ namespace slam::planner {
 Result<ReceivedMission> to_mission(const slam::NavMission& sample, int64_t sent_ns) {
   if (static_cast<uint32_t>(sample.status()) > static_cast<uint32_t>(slam::MISSION_CANCELLED))
     return Error{"mission status " + std::to_string(static_cast<uint32_t>(sample.status())) + " is unknown"};
+  msg::Mission m = msg::from_idl(sample);
   ReceivedMission out;
-  out.robot_id = sample.robot_id().to_string();
-  out.mission.mission_id = sample.mission_id();
-  out.mission.loop = sample.loop();
-  out.mission.waypoints.reserve(sample.waypoints().size());
-  for (const slam::Point2& p : sample.waypoints()) out.mission.waypoints.push_back(to_vec2(p));
-  out.progress.current = sample.current();
-  out.progress.laps = sample.laps();
-  out.progress.status = static_cast<MissionStatus>(static_cast<uint32_t>(sample.status()));
-  out.progress.reason = sample.reason().to_string();
+  out.robot_id = std::move(m.robot_id);
+  out.mission.mission_id = m.mission_id;
+  out.mission.loop = m.loop;
+  out.mission.waypoints = std::move(m.waypoints);
+  out.progress.current = m.current;
+  out.progress.laps = m.laps;
+  out.progress.status = m.status;
+  out.progress.reason = std::move(m.reason);
   out.sent_ns = sent_ns;
   return out;
 }
@@ -30,7 +30,7 @@ void fill_mission(const std::string& robot_id, const Mission& mission, const Mis
   out.loop(mission.loop);
   out.current(static_cast<uint32_t>(progress.current));
   out.laps(progress.laps);
-  out.status(static_cast<slam::MissionStatus>(static_cast<uint32_t>(progress.status)));
+  out.status(msg::to_idl(progress.status));
   // The IDL bound is 256 characters.
   out.reason(progress.reason.substr(0, 255));
 }

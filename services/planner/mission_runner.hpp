@@ -21,8 +21,7 @@
 
 namespace slam::planner {
 
-// Mirrors slam::MissionStatus in nav.idl, in the same order.
-enum class MissionStatus : uint8_t { Active, Done, Failed, Cancelled };
+using msg::MissionStatus;
 
 inline constexpr size_t kMaxMissionWaypoints = 256;  // NavMission.waypoints' bound
 

@@ -125,7 +125,7 @@ PlanResult PathPlanner::run_astar(const PlanningGrid& grid, Cell from, Cell to, 
   const PlanStatus status = astar_.search(grid, from, to, options, cells_);
   if (status != PlanStatus::Ok) {
     return failure(status, status == PlanStatus::NoPath ? no_path_reason(start, goal, policy)
-                                                        : std::string(to_string(status)));
+                                                        : std::string(msg::plan_status_name(status)));
   }
   PlanResult result;
   result.status = PlanStatus::Ok;

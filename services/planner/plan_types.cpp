@@ -1,4 +1,4 @@
-// Path measures and status names behind plan_types.hpp.
+// Path measures behind plan_types.hpp.
 #include "planner/plan_types.hpp"
 
 #include <algorithm>
@@ -18,26 +18,6 @@ double distance_to_segment(Vec2 p, Vec2 a, Vec2 b) {
   if (len2 <= 0.0) return distance(p, a);
   const double t = std::clamp(((p.x - a.x) * dx + (p.y - a.y) * dy) / len2, 0.0, 1.0);
   return distance(p, Vec2{a.x + t * dx, a.y + t * dy});
-}
-
-std::string_view to_string(PlanStatus status) {
-  switch (status) {
-    case PlanStatus::Ok:
-      return "OK";
-    case PlanStatus::StartBlocked:
-      return "START_BLOCKED";
-    case PlanStatus::GoalBlocked:
-      return "GOAL_BLOCKED";
-    case PlanStatus::NoPath:
-      return "NO_PATH";
-    case PlanStatus::Timeout:
-      return "TIMEOUT";
-    case PlanStatus::NoMap:
-      return "NO_MAP";
-    case PlanStatus::InvalidRequest:
-      return "INVALID_REQUEST";
-  }
-  return "UNKNOWN";
 }
 
 }  // namespace slam::planner

@@ -1,12 +1,11 @@
 #pragma once
 // Value types shared by every part of the planner core: plan results and path measures over the
-// common geometry types. They mirror the IDL (Point2, PlanStatus) so the service edge converts
-// field by field.
+// common geometry types; PlanStatus is the fleet's (common/core/fleet_messages.hpp).
 #include <cstdint>
 #include <string>
-#include <string_view>
 #include <vector>
 
+#include "common/core/fleet_messages.hpp"
 #include "common/core/geometry.hpp"
 
 namespace slam::planner {
@@ -15,10 +14,7 @@ double path_length(const std::vector<Vec2>& path);
 // Distance from p to the segment [a, b].
 double distance_to_segment(Vec2 p, Vec2 a, Vec2 b);
 
-// Mirrors slam::PlanStatus in nav.idl, one to one and in the same order.
-enum class PlanStatus : uint8_t { Ok, StartBlocked, GoalBlocked, NoPath, Timeout, NoMap, InvalidRequest };
-
-std::string_view to_string(PlanStatus status);
+using msg::PlanStatus;
 
 // What to do with cells nobody has observed yet.
 enum class UnknownPolicy : uint8_t {

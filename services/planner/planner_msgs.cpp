@@ -1,22 +1,16 @@
-// IDL <-> core conversions for slam-planner. The core's enums mirror the IDL's one to one and in
-// the same order (plan_types.hpp, goal_tracker.hpp), so a range check is the whole translation.
+// IDL <-> core conversions for slam-planner. The core's enums are the fleet's
+// (common/core/fleet_messages.hpp), so a range check and common/fastdds' conversion are the whole
+// translation.
 #include "planner/planner_msgs.hpp"
 
 #include <string>
 
 namespace slam::planner {
 
-slam::Point2 to_point(Vec2 v) {
-  slam::Point2 p;
-  p.x(v.x);
-  p.y(v.y);
-  return p;
-}
-
 void to_points(const std::vector<Vec2>& in, std::vector<slam::Point2>& out) {
   out.clear();
   out.reserve(in.size());
-  for (const Vec2& v : in) out.push_back(to_point(v));
+  for (const Vec2& v : in) out.push_back(msg::to_idl(v));
 }
 
 Status apply_snapshot(slam::GridSnapshot& snapshot, PlanningGrid& grid) {
@@ -25,8 +19,8 @@ Status apply_snapshot(slam::GridSnapshot& snapshot, PlanningGrid& grid) {
     return Error{"grid snapshot is too large: " + std::to_string(info.width()) + "x" +
                  std::to_string(info.height())};
   }
-  const GridGeometry geometry{to_vec2(info.origin()), info.resolution(), static_cast<int32_t>(info.width()),
-                              static_cast<int32_t>(info.height())};
+  const GridGeometry geometry{msg::from_idl(info.origin()), info.resolution(),
+                              static_cast<int32_t>(info.width()), static_cast<int32_t>(info.height())};
   return grid.reset(geometry, snapshot.layout_id(), snapshot.version(), std::move(snapshot.cells()));
 }
 
@@ -50,10 +44,10 @@ Result<GoalCommand> to_goal(const slam::NavGoal& sample) {
                  std::to_string(anchor)};
   }
   out.goal.goal_id = sample.goal_id();
-  out.goal.mode = static_cast<GoalMode>(mode);
-  out.goal.target = to_vec2(sample.target());
+  out.goal.mode = msg::from_idl(sample.mode());
+  out.goal.target = msg::from_idl(sample.target());
   out.goal.square_size = sample.square_size();
-  out.goal.square_anchor = static_cast<SquareAnchor>(anchor);
+  out.goal.square_anchor = msg::from_idl(sample.square_anchor());
   return out;
 }
 
@@ -61,21 +55,17 @@ PathJob to_job(const slam::PathRequest& sample) {
   PathJob job;
   job.request_id = sample.request_id();
   job.client_id = sample.client_id().to_string();
-  job.query.start = to_vec2(sample.start());
-  job.query.goal = to_vec2(sample.goal());
+  job.query.start = msg::from_idl(sample.start());
+  job.query.goal = msg::from_idl(sample.goal());
   job.query.algorithm = sample.algorithm().to_string();
   job.query.time_budget_s = sample.time_budget_s();
   return job;
 }
 
-slam::PlanStatus to_idl(PlanStatus status) {
-  return static_cast<slam::PlanStatus>(static_cast<uint32_t>(status));
-}
-
 void fill_reply(const PathJob& job, const PlanResult& result, slam::PathReply& out) {
   out.request_id(job.request_id);
   out.client_id(job.client_id);
-  out.status(to_idl(result.status));
+  out.status(msg::to_idl(result.status));
   out.reason(result.reason);
   to_points(result.path, out.path());
   out.length_m(result.length_m);
@@ -85,26 +75,24 @@ void fill_reply(const PathJob& job, const PlanResult& result, slam::PathReply& o
 void fill_path(const std::string& robot_id, const GoalTracker& tracker, slam::RobotPath& out) {
   out.robot_id(robot_id);
   out.goal_id(tracker.goal().goal_id);
-  out.mode(static_cast<slam::GoalMode>(static_cast<uint32_t>(tracker.mode())));
-  out.status(static_cast<slam::GoalStatus>(static_cast<uint32_t>(tracker.status())));
-  out.target(to_point(tracker.target()));
+  out.mode(msg::to_idl(tracker.mode()));
+  out.status(msg::to_idl(tracker.status()));
+  out.target(msg::to_idl(tracker.target()));
   to_points(tracker.waypoints(), out.waypoints());
   out.current(static_cast<uint32_t>(tracker.current_index()));
   out.reason(tracker.reason());
 }
 
-PathReport to_report(const slam::RobotPath& sample) {
+PathReport to_report(const msg::RobotPath& path) {
   PathReport out;
-  out.goal_id = sample.goal_id();
-  out.finished = sample.status() == slam::GOAL_STATUS_REACHED || sample.status() == slam::GOAL_STATUS_FAILED;
+  out.goal_id = path.goal_id;
+  out.finished = path.status == GoalStatus::Reached || path.status == GoalStatus::Failed;
   // A robot between frontiers has no waypoints; one homing is not told apart (its home is claimed).
-  if (sample.mode() == slam::GOAL_EXPLORE && sample.status() == slam::GOAL_STATUS_ACTIVE &&
-      !sample.waypoints().empty()) {
-    out.frontier = to_vec2(sample.target());
-  }
-  if (sample.status() == slam::GOAL_STATUS_ACTIVE) {
-    const auto& w = sample.waypoints();
-    for (size_t i = sample.current(); i < w.size(); ++i) out.ahead.push_back(to_vec2(w[i]));
+  if (path.mode == GoalMode::Explore && path.status == GoalStatus::Active && !path.waypoints.empty())
+    out.frontier = path.target;
+  if (path.status == GoalStatus::Active) {
+    const auto& w = path.waypoints;
+    for (size_t i = path.current; i < w.size(); ++i) out.ahead.push_back(w[i]);
   }
   return out;
 }

@@ -1,27 +1,23 @@
 #pragma once
 // Conversions between the IDL types (Fast DDS generated classes, nav.idl / map.idl / robot.idl)
-// and the planner core's types. Only the service edge includes this; the core never sees IDL.
+// and the planner core's types; the fleet's messages and enumerations convert through
+// common/fastdds/fleet_messages.hpp. Only the service edge includes this; the core never sees IDL.
 // Incoming values are checked here (enums in range, strings non-empty) so the core gets only
 // values it can represent; geometry checks (NaN, outside the map) stay with the core.
-#include <slam/fastdds/map.h>
-#include <slam/fastdds/nav.h>
-#include <slam/fastdds/robot.h>
 
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "common/core/result.hpp"
+#include "common/fastdds/fleet_messages.hpp"
 #include "planner/goal_tracker.hpp"
 #include "planner/path_planner.hpp"
 #include "planner/planning_grid.hpp"
 
 namespace slam::planner {
 
-inline Vec2 to_vec2(const slam::Point2& p) {
-  return Vec2{p.x(), p.y()};
-}
-slam::Point2 to_point(Vec2 v);
+// Fills `out` (its buffer reused) with the points of `in`.
 void to_points(const std::vector<Vec2>& in, std::vector<slam::Point2>& out);
 
 // Replaces `grid` with the snapshot; its cells are moved out of `snapshot`.
@@ -44,7 +40,6 @@ PathJob to_job(const slam::PathRequest& sample);
 
 // A reply to `job` from `result` (reasons longer than the IDL bound are cut).
 void fill_reply(const PathJob& job, const PlanResult& result, slam::PathReply& out);
-slam::PlanStatus to_idl(PlanStatus status);
 
 // The robot's path as the viewer shows it.
 void fill_path(const std::string& robot_id, const GoalTracker& tracker, slam::RobotPath& out);
@@ -56,6 +51,6 @@ struct PathReport {
   bool finished = false;    // the goal was reached or failed
   std::vector<Vec2> ahead;  // waypoints still to drive to while the goal is active (coordination)
 };
-PathReport to_report(const slam::RobotPath& sample);
+PathReport to_report(const msg::RobotPath& path);
 
 }  // namespace slam::planner

@@ -2,7 +2,6 @@
 #include "planner/planner_node.hpp"
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <exception>
 #include <utility>
@@ -15,9 +14,7 @@ namespace slam::planner {
 namespace {
 
 std::string counter_name(PlanStatus status) {
-  std::string name = "replies_";
-  for (char c : to_string(status)) name += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return name;
+  return std::string("replies_") + msg::plan_status_id(status);
 }
 
 int64_t to_ns(double seconds) {
@@ -265,7 +262,7 @@ void PlannerNode::stream_waypoints(int64_t now_ns) {
     uint64_t& seq = waypoint_seq_[d.robot_id];
     seq = std::max(seq + 1, static_cast<uint64_t>(slam::now_ns() / 1'000'000));
     command_.seq(seq);
-    command_.waypoint(to_point(d.waypoint));
+    command_.waypoint(msg::to_idl(d.waypoint));
     to_points(d.remaining, command_.remaining());
     bump(waypoint_writer_->write(command_) ? metrics_.waypoints_sent : metrics_.write_failures);
   }
@@ -279,7 +276,7 @@ void PlannerNode::on_heartbeat(const slam::Heartbeat& heartbeat) {
 }
 
 void PlannerNode::on_path(const slam::RobotPath& sample) {
-  PathReport report = to_report(sample);
+  PathReport report = to_report(msg::from_idl(sample));
   std::lock_guard lock(reports_mutex_);
   reports_[sample.robot_id().to_string()] = std::move(report);
 }

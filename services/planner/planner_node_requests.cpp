@@ -236,9 +236,9 @@ void PlannerNode::reply(const PathJob& job, const PlanResult& result) {
     spdlog::debug("path request {} from '{}': {} m in {} s", job.request_id, job.client_id, result.length_m,
                   result.planning_time_s);
   } else {
-    warn("request:" + job.client_id, "path request " + std::to_string(job.request_id) + " from '" +
-                                         job.client_id + "': " + std::string(to_string(result.status)) +
-                                         ": " + result.reason);
+    warn("request:" + job.client_id,
+         "path request " + std::to_string(job.request_id) + " from '" + job.client_id +
+             "': " + std::string(msg::plan_status_name(result.status)) + ": " + result.reason);
   }
 }
 

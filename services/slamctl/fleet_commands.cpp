@@ -8,6 +8,7 @@
 
 #include "common/core/clock.hpp"
 #include "common/core/geometry.hpp"
+#include "common/fastdds/fleet_messages.hpp"
 #include "slamctl/mission_file.hpp"
 #include "slamctl/session_io.hpp"
 
@@ -32,7 +33,8 @@ int cmd_status(Session& s, const ListArgs& a) {
   const auto first = beats.take_first();
   if (latest.empty()) return fail("no service seen on DDS domain " + std::to_string(s.domain()));
   std::vector<ServiceSeen> services;
-  for (const auto& [key, hb] : latest) services.push_back(service_seen(first.at(key), hb));
+  for (const auto& [key, hb] : latest)
+    services.push_back(service_seen(msg::from_idl(first.at(key)), msg::from_idl(hb)));
   const int64_t now = now_ns();
   if (a.json) {
     std::printf("%s", services_json(services, now).c_str());
@@ -74,20 +76,23 @@ int cmd_robots(Session& s, const ListArgs& a) {
   const auto correction_of = corrections.take();
   const auto robots = states.take();
   if (robots.empty()) return fail("no robot known on DDS domain " + std::to_string(s.domain()));
+  std::vector<RobotSeen> seen;
+  for (const auto& [id, st] : robots) {
+    RobotSeen r{msg::from_idl(st), std::nullopt, std::nullopt};
+    if (const auto* c = find_in(correction_of, id)) r.correction = msg::from_idl(*c);
+    if (const auto* p = find_in(path_of, id)) r.path = msg::from_idl(*p);
+    seen.push_back(std::move(r));
+  }
   const int64_t now = now_ns();
   if (a.json) {
-    std::vector<RobotSeen> seen;
-    for (const auto& [id, st] : robots) {
-      RobotSeen r{st, std::nullopt, std::nullopt};
-      if (const auto* c = find_in(correction_of, id)) r.correction = *c;
-      if (const auto* p = find_in(path_of, id)) r.path = *p;
-      seen.push_back(std::move(r));
-    }
     std::printf("%s", robots_json(seen, now).c_str());
     return 0;
   }
-  for (const auto& [id, st] : robots)
-    std::printf("%s", format_robot(st, find_in(correction_of, id), find_in(path_of, id), now).c_str());
+  for (const RobotSeen& r : seen) {
+    const msg::PoseCorrection* correction = r.correction ? &*r.correction : nullptr;
+    const msg::RobotPath* path = r.path ? &*r.path : nullptr;
+    std::printf("%s", format_robot(r.state, correction, path, now).c_str());
+  }
   return 0;
 }
 
@@ -109,16 +114,16 @@ int cmd_alerts(Session& s, const ListArgs& a) {
     return fail("no planner on DDS domain " + std::to_string(s.domain()) +
                 " (alerts come from the planners)");
   wait_for_shutdown(std::min<std::chrono::milliseconds>(s.timeout(), 1000ms));
-  std::vector<Alert> shown;
-  for (auto& [id, alert] : alerts.take())
-    if (a.all || alert.active()) shown.push_back(std::move(alert));
+  std::vector<msg::Alert> shown;
+  for (const auto& [id, alert] : alerts.take())
+    if (a.all || alert.active()) shown.push_back(msg::from_idl(alert));
   const int64_t now = now_ns();
   if (a.json) {
     std::printf("%s", alerts_json(shown, now).c_str());
     return 0;
   }
   if (shown.empty()) std::printf("no %salerts\n", a.all ? "" : "active ");
-  for (const Alert& alert : shown) std::printf("%s", format_alert(alert, now).c_str());
+  for (const msg::Alert& alert : shown) std::printf("%s", format_alert(alert, now).c_str());
   return 0;
 }
 
@@ -164,23 +169,24 @@ struct GoalArgs {
 };
 
 int cmd_goal(Session& s, const GoalArgs& a) {
-  const auto mode = parse_goal_mode(a.mode_name);
+  const auto mode = msg::parse_goal_mode(a.mode_name);
   if (!mode)
     return usage_error("unknown mode '" + a.mode_name +
                        "' (idle, direct, planned, square, explore, home, stop)");
-  const bool needs_target = *mode == GOAL_DIRECT || *mode == GOAL_PLANNED || *mode == GOAL_SQUARE;
+  const bool needs_target =
+      *mode == msg::GoalMode::Direct || *mode == msg::GoalMode::Planned || *mode == msg::GoalMode::Square;
   if (needs_target && a.xy.size() != 2)
     return usage_error("mode " + a.mode_name + " needs a target: goal " + a.robot + " " + a.mode_name +
                        " X Y");
   NavGoal goal;
   goal.robot_id(a.robot == "all" ? "*" : a.robot);
   goal.goal_id(s.next_goal_id());
-  goal.mode(*mode);
+  goal.mode(msg::to_idl(*mode));
   goal.target(a.xy.size() == 2 ? point(a.xy[0], a.xy[1]) : point(0, 0));
   goal.square_size(a.square_size);
   goal.square_anchor(a.centred ? SQUARE_CENTRED : SQUARE_CORNER);
   const int rc = send(s, dds::kNavGoal, goal, {"planner"});
-  if (rc == 0) std::printf("goal %s sent to %s\n", goal_mode_name(*mode).c_str(), a.robot.c_str());
+  if (rc == 0) std::printf("goal %s sent to %s\n", msg::goal_mode_name(*mode), a.robot.c_str());
   return rc;
 }
 
@@ -288,7 +294,7 @@ int cmd_path(Session& s, const PathArgs& a) {
   req.time_budget_s(a.budget_s);
   const auto reply = request(s, dds::kPathRequest, req, dds::kPathReply, "planner");
   if (!reply) return kExitFailure;
-  std::printf("%s", format_path_reply(*reply).c_str());
+  std::printf("%s", format_path_reply(msg::from_idl(*reply)).c_str());
   return reply->status() == PLAN_OK ? 0 : 1;
 }
 

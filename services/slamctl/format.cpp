@@ -1,7 +1,6 @@
 #include "slamctl/format.hpp"
 
 #include <algorithm>
-#include <array>
 #include <cstdio>
 #include <functional>
 #include <nlohmann/json.hpp>
@@ -9,19 +8,10 @@
 
 #include "common/core/alert_kind.hpp"
 #include "common/core/geometry.hpp"
+#include "common/fastdds/fleet_messages.hpp"
 
 namespace slam::ctl {
 namespace {
-
-constexpr std::array<std::pair<std::string_view, GoalMode>, 7> kModes{{
-    {"idle", GOAL_IDLE},
-    {"direct", GOAL_DIRECT},
-    {"planned", GOAL_PLANNED},
-    {"square", GOAL_SQUARE},
-    {"explore", GOAL_EXPLORE},
-    {"home", GOAL_HOME},
-    {"stop", GOAL_STOP},
-}};
 
 std::string fmt(const char* f, auto... args) {
   char buf[512];
@@ -29,62 +19,16 @@ std::string fmt(const char* f, auto... args) {
   return buf;
 }
 
-std::string point(const Point2& p) {
-  return fmt("(%.2f, %.2f)", p.x(), p.y());
+std::string point(Vec2 p) {
+  return fmt("(%.2f, %.2f)", p.x, p.y);
 }
 
 // "(x, y, theta deg)"
-std::string pose_deg(const Pose2& p) {
-  return fmt("(%.2f, %.2f, %.1f deg)", p.x(), p.y(), to_degrees(p.theta()));
+std::string pose_deg(const Pose& p) {
+  return fmt("(%.2f, %.2f, %.1f deg)", p.x, p.y, to_degrees(p.theta));
 }
 
 }  // namespace
-
-std::optional<GoalMode> parse_goal_mode(std::string_view name) {
-  for (const auto& [n, mode] : kModes)
-    if (n == name) return mode;
-  return std::nullopt;
-}
-
-std::string goal_mode_name(GoalMode mode) {
-  for (const auto& [n, m] : kModes)
-    if (m == mode) return std::string(n);
-  return "mode " + std::to_string(static_cast<int>(mode));
-}
-
-std::string goal_status_name(GoalStatus status) {
-  switch (status) {
-    case GOAL_STATUS_NONE:
-      return "none";
-    case GOAL_STATUS_ACTIVE:
-      return "active";
-    case GOAL_STATUS_REACHED:
-      return "reached";
-    case GOAL_STATUS_FAILED:
-      return "failed";
-  }
-  return "status " + std::to_string(static_cast<int>(status));
-}
-
-std::string plan_status_name(PlanStatus status) {
-  switch (status) {
-    case PLAN_OK:
-      return "OK";
-    case PLAN_START_BLOCKED:
-      return "START_BLOCKED";
-    case PLAN_GOAL_BLOCKED:
-      return "GOAL_BLOCKED";
-    case PLAN_NO_PATH:
-      return "NO_PATH";
-    case PLAN_TIMEOUT:
-      return "TIMEOUT";
-    case PLAN_NO_MAP:
-      return "NO_MAP";
-    case PLAN_INVALID_REQUEST:
-      return "INVALID_REQUEST";
-  }
-  return "status " + std::to_string(static_cast<int>(status));
-}
 
 std::string map_result_name(MapResult result) {
   switch (result) {
@@ -102,39 +46,11 @@ std::string map_result_name(MapResult result) {
   return "result " + std::to_string(static_cast<int>(result));
 }
 
-std::string correction_source_name(CorrectionSource source) {
-  switch (source) {
-    case CORRECTION_IDENTITY:
-      return "identity";
-    case CORRECTION_MATCH:
-      return "match";
-    case CORRECTION_LOOP:
-      return "loop";
-    case CORRECTION_OPERATOR:
-      return "operator";
-    case CORRECTION_RESTORED:
-      return "restored";
-  }
-  return "source " + std::to_string(static_cast<int>(source));
-}
-
 double age_s(int64_t stamp_ns, int64_t now_ns) {
   return static_cast<double>(now_ns - stamp_ns) * 1e-9;
 }
 
 namespace {
-
-const char* state_name(ServiceState state) {
-  switch (state) {
-    case SERVICE_STARTING:
-      return "starting";
-    case SERVICE_RUNNING:
-      return "running";
-    case SERVICE_STOPPING:
-      return "stopping";
-  }
-  return "?";
-}
 
 // Rates are shown to one decimal, or as integers once large.
 std::string rate_text(double per_s) {
@@ -143,14 +59,14 @@ std::string rate_text(double per_s) {
 
 }  // namespace
 
-ServiceSeen service_seen(const Heartbeat& first, const Heartbeat& latest) {
+ServiceSeen service_seen(const msg::Heartbeat& first, const msg::Heartbeat& latest) {
   ServiceSeen out{latest, {}};
-  const double span_s = latest.uptime_s() - first.uptime_s();
+  const double span_s = latest.uptime_s - first.uptime_s;
   if (span_s <= 0.0) return out;
-  for (const Counter& c : latest.counters()) {
-    for (const Counter& before : first.counters()) {
-      if (before.name() != c.name()) continue;
-      out.rates[c.name().to_string()] = static_cast<double>(c.value() - before.value()) / span_s;
+  for (const auto& [name, value] : latest.counters) {
+    for (const auto& [before_name, before] : first.counters) {
+      if (before_name != name) continue;
+      out.rates[name] = static_cast<double>(value - before) / span_s;
       break;
     }
   }
@@ -177,24 +93,24 @@ bool is_error_counter(std::string_view name) {
 }
 
 std::string format_service(const ServiceSeen& s, int64_t now_ns, bool verbose) {
-  const Heartbeat& hb = s.latest;
+  const msg::Heartbeat& hb = s.latest;
   std::string out =
-      fmt("%-10s %-24s %-8s up %8.1f s  seen %4.1f s ago", hb.service().c_str(), hb.instance_id().c_str(),
-          state_name(hb.state()), hb.uptime_s(), age_s(hb.stamp_ns(), now_ns));
-  for (const std::string& name : main_counters(hb.service().to_string())) {
+      fmt("%-10s %-24s %-8s up %8.1f s  seen %4.1f s ago", hb.service.c_str(), hb.instance_id.c_str(),
+          msg::service_state_name(hb.state), hb.uptime_s, age_s(hb.stamp_ns, now_ns));
+  for (const std::string& name : main_counters(hb.service)) {
     const auto rate = s.rates.find(name);
     if (rate != s.rates.end()) out += "  " + name + " " + rate_text(rate->second);
   }
   std::string errors;
-  for (const Counter& c : hb.counters())
-    if (c.value() != 0 && is_error_counter(c.name().to_string()))
-      errors += fmt(" %s %lld", c.name().c_str(), static_cast<long long>(c.value()));
+  for (const auto& [name, value] : hb.counters)
+    if (value != 0 && is_error_counter(name))
+      errors += fmt(" %s %lld", name.c_str(), static_cast<long long>(value));
   if (!errors.empty()) out += "  errors:" + errors;
   out += "\n";
   if (!verbose) return out;
-  for (const Counter& c : hb.counters()) {
-    const auto rate = s.rates.find(c.name().to_string());
-    out += fmt("    %-32s %12lld", c.name().c_str(), static_cast<long long>(c.value()));
+  for (const auto& [name, value] : hb.counters) {
+    const auto rate = s.rates.find(name);
+    out += fmt("    %-32s %12lld", name.c_str(), static_cast<long long>(value));
     if (rate != s.rates.end()) out += "  " + rate_text(rate->second);
     out += "\n";
   }
@@ -204,20 +120,20 @@ std::string format_service(const ServiceSeen& s, int64_t now_ns, bool verbose) {
 std::string services_json(const std::vector<ServiceSeen>& services, int64_t now_ns) {
   nlohmann::json out = nlohmann::json::array();
   for (const ServiceSeen& s : services) {
-    const Heartbeat& hb = s.latest;
+    const msg::Heartbeat& hb = s.latest;
     nlohmann::json counters = nlohmann::json::object();
     nlohmann::json errors = nlohmann::json::object();
-    for (const Counter& c : hb.counters()) {
-      counters[c.name().to_string()] = c.value();
-      if (c.value() != 0 && is_error_counter(c.name().to_string())) errors[c.name().to_string()] = c.value();
+    for (const auto& [name, value] : hb.counters) {
+      counters[name] = value;
+      if (value != 0 && is_error_counter(name)) errors[name] = value;
     }
-    out.push_back({{"service", hb.service().to_string()},
-                   {"instance", hb.instance_id().to_string()},
-                   {"pid", hb.pid()},
-                   {"host", hb.host().to_string()},
-                   {"state", state_name(hb.state())},
-                   {"uptime_s", hb.uptime_s()},
-                   {"seen_s_ago", age_s(hb.stamp_ns(), now_ns)},
+    out.push_back({{"service", hb.service},
+                   {"instance", hb.instance_id},
+                   {"pid", hb.pid},
+                   {"host", hb.host},
+                   {"state", msg::service_state_name(hb.state)},
+                   {"uptime_s", hb.uptime_s},
+                   {"seen_s_ago", age_s(hb.stamp_ns, now_ns)},
                    {"rates", s.rates},
                    {"errors", errors},
                    {"counters", counters}});
@@ -228,95 +144,92 @@ std::string services_json(const std::vector<ServiceSeen>& services, int64_t now_
 std::string robots_json(const std::vector<RobotSeen>& robots, int64_t now_ns) {
   nlohmann::json out = nlohmann::json::array();
   for (const RobotSeen& r : robots) {
-    const RobotState& s = r.state;
-    nlohmann::json robot{
-        {"id", s.robot_id().to_string()},
-        {"presence", s.presence() == PRESENCE_ONLINE ? "online" : "offline"},
-        {"protocol", s.protocol() == PROTOCOL_V1 ? "v1" : "v2"},
-        {"x", s.pose().x()},
-        {"y", s.pose().y()},
-        {"theta", s.has_heading() ? nlohmann::json(s.pose().theta()) : nlohmann::json(nullptr)},
-        {"battery", s.battery() < 0.0f ? nlohmann::json(nullptr) : nlohmann::json(s.battery())},
-        {"status", s.status().to_string()},
-        {"seen_s_ago", age_s(s.last_seen_ns(), now_ns)},
-        {"messages", s.messages()},
-        {"points", s.points()},
-        {"rejected", s.rejected()},
-        {"goal", nullptr},
-        {"correction", nullptr}};
+    const msg::RobotState& s = r.state;
+    nlohmann::json robot{{"id", s.robot_id},
+                         {"presence", s.online ? "online" : "offline"},
+                         {"protocol", s.protocol_v2 ? "v2" : "v1"},
+                         {"x", s.pose.x},
+                         {"y", s.pose.y},
+                         {"theta", s.has_heading ? nlohmann::json(s.pose.theta) : nlohmann::json(nullptr)},
+                         {"battery", s.battery < 0.0f ? nlohmann::json(nullptr) : nlohmann::json(s.battery)},
+                         {"status", s.status},
+                         {"seen_s_ago", age_s(s.last_seen_ns, now_ns)},
+                         {"messages", s.messages},
+                         {"points", s.points},
+                         {"rejected", s.rejected},
+                         {"goal", nullptr},
+                         {"correction", nullptr}};
     if (r.path) {
-      robot["goal"] = {{"goal_id", r.path->goal_id()},
-                       {"mode", goal_mode_name(r.path->mode())},
-                       {"status", goal_status_name(r.path->status())},
-                       {"target", {r.path->target().x(), r.path->target().y()}},
-                       {"reason", r.path->reason().to_string()}};
+      robot["goal"] = {{"goal_id", r.path->goal_id},
+                       {"mode", msg::goal_mode_name(r.path->mode)},
+                       {"status", msg::goal_status_name(r.path->status)},
+                       {"target", {r.path->target.x, r.path->target.y}},
+                       {"reason", r.path->reason}};
     }
     if (r.correction) {
-      const Pose2& m = r.correction->map_from_odom();
-      robot["correction"] = {{"x", m.x()},
-                             {"y", m.y()},
-                             {"theta_deg", to_degrees(m.theta())},
-                             {"version", r.correction->version()},
-                             {"keyframes", r.correction->keyframes()},
-                             {"loop_closures", r.correction->loop_closures()},
-                             {"sigma_m", position_sigma(r.correction->covariance())},
-                             {"source", correction_source_name(r.correction->source())}};
+      const msg::PoseCorrection& c = *r.correction;
+      robot["correction"] = {{"x", c.map_from_odom.x},
+                             {"y", c.map_from_odom.y},
+                             {"theta_deg", to_degrees(c.map_from_odom.theta)},
+                             {"version", c.version},
+                             {"keyframes", c.keyframes},
+                             {"loop_closures", c.loop_closures},
+                             {"sigma_m", position_sigma(c.covariance)},
+                             {"source", msg::correction_source_id(c.source)}};
     }
     out.push_back(std::move(robot));
   }
   return out.dump(2) + "\n";
 }
 
-std::string format_alert(const Alert& a, int64_t now_ns) {
-  return fmt("%-7s %-14s %-32s raised %6.1f s ago by %s: %s\n", a.active() ? "ACTIVE" : "cleared",
-             alerts::kind_name(static_cast<alerts::Kind>(a.kind())), a.subject().c_str(),
-             age_s(a.raised_ns(), now_ns), a.raised_by().c_str(), a.message().c_str());
+std::string format_alert(const msg::Alert& a, int64_t now_ns) {
+  return fmt("%-7s %-14s %-32s raised %6.1f s ago by %s: %s\n", a.active ? "ACTIVE" : "cleared",
+             alerts::kind_name(a.kind), a.subject.c_str(), age_s(a.raised_ns, now_ns), a.raised_by.c_str(),
+             a.message.c_str());
 }
 
-std::string alerts_json(const std::vector<Alert>& alerts, int64_t now_ns) {
+std::string alerts_json(const std::vector<msg::Alert>& alerts, int64_t now_ns) {
   nlohmann::json out = nlohmann::json::array();
-  for (const Alert& a : alerts) {
-    out.push_back({{"id", a.alert_id().to_string()},
-                   {"kind", alerts::kind_name(static_cast<alerts::Kind>(a.kind()))},
-                   {"subject", a.subject().to_string()},
-                   {"active", a.active()},
-                   {"raised_ns", a.raised_ns()},
-                   {"raised_s_ago", age_s(a.raised_ns(), now_ns)},
-                   {"changed_ns", a.stamp_ns()},
-                   {"raised_by", a.raised_by().to_string()},
-                   {"message", a.message().to_string()}});
+  for (const msg::Alert& a : alerts) {
+    out.push_back({{"id", a.alert_id},
+                   {"kind", alerts::kind_name(a.kind)},
+                   {"subject", a.subject},
+                   {"active", a.active},
+                   {"raised_ns", a.raised_ns},
+                   {"raised_s_ago", age_s(a.raised_ns, now_ns)},
+                   {"changed_ns", a.stamp_ns},
+                   {"raised_by", a.raised_by},
+                   {"message", a.message}});
   }
   return out.dump(2) + "\n";
 }
 
-std::string format_correction(const PoseCorrection& c) {
-  return fmt("%s ±%.0f cm version %llu keyframes %u loops %u %s", pose_deg(c.map_from_odom()).c_str(),
-             100.0 * position_sigma(c.covariance()), static_cast<unsigned long long>(c.version()),
-             c.keyframes(), c.loop_closures(), correction_source_name(c.source()).c_str());
+std::string format_correction(const msg::PoseCorrection& c) {
+  return fmt("%s ±%.0f cm version %llu keyframes %u loops %u %s", pose_deg(c.map_from_odom).c_str(),
+             100.0 * position_sigma(c.covariance), static_cast<unsigned long long>(c.version), c.keyframes,
+             c.loop_closures, msg::correction_source_id(c.source));
 }
 
-std::string format_robot(const RobotState& s, const PoseCorrection* correction, const RobotPath* path,
-                         int64_t now_ns) {
-  std::string mode = path ? goal_mode_name(path->mode()) + "/" + goal_status_name(path->status()) : "-";
+std::string format_robot(const msg::RobotState& s, const msg::PoseCorrection* correction,
+                         const msg::RobotPath* path, int64_t now_ns) {
+  const std::string mode =
+      path ? std::string(msg::goal_mode_name(path->mode)) + "/" + msg::goal_status_name(path->status) : "-";
   const std::string corrected = correction ? format_correction(*correction) : "-";
   return fmt(
       "%-16s %-7s %-3s x %8.2f  y %8.2f  %s  seen %6.1f s ago  msgs %llu  pts %llu  rejected %llu  %s  "
       "correction %s\n",
-      s.robot_id().c_str(), s.presence() == PRESENCE_ONLINE ? "online" : "offline",
-      s.protocol() == PROTOCOL_V1 ? "v1" : "v2", s.pose().x(), s.pose().y(),
-      s.has_heading() ? fmt("th %6.2f", s.pose().theta()).c_str() : "th      -",
-      age_s(s.last_seen_ns(), now_ns), static_cast<unsigned long long>(s.messages()),
-      static_cast<unsigned long long>(s.points()), static_cast<unsigned long long>(s.rejected()),
-      mode.c_str(), corrected.c_str());
+      s.robot_id.c_str(), s.online ? "online" : "offline", s.protocol_v2 ? "v2" : "v1", s.pose.x, s.pose.y,
+      s.has_heading ? fmt("th %6.2f", s.pose.theta).c_str() : "th      -", age_s(s.last_seen_ns, now_ns),
+      static_cast<unsigned long long>(s.messages), static_cast<unsigned long long>(s.points),
+      static_cast<unsigned long long>(s.rejected), mode.c_str(), corrected.c_str());
 }
 
-std::string format_path_reply(const PathReply& r) {
-  std::string out =
-      fmt("%s  length %.2f m  %zu points  planned in %.1f ms", plan_status_name(r.status()).c_str(),
-          r.length_m(), r.path().size(), r.planning_time_s() * 1e3);
-  if (r.reason().size() > 0) out += std::string("  (") + r.reason().c_str() + ")";
+std::string format_path_reply(const msg::PathReply& r) {
+  std::string out = fmt("%s  length %.2f m  %zu points  planned in %.1f ms", msg::plan_status_name(r.status),
+                        r.length_m, r.path.size(), r.planning_time_s * 1e3);
+  if (!r.reason.empty()) out += "  (" + r.reason + ")";
   out += "\n";
-  for (const auto& p : r.path()) out += "  " + point(p) + "\n";
+  for (const Vec2& p : r.path) out += "  " + point(p) + "\n";
   return out;
 }
 
@@ -336,7 +249,7 @@ std::string describe(const RobotObservationBatch& s) {
   return out;
 }
 std::string describe(const RobotState& s) {
-  return "state " + format_robot(s, nullptr, nullptr, s.last_seen_ns());
+  return "state " + format_robot(msg::from_idl(s), nullptr, nullptr, s.last_seen_ns());
 }
 std::string describe(const RobotOdometry& s) {
   return fmt("odometry %s (%.2f, %.2f, %s) correction version %llu", s.robot_id().c_str(), s.odom_pose().x(),
@@ -344,11 +257,11 @@ std::string describe(const RobotOdometry& s) {
              static_cast<unsigned long long>(s.correction_version()));
 }
 std::string describe(const PoseCorrection& s) {
-  return "correction " + s.robot_id().to_string() + " " + format_correction(s);
+  return "correction " + s.robot_id().to_string() + " " + format_correction(msg::from_idl(s));
 }
 std::string describe(const InitialPose& s) {
   return fmt("initial pose %llu %s %s", static_cast<unsigned long long>(s.request_id()), s.robot_id().c_str(),
-             pose_deg(s.pose()).c_str());
+             pose_deg(msg::from_idl(s.pose())).c_str());
 }
 std::string describe(const GridSnapshot& s) {
   return fmt("snapshot layout %u version %llu %ux%u cells at %.3f m, origin (%.2f, %.2f), inflation %.2f m",
@@ -366,18 +279,19 @@ std::string describe(const GridTiles& s) {
 }
 std::string describe(const RobotPath& s) {
   return fmt("path %s goal %llu %s/%s target %s waypoint %u of %zu %s", s.robot_id().c_str(),
-             static_cast<unsigned long long>(s.goal_id()), goal_mode_name(s.mode()).c_str(),
-             goal_status_name(s.status()).c_str(), point(s.target()).c_str(), s.current(),
-             s.waypoints().size(), s.reason().c_str());
+             static_cast<unsigned long long>(s.goal_id()), msg::goal_mode_name(msg::from_idl(s.mode())),
+             msg::goal_status_name(msg::from_idl(s.status())), point(msg::from_idl(s.target())).c_str(),
+             s.current(), s.waypoints().size(), s.reason().c_str());
 }
 std::string describe(const WaypointCommand& s) {
   return fmt("waypoint %s seq %llu %s (%zu more)", s.robot_id().c_str(),
-             static_cast<unsigned long long>(s.seq()), point(s.waypoint()).c_str(), s.remaining().size());
+             static_cast<unsigned long long>(s.seq()), point(msg::from_idl(s.waypoint())).c_str(),
+             s.remaining().size());
 }
 std::string describe(const NavGoal& s) {
   return fmt("goal %s id %llu %s target %s", s.robot_id().c_str(),
-             static_cast<unsigned long long>(s.goal_id()), goal_mode_name(s.mode()).c_str(),
-             point(s.target()).c_str());
+             static_cast<unsigned long long>(s.goal_id()), msg::goal_mode_name(msg::from_idl(s.mode())),
+             point(msg::from_idl(s.target())).c_str());
 }
 std::string describe(const MqttTraffic& s) {
   std::string hex;
@@ -400,7 +314,7 @@ std::string describe(const MapReply& s) {
              map_result_name(s.result()).c_str(), s.message().c_str());
 }
 std::string describe(const Alert& s) {
-  std::string line = format_alert(s, s.stamp_ns());
+  std::string line = format_alert(msg::from_idl(s), s.stamp_ns());
   line.pop_back();  // echo ends each sample's line itself
   return "alert " + s.alert_id().to_string() + " " + line;
 }
@@ -421,7 +335,7 @@ std::string describe(const FleetPoints& s) {
 }
 std::string describe(const PathReply& s) {
   return fmt("path reply %llu %s", static_cast<unsigned long long>(s.request_id()),
-             format_path_reply(s).c_str());
+             format_path_reply(msg::from_idl(s)).c_str());
 }
 
 }  // namespace slam::ctl

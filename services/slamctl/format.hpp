@@ -1,22 +1,20 @@
 #pragma once
-// slamctl's text side, plain C++: parsing mode/kind names from the command line and formatting
-// samples as the lines a person reads. No DDS entities here, only the generated value types.
+// slamctl's text side, plain C++: formatting what it heard as the lines a person reads and as JSON.
+// The listings work on the fleet's plain messages (common/core/fleet_messages.hpp, which also names
+// goal modes and statuses); `describe` (slamctl echo) takes any sample as the generated value type.
+// No DDS entities here.
 #include <map>
 #include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "common/core/fleet_messages.hpp"
 #include "common/fastdds/fast_topics.hpp"
 
 namespace slam::ctl {
 
-std::optional<GoalMode> parse_goal_mode(std::string_view name);  // "planned", "explore", ...
-std::string goal_mode_name(GoalMode mode);
-std::string goal_status_name(GoalStatus status);
-std::string plan_status_name(PlanStatus status);
 std::string map_result_name(MapResult result);
-std::string correction_source_name(CorrectionSource source);
 
 // Seconds since a *_ns stamp, for "last seen 1.2 s ago".
 double age_s(int64_t stamp_ns, int64_t now_ns);
@@ -24,10 +22,10 @@ double age_s(int64_t stamp_ns, int64_t now_ns);
 // A service as `slamctl status` heard it: its latest heartbeat, and each counter's rate per second
 // between the first and the latest heartbeat heard (none when only one was heard).
 struct ServiceSeen {
-  Heartbeat latest;
+  msg::Heartbeat latest;
   std::map<std::string, double> rates;
 };
-ServiceSeen service_seen(const Heartbeat& first, const Heartbeat& latest);
+ServiceSeen service_seen(const msg::Heartbeat& first, const msg::Heartbeat& latest);
 // The counters whose rates tell whether a service works (gateway: messages_in, ...); empty for a
 // service not in the table.
 const std::vector<std::string>& main_counters(std::string_view service);
@@ -40,22 +38,22 @@ std::string services_json(const std::vector<ServiceSeen>& services, int64_t now_
 
 // A robot as `slamctl robots` saw it.
 struct RobotSeen {
-  RobotState state;
-  std::optional<PoseCorrection> correction;
-  std::optional<RobotPath> path;
+  msg::RobotState state;
+  std::optional<msg::PoseCorrection> correction;
+  std::optional<msg::RobotPath> path;
 };
 std::string robots_json(const std::vector<RobotSeen>& robots, int64_t now_ns);
 
 // One line: ACTIVE/cleared, kind, subject, age, who raised it, the message.
-std::string format_alert(const Alert& a, int64_t now_ns);
-std::string alerts_json(const std::vector<Alert>& alerts, int64_t now_ns);
+std::string format_alert(const msg::Alert& a, int64_t now_ns);
+std::string alerts_json(const std::vector<msg::Alert>& alerts, int64_t now_ns);
 // "(x, y, theta deg) version V keyframes K loops L SOURCE": a robot's map <- odom correction.
-std::string format_correction(const PoseCorrection& c);
+std::string format_correction(const msg::PoseCorrection& c);
 // One line per robot: its state (pose in the map frame), its goal and its correction ("-" when none
 // is known: the gateway then uses the identity).
-std::string format_robot(const RobotState& state, const PoseCorrection* correction, const RobotPath* path,
-                         int64_t now_ns);
-std::string format_path_reply(const PathReply& reply);
+std::string format_robot(const msg::RobotState& state, const msg::PoseCorrection* correction,
+                         const msg::RobotPath* path, int64_t now_ns);
+std::string format_path_reply(const msg::PathReply& reply);
 
 // One line per sample for `slamctl echo TOPIC`; long sequences are summarised.
 std::string describe(const RobotObservation& s);

@@ -7,6 +7,8 @@
 #include <fstream>
 #include <sstream>
 
+#include "common/fastdds/fleet_messages.hpp"
+
 namespace slam::ctl {
 namespace {
 
@@ -106,23 +108,9 @@ bool mission_behind(const NavMission& next, const NavMission& kept) {
   return next.laps() < kept.laps() || (next.laps() == kept.laps() && next.current() < kept.current());
 }
 
-std::string mission_status_name(MissionStatus status) {
-  switch (status) {
-    case MISSION_ACTIVE:
-      return "active";
-    case MISSION_DONE:
-      return "done";
-    case MISSION_FAILED:
-      return "failed";
-    case MISSION_CANCELLED:
-      return "cancelled";
-  }
-  return "status " + std::to_string(static_cast<uint32_t>(status));
-}
-
 std::string format_mission(const NavMission& m) {
   std::string line = m.robot_id().to_string() + " mission " + std::to_string(m.mission_id()) + ": " +
-                     mission_status_name(m.status());
+                     msg::mission_status_name(msg::from_idl(m.status()));
   const auto& wps = m.waypoints();
   if (m.current() < wps.size()) {
     const Point2& p = wps[m.current()];

@@ -31,7 +31,6 @@ Result<MissionSpec> load_mission_file(const std::string& path);
 // reporting progress both keep a robot's mission, and a late reader gets them in any order.
 bool mission_behind(const NavMission& next, const NavMission& kept);
 
-std::string mission_status_name(MissionStatus status);
 // "ROBOT mission M: active, waypoint 2/4 (1.00, 2.00), 3 lap(s) done, looped": one robot's mission.
 std::string format_mission(const NavMission& mission);
 

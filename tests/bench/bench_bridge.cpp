@@ -60,14 +60,14 @@ void BM_BridgeOneSecondOfFleetInput(benchmark::State& state) {
     face.receive_text(1, subscribe);
   }
 
-  GridSnapshotInput snapshot{1, 0, 0, GridGeometry{{0, 0}, 0.05, kGridSide, kGridSide},
+  msg::GridSnapshot snapshot{1, 0, 0, msg::GridInfo{kGridSide, kGridSide, 0.05, {0, 0}, 0.0},
                              std::vector<uint8_t>(static_cast<size_t>(kGridSide) * kGridSide, 1)};
   if (!map.ingest(std::move(snapshot))) {
     state.SkipWithError("snapshot refused");
     return;
   }
   const uint32_t tiles_total = (kGridSide / 32) * (kGridSide / 32);
-  GridTilesInput patch{1, 0, 0, 32, 0, {}, std::vector<uint8_t>(kTilesPerPatch * 32 * 32, 2)};
+  msg::GridTiles patch{1, 0, 0, 32, 0, {}, std::vector<uint8_t>(kTilesPerPatch * 32 * 32, 2)};
   uint64_t version = 0;
 
   std::vector<std::string> ids;
@@ -82,14 +82,15 @@ void BM_BridgeOneSecondOfFleetInput(benchmark::State& state) {
     for (int loop = 0; loop < kLoopsPerSecond; ++loop) {
       for (int i = 0; i < per_loop; ++i, robot = (robot + 1) % kRobots) {
         const double x = coord(rng), y = coord(rng);
-        fleet.ingest(RobotStateInput{ids[robot], Pose{x, y, 0.3}, true, true, now});
+        fleet.ingest(msg::RobotPose{ids[robot], Pose{x, y, 0.3}, true, true, now});
         for (auto& h : hits) h = {x + coord(rng) / 10, y + coord(rng) / 10};
         fleet.ingest(ObservationInput{ids[robot], hits});
       }
       for (int i = 0; i < kRobots / kLoopsPerSecond; ++i) {
         const std::string& id = ids[static_cast<size_t>(rng()) % kRobots];
         for (auto& w : waypoints) w = {coord(rng), coord(rng)};
-        fleet.ingest(RobotPathInput{id, PathStatus::Active, "explore", waypoints.back(), waypoints, 0});
+        fleet.ingest(msg::RobotPath{id, 0, msg::GoalMode::Explore, msg::GoalStatus::Active, waypoints.back(),
+                                    waypoints, 0});
       }
       if (loop % (kLoopsPerSecond / kRateHz) == 0) {
         patch.version = ++version;
@@ -102,7 +103,7 @@ void BM_BridgeOneSecondOfFleetInput(benchmark::State& state) {
         if (!map.ingest(patch)) state.SkipWithError("patch refused");
       }
       if (loop % (kLoopsPerSecond / 8) == 0)
-        fleet.ingest(HeartbeatInput{"mapper", "vm:1", "vm", 1, "running", 1.0}, now);
+        fleet.ingest(msg::Heartbeat{"mapper", "vm:1", 1, "vm", 0, 1.0, msg::ServiceState::Running, {}}, now);
       now += kSecondNs / kLoopsPerSecond;
       face.publish(fleet, map, now, now);
     }

@@ -20,6 +20,7 @@
 namespace {
 
 using namespace slam::viewer;
+namespace msg = slam::msg;
 using Clock = std::chrono::steady_clock;
 
 constexpr int kWidth = 1280, kHeight = 800;
@@ -48,7 +49,8 @@ struct Scene {
     window = std::move(*w);
     if (auto s = grid_layer.init(); !s) die(s.message());
     if (auto s = point_layer.init(pacing); !s) die(s.message());
-    GridSnapshotData snap{1, 1, {1024, 1024, 0.05, {-25.6, -25.6}, 0.2}, std::vector<uint8_t>(1024 * 1024)};
+    msg::GridSnapshot snap{
+        1, 1, 0, {1024, 1024, 0.05, {-25.6, -25.6}, 0.2}, std::vector<uint8_t>(1024 * 1024)};
     std::mt19937 rng(7);
     for (auto& c : snap.cells) c = static_cast<uint8_t>(rng() % 3);
     if (auto s = grid.apply_snapshot(std::move(snap)); !s) die(s.message());

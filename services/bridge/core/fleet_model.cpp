@@ -1,6 +1,8 @@
 // The fleet as the bridge knows it (see fleet_model.hpp).
 #include "bridge/core/fleet_model.hpp"
 
+#include <utility>
+
 namespace slam::bridge {
 
 void PointRing::add(Vec2 p) {
@@ -17,8 +19,8 @@ RobotView& FleetModel::robot(const std::string& id) {
   return robots_.try_emplace(id, points_per_robot_).first->second;
 }
 
-void FleetModel::ingest(const RobotStateInput& s) {
-  if (state_stamps_.judge(s.robot_id, s.stamp_ns) != LatestStamps::Verdict::Fresh) return;
+void FleetModel::ingest(const msg::RobotPose& s) {
+  if (state_stamps_.judge(s.robot_id, s.last_seen_ns) != LatestStamps::Verdict::Fresh) return;
   forgotten_.erase(s.robot_id);
   RobotView& r = robot(s.robot_id);
   r.state = s;
@@ -26,7 +28,7 @@ void FleetModel::ingest(const RobotStateInput& s) {
   ++versions_.robots;
 }
 
-void FleetModel::ingest(RobotPathInput&& p) {
+void FleetModel::ingest(msg::RobotPath&& p) {
   if (forgotten_.contains(p.robot_id)) return;
   RobotView& r = robot(p.robot_id);
   r.path = std::move(p);
@@ -50,14 +52,14 @@ void FleetModel::forget(const std::string& robot_id) {
   ++versions_.points;
 }
 
-void FleetModel::ingest(const HeartbeatInput& h, int64_t now_mono_ns) {
+void FleetModel::ingest(msg::Heartbeat&& h, int64_t now_mono_ns) {
   ServiceView& s = services_[{h.service, h.instance_id}];
-  s.beat = h;
+  s.beat = std::move(h);
   s.heard_ns = now_mono_ns;
   ++versions_.health;
 }
 
-void FleetModel::ingest(AlertInput&& a) {
+void FleetModel::ingest(msg::Alert&& a) {
   std::string id = a.alert_id;
   alerts_[std::move(id)] = std::move(a);
   ++versions_.alerts;

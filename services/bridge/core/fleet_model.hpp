@@ -1,62 +1,23 @@
 #pragma once
 // What the bridge knows about the fleet, built from the DDS topics it reads and read by every face
-// it serves (the Foxglove WebSocket face today; a ROS 2 DDS face would read the same model).
-// Plain C++: the DDS edge converts samples into the *Input types below.
+// it serves (the Foxglove WebSocket face and the ROS 2 face). Plain C++: the DDS edge converts
+// samples into the fleet's plain messages (common/core/fleet_messages.hpp) and ObservationInput.
 #include <cstdint>
 #include <map>
 #include <set>
 #include <string>
 #include <vector>
 
+#include "common/core/fleet_messages.hpp"
 #include "common/core/geometry.hpp"
 #include "common/core/latest_stamps.hpp"
 
 namespace slam::bridge {
 
-struct RobotStateInput {
-  std::string robot_id;
-  Pose pose;  // map frame
-  bool has_heading = false;
-  bool online = true;
-  int64_t stamp_ns = 0;  // the robot's last message: the newest wins when several gateways list it
-};
-
-enum class PathStatus { None, Active, Reached, Failed };
-
-struct RobotPathInput {
-  std::string robot_id;
-  PathStatus status = PathStatus::None;
-  std::string mode;  // "planned", "explore", ...
-  Vec2 target;
-  std::vector<Vec2> waypoints;  // map frame
-  uint32_t current = 0;         // index of the waypoint being driven to
-};
-
 // Recent obstacle points of one robot, in the map frame (the gateways place them).
 struct ObservationInput {
   std::string robot_id;
   std::vector<Vec2> hits;
-};
-
-struct HeartbeatInput {
-  std::string service;
-  std::string instance_id;
-  std::string host;
-  uint32_t pid = 0;
-  std::string state;  // "starting", "running", "stopping"
-  double uptime_s = 0.0;
-};
-
-// An operator alert (system.idl Alert): its latest state, active or cleared.
-struct AlertInput {
-  std::string alert_id;
-  std::string kind;  // "robot_offline", "service_silent", "battery_low"
-  std::string subject;
-  bool active = false;
-  int64_t raised_ns = 0;  // Unix epoch
-  int64_t stamp_ns = 0;
-  std::string message;
-  std::string raised_by;
 };
 
 // The last `capacity` points of one robot, oldest overwritten first.
@@ -79,15 +40,15 @@ class PointRing {
 
 struct RobotView {
   explicit RobotView(size_t points_per_robot) : points(points_per_robot) {}
-  RobotStateInput state;
+  msg::RobotPose state;  // from the gateways' FleetDigest
   bool has_state = false;
-  RobotPathInput path;
+  msg::RobotPath path;
   bool has_path = false;
   PointRing points;  // map frame
 };
 
 struct ServiceView {
-  HeartbeatInput beat;
+  msg::Heartbeat beat;
   int64_t heard_ns = 0;  // monotonic
 };
 
@@ -106,11 +67,12 @@ class FleetModel {
 
   // Kept unless the robot's state already is from a later message (another gateway's older view),
   // or the robot was forgotten and this is not a newer message (LatestStamps).
-  void ingest(const RobotStateInput& s);
-  void ingest(RobotPathInput&& p);
+  void ingest(const msg::RobotPose& s);
+  void ingest(msg::RobotPath&& p);
   void ingest(const ObservationInput& o);
-  void ingest(const HeartbeatInput& h, int64_t now_mono_ns);
-  void ingest(AlertInput&& a);
+  void ingest(msg::Heartbeat&& h, int64_t now_mono_ns);
+  // An operator alert's latest state, active or cleared.
+  void ingest(msg::Alert&& a);
   // The operator forgot the robot: it leaves the model; its paths and points are ignored until a
   // newer message of it arrives.
   void forget(const std::string& robot_id);
@@ -120,7 +82,7 @@ class FleetModel {
   // By (service, instance id).
   const std::map<std::pair<std::string, std::string>, ServiceView>& services() const { return services_; }
   // By alert id.
-  const std::map<std::string, AlertInput>& alerts() const { return alerts_; }
+  const std::map<std::string, msg::Alert>& alerts() const { return alerts_; }
   const FleetVersions& versions() const { return versions_; }
 
  private:
@@ -131,7 +93,7 @@ class FleetModel {
   std::set<std::string> forgotten_;  // until a newer state brings the robot back
   std::map<std::string, RobotView> robots_;
   std::map<std::pair<std::string, std::string>, ServiceView> services_;
-  std::map<std::string, AlertInput> alerts_;
+  std::map<std::string, msg::Alert> alerts_;
   FleetVersions versions_;
 };
 

@@ -177,7 +177,7 @@ void FoxgloveFace::on_service_call(ClientId client, const foxglove::ServiceCallR
   operators_.request_path(PathCall{client, r.service_id, r.call_id, *query});
 }
 
-void FoxgloveFace::answer(const PathCall& call, const std::optional<PathAnswer>& answer) {
+void FoxgloveFace::answer(const PathCall& call, const std::optional<msg::PathReply>& answer) {
   if (!clients_.contains(call.client)) return;  // gone meanwhile
   if (!answer) {
     frames_.send_text(call.client, foxglove::service_call_failure(call.service_id, call.call_id,

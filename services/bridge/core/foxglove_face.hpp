@@ -88,7 +88,7 @@ class FoxgloveFace {
   void receive_text(ClientId client, std::string_view text);
   void receive_binary(ClientId client, std::string_view bytes);
   // The planner's answer to a call from request_path(), or nothing when it did not answer in time.
-  void answer(const PathCall& call, const std::optional<PathAnswer>& answer);
+  void answer(const PathCall& call, const std::optional<msg::PathReply>& answer);
 
   // Sends every channel that is due: subscribed, changed since its last message and its period
   // passed. `now_mono_ns` paces, `stamp_ns` (Unix epoch) stamps the messages.

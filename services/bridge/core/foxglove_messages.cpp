@@ -124,20 +124,6 @@ Rgba from_hsv(double hue, double saturation, double value, double alpha) {
   return {r + m, g + m, b + m, alpha};
 }
 
-const char* status_name(PathStatus s) {
-  switch (s) {
-    case PathStatus::Active:
-      return "active";
-    case PathStatus::Reached:
-      return "reached";
-    case PathStatus::Failed:
-      return "failed";
-    case PathStatus::None:
-      break;
-  }
-  return "none";
-}
-
 constexpr uint8_t kNumericInt8 = 2;
 constexpr uint8_t kNumericFloat32 = 7;
 constexpr uint8_t kLineStrip = 0;
@@ -257,15 +243,15 @@ std::string paths_message(const FleetModel& fleet, int64_t stamp_ns) {
   w.begin_object().empty_array("deletions").key("entities").begin_array();
   for (const auto& [id, r] : fleet.robots()) {
     if (!r.has_path) continue;
-    const RobotPathInput& path = r.path;
+    const msg::RobotPath& path = r.path;
     EntityWriter e(w, "path/" + id, stamp_ns);
     e.list("metadata");
     for (const auto& [k, v] : {std::pair<const char*, std::string_view>{"robot_id", id},
-                               {"mode", path.mode},
-                               {"status", status_name(path.status)}})
+                               {"mode", msg::goal_mode_name(path.mode)},
+                               {"status", msg::goal_status_name(path.status)}})
       w.begin_object().key("key").value(k).key("value").value(v).end_object();
     w.end_array();
-    if (path.status == PathStatus::Active) {
+    if (path.status == msg::GoalStatus::Active) {
       Rgba c = robot_color(id);
       c.a = 0.8;
       const size_t remaining = path.waypoints.size() - std::min<size_t>(path.current, path.waypoints.size());
@@ -345,7 +331,12 @@ std::string health_message(const FleetModel& fleet, int64_t now_mono_ns, int64_t
   w.key("services").begin_array();
   for (const auto& [key, s] : fleet.services()) {
     w.begin_object().key("service").value(s.beat.service).key("instance_id").value(s.beat.instance_id);
-    w.key("host").value(s.beat.host).key("pid").value(s.beat.pid).key("state").value(s.beat.state);
+    w.key("host")
+        .value(s.beat.host)
+        .key("pid")
+        .value(s.beat.pid)
+        .key("state")
+        .value(msg::service_state_name(s.beat.state));
     w.key("uptime_s").value(s.beat.uptime_s);
     w.key("last_heard_s").value(static_cast<double>(std::max<int64_t>(now_mono_ns - s.heard_ns, 0)) / 1e9);
     w.end_object();
@@ -365,7 +356,7 @@ std::string alerts_message(const FleetModel& fleet, int64_t stamp_ns) {
         .key("alert_id")
         .value(a.alert_id)
         .key("kind")
-        .value(a.kind)
+        .value(alerts::kind_id(a.kind))
         .key("subject")
         .value(a.subject);
     w.key("active").value(a.active);

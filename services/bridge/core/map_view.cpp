@@ -7,8 +7,9 @@
 
 namespace slam::bridge {
 
-Status MapView::ingest(GridSnapshotInput&& s) {
-  const GridGeometry& g = s.geometry;
+Status MapView::ingest(msg::GridSnapshot&& s) {
+  const GridGeometry g{s.info.origin, s.info.resolution, static_cast<int32_t>(s.info.width),
+                       static_cast<int32_t>(s.info.height)};
   if (g.width <= 0 || g.height <= 0 || s.cells.size() != g.cells())
     return Error{"snapshot of " + std::to_string(s.cells.size()) + " cells for a " + std::to_string(g.width) +
                  " x " + std::to_string(g.height) + " grid"};
@@ -23,7 +24,7 @@ Status MapView::ingest(GridSnapshotInput&& s) {
   return {};
 }
 
-Status MapView::ingest(const GridTilesInput& t) {
+Status MapView::ingest(const msg::GridTiles& t) {
   if (!has_grid_ || t.layout_id != layout_id_ || t.version != version_ + 1)
     return Error{"patch " + std::to_string(t.version) + " does not follow grid version " +
                  std::to_string(version_) + ": waiting for the next snapshot"};

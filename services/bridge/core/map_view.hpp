@@ -6,36 +6,19 @@
 #include <span>
 #include <vector>
 
+#include "common/core/fleet_messages.hpp"
 #include "common/core/geometry.hpp"
 #include "common/core/result.hpp"
 
 namespace slam::bridge {
 
-struct GridSnapshotInput {
-  uint32_t layout_id = 0;
-  uint64_t version = 0;
-  int64_t stamp_ns = 0;
-  GridGeometry geometry;
-  std::vector<uint8_t> cells;  // row-major, width * height, cell classes (common/core/cell_class.hpp)
-};
-
-struct GridTilesInput {
-  uint32_t layout_id = 0;
-  uint64_t version = 0;
-  int64_t stamp_ns = 0;
-  uint16_t tile_side = 0;
-  uint8_t encoding = 0;
-  std::vector<uint32_t> tiles;
-  std::vector<uint8_t> data;
-};
-
 class MapView {
  public:
   // A snapshot replaces the grid (and makes the whole grid the changed region).
-  Status ingest(GridSnapshotInput&& s);
+  Status ingest(msg::GridSnapshot&& s);
   // A patch that follows the grid's version on its layout is applied; any other is skipped (the
   // next snapshot catches up). Skipped and refused patches are an error, nothing changed.
-  Status ingest(const GridTilesInput& t);
+  Status ingest(const msg::GridTiles& t);
 
   bool has_grid() const { return has_grid_; }
   const GridGeometry& geometry() const { return geometry_; }

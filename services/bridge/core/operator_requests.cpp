@@ -35,10 +35,6 @@ Result<Vec2> point(const json& j, const char* key, const char* what) {
   return Vec2{*x, *y};
 }
 
-constexpr std::pair<const char*, GoalKind> kGoalKinds[] = {
-    {"planned", GoalKind::Planned}, {"direct", GoalKind::Direct}, {"explore", GoalKind::Explore},
-    {"home", GoalKind::Home},       {"stop", GoalKind::Stop},     {"idle", GoalKind::Idle}};
-
 }  // namespace
 
 Result<GoalCommand> parse_goal(std::string_view json_text) {
@@ -51,16 +47,12 @@ Result<GoalCommand> parse_goal(std::string_view json_text) {
   goal.robot_id = id->get<std::string>();
   if (goal.robot_id.size() > 64) return Error{"goal 'robot_id' is longer than 64 bytes"};
   if (const auto mode = j->find("mode"); mode != j->end()) {
-    const std::string name = mode->is_string() ? mode->get<std::string>() : "";
-    bool known = false;
-    for (const auto& [n, kind] : kGoalKinds)
-      if (name == n) {
-        goal.kind = kind;
-        known = true;
-      }
-    if (!known) return Error{"goal 'mode' must be planned, direct, explore, home, stop or idle"};
+    const auto kind = msg::parse_goal_mode(mode->is_string() ? mode->get<std::string>() : "");
+    if (!kind || *kind == msg::GoalMode::Square)
+      return Error{"goal 'mode' must be planned, direct, explore, home, stop or idle"};
+    goal.mode = *kind;
   }
-  if (goal.kind == GoalKind::Planned || goal.kind == GoalKind::Direct) {
+  if (goal.mode == msg::GoalMode::Planned || goal.mode == msg::GoalMode::Direct) {
     auto x = finite_number(*j, "x", "goal");
     if (!x) return x.error();
     auto y = finite_number(*j, "y", "goal");
@@ -94,10 +86,10 @@ Result<PathQuery> parse_path_query(std::string_view json_text) {
   return q;
 }
 
-std::string path_answer_json(const PathAnswer& answer) {
+std::string path_answer_json(const msg::PathReply& answer) {
   json path = json::array();
   for (const Vec2& p : answer.path) path.push_back({{"x", p.x}, {"y", p.y}});
-  return json{{"status", answer.status},
+  return json{{"status", msg::plan_status_id(answer.status)},
               {"reason", answer.reason},
               {"path", std::move(path)},
               {"length_m", answer.length_m},

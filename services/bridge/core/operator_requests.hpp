@@ -1,26 +1,25 @@
 #pragma once
 // What an operator asks of the fleet through a client: a goal published on the goal channel, and a
 // path service call; parsed from and answered in JSON. Plain C++: the DDS edge turns them into
-// NavGoal and PathRequest.
+// NavGoal and PathRequest; the planner's PathReply comes back as the fleet's plain message.
 #include <cstdint>
 #include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "common/core/fleet_messages.hpp"
 #include "common/core/geometry.hpp"
 #include "common/core/result.hpp"
 
 namespace slam::bridge {
 
-// The goal modes an operator may send (NavGoal's GoalMode without the calibration square).
-enum class GoalKind { Planned, Direct, Explore, Home, Stop, Idle };
-
 // {"robot_id": "sim-1", "x": 2.0, "y": 1.5, "mode": "planned"}: mode is optional (planned); x and y
-// are needed by planned and direct goals only. robot_id "*" addresses every robot.
+// are needed by planned and direct goals only. robot_id "*" addresses every robot. An operator may
+// send every goal mode but the calibration square.
 struct GoalCommand {
   std::string robot_id;
-  GoalKind kind = GoalKind::Planned;
+  msg::GoalMode mode = msg::GoalMode::Planned;
   Vec2 target;
 };
 
@@ -37,15 +36,8 @@ struct PathQuery {
 
 Result<PathQuery> parse_path_query(std::string_view json_text);
 
-// The planner's answer, with its status as the response schema names it ("ok", "no_path", ...).
-struct PathAnswer {
-  std::string status;
-  std::string reason;
-  std::vector<Vec2> path;
-  double length_m = 0.0;
-  double planning_time_s = 0.0;
-};
-
-std::string path_answer_json(const PathAnswer& answer);
+// The planner's answer in the response schema's fields, its status as the schema names it ("ok",
+// "no_path", ...).
+std::string path_answer_json(const msg::PathReply& answer);
 
 }  // namespace slam::bridge

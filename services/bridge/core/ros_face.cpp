@@ -103,7 +103,7 @@ Status RosFace::goal_pose(const FleetModel& fleet, const RosPoseInput& pose) {
   SLAM_TRY(check_frame(pose));
   auto robot = robot_for(fleet, robot_, pose.position);
   if (!robot) return robot.error();
-  sink_.send_goal(GoalCommand{*robot, GoalKind::Planned, pose.position});
+  sink_.send_goal(GoalCommand{*robot, msg::GoalMode::Planned, pose.position});
   return {};
 }
 

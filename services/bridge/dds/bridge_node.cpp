@@ -6,96 +6,12 @@
 
 #include <iterator>
 
-#include "common/core/alert_kind.hpp"
 #include "common/core/clock.hpp"
 #include "common/core/shutdown.hpp"
+#include "common/fastdds/fleet_messages.hpp"
 
 namespace slam::bridge {
 namespace {
-
-Pose pose_of(const Pose2& p) {
-  return {p.x(), p.y(), p.theta()};
-}
-
-PathStatus status_of(GoalStatus s) {
-  switch (s) {
-    case GOAL_STATUS_ACTIVE:
-      return PathStatus::Active;
-    case GOAL_STATUS_REACHED:
-      return PathStatus::Reached;
-    case GOAL_STATUS_FAILED:
-      return PathStatus::Failed;
-    default:
-      return PathStatus::None;
-  }
-}
-
-const char* mode_name(GoalMode m) {
-  switch (m) {
-    case GOAL_DIRECT:
-      return "direct";
-    case GOAL_PLANNED:
-      return "planned";
-    case GOAL_SQUARE:
-      return "square";
-    case GOAL_EXPLORE:
-      return "explore";
-    case GOAL_HOME:
-      return "home";
-    case GOAL_STOP:
-      return "stop";
-    default:
-      return "idle";
-  }
-}
-
-GoalMode mode_of(GoalKind k) {
-  switch (k) {
-    case GoalKind::Planned:
-      return GOAL_PLANNED;
-    case GoalKind::Direct:
-      return GOAL_DIRECT;
-    case GoalKind::Explore:
-      return GOAL_EXPLORE;
-    case GoalKind::Home:
-      return GOAL_HOME;
-    case GoalKind::Stop:
-      return GOAL_STOP;
-    case GoalKind::Idle:
-      break;
-  }
-  return GOAL_IDLE;
-}
-
-const char* plan_status_name(PlanStatus s) {
-  switch (s) {
-    case PLAN_OK:
-      return "ok";
-    case PLAN_START_BLOCKED:
-      return "start_blocked";
-    case PLAN_GOAL_BLOCKED:
-      return "goal_blocked";
-    case PLAN_NO_PATH:
-      return "no_path";
-    case PLAN_TIMEOUT:
-      return "timeout";
-    case PLAN_NO_MAP:
-      return "no_map";
-    default:
-      return "invalid_request";
-  }
-}
-
-const char* state_name(ServiceState s) {
-  switch (s) {
-    case SERVICE_RUNNING:
-      return "running";
-    case SERVICE_STOPPING:
-      return "stopping";
-    default:
-      return "starting";
-  }
-}
 
 // Pushes `value` into `queue` under the intake's lock.
 template <class Queue, class Value>
@@ -165,12 +81,9 @@ Status BridgeNode::create_readers() {
     return {};
   };
   SLAM_TRY(make(dds::kFleetDigest, digest_reader_, [&in](const FleetDigest& d) {
-    std::vector<RobotStateInput> states;
+    std::vector<msg::RobotPose> states;
     states.reserve(d.robots().size());
-    for (const DigestRobot& r : d.robots()) {
-      states.push_back(RobotStateInput{r.robot_id().to_string(), pose_of(r.pose()), r.has_heading(),
-                                       r.presence() == PRESENCE_ONLINE, r.last_seen_ns()});
-    }
+    for (const DigestRobot& r : d.robots()) states.push_back(msg::from_idl(r));
     std::lock_guard lock(in.mutex);
     in.states.insert(in.states.end(), std::make_move_iterator(states.begin()),
                      std::make_move_iterator(states.end()));
@@ -188,44 +101,18 @@ Status BridgeNode::create_readers() {
     in.observations.insert(in.observations.end(), std::make_move_iterator(robots.begin()),
                            std::make_move_iterator(robots.end()));
   }));
-  SLAM_TRY(make(dds::kRobotPath, path_reader_, [&in](const RobotPath& s) {
-    RobotPathInput path{s.robot_id().to_string(),
-                        status_of(s.status()),
-                        mode_name(s.mode()),
-                        Vec2{s.target().x(), s.target().y()},
-                        {},
-                        s.current()};
-    path.waypoints.reserve(s.waypoints().size());
-    for (const Point2& w : s.waypoints()) path.waypoints.push_back({w.x(), w.y()});
-    queue(in, in.paths, std::move(path));
-  }));
-  SLAM_TRY(make(dds::kHeartbeat, heartbeat_reader_, [&in](const Heartbeat& h) {
-    queue(in, in.heartbeats,
-          HeartbeatInput{h.service().to_string(), h.instance_id().to_string(), h.host().to_string(), h.pid(),
-                         state_name(h.state()), h.uptime_s()});
-  }));
-  SLAM_TRY(make(dds::kAlert, alert_reader_, [&in](const Alert& a) {
-    queue(in, in.alerts,
-          AlertInput{a.alert_id().to_string(), alerts::kind_id(static_cast<alerts::Kind>(a.kind())),
-                     a.subject().to_string(), a.active(), a.raised_ns(), a.stamp_ns(),
-                     a.message().to_string(), a.raised_by().to_string()});
-  }));
+  SLAM_TRY(make(dds::kRobotPath, path_reader_,
+                [&in](const RobotPath& s) { queue(in, in.paths, msg::from_idl(s)); }));
+  SLAM_TRY(make(dds::kHeartbeat, heartbeat_reader_,
+                [&in](const Heartbeat& h) { queue(in, in.heartbeats, msg::from_idl(h)); }));
+  SLAM_TRY(
+      make(dds::kAlert, alert_reader_, [&in](const Alert& a) { queue(in, in.alerts, msg::from_idl(a)); }));
   SLAM_TRY(make(dds::kForgetRobot, forget_reader_,
                 [&in](const ForgetRobot& f) { queue(in, in.forgets, f.robot_id().to_string()); }));
-  SLAM_TRY(make(dds::kGridSnapshot, snapshot_reader_, [&in](const GridSnapshot& s) {
-    const GridInfo& info = s.info();
-    GridSnapshotInput snap{
-        s.layout_id(), s.version(), s.stamp_ns(),
-        GridGeometry{Vec2{info.origin().x(), info.origin().y()}, info.resolution(),
-                     static_cast<int32_t>(info.width()), static_cast<int32_t>(info.height())},
-        s.cells()};
-    queue(in, in.map, std::move(snap));
-  }));
-  SLAM_TRY(make(dds::kGridTiles, tiles_reader_, [&in](const GridTiles& t) {
-    queue(in, in.map,
-          GridTilesInput{t.layout_id(), t.version(), t.stamp_ns(), t.tile_side(), t.encoding(), t.tiles(),
-                         t.data()});
-  }));
+  SLAM_TRY(make(dds::kGridSnapshot, snapshot_reader_,
+                [&in](const GridSnapshot& s) { queue(in, in.map, msg::from_idl(s)); }));
+  SLAM_TRY(make(dds::kGridTiles, tiles_reader_,
+                [&in](const GridTiles& t) { queue(in, in.map, msg::from_idl(t)); }));
   return {};
 }
 
@@ -246,7 +133,7 @@ void BridgeNode::drain_intake() {
   for (const auto& s : batch.states) fleet_.ingest(s);
   for (auto& p : batch.paths) fleet_.ingest(std::move(p));
   for (const auto& o : batch.observations) fleet_.ingest(o);
-  for (const auto& h : batch.heartbeats) fleet_.ingest(h, now);
+  for (auto& h : batch.heartbeats) fleet_.ingest(std::move(h), now);
   for (auto& a : batch.alerts) fleet_.ingest(std::move(a));
   for (const std::string& id : batch.forgets) fleet_.forget(id);
   for (auto& m : batch.map) {
@@ -287,11 +174,8 @@ void BridgeNode::send_goal(const GoalCommand& goal) {
   NavGoal sample;
   sample.robot_id(goal.robot_id);
   sample.goal_id(goal_ids_.next());
-  sample.mode(mode_of(goal.kind));
-  Point2 target;
-  target.x(goal.target.x);
-  target.y(goal.target.y);
-  sample.target(target);
+  sample.mode(msg::to_idl(goal.mode));
+  sample.target(msg::to_idl(goal.target));
   if (!goal_writer_->write(sample)) log_.warn("goal", "bridge: goal for {} not written", goal.robot_id);
   spdlog::info("bridge: goal {} for {} ({}, {})", sample.goal_id(), goal.robot_id, goal.target.x,
                goal.target.y);
@@ -300,26 +184,14 @@ void BridgeNode::send_goal(const GoalCommand& goal) {
 void BridgeNode::request_path(const PathCall& call) {
   PathRequest request;
   request.client_id("bridge");
-  Point2 start, goal;
-  start.x(call.query.start.x);
-  start.y(call.query.start.y);
-  goal.x(call.query.goal.x);
-  goal.y(call.query.goal.y);
-  request.start(start);
-  request.goal(goal);
+  request.start(msg::to_idl(call.query.start));
+  request.goal(msg::to_idl(call.query.goal));
   request.algorithm(call.query.algorithm);
   request.time_budget_s(call.query.time_budget_s);
   // The answer comes back on a DDS thread and goes through the intake to the loop.
   path_requester_->send(*path_writer_, request, [this, call](const std::optional<PathReply>& reply) {
-    std::optional<PathAnswer> answer;
-    if (reply) {
-      answer = PathAnswer{plan_status_name(reply->status()),
-                          reply->reason().to_string(),
-                          {},
-                          reply->length_m(),
-                          reply->planning_time_s()};
-      for (const Point2& p : reply->path()) answer->path.push_back({p.x(), p.y()});
-    }
+    std::optional<msg::PathReply> answer;
+    if (reply) answer = msg::from_idl(*reply);
     queue(intake_, intake_.answers, std::make_pair(call, std::move(answer)));
   });
 }

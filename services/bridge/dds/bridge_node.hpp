@@ -1,9 +1,10 @@
 #pragma once
-// slam-bridge's DDS edge and loop: readers convert samples into the core's inputs and queue them
-// (nothing else on the listener threads); run_once() drains them into the FleetModel and MapView,
-// hands the WebSocket clients' events to the Foxglove face, lets it publish what is due, and turns
-// operator goals and path calls into NavGoal samples and PathRequests (dds::Requester). The ROS 2
-// edge (ros_edge.hpp, unless --no-ros) reads the same model and map on the same loop.
+// slam-bridge's DDS edge and loop: readers convert samples into plain messages
+// (common/fastdds/fleet_messages.hpp) and queue them (nothing else on the listener threads);
+// run_once() drains them into the FleetModel and MapView, hands the WebSocket clients' events to
+// the Foxglove face, lets it publish what is due, and turns operator goals and path calls into
+// NavGoal samples and PathRequests (dds::Requester). The ROS 2 edge (ros_edge.hpp, unless --no-ros)
+// reads the same model and map on the same loop.
 #include <chrono>
 #include <memory>
 #include <mutex>
@@ -29,15 +30,15 @@ namespace slam::bridge {
 // What the listener threads hand to the loop.
 struct BridgeIntake {
   std::mutex mutex;
-  std::vector<RobotStateInput> states;
-  std::vector<RobotPathInput> paths;
+  std::vector<msg::RobotPose> states;
+  std::vector<msg::RobotPath> paths;
   std::vector<ObservationInput> observations;
-  std::vector<HeartbeatInput> heartbeats;
-  std::vector<AlertInput> alerts;
+  std::vector<msg::Heartbeat> heartbeats;
+  std::vector<msg::Alert> alerts;
   std::vector<std::string> forgets;  // robot ids, applied after everything else of the batch
   // Snapshots and patches in arrival order (a patch applies only on top of what came before it).
-  std::vector<std::variant<GridSnapshotInput, GridTilesInput>> map;
-  std::vector<std::pair<PathCall, std::optional<PathAnswer>>> answers;
+  std::vector<std::variant<msg::GridSnapshot, msg::GridTiles>> map;
+  std::vector<std::pair<PathCall, std::optional<msg::PathReply>>> answers;
 };
 
 class BridgeNode final : public OperatorSink, public FrameSink {

@@ -13,16 +13,16 @@ namespace slam::viewer {
 class AlertBoard {
  public:
   // The alert's latest state replaces the one kept.
-  void update(AlertData&& a);
+  void update(msg::Alert&& a);
   // Active alerts, the most recently raised first.
-  std::vector<const AlertData*> active() const;
+  std::vector<const msg::Alert*> active() const;
   std::size_t active_count() const;
 
  private:
-  std::map<std::string, AlertData> alerts_;  // by alert id
+  std::map<std::string, msg::Alert> alerts_;  // by alert id
 };
 
 // "battery low  sim-1  12 s ago: robot 'sim-1' battery 10 % (below 20 %): sent home"
-std::string describe(const AlertData& a, int64_t now_wall_ns);
+std::string describe(const msg::Alert& a, int64_t now_wall_ns);
 
 }  // namespace slam::viewer

@@ -19,7 +19,7 @@ bool known(uint8_t cell) {
 
 }  // namespace
 
-Status GridMirror::apply_snapshot(GridSnapshotData&& s) {
+Status GridMirror::apply_snapshot(msg::GridSnapshot&& s) {
   const uint64_t expected = uint64_t{s.info.width} * s.info.height;
   if (s.info.width == 0 || s.info.height == 0) return Error{"grid snapshot has zero width or height"};
   if (s.info.width > static_cast<uint32_t>(INT32_MAX) || s.info.height > static_cast<uint32_t>(INT32_MAX))
@@ -48,7 +48,7 @@ Status GridMirror::apply_snapshot(GridSnapshotData&& s) {
   return {};
 }
 
-PatchResult GridMirror::apply_patch(const GridPatchData& p) {
+PatchResult GridMirror::apply_patch(const msg::GridTiles& p) {
   if (!has_grid_) return PatchResult::NoGrid;
   if (p.layout_id != layout_id_) {
     waiting_ = true;

@@ -23,11 +23,11 @@ enum class PatchResult {
 
 class GridMirror {
  public:
-  Status apply_snapshot(GridSnapshotData&& snapshot);
-  PatchResult apply_patch(const GridPatchData& patch);
+  Status apply_snapshot(msg::GridSnapshot&& snapshot);
+  PatchResult apply_patch(const msg::GridTiles& patch);
 
   bool has_grid() const { return has_grid_; }
-  const GridInfoData& info() const { return info_; }
+  const msg::GridInfo& info() const { return info_; }
   const std::vector<uint8_t>& cells() const { return cells_; }
   uint32_t layout_id() const { return layout_id_; }
   uint64_t version() const { return version_; }
@@ -51,7 +51,7 @@ class GridMirror {
   bool layout_changed_ = false;
   uint32_t layout_id_ = 0;
   uint64_t version_ = 0;
-  GridInfoData info_;
+  msg::GridInfo info_;
   GridGeometry geometry_;  // info_ as the common grid geometry
   std::vector<uint8_t> cells_;
   CellBox dirty_;

@@ -25,7 +25,7 @@ Status validate(const GridConfigCommand& c) {
 
 void GridTab::adopt(const GridMirror& grid) {
   if (initialised || !grid.has_grid()) return;
-  const GridInfoData& g = grid.info();
+  const msg::GridInfo& g = grid.info();
   request.resolution = g.resolution;
   request.origin = g.origin;
   request.width_m = g.width * g.resolution;

@@ -5,70 +5,6 @@
 
 namespace slam::viewer {
 
-const char* goal_mode_name(GoalMode m) {
-  switch (m) {
-    case GoalMode::Idle:
-      return "idle";
-    case GoalMode::Direct:
-      return "direct";
-    case GoalMode::Planned:
-      return "planned";
-    case GoalMode::Square:
-      return "square";
-    case GoalMode::Explore:
-      return "explore";
-    case GoalMode::Home:
-      return "home";
-    case GoalMode::Stop:
-      return "stop";
-  }
-  return "?";
-}
-
-const char* goal_status_name(GoalStatus s) {
-  switch (s) {
-    case GoalStatus::None:
-      return "none";
-    case GoalStatus::Active:
-      return "active";
-    case GoalStatus::Reached:
-      return "reached";
-    case GoalStatus::Failed:
-      return "failed";
-  }
-  return "?";
-}
-
-const char* correction_source_name(CorrectionSource s) {
-  switch (s) {
-    case CorrectionSource::Identity:
-      return "identity";
-    case CorrectionSource::Match:
-      return "match";
-    case CorrectionSource::Loop:
-      return "loop closure";
-    case CorrectionSource::Operator:
-      return "operator";
-    case CorrectionSource::Restored:
-      return "restored";
-  }
-  return "?";
-}
-
-const char* mission_status_name(MissionStatus s) {
-  switch (s) {
-    case MissionStatus::Active:
-      return "active";
-    case MissionStatus::Done:
-      return "done";
-    case MissionStatus::Failed:
-      return "failed";
-    case MissionStatus::Cancelled:
-      return "cancelled";
-  }
-  return "?";
-}
-
 void IntakeBatch::clear() {
   snapshot.reset();
   patches.clear();
@@ -92,13 +28,13 @@ void IntakeBatch::clear() {
   mqtt_dropped = 0;
 }
 
-void Intake::push(GridSnapshotData&& s) {
+void Intake::push(msg::GridSnapshot&& s) {
   std::lock_guard lock(mutex_);
   pending_.snapshot = std::move(s);
   pending_.patches.clear();  // the snapshot includes them, or they belong to an older layout
 }
 
-void Intake::push(GridPatchData&& p) {
+void Intake::push(msg::GridTiles&& p) {
   std::lock_guard lock(mutex_);
   pending_.patches.push_back(std::move(p));
 }
@@ -108,7 +44,7 @@ void Intake::push(ObservationData&& o) {
   pending_.observations.push_back(std::move(o));
 }
 
-void Intake::push(RobotStateData&& s) {
+void Intake::push(msg::RobotState&& s) {
   std::lock_guard lock(mutex_);
   for (auto& old : pending_.states)
     if (old.robot_id == s.robot_id) {
@@ -118,12 +54,12 @@ void Intake::push(RobotStateData&& s) {
   pending_.states.push_back(std::move(s));
 }
 
-void Intake::push(RobotPoseData&& p) {
+void Intake::push(msg::RobotPose&& p) {
   std::lock_guard lock(mutex_);
   pending_.poses.push_back(std::move(p));
 }
 
-void Intake::push(RobotPathData&& p) {
+void Intake::push(msg::RobotPath&& p) {
   std::lock_guard lock(mutex_);
   for (auto& old : pending_.paths)
     if (old.robot_id == p.robot_id) {
@@ -133,7 +69,7 @@ void Intake::push(RobotPathData&& p) {
   pending_.paths.push_back(std::move(p));
 }
 
-void Intake::push(MissionData&& m) {
+void Intake::push(msg::Mission&& m) {
   std::lock_guard lock(mutex_);
   for (auto& old : pending_.missions)
     if (old.robot_id == m.robot_id) {
@@ -143,7 +79,7 @@ void Intake::push(MissionData&& m) {
   pending_.missions.push_back(std::move(m));
 }
 
-void Intake::push(PoseCorrectionData&& c) {
+void Intake::push(msg::PoseCorrection&& c) {
   std::lock_guard lock(mutex_);
   for (auto& old : pending_.corrections)
     if (old.robot_id == c.robot_id) {
@@ -153,7 +89,7 @@ void Intake::push(PoseCorrectionData&& c) {
   pending_.corrections.push_back(std::move(c));
 }
 
-void Intake::push(HeartbeatData&& h) {
+void Intake::push(msg::Heartbeat&& h) {
   std::lock_guard lock(mutex_);
   pending_.heartbeats.push_back(std::move(h));
 }
@@ -197,7 +133,7 @@ void Intake::push(SimReplyData&& r) {
   pending_.sim_replies.push_back(std::move(r));
 }
 
-void Intake::push(AlertData&& a) {
+void Intake::push(msg::Alert&& a) {
   std::lock_guard lock(mutex_);
   pending_.alerts.push_back(std::move(a));
 }
@@ -207,7 +143,7 @@ void Intake::push(ForgetData&& f) {
   pending_.forgets.push_back(std::move(f));
 }
 
-void Intake::push(PathReplyData&& r) {
+void Intake::push(msg::PathReply&& r) {
   std::lock_guard lock(mutex_);
   pending_.path_replies.push_back(std::move(r));
 }

@@ -13,15 +13,15 @@ namespace slam::viewer {
 
 // Everything received since the last drain, in arrival order per kind.
 struct IntakeBatch {
-  std::optional<GridSnapshotData> snapshot;  // newest only; patches below came after it
-  std::vector<GridPatchData> patches;
+  std::optional<msg::GridSnapshot> snapshot;  // newest only; patches below came after it
+  std::vector<msg::GridTiles> patches;
   std::vector<ObservationData> observations;
-  std::vector<RobotStateData> states;
-  std::vector<RobotPoseData> poses;  // in arrival order; the registry keeps the newest
-  std::vector<RobotPathData> paths;
-  std::vector<MissionData> missions;            // the newest per robot
-  std::vector<PoseCorrectionData> corrections;  // the newest per robot
-  std::vector<HeartbeatData> heartbeats;
+  std::vector<msg::RobotState> states;
+  std::vector<msg::RobotPose> poses;  // in arrival order; the registry keeps the newest
+  std::vector<msg::RobotPath> paths;
+  std::vector<msg::Mission> missions;            // the newest per robot
+  std::vector<msg::PoseCorrection> corrections;  // the newest per robot
+  std::vector<msg::Heartbeat> heartbeats;
   std::vector<MqttEntry> mqtt;
   std::optional<MqttSubscriptionsData> subscriptions;
   std::optional<SimWorldData> world;
@@ -29,9 +29,9 @@ struct IntakeBatch {
   std::vector<MapReplyData> replies;
   std::vector<MqttReplyData> mqtt_replies;
   std::vector<SimReplyData> sim_replies;
-  std::vector<AlertData> alerts;
+  std::vector<msg::Alert> alerts;
   std::vector<ForgetData> forgets;
-  std::vector<PathReplyData> path_replies;
+  std::vector<msg::PathReply> path_replies;
   uint64_t mqtt_dropped = 0;  // entries dropped because the render thread fell behind
 
   void clear();
@@ -42,15 +42,15 @@ class Intake {
   // Bounds the MQTT log backlog between two frames (a flood must not grow memory without end).
   explicit Intake(size_t max_pending_mqtt = 4096) : max_pending_mqtt_(max_pending_mqtt) {}
 
-  void push(GridSnapshotData&& s);
-  void push(GridPatchData&& p);
+  void push(msg::GridSnapshot&& s);
+  void push(msg::GridTiles&& p);
   void push(ObservationData&& o);
-  void push(RobotStateData&& s);
-  void push(RobotPoseData&& p);
-  void push(RobotPathData&& p);
-  void push(MissionData&& m);
-  void push(PoseCorrectionData&& c);
-  void push(HeartbeatData&& h);
+  void push(msg::RobotState&& s);
+  void push(msg::RobotPose&& p);
+  void push(msg::RobotPath&& p);
+  void push(msg::Mission&& m);
+  void push(msg::PoseCorrection&& c);
+  void push(msg::Heartbeat&& h);
   void push(MqttEntry&& e);
   void push(MqttSubscriptionsData&& s);
   void push(SimWorldData&& w);
@@ -58,9 +58,9 @@ class Intake {
   void push(MapReplyData&& r);
   void push(MqttReplyData&& r);
   void push(SimReplyData&& r);
-  void push(AlertData&& a);
+  void push(msg::Alert&& a);
   void push(ForgetData&& f);
-  void push(PathReplyData&& r);
+  void push(msg::PathReply&& r);
 
   // Moves everything pending into `out` (cleared first); `out`'s buffers are reused next time.
   void drain(IntakeBatch& out);

@@ -38,8 +38,8 @@ void PathPreview::sent(const PathPreviewCommand& request, uint64_t id, int64_t n
   }
 }
 
-void PathPreview::reply(PathReplyData&& r) {
-  if (!tracker_.reply(r.request_id, r.ok, r.reason)) return;
+void PathPreview::reply(msg::PathReply&& r) {
+  if (!tracker_.reply(r.request_id, r.status == msg::PlanStatus::Ok, r.reason)) return;
   result_ = std::move(r);
 }
 
@@ -49,7 +49,7 @@ std::string PathPreview::summary() const {
   if (!request_) return "no path previewed";
   char line[384];
   if (result_) {
-    if (result_->ok) {
+    if (result_->status == msg::PlanStatus::Ok) {
       std::snprintf(line, sizeof line, "path %.2f m, %zu points (%s, %.1f ms)", result_->length_m,
                     result_->path.size(), request_->algorithm.c_str(), result_->planning_time_s * 1e3);
     } else {

@@ -26,12 +26,12 @@ class PathPreview {
   // The request went out under `id` (0: refused, nothing is awaited).
   void sent(const PathPreviewCommand& request, uint64_t id, int64_t now_ns);
   // A PathReply; kept when it answers the last request.
-  void reply(PathReplyData&& r);
+  void reply(msg::PathReply&& r);
   void tick(int64_t now_ns) { tracker_.tick(now_ns); }
 
   const std::optional<PathPreviewCommand>& request() const { return request_; }
   // The answer to the last request, once it came.
-  const std::optional<PathReplyData>& result() const { return result_; }
+  const std::optional<msg::PathReply>& result() const { return result_; }
   // One line for the panel and the map: what to click, waiting, the length, or why it failed.
   std::string summary() const;
   void clear();
@@ -43,7 +43,7 @@ class PathPreview {
   Stage stage_ = Stage::Idle;
   Vec2 start_;
   std::optional<PathPreviewCommand> request_;
-  std::optional<PathReplyData> result_;
+  std::optional<msg::PathReply> result_;
   RequestTracker tracker_;
 };
 

@@ -47,7 +47,7 @@ void RobotRegistry::ingest(const ObservationData& o) {
   r.points.append(placed_xy_.data(), placed_xy_.size() / 2);
 }
 
-void RobotRegistry::ingest(RobotStateData&& s) {
+void RobotRegistry::ingest(msg::RobotState&& s) {
   const LatestStamps::Verdict verdict = pose_stamps_.judge(s.robot_id, s.last_seen_ns);
   if (verdict == LatestStamps::Verdict::Forgotten) return;
   RobotView& r = get_or_add(s.robot_id);
@@ -62,7 +62,7 @@ void RobotRegistry::ingest(RobotStateData&& s) {
   r.has_state = true;
 }
 
-void RobotRegistry::ingest(const RobotPoseData& p) {
+void RobotRegistry::ingest(const msg::RobotPose& p) {
   if (pose_stamps_.judge(p.robot_id, p.last_seen_ns) != LatestStamps::Verdict::Fresh) return;
   RobotView& r = get_or_add(p.robot_id);
   r.state.robot_id = p.robot_id;
@@ -73,7 +73,7 @@ void RobotRegistry::ingest(const RobotPoseData& p) {
   r.has_state = true;
 }
 
-void RobotRegistry::ingest(RobotPathData&& p) {
+void RobotRegistry::ingest(msg::RobotPath&& p) {
   RobotView& r = get_or_add(p.robot_id);
   r.path = std::move(p);
   r.has_path = true;
@@ -83,7 +83,7 @@ namespace {
 
 // Several writers keep a robot's mission (its sender and the planner reporting progress): a late
 // joiner gets their samples in any order. Of the same mission, the one further along is kept.
-bool behind(const MissionData& next, const MissionData& kept) {
+bool behind(const msg::Mission& next, const msg::Mission& kept) {
   if (next.mission_id != kept.mission_id) return false;
   if ((next.status == MissionStatus::Active) != (kept.status == MissionStatus::Active))
     return next.status == MissionStatus::Active;
@@ -92,14 +92,14 @@ bool behind(const MissionData& next, const MissionData& kept) {
 
 }  // namespace
 
-void RobotRegistry::ingest(MissionData&& m) {
+void RobotRegistry::ingest(msg::Mission&& m) {
   RobotView& r = get_or_add(m.robot_id);
   if (r.has_mission && behind(m, r.mission)) return;
   r.mission = std::move(m);
   r.has_mission = true;
 }
 
-void RobotRegistry::ingest(PoseCorrectionData&& c) {
+void RobotRegistry::ingest(msg::PoseCorrection&& c) {
   RobotView& r = get_or_add(c.robot_id);
   if ((!r.has_correction || c.source == CorrectionSource::Operator) && !r.points.empty())
     r.points.move_all(c.map_from_odom.compose(r.map_from_odom().inverse()));

@@ -30,13 +30,13 @@ struct RobotView {
   std::string id;
   RobotSettings settings;
   bool has_state = false;
-  RobotStateData state;
+  msg::RobotState state;
   bool has_path = false;
-  RobotPathData path;
+  msg::RobotPath path;
   bool has_mission = false;
-  MissionData mission;
+  msg::Mission mission;
   bool has_correction = false;
-  PoseCorrectionData correction;
+  msg::PoseCorrection correction;
   // Map frame: each point went through the robot's correction of the moment it arrived. A later
   // correction fixes the robot's drift from then on; it does not move what was already placed
   // (re-applying the newest correction to old points rotates them by every heading fix since).
@@ -62,13 +62,13 @@ class RobotRegistry {
   void ingest(const ObservationData& o);
   // A robot's pose comes from its state record and from the digests: the report of its latest
   // message wins (LatestStamps), and a forgotten robot stays forgotten until it speaks again.
-  void ingest(RobotStateData&& s);
-  void ingest(const RobotPoseData& p);
-  void ingest(RobotPathData&& p);
-  void ingest(MissionData&& m);
+  void ingest(msg::RobotState&& s);
+  void ingest(const msg::RobotPose& p);
+  void ingest(msg::RobotPath&& p);
+  void ingest(msg::Mission&& m);
   // A robot's first correction, or one an operator set, also moves the points placed before it:
   // they were placed in a frame now known to be wrong.
-  void ingest(PoseCorrectionData&& c);
+  void ingest(msg::PoseCorrection&& c);
   // The operator forgot the robot: its view, settings and points go, and the robots after it move
   // up one place. False when it was not known.
   bool forget(const std::string& id);

@@ -7,7 +7,7 @@
 
 namespace slam::viewer {
 
-void ServiceHealth::update(HeartbeatData&& hb, int64_t now_ns) {
+void ServiceHealth::update(msg::Heartbeat&& hb, int64_t now_ns) {
   for (auto& e : entries_)
     if (e.heartbeat.service == hb.service && e.heartbeat.instance_id == hb.instance_id) {
       e.heartbeat = std::move(hb);

@@ -9,7 +9,7 @@
 namespace slam::viewer {
 
 struct ServiceEntry {
-  HeartbeatData heartbeat;
+  msg::Heartbeat heartbeat;
   int64_t last_seen_ns = 0;  // monotonic
   uint64_t beats = 0;
 };
@@ -18,7 +18,7 @@ class ServiceHealth {
  public:
   static constexpr int64_t kAliveWindowNs = 3'000'000'000;
 
-  void update(HeartbeatData&& hb, int64_t now_ns);
+  void update(msg::Heartbeat&& hb, int64_t now_ns);
   // Sorted by service name, then instance.
   const std::vector<ServiceEntry>& entries() const { return entries_; }
   static bool alive(const ServiceEntry& e, int64_t now_ns) {

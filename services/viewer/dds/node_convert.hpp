@@ -1,20 +1,17 @@
 #pragma once
-// IDL samples <-> the viewer's plain types, at the DDS edge only. Enumerations share the IDL
-// order, so they convert with a cast.
+// IDL samples <-> the viewer's plain types, at the DDS edge only: the fleet's messages through
+// common/fastdds/fleet_messages.hpp, the viewer's own here. Enumerations share the IDL order, so
+// they convert by value.
 #include "common/fastdds/fast_topics.hpp"
+#include "common/fastdds/fleet_messages.hpp"
 #include "viewer/core/commands.hpp"
 #include "viewer/core/intake_types.hpp"
 
 namespace slam::viewer {
 
-GridSnapshotData from_idl(const slam::GridSnapshot& s);
-GridPatchData from_idl(const slam::GridTiles& p);
+using msg::from_idl;
+
 ObservationData from_idl(const slam::RobotObservation& o);
-RobotStateData from_idl(const slam::RobotState& s);
-RobotPoseData from_idl(const slam::DigestRobot& r);
-RobotPathData from_idl(const slam::RobotPath& p);
-MissionData from_idl(const slam::NavMission& m);
-HeartbeatData from_idl(const slam::Heartbeat& h);
 MqttEntry from_idl(const slam::MqttTraffic& t);
 MqttSubscriptionsData from_idl(const slam::MqttSubscriptions& s);
 SimWorldData from_idl(const slam::SimWorld& w);
@@ -22,10 +19,7 @@ SimTruthData from_idl(const slam::SimGroundTruth& t);
 MapReplyData from_idl(const slam::MapReply& r);
 MqttReplyData from_idl(const slam::MqttReply& r);
 SimReplyData from_idl(const slam::SimReply& r);
-PoseCorrectionData from_idl(const slam::PoseCorrection& c);
-AlertData from_idl(const slam::Alert& a);
 ForgetData from_idl(const slam::ForgetRobot& f);
-PathReplyData from_idl(const slam::PathReply& r);
 
 slam::NavGoal to_idl(const GoalCommand& c, uint64_t goal_id);
 slam::MapEdit to_idl(const MapEditCommand& c, uint64_t request_id);

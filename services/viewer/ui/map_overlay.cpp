@@ -116,7 +116,7 @@ void draw_path_preview(ImDrawList* dl, const ViewTransform& v, const PathPreview
   const ImVec2 from = screen(v, request->start.x, request->start.y),
                to = screen(v, request->goal.x, request->goal.y);
   const auto& result = preview.result();
-  const bool ok = result && result->ok;
+  const bool ok = result && result->status == msg::PlanStatus::Ok;
   if (ok) {
     for (size_t i = 1; i < result->path.size(); ++i)
       dl->AddLine(screen(v, result->path[i - 1].x, result->path[i - 1].y),

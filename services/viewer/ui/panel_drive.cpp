@@ -44,7 +44,7 @@ void mission_section(ViewerState& state, CommandSink& sink) {
   if (ImGui::Button("clear")) tool.clear();
   if (state.selected_robot != "*")
     if (const RobotView* r = state.robots.find(state.selected_robot); r != nullptr && r->has_mission) {
-      const MissionData& m = r->mission;
+      const msg::Mission& m = r->mission;
       ImGui::Text("mission %llu: %s, waypoint %u/%zu, %u lap(s)",
                   static_cast<unsigned long long>(m.mission_id), mission_status_name(m.status), m.current + 1,
                   m.waypoints.size(), m.laps);

@@ -24,18 +24,6 @@ void rate_row(const char* label, const RateMeter& m) {
   ImGui::PopID();
 }
 
-const char* state_name(ServiceState s) {
-  switch (s) {
-    case ServiceState::Starting:
-      return "starting";
-    case ServiceState::Running:
-      return "running";
-    case ServiceState::Stopping:
-      return "stopping";
-  }
-  return "?";
-}
-
 }  // namespace
 
 void draw_main_tab(const ViewerState& state, int64_t now_ns) {
@@ -61,7 +49,7 @@ void draw_main_tab(const ViewerState& state, int64_t now_ns) {
   section_title(alerts_title);
   if (alerts.empty()) ImGui::TextDisabled("no active alert");
   const int64_t wall_now = slam::now_ns();  // alerts carry wall-clock stamps
-  for (const AlertData* a : alerts)
+  for (const msg::Alert* a : alerts)
     ImGui::TextColored({1.0f, 0.55f, 0.2f, 1.0f}, "%s", describe(*a, wall_now).c_str());
   ImGui::TextDisabled("path preview: %s", state.path_preview.summary().c_str());
 
@@ -76,7 +64,7 @@ void draw_main_tab(const ViewerState& state, int64_t now_ns) {
   const auto& services = state.services.entries();
   if (services.empty()) ImGui::TextDisabled("no heartbeat yet");
   for (const auto& e : services) {
-    const HeartbeatData& h = e.heartbeat;
+    const msg::Heartbeat& h = e.heartbeat;
     const bool alive = ServiceHealth::alive(e, now_ns);
     const double ago = static_cast<double>(now_ns - e.last_seen_ns) / 1e9;
     ImGui::PushID(&e);
@@ -90,8 +78,8 @@ void draw_main_tab(const ViewerState& state, int64_t now_ns) {
     }
     ImGui::SameLine();
     // Short enough for the panel; the rest is one click away.
-    if (ImGui::TreeNode("svc", "%s  %s  up %.0f s  beat %.1f s ago", h.service.c_str(), state_name(h.state),
-                        h.uptime_s, ago)) {
+    if (ImGui::TreeNode("svc", "%s  %s  up %.0f s  beat %.1f s ago", h.service.c_str(),
+                        msg::service_state_name(h.state), h.uptime_s, ago)) {
       hint("%s on %s, pid %u, %llu beats", h.instance_id.c_str(), h.host.c_str(), h.pid,
            static_cast<unsigned long long>(e.beats));
       for (const auto& [name, value] : h.counters)

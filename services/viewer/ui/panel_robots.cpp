@@ -11,11 +11,10 @@
 namespace slam::viewer {
 namespace {
 
-constexpr const char* kModes[] = {"idle", "direct", "planned", "square", "explore", "home", "stop"};
-
 bool mode_combo(const char* label, GoalMode* mode) {
+  const auto& modes = msg::kGoalModeNames;
   int m = static_cast<int>(*mode);
-  if (!ImGui::Combo(label, &m, kModes, IM_ARRAYSIZE(kModes))) return false;
+  if (!ImGui::Combo(label, &m, modes.data(), static_cast<int>(modes.size()))) return false;
   *mode = static_cast<GoalMode>(m);
   return true;
 }
@@ -44,7 +43,7 @@ void robot_details(RobotsTab& tab, ViewerState& state, CommandSink& sink, RobotV
   if (ImGui::Button("forget")) tab.forget_robot(state, sink, r);
 
   if (r.has_state) {
-    const RobotStateData& st = r.state;
+    const msg::RobotState& st = r.state;
     ImGui::Text("%s %s  pose (%.2f, %.2f, %.0f deg)%s", st.protocol_v2 ? "v2" : "v1",
                 st.online ? "online" : "OFFLINE", st.pose.x, st.pose.y, st.pose.theta * 180.0 / M_PI,
                 st.has_heading ? "" : " no heading");
@@ -53,9 +52,9 @@ void robot_details(RobotsTab& tab, ViewerState& state, CommandSink& sink, RobotV
     if (st.battery >= 0.0f) ImGui::Text("battery %.0f %%  status %s", st.battery * 100.0f, st.status.c_str());
   }
   if (r.has_correction) {
-    const PoseCorrectionData& c = r.correction;
+    const msg::PoseCorrection& c = r.correction;
     ImGui::Text("correction (%.3f, %.3f, %.2f deg) ±%.0f cm v%llu", c.map_from_odom.x, c.map_from_odom.y,
-                c.map_from_odom.theta * 180.0 / M_PI, c.sigma_m * 100.0,
+                c.map_from_odom.theta * 180.0 / M_PI, position_sigma(c.covariance) * 100.0,
                 static_cast<unsigned long long>(c.version));
     ImGui::Text("  keyframes %u  loop closures %u  source %s", c.keyframes, c.loop_closures,
                 correction_source_name(c.source));

@@ -17,13 +17,13 @@ std::vector<Vec2> points_of(const RobotView& r) {
 TEST(FleetModel, KeepsTheStateOfTheLatestMessageWhateverTheOrderOfArrival) {
   FleetModel fleet(10);
   // Two gateways list the robot: the one that heard it last wins, whichever digest comes last.
-  fleet.ingest(RobotStateInput{"r1", Pose{1, 0, 0}, true, true, 200});
-  fleet.ingest(RobotStateInput{"r1", Pose{5, 0, 0}, true, false, 100});
+  fleet.ingest(msg::RobotPose{"r1", Pose{1, 0, 0}, true, true, 200});
+  fleet.ingest(msg::RobotPose{"r1", Pose{5, 0, 0}, true, false, 100});
   EXPECT_EQ(fleet.robots().at("r1").state.pose.x, 1.0);
   EXPECT_TRUE(fleet.robots().at("r1").state.online);
-  fleet.ingest(RobotStateInput{"r1", Pose{2, 0, 0}, true, true, 200});  // same message, newer correction
+  fleet.ingest(msg::RobotPose{"r1", Pose{2, 0, 0}, true, true, 200});  // same message, newer correction
   EXPECT_EQ(fleet.robots().at("r1").state.pose.x, 2.0);
-  fleet.ingest(RobotStateInput{"r1", Pose{3, 0, 0}, true, false, 300});
+  fleet.ingest(msg::RobotPose{"r1", Pose{3, 0, 0}, true, false, 300});
   EXPECT_EQ(fleet.robots().at("r1").state.pose.x, 3.0);
   EXPECT_FALSE(fleet.robots().at("r1").state.online);
 }
@@ -32,17 +32,18 @@ TEST(FleetModel, KeepsTheStateOfTheLatestMessageWhateverTheOrderOfArrival) {
 // message; only a newer message brings it back.
 TEST(FleetModel, AForgottenRobotLeavesUntilItSpeaksAgain) {
   FleetModel fleet(10);
-  fleet.ingest(RobotStateInput{"r1", Pose{1, 0, 0}, true, true, 200});
+  fleet.ingest(msg::RobotPose{"r1", Pose{1, 0, 0}, true, true, 200});
   fleet.ingest(ObservationInput{"r1", {{1.0, 1.0}}});
   const FleetVersions before = fleet.versions();
   fleet.forget("r1");
   EXPECT_TRUE(fleet.robots().empty());
   EXPECT_GT(fleet.versions().robots, before.robots);
-  fleet.ingest(RobotStateInput{"r1", Pose{1, 0, 0}, true, true, 200});
+  fleet.ingest(msg::RobotPose{"r1", Pose{1, 0, 0}, true, true, 200});
   fleet.ingest(ObservationInput{"r1", {{1.0, 1.0}}});
-  fleet.ingest(RobotPathInput{"r1", PathStatus::Active, "planned", {2.0, 0.0}, {{2.0, 0.0}}, 0});
+  fleet.ingest(
+      msg::RobotPath{"r1", 0, msg::GoalMode::Planned, msg::GoalStatus::Active, {2.0, 0.0}, {{2.0, 0.0}}, 0});
   EXPECT_TRUE(fleet.robots().empty());
-  fleet.ingest(RobotStateInput{"r1", Pose{1.5, 0, 0}, true, true, 300});
+  fleet.ingest(msg::RobotPose{"r1", Pose{1.5, 0, 0}, true, true, 300});
   ASSERT_EQ(fleet.robots().count("r1"), 1u);
   EXPECT_EQ(fleet.robots().at("r1").state.pose.x, 1.5);
 }
@@ -59,9 +60,9 @@ TEST(FleetModel, KeepsOnlyTheMostRecentPointsPerRobot) {
 TEST(FleetModel, CountsChangesPerKind) {
   FleetModel fleet(10);
   const FleetVersions before = fleet.versions();
-  fleet.ingest(RobotStateInput{"r1", Pose{1, 2, 0}, true, true, 5});
-  fleet.ingest(RobotPathInput{"r1", PathStatus::Active, "planned", {3, 4}, {{3, 4}}, 0});
-  fleet.ingest(HeartbeatInput{"mapper", "vm:1", "vm", 1, "running", 2.0}, 100);
+  fleet.ingest(msg::RobotPose{"r1", Pose{1, 2, 0}, true, true, 5});
+  fleet.ingest(msg::RobotPath{"r1", 0, msg::GoalMode::Planned, msg::GoalStatus::Active, {3, 4}, {{3, 4}}, 0});
+  fleet.ingest(msg::Heartbeat{"mapper", "vm:1", 1, "vm", 0, 2.0, msg::ServiceState::Running, {}}, 100);
   fleet.ingest(ObservationInput{"r1", {}});  // no points: no news
   EXPECT_EQ(fleet.versions().robots, before.robots + 1);
   EXPECT_EQ(fleet.versions().paths, before.paths + 1);

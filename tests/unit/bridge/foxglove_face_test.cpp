@@ -58,16 +58,16 @@ class FoxgloveFaceTest : public ::testing::Test {
                             {"subscriptions", {{{"id", sub}, {"channelId", static_cast<uint32_t>(channel)}}}}}
                            .dump());
   }
-  void robot_at(double x) { fleet_.ingest(RobotStateInput{"r1", Pose{x, 0, 0}, true, true, 0}); }
+  void robot_at(double x) { fleet_.ingest(msg::RobotPose{"r1", Pose{x, 0, 0}, true, true, 0}); }
 
   // A kSide x kSide grid of 4 x 4 tiles, every cell `cell`.
   static constexpr int32_t kSide = 128, kTile = 32;
-  static GridSnapshotInput snapshot(uint64_t version, uint8_t cell) {
-    return {1, version, 0, GridGeometry{{0, 0}, 0.1, kSide, kSide},
+  static msg::GridSnapshot snapshot(uint64_t version, uint8_t cell) {
+    return {1, version, 0, msg::GridInfo{kSide, kSide, 0.1, {0, 0}, 0.0},
             std::vector<uint8_t>(static_cast<size_t>(kSide) * kSide, cell)};
   }
   // A patch of whole raw tiles (numbered row by row), every cell occupied.
-  static GridTilesInput tiles(uint64_t version, std::vector<uint32_t> numbers) {
+  static msg::GridTiles tiles(uint64_t version, std::vector<uint32_t> numbers) {
     std::vector<uint8_t> data(numbers.size() * kTile * kTile, kCellOccupied);
     return {1, version, 0, kTile, 0, std::move(numbers), std::move(data)};
   }
@@ -144,7 +144,7 @@ TEST_F(FoxgloveFaceTest, TheRosMapChannelIsCdrOfTheWholeGridWithItsRos2msgDefini
 
   face_.connect(1);
   subscribe(1, 3, Channel::RosMap);
-  GridSnapshotInput s{1, 1, 0, GridGeometry{{0, 0}, 0.1, 4, 2}, std::vector<uint8_t>(8, kCellOccupied)};
+  msg::GridSnapshot s{1, 1, 0, msg::GridInfo{4, 2, 0.1, {0, 0}, 0.0}, std::vector<uint8_t>(8, kCellOccupied)};
   ASSERT_TRUE(map_.ingest(std::move(s)));
   face_.publish(fleet_, map_, 0, 0);
   ASSERT_EQ(sinks_.payloads(3).size(), 1u);
@@ -154,7 +154,8 @@ TEST_F(FoxgloveFaceTest, TheRosMapChannelIsCdrOfTheWholeGridWithItsRos2msgDefini
 TEST_F(FoxgloveFaceTest, SendsAlertsWhenOneChanged) {
   face_.connect(1);
   subscribe(1, 4, Channel::Alerts);
-  fleet_.ingest(AlertInput{"offline/r1", "robot_offline", "r1", true, 0, 0, "r1 is offline", "p1"});
+  fleet_.ingest(
+      msg::Alert{"offline/r1", msg::AlertKind::RobotOffline, "r1", true, 0, 0, "r1 is offline", "p1"});
   face_.publish(fleet_, map_, 0, 0);
   ASSERT_EQ(sinks_.payloads(4).size(), 1u);
   EXPECT_EQ(json::parse(sinks_.payloads(4)[0])["alerts"][0]["alert_id"], "offline/r1");
@@ -231,7 +232,7 @@ TEST_F(FoxgloveFaceTest, APathCallIsAnsweredWithThePlannersPathOrAFailure) {
   EXPECT_EQ(sinks_.calls[0].call_id, 42u);
   EXPECT_EQ(sinks_.calls[0].query.goal, (Vec2{1, 1}));
 
-  face_.answer(sinks_.calls[0], PathAnswer{"ok", "", {{0, 0}, {1, 1}}, 1.41, 0.0});
+  face_.answer(sinks_.calls[0], msg::PathReply{7, msg::PlanStatus::Ok, "", {{0, 0}, {1, 1}}, 1.41, 0.0});
   ASSERT_EQ(sinks_.sent.size(), 1u);
   EXPECT_TRUE(sinks_.sent[0].binary);
   EXPECT_EQ(sinks_.sent[0].bytes[0], 0x03);

@@ -38,8 +38,8 @@ TEST(FoxgloveMessages, AGridRegionStartsAtItsCorner) {
 
 TEST(FoxgloveMessages, RobotsWithAHeadingAreArrowsOthersSpheres) {
   FleetModel fleet(0);
-  fleet.ingest(RobotStateInput{"v2", Pose{1, 2, 0.5}, true, true, 0});
-  fleet.ingest(RobotStateInput{"v1", Pose{3, 4, 0}, false, false, 0});
+  fleet.ingest(msg::RobotPose{"v2", Pose{1, 2, 0.5}, true, true, 0});
+  fleet.ingest(msg::RobotPose{"v1", Pose{3, 4, 0}, false, false, 0});
   const json j = json::parse(robots_message(fleet, 0));
   ASSERT_EQ(j["entities"].size(), 2u);
   const json& v1 = j["entities"][0];  // sorted by id
@@ -55,7 +55,7 @@ TEST(FoxgloveMessages, RobotsWithAHeadingAreArrowsOthersSpheres) {
 
 TEST(FoxgloveMessages, TransformsGoFromTheMapToEachRobot) {
   FleetModel fleet(0);
-  fleet.ingest(RobotStateInput{"r1", Pose{1, 2, 0}, true, true, 0});
+  fleet.ingest(msg::RobotPose{"r1", Pose{1, 2, 0}, true, true, 0});
   const json j = json::parse(transforms_message(fleet, 0));
   ASSERT_EQ(j["transforms"].size(), 1u);
   EXPECT_EQ(j["transforms"][0]["parent_frame_id"], "map");
@@ -65,13 +65,16 @@ TEST(FoxgloveMessages, TransformsGoFromTheMapToEachRobot) {
 
 TEST(FoxgloveMessages, AnActivePathRunsFromTheRobotAndAFinishedOneIsCleared) {
   FleetModel fleet(0);
-  fleet.ingest(RobotStateInput{"r1", Pose{0, 0, 0}, true, true, 0});
-  fleet.ingest(RobotPathInput{"r1", PathStatus::Active, "planned", {2, 2}, {{1, 0}, {2, 0}, {2, 2}}, 1});
+  fleet.ingest(msg::RobotPose{"r1", Pose{0, 0, 0}, true, true, 0});
+  fleet.ingest(msg::RobotPath{
+      "r1", 0, msg::GoalMode::Planned, msg::GoalStatus::Active, {2, 2}, {{1, 0}, {2, 0}, {2, 2}}, 1});
   json j = json::parse(paths_message(fleet, 0));
   ASSERT_EQ(j["entities"][0]["lines"].size(), 1u);
   EXPECT_EQ(j["entities"][0]["lines"][0]["points"].size(), 3u);  // robot, then waypoints from `current`
   EXPECT_EQ(j["entities"][0]["spheres"].size(), 1u);
-  fleet.ingest(RobotPathInput{"r1", PathStatus::Reached, "planned", {2, 2}, {}, 0});
+  EXPECT_EQ(j["entities"][0]["metadata"][1]["value"], "planned");
+  EXPECT_EQ(j["entities"][0]["metadata"][2]["value"], "active");
+  fleet.ingest(msg::RobotPath{"r1", 0, msg::GoalMode::Planned, msg::GoalStatus::Reached, {2, 2}, {}, 0});
   j = json::parse(paths_message(fleet, 0));
   EXPECT_EQ(j["entities"][0]["lines"].size(), 0u);
   EXPECT_EQ(j["entities"][0]["spheres"].size(), 0u);
@@ -87,25 +90,28 @@ TEST(FoxgloveMessages, PointsAreTwelveBytesEach) {
 
 TEST(FoxgloveMessages, HealthSaysHowLongAgoEachServiceWasHeard) {
   FleetModel fleet(0);
-  fleet.ingest(HeartbeatInput{"mapper", "vm:1", "vm", 1, "running", 2.0}, 1'000'000'000);
+  fleet.ingest(msg::Heartbeat{"mapper", "vm:1", 1, "vm", 0, 2.0, msg::ServiceState::Running, {}},
+               1'000'000'000);
   const json j = json::parse(health_message(fleet, 3'500'000'000, 0));
   ASSERT_EQ(j["services"].size(), 1u);
   EXPECT_EQ(j["services"][0]["service"], "mapper");
+  EXPECT_EQ(j["services"][0]["state"], "running");
   EXPECT_DOUBLE_EQ(j["services"][0]["last_heard_s"].get<double>(), 2.5);
 }
 
 TEST(FoxgloveMessages, AlertsListEachAlertsLatestState) {
   FleetModel fleet(1);
-  fleet.ingest(AlertInput{"offline/r1", "robot_offline", "r1", true, 2'000'000'000, 2'000'000'000,
-                          "r1 is offline", "p1"});
-  fleet.ingest(AlertInput{"offline/r1", "robot_offline", "r1", false, 2'000'000'000, 5'000'000'000,
-                          "r1 is back", "p1"});
-  fleet.ingest(
-      AlertInput{"battery/r2", "battery_low", "r2", true, 3'000'000'000, 3'000'000'000, "r2 at 9 %", "p1"});
+  fleet.ingest(msg::Alert{"offline/r1", msg::AlertKind::RobotOffline, "r1", true, 2'000'000'000,
+                          2'000'000'000, "r1 is offline", "p1"});
+  fleet.ingest(msg::Alert{"offline/r1", msg::AlertKind::RobotOffline, "r1", false, 2'000'000'000,
+                          5'000'000'000, "r1 is back", "p1"});
+  fleet.ingest(msg::Alert{"battery/r2", msg::AlertKind::BatteryLow, "r2", true, 3'000'000'000, 3'000'000'000,
+                          "r2 at 9 %", "p1"});
   const json j = json::parse(alerts_message(fleet, 6'000'000'000));
   ASSERT_EQ(j["alerts"].size(), 2u);
   EXPECT_EQ(j["alerts"][0]["alert_id"], "battery/r2");
   EXPECT_EQ(j["alerts"][0]["active"], true);
+  EXPECT_EQ(j["alerts"][0]["kind"], "battery_low");
   EXPECT_EQ(j["alerts"][1]["alert_id"], "offline/r1");
   EXPECT_EQ(j["alerts"][1]["active"], false);
   EXPECT_EQ(j["alerts"][1]["message"], "r1 is back");

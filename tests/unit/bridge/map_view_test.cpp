@@ -8,17 +8,17 @@
 namespace slam::bridge {
 namespace {
 
-GridSnapshotInput snapshot(int32_t w, int32_t h, uint64_t version) {
-  GridSnapshotInput s;
+msg::GridSnapshot snapshot(int32_t w, int32_t h, uint64_t version) {
+  msg::GridSnapshot s;
   s.layout_id = 1;
   s.version = version;
-  s.geometry = GridGeometry{{0.0, 0.0}, 0.1, w, h};
+  s.info = msg::GridInfo{static_cast<uint32_t>(w), static_cast<uint32_t>(h), 0.1, {0.0, 0.0}, 0.0};
   s.cells.assign(static_cast<size_t>(w * h), kCellUnknown);
   return s;
 }
 
 // A patch that marks cell (x, y) occupied on a w x h grid, as the mapper would encode it.
-GridTilesInput patch(std::vector<uint8_t> cells, int32_t w, int32_t h, int32_t x, int32_t y,
+msg::GridTiles patch(std::vector<uint8_t> cells, int32_t w, int32_t h, int32_t x, int32_t y,
                      uint64_t version) {
   cells[static_cast<size_t>(y * w + x)] = kCellOccupied;
   DirtyTiles dirty;
@@ -26,7 +26,7 @@ GridTilesInput patch(std::vector<uint8_t> cells, int32_t w, int32_t h, int32_t x
   dirty.mark(x, y);
   EncodedTiles encoded;
   encode_tiles(cells, dirty, encoded);
-  return GridTilesInput{1,           version, 0, 32, static_cast<uint8_t>(encoded.encoding), encoded.tiles,
+  return msg::GridTiles{1,           version, 0, 32, static_cast<uint8_t>(encoded.encoding), encoded.tiles,
                         encoded.data};
 }
 
@@ -63,7 +63,7 @@ TEST(MapView, SkipsAPatchThatDoesNotFollow) {
 
 TEST(MapView, RefusesASnapshotWhoseCellsDoNotFitItsSize) {
   MapView map;
-  GridSnapshotInput s = snapshot(10, 10, 1);
+  msg::GridSnapshot s = snapshot(10, 10, 1);
   s.cells.pop_back();
   EXPECT_FALSE(map.ingest(std::move(s)));
   EXPECT_FALSE(map.has_grid());

@@ -28,14 +28,15 @@ struct RecordingSink final : RosSink {
 
 FleetModel fleet_with(std::initializer_list<std::pair<const char*, Pose>> robots) {
   FleetModel fleet(10);
-  for (const auto& [id, pose] : robots) fleet.ingest(RobotStateInput{id, pose, true, true, 0});
+  for (const auto& [id, pose] : robots) fleet.ingest(msg::RobotPose{id, pose, true, true, 0});
   return fleet;
 }
 
 MapView map_of(std::vector<uint8_t> cells, int32_t width, int32_t height) {
   MapView map;
-  EXPECT_TRUE(map.ingest(GridSnapshotInput{1, 0, 5 * kSecond, GridGeometry{{-2.0, 3.0}, 0.25, width, height},
-                                           std::move(cells)}));
+  const msg::GridInfo info{
+      static_cast<uint32_t>(width), static_cast<uint32_t>(height), 0.25, {-2.0, 3.0}, 0.0};
+  EXPECT_TRUE(map.ingest(msg::GridSnapshot{1, 0, 5 * kSecond, info, std::move(cells)}));
   return map;
 }
 
@@ -97,12 +98,12 @@ TEST(RosFace, SendsTheWholeMapAtMostOncePerPeriodAndOnlyWhenChanged) {
   EXPECT_EQ(sink.maps[0].data, (std::vector<int8_t>{0, 100}));
   face.publish(fleet, map, 10 * kSecond, 0);  // unchanged: nothing however long it waited
   EXPECT_EQ(sink.maps.size(), 1u);
-  ASSERT_TRUE(map.ingest(
-      GridSnapshotInput{1, 1, 0, GridGeometry{{0.0, 0.0}, 0.25, 2, 1}, {kCellOccupied, kCellOccupied}}));
+  ASSERT_TRUE(map.ingest(msg::GridSnapshot{
+      1, 1, 0, msg::GridInfo{2, 1, 0.25, {0.0, 0.0}, 0.0}, {kCellOccupied, kCellOccupied}}));
   face.publish(fleet, map, 10 * kSecond, 0);  // changed: sent at once, the period long passed
   ASSERT_EQ(sink.maps.size(), 2u);
-  ASSERT_TRUE(
-      map.ingest(GridSnapshotInput{1, 2, 0, GridGeometry{{0.0, 0.0}, 0.25, 2, 1}, {kCellFree, kCellFree}}));
+  ASSERT_TRUE(map.ingest(
+      msg::GridSnapshot{1, 2, 0, msg::GridInfo{2, 1, 0.25, {0.0, 0.0}, 0.0}, {kCellFree, kCellFree}}));
   face.publish(fleet, map, 14 * kSecond, 0);  // changed, but only 4 s after the last
   EXPECT_EQ(sink.maps.size(), 2u);
   face.publish(fleet, map, 15 * kSecond, 0);
@@ -119,7 +120,7 @@ TEST(RosFace, SendsFramesWhenARobotMoved) {
   face.publish(fleet, no_map, 0, 0);
   face.publish(fleet, no_map, kSecond, 0);
   ASSERT_EQ(sink.tfs.size(), 1u);
-  fleet.ingest(RobotStateInput{"r1", Pose{2.0, 0.0, 0.0}, true, true, 0});
+  fleet.ingest(msg::RobotPose{"r1", Pose{2.0, 0.0, 0.0}, true, true, 0});
   face.publish(fleet, no_map, 2 * kSecond, 0);
   ASSERT_EQ(sink.tfs.size(), 2u);
   EXPECT_DOUBLE_EQ(sink.tfs[1][0].translation.x, 2.0);
@@ -133,7 +134,7 @@ TEST(RosFace, GoalPoseBecomesAPlannedGoalForTheChosenRobot) {
   ASSERT_TRUE(face.goal_pose(fleet, RosPoseInput{"map", {9.0, 2.0}, {}}));
   ASSERT_EQ(sink.goals.size(), 1u);
   EXPECT_EQ(sink.goals[0].robot_id, "r2");
-  EXPECT_EQ(sink.goals[0].kind, GoalKind::Planned);
+  EXPECT_EQ(sink.goals[0].mode, msg::GoalMode::Planned);
   EXPECT_DOUBLE_EQ(sink.goals[0].target.x, 9.0);
   EXPECT_DOUBLE_EQ(sink.goals[0].target.y, 2.0);
 }

@@ -1,4 +1,4 @@
-// slamctl's parsing of mode names and its human-readable lines.
+// slamctl's human-readable lines and JSON.
 #include "slamctl/format.hpp"
 
 #include <gtest/gtest.h>
@@ -9,28 +9,18 @@
 namespace slam::ctl {
 namespace {
 
-TEST(SlamctlFormat, GoalModesRoundTripByName) {
-  for (const char* name : {"idle", "direct", "planned", "square", "explore", "home", "stop"}) {
-    const auto mode = parse_goal_mode(name);
-    ASSERT_TRUE(mode) << name;
-    EXPECT_EQ(goal_mode_name(*mode), name);
-  }
-  EXPECT_FALSE(parse_goal_mode("fly"));
-  EXPECT_FALSE(parse_goal_mode("PLANNED"));
-}
-
 TEST(SlamctlFormat, RobotLineShowsPoseAgeAndMode) {
-  RobotState s;
-  s.robot_id("r7");
-  s.presence(PRESENCE_ONLINE);
-  s.protocol(PROTOCOL_V1);
-  s.pose().x(1.5);
-  s.pose().y(-2.25);
-  s.last_seen_ns(1'000'000'000);
-  s.messages(12);
-  RobotPath p;
-  p.mode(GOAL_EXPLORE);
-  p.status(GOAL_STATUS_ACTIVE);
+  msg::RobotState s;
+  s.robot_id = "r7";
+  s.online = true;
+  s.protocol_v2 = false;
+  s.pose.x = 1.5;
+  s.pose.y = -2.25;
+  s.last_seen_ns = 1'000'000'000;
+  s.messages = 12;
+  msg::RobotPath p;
+  p.mode = msg::GoalMode::Explore;
+  p.status = msg::GoalStatus::Active;
   const std::string line = format_robot(s, nullptr, &p, 3'500'000'000);
   EXPECT_NE(line.find("r7"), std::string::npos);
   EXPECT_NE(line.find("online"), std::string::npos);
@@ -42,18 +32,16 @@ TEST(SlamctlFormat, RobotLineShowsPoseAgeAndMode) {
 }
 
 TEST(SlamctlFormat, RobotLineShowsTheCorrection) {
-  RobotState s;
-  s.robot_id("r7");
-  PoseCorrection c;
-  c.robot_id("r7");
-  c.map_from_odom().x(1.0);
-  c.map_from_odom().y(-2.0);
-  c.map_from_odom().theta(-1.5707963267948966);
-  c.version(4);
-  c.keyframes(31);
-  c.loop_closures(2);
-  c.source(CORRECTION_LOOP);
-  c.covariance({0.0004, 0.0, 0.0, 0.0036, 0.0, 0.0001});  // 2 cm along x, 6 cm along y
+  msg::RobotState s;
+  s.robot_id = "r7";
+  msg::PoseCorrection c;
+  c.robot_id = "r7";
+  c.map_from_odom = {1.0, -2.0, -1.5707963267948966};
+  c.version = 4;
+  c.keyframes = 31;
+  c.loop_closures = 2;
+  c.source = msg::CorrectionSource::Loop;
+  c.covariance = {0.0004, 0.0, 0.0, 0.0036, 0.0, 0.0001};  // 2 cm along x, 6 cm along y
   const std::string line = format_robot(s, &c, nullptr, 0);
   EXPECT_EQ(std::count(line.begin(), line.end(), '\n'), 1) << line;
   EXPECT_NE(line.find("correction (1.00, -2.00, -90.0 deg) ±6 cm version 4 keyframes 31 loops 2 loop"),
@@ -62,33 +50,25 @@ TEST(SlamctlFormat, RobotLineShowsTheCorrection) {
 }
 
 TEST(SlamctlFormat, PathReplyListsStatusAndPoints) {
-  PathReply r;
-  r.status(PLAN_GOAL_BLOCKED);
-  r.reason("goal inside an obstacle");
-  Point2 a;
-  a.x(1);
-  a.y(2);
-  r.path().push_back(a);
+  msg::PathReply r;
+  r.status = msg::PlanStatus::GoalBlocked;
+  r.reason = "goal inside an obstacle";
+  r.path = {{1, 2}};
   const std::string text = format_path_reply(r);
   EXPECT_NE(text.find("GOAL_BLOCKED"), std::string::npos);
   EXPECT_NE(text.find("goal inside an obstacle"), std::string::npos);
   EXPECT_NE(text.find("(1.00, 2.00)"), std::string::npos);
 }
 
-Heartbeat heartbeat(const char* service, double uptime_s,
-                    std::vector<std::pair<const char*, int64_t>> counters) {
-  Heartbeat hb;
-  hb.service(service);
-  hb.instance_id("host:42");
-  hb.state(SERVICE_RUNNING);
-  hb.uptime_s(uptime_s);
-  hb.stamp_ns(0);
-  for (const auto& [name, value] : counters) {
-    Counter c;
-    c.name(name);
-    c.value(value);
-    hb.counters().push_back(c);
-  }
+msg::Heartbeat heartbeat(const char* service, double uptime_s,
+                         std::vector<std::pair<std::string, int64_t>> counters) {
+  msg::Heartbeat hb;
+  hb.service = service;
+  hb.instance_id = "host:42";
+  hb.state = msg::ServiceState::Running;
+  hb.uptime_s = uptime_s;
+  hb.stamp_ns = 0;
+  hb.counters = std::move(counters);
   return hb;
 }
 
@@ -151,27 +131,30 @@ TEST(SlamctlFormat, StatusJsonCarriesCountersRatesAndErrors) {
 
 TEST(SlamctlFormat, RobotsJsonHasNullsForWhatIsUnknown) {
   RobotSeen v1;
-  v1.state.robot_id("legacy");
-  v1.state.protocol(PROTOCOL_V1);
-  v1.state.presence(PRESENCE_OFFLINE);
-  v1.state.battery(-1.0f);
-  v1.state.pose().x(1.5);
+  v1.state.robot_id = "legacy";
+  v1.state.protocol_v2 = false;
+  v1.state.online = false;
+  v1.state.battery = -1.0f;
+  v1.state.pose.x = 1.5;
   RobotSeen v2;
-  v2.state.robot_id("modern");
-  v2.state.protocol(PROTOCOL_V2);
-  v2.state.has_heading(true);
-  v2.state.pose().theta(0.5);
-  v2.state.battery(0.75f);
-  v2.path = RobotPath{};
-  v2.path->mode(GOAL_HOME);
-  v2.path->status(GOAL_STATUS_ACTIVE);
-  v2.correction = PoseCorrection{};
-  v2.correction->version(4);
-  v2.correction->covariance({0.01, 0.0, 0.0, 0.0025, 0.0, 0.0});
+  v2.state.robot_id = "modern";
+  v2.state.protocol_v2 = true;
+  v2.state.online = true;
+  v2.state.has_heading = true;
+  v2.state.pose.theta = 0.5;
+  v2.state.battery = 0.75f;
+  v2.path = msg::RobotPath{};
+  v2.path->mode = msg::GoalMode::Home;
+  v2.path->status = msg::GoalStatus::Active;
+  v2.correction = msg::PoseCorrection{};
+  v2.correction->version = 4;
+  v2.correction->covariance = {0.01, 0.0, 0.0, 0.0025, 0.0, 0.0};
   const auto json = nlohmann::json::parse(robots_json({v1, v2}, 0));
   ASSERT_EQ(json.size(), 2u);
   EXPECT_EQ(json[0]["id"], "legacy");
   EXPECT_EQ(json[0]["presence"], "offline");
+  EXPECT_EQ(json[1]["presence"], "online");
+  EXPECT_EQ(json[1]["protocol"], "v2");
   EXPECT_EQ(json[0]["protocol"], "v1");
   EXPECT_DOUBLE_EQ(json[0]["x"].get<double>(), 1.5);
   EXPECT_TRUE(json[0]["theta"].is_null());
@@ -186,17 +169,34 @@ TEST(SlamctlFormat, RobotsJsonHasNullsForWhatIsUnknown) {
   EXPECT_DOUBLE_EQ(json[1]["correction"]["sigma_m"].get<double>(), 0.1);
 }
 
-Alert alert(const char* id, AlertKind kind, bool active) {
+msg::Alert alert(const char* id, msg::AlertKind kind, bool active) {
+  return {id,
+          kind,
+          "sim-1",
+          active,
+          1'000'000'000,
+          2'000'000'000,
+          "robot 'sim-1' battery 10 % (below 20 %): sent home",
+          "host:7"};
+}
+
+TEST(SlamctlFormat, EchoedSamplesNameTheirEnumerations) {
+  RobotPath p;
+  p.robot_id("r1");
+  p.goal_id(3);
+  p.mode(GOAL_EXPLORE);
+  p.status(GOAL_STATUS_REACHED);
+  EXPECT_EQ(describe(p), "path r1 goal 3 explore/reached target (0.00, 0.00) waypoint 0 of 0 ");
   Alert a;
-  a.alert_id(id);
-  a.kind(kind);
-  a.subject("sim-1");
-  a.active(active);
-  a.raised_ns(1'000'000'000);
-  a.stamp_ns(2'000'000'000);
-  a.raised_by("host:7");
-  a.message("robot 'sim-1' battery 10 % (below 20 %): sent home");
-  return a;
+  a.alert_id("offline/r1");
+  a.kind(ALERT_ROBOT_OFFLINE);
+  a.subject("r1");
+  a.active(true);
+  EXPECT_NE(describe(a).find("alert offline/r1 ACTIVE  robot offline"), std::string::npos) << describe(a);
+  PathReply r;
+  r.request_id(5);
+  r.status(PLAN_NO_PATH);
+  EXPECT_NE(describe(r).find("path reply 5 NO_PATH"), std::string::npos) << describe(r);
 }
 
 TEST(SlamctlFormat, FleetDigestAndPointsLinesCountRobotsAndPoints) {
@@ -233,16 +233,18 @@ TEST(SlamctlFormat, ObservationBatchIsALineThenOneIndentedLinePerObservation) {
 }
 
 TEST(SlamctlFormat, AlertLineAndJson) {
-  const std::string line = format_alert(alert("battery/sim-1", ALERT_BATTERY_LOW, true), 4'000'000'000);
+  const std::string line =
+      format_alert(alert("battery/sim-1", msg::AlertKind::BatteryLow, true), 4'000'000'000);
   EXPECT_EQ(std::count(line.begin(), line.end(), '\n'), 1) << line;
   for (const char* part : {"ACTIVE", "battery low", "sim-1", "raised    3.0 s ago", "host:7", "sent home"})
     EXPECT_NE(line.find(part), std::string::npos) << part << " in " << line;
-  EXPECT_NE(format_alert(alert("offline/sim-1", ALERT_ROBOT_OFFLINE, false), 0).find("cleared"),
+  EXPECT_NE(format_alert(alert("offline/sim-1", msg::AlertKind::RobotOffline, false), 0).find("cleared"),
             std::string::npos);
 
-  const auto json = nlohmann::json::parse(alerts_json(
-      {alert("battery/sim-1", ALERT_BATTERY_LOW, true), alert("silent/x", ALERT_SERVICE_SILENT, false)},
-      4'000'000'000));
+  const auto json =
+      nlohmann::json::parse(alerts_json({alert("battery/sim-1", msg::AlertKind::BatteryLow, true),
+                                         alert("silent/x", msg::AlertKind::ServiceSilent, false)},
+                                        4'000'000'000));
   ASSERT_EQ(json.size(), 2u);
   EXPECT_EQ(json[0]["id"], "battery/sim-1");
   EXPECT_EQ(json[0]["kind"], "battery low");

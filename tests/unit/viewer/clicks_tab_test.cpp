@@ -41,7 +41,7 @@ TEST_F(ClicksTabTest, LeftClickSetsTheTargetOfTheSelectedRobot) {
 }
 
 TEST_F(ClicksTabTest, TargetUsesTheRobotsModeAndSquareSettings) {
-  RobotStateData s;
+  msg::RobotState s;
   s.robot_id = "r1";
   state.robots.ingest(std::move(s));
   state.robots.find("r1")->settings.mode = GoalMode::Square;

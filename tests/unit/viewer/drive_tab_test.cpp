@@ -15,7 +15,7 @@ namespace {
 class DriveTabTest : public ::testing::Test {
  protected:
   void add_robot(const std::string& id, double x, double y) {
-    RobotStateData s;
+    msg::RobotState s;
     s.robot_id = id;
     s.pose = {x, y, 0.0};
     state.robots.ingest(std::move(s));

@@ -11,8 +11,8 @@
 namespace slam::viewer {
 namespace {
 
-GridSnapshotData snapshot(uint32_t layout, uint64_t version, uint32_t w = 4, uint32_t h = 3) {
-  GridSnapshotData s;
+msg::GridSnapshot snapshot(uint32_t layout, uint64_t version, uint32_t w = 4, uint32_t h = 3) {
+  msg::GridSnapshot s;
   s.layout_id = layout;
   s.version = version;
   s.info = {w, h, 0.5, {-1.0, -2.0}, 0.2};
@@ -21,9 +21,9 @@ GridSnapshotData snapshot(uint32_t layout, uint64_t version, uint32_t w = 4, uin
 }
 
 // Every cell of the box set to v, in tiles of one cell on a grid 4 cells wide.
-GridPatchData patch(uint32_t layout, uint64_t version, uint32_t x0, uint32_t y0, uint32_t w, uint32_t h,
-                    uint8_t v) {
-  GridPatchData p{layout, version, 1, static_cast<uint8_t>(TileEncoding::Raw), {}, {}};
+msg::GridTiles patch(uint32_t layout, uint64_t version, uint32_t x0, uint32_t y0, uint32_t w, uint32_t h,
+                     uint8_t v) {
+  msg::GridTiles p{layout, version, 0, 1, static_cast<uint8_t>(TileEncoding::Raw), {}, {}};
   for (uint32_t y = y0; y < y0 + h; ++y)
     for (uint32_t x = x0; x < x0 + w; ++x) p.tiles.push_back(y * 4 + x);
   p.data.assign(p.tiles.size(), v);
@@ -130,11 +130,11 @@ TEST(GridMirror, StreamWithALostPatchEqualsTheSourceAfterTheNextSnapshot) {
   testkit::RandomTileSource source(kW, kH, 0, 11);
   const auto next_patch = [&](uint64_t version) {
     const EncodedTiles& encoded = source.next_patch();
-    return GridPatchData{
-        3, version, kGridTileSide, static_cast<uint8_t>(encoded.encoding), encoded.tiles, encoded.data};
+    return msg::GridTiles{
+        3, version, 0, kGridTileSide, static_cast<uint8_t>(encoded.encoding), encoded.tiles, encoded.data};
   };
   const auto source_snapshot = [&](uint64_t version) {
-    GridSnapshotData s = snapshot(3, version, kW, kH);
+    msg::GridSnapshot s = snapshot(3, version, kW, kH);
     s.cells = source.cells();
     return s;
   };

@@ -12,8 +12,8 @@
 namespace slam::viewer {
 namespace {
 
-GridSnapshotData snapshot(uint32_t w, uint32_t h, double resolution, Vec2 origin, double inflation) {
-  GridSnapshotData s;
+msg::GridSnapshot snapshot(uint32_t w, uint32_t h, double resolution, Vec2 origin, double inflation) {
+  msg::GridSnapshot s;
   s.layout_id = 1;
   s.version = 1;
   s.info = {w, h, resolution, origin, inflation};

@@ -21,9 +21,9 @@ TEST(Intake, DrainHandsOverOnce) {
 
 TEST(Intake, SnapshotDropsEarlierPatches) {
   Intake in;
-  in.push(GridPatchData{1, 5, 1, 0, {0}, {1}});
-  in.push(GridSnapshotData{1, 6, {}, {}});
-  in.push(GridPatchData{1, 7, 1, 0, {0}, {1}});
+  in.push(msg::GridTiles{1, 5, 0, 1, 0, {0}, {1}});
+  in.push(msg::GridSnapshot{1, 6, {}, {}});
+  in.push(msg::GridTiles{1, 7, 0, 1, 0, {0}, {1}});
   IntakeBatch b;
   in.drain(b);
   ASSERT_TRUE(b.snapshot);
@@ -33,12 +33,12 @@ TEST(Intake, SnapshotDropsEarlierPatches) {
 
 TEST(Intake, StatesKeepNewestPerRobot) {
   Intake in;
-  RobotStateData a;
+  msg::RobotState a;
   a.robot_id = "a";
   a.messages = 1;
-  in.push(RobotStateData(a));
+  in.push(msg::RobotState(a));
   a.messages = 2;
-  in.push(RobotStateData(a));
+  in.push(msg::RobotState(a));
   IntakeBatch b;
   in.drain(b);
   ASSERT_EQ(b.states.size(), 1u);
@@ -48,7 +48,7 @@ TEST(Intake, StatesKeepNewestPerRobot) {
 TEST(Intake, CorrectionsKeepNewestPerRobot) {
   Intake in;
   const auto correction = [](const char* id, uint64_t version) {
-    PoseCorrectionData c;
+    msg::PoseCorrection c;
     c.robot_id = id;
     c.version = version;
     return c;

@@ -86,9 +86,9 @@ TEST_F(MissionToolTest, UndoAndClearEditTheDraftWhichHasABound) {
   EXPECT_EQ(tool.waypoints().size(), kMaxMissionWaypoints);
 }
 
-MissionData mission(uint64_t id, uint32_t current, uint32_t laps,
-                    MissionStatus status = MissionStatus::Active) {
-  MissionData m;
+msg::Mission mission(uint64_t id, uint32_t current, uint32_t laps,
+                     MissionStatus status = MissionStatus::Active) {
+  msg::Mission m;
   m.robot_id = "r1";
   m.mission_id = id;
   m.waypoints = {{0, 0}, {1, 0}, {1, 1}};

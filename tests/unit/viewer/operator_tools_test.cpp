@@ -15,8 +15,15 @@ namespace {
 
 constexpr int64_t kSecond = 1'000'000'000;
 
-AlertData alert(const std::string& id, bool active, int64_t raised_s) {
-  return {id, AlertKind::BatteryLow, "r1", active, raised_s * kSecond, "robot 'r1' battery 10 %", "host:1"};
+msg::Alert alert(const std::string& id, bool active, int64_t raised_s) {
+  return {id,
+          AlertKind::BatteryLow,
+          "r1",
+          active,
+          raised_s * kSecond,
+          raised_s * kSecond,
+          "robot 'r1' battery 10 %",
+          "host:1"};
 }
 
 TEST(AlertBoard, KeepsTheLatestStatePerAlertAndListsActiveNewestFirst) {
@@ -54,7 +61,7 @@ TEST(ForgetRobot, ButtonSendsTheCommandAndItsEchoDropsTheRobot) {
   ViewerState state{100};
   FakeCommandSink sink;
   RobotsTab tab;
-  RobotStateData s;
+  msg::RobotState s;
   s.robot_id = "r1";
   IntakeBatch batch;
   batch.states.push_back(s);
@@ -106,8 +113,10 @@ TEST_F(PathPreviewTest, TwoClicksSendOneRequestAndItsReplyIsKept) {
   EXPECT_NE(state.path_preview.summary().find("waiting"), std::string::npos);
 
   IntakeBatch batch;
-  batch.path_replies.push_back({sink.last_id + 7, true, "", {{0, 0}, {1, 1}}, 99.0, 0.01});  // another's
-  batch.path_replies.push_back({sink.last_id, true, "", {sent.start, {0, 0}, sent.goal}, 12.5, 0.004});
+  batch.path_replies.push_back(
+      {sink.last_id + 7, msg::PlanStatus::Ok, "", {{0, 0}, {1, 1}}, 99.0, 0.01});  // another's
+  batch.path_replies.push_back(
+      {sink.last_id, msg::PlanStatus::Ok, "", {sent.start, {0, 0}, sent.goal}, 12.5, 0.004});
   state.ingest(batch, kSecond);
   ASSERT_TRUE(state.path_preview.result());
   EXPECT_EQ(state.path_preview.result()->path.size(), 3u);
@@ -120,10 +129,11 @@ TEST_F(PathPreviewTest, AFailedRequestShowsItsReason) {
   path_preview_click(state, sink, {100, 300}, 0);
   path_preview_click(state, sink, {300, 100}, 0);
   IntakeBatch batch;
-  batch.path_replies.push_back({sink.last_id, false, "goal is inside an obstacle", {}, 0.0, 0.001});
+  batch.path_replies.push_back(
+      {sink.last_id, msg::PlanStatus::GoalBlocked, "goal is inside an obstacle", {}, 0.0, 0.001});
   state.ingest(batch, kSecond);
   ASSERT_TRUE(state.path_preview.result());
-  EXPECT_FALSE(state.path_preview.result()->ok);
+  EXPECT_EQ(state.path_preview.result()->status, msg::PlanStatus::GoalBlocked);
   EXPECT_EQ(state.path_preview.summary(), "no path: goal is inside an obstacle");
 }
 

@@ -58,7 +58,7 @@ TEST(RobotRegistry, ObservationsFeedPointsAndStateMarksOnline) {
   reg.defaults().point_radius_px = 4.0f;
   ObservationData o{"r1", 1, {1.0, 1.0, 0.0}, {2.0f, 3.0f, 4.0f, 5.0f}};
   reg.ingest(o);
-  RobotStateData st;
+  msg::RobotState st;
   st.robot_id = "r1";
   st.online = true;
   reg.ingest(std::move(st));

@@ -25,8 +25,8 @@ TEST(RobotRegistry, CorrectionIsIdentityUntilTheMapperSendsOne) {
   EXPECT_EQ(r.map_from_odom().theta, 0.0);
 }
 
-PoseCorrectionData correction(const std::string& id, uint64_t version, Pose map_from_odom) {
-  PoseCorrectionData c;
+msg::PoseCorrection correction(const std::string& id, uint64_t version, Pose map_from_odom) {
+  msg::PoseCorrection c;
   c.robot_id = id;
   c.version = version;
   c.map_from_odom = map_from_odom;
@@ -78,7 +78,7 @@ TEST(RobotRegistry, ALaterCorrectionLeavesPlacedPointsWhereTheyAre) {
 // pose: the one heard last wins, and an older record still brings its counters.
 TEST(RobotRegistry, TheNewestPoseWinsBetweenDigestAndStateRecord) {
   RobotRegistry robots;
-  RobotPoseData p;
+  msg::RobotPose p;
   p.robot_id = "r1";
   p.pose = {2.0, 1.0, 0.5};
   p.has_heading = true;
@@ -89,7 +89,7 @@ TEST(RobotRegistry, TheNewestPoseWinsBetweenDigestAndStateRecord) {
   ASSERT_TRUE(r.has_state);
   EXPECT_EQ(r.state.pose.x, 2.0);
 
-  RobotStateData older;
+  msg::RobotState older;
   older.robot_id = "r1";
   older.pose = {1.0, 1.0, 0.0};
   older.last_seen_ns = 150;
@@ -105,7 +105,7 @@ TEST(RobotRegistry, TheNewestPoseWinsBetweenDigestAndStateRecord) {
   robots.ingest(p);
   EXPECT_EQ(r.state.pose.x, 2.0);
 
-  RobotStateData newer;
+  msg::RobotState newer;
   newer.robot_id = "r1";
   newer.pose = {3.0, 1.0, 0.0};
   newer.last_seen_ns = 300;
@@ -123,7 +123,7 @@ TEST(RobotRegistry, AFirstOrOperatorCorrectionMovesThePointsPlacedBeforeIt) {
   const RobotView& r = *robots.find("r1");
   EXPECT_NEAR(r.points.data()[0], 3.0f, 1e-6);
   const uint64_t generation = r.points.generation();
-  PoseCorrectionData set_pose = correction("r1", 2, {2.0, 1.0, 0.0});
+  msg::PoseCorrection set_pose = correction("r1", 2, {2.0, 1.0, 0.0});
   set_pose.source = CorrectionSource::Operator;
   robots.ingest(std::move(set_pose));
   EXPECT_NEAR(r.points.data()[0], 3.0f, 1e-6);
@@ -138,13 +138,13 @@ TEST(RobotRegistry, AFirstOrOperatorCorrectionMovesThePointsPlacedBeforeIt) {
 // message does.
 TEST(RobotRegistry, AForgottenRobotStaysForgottenUntilItSpeaksAgain) {
   RobotRegistry robots;
-  RobotPoseData p;
+  msg::RobotPose p;
   p.robot_id = "r1";
   p.last_seen_ns = 200;
   robots.ingest(p);
   ASSERT_TRUE(robots.forget("r1"));
   robots.ingest(p);
-  RobotStateData record;
+  msg::RobotState record;
   record.robot_id = "r1";
   record.last_seen_ns = 200;
   robots.ingest(std::move(record));

@@ -13,7 +13,7 @@ namespace {
 class RobotsTabTest : public ::testing::Test {
  protected:
   RobotView& add_robot(const std::string& id, double x, double y) {
-    RobotStateData s;
+    msg::RobotState s;
     s.robot_id = id;
     s.pose = {x, y, 0.0};
     state.robots.ingest(std::move(s));
@@ -48,7 +48,7 @@ TEST_F(RobotsTabTest, RobotModeGoesToItsPositionWithoutAPath) {
 
 TEST_F(RobotsTabTest, RobotModeKeepsItsCurrentTarget) {
   RobotView& r = add_robot("r1", 1.0, 2.0);
-  RobotPathData p;
+  msg::RobotPath p;
   p.robot_id = "r1";
   p.target = {7.0, 8.0};
   state.robots.ingest(std::move(p));
