@@ -36,7 +36,7 @@ struct BranchAndBoundOptions {
   // The runner-up is only searched down to this share of the best score: below it the match is not
   // ambiguous, whatever it is exactly.
   double runner_up_floor = 0.7;
-  size_t max_map_cells = size_t{1} << 23;  // a larger map is refused rather than searched slowly
+  size_t max_map_cells = size_t{1} << 24;  // over all levels: a larger map is refused, not searched slowly
 };
 
 struct SearchRegion {

@@ -134,7 +134,7 @@ struct CorrectorOptions {
   int placement_max_keyframes = 40;
   double placement_max_wait_s = 30.0;
   size_t placement_max_points = 300;         // a keyframe's points searched, evenly thinned
-  size_t placement_max_map_cells = 1 << 21;  // a larger map is searched at a coarser resolution
+  size_t placement_max_map_cells = 1 << 20;  // a larger map is searched at a coarser resolution
   int optimise_every = 40;                   // keyframes tied to the old map between optimisations
   double rerender_shift_m = 0.02;            // keyframe moves smaller than this are not re-rendered
   ScheduleOptions schedule;

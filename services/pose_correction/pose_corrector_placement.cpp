@@ -84,6 +84,8 @@ void PoseCorrector::search_placement(Robot& rb, const GridView& grid, int64_t no
     placement_map_ns_ = now_ns;
   }
   if (!placement_map_ready_) {  // nothing on the map to find it on: it starts the map where it is
+    spdlog::info("pose correction: robot {}: no map to search for it on: placed where its odometry says",
+                 rb.name);
     place(rb, std::nullopt, 0.0);
     return;
   }

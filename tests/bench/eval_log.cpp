@@ -13,6 +13,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <nlohmann/json.hpp>
 #include <unordered_map>
 
@@ -47,12 +48,14 @@ struct Options {
   std::string log_level = "warn";
   LogObservationOptions observations;
   correction::CorrectorOptions slam;
+  int pieces = 1;  // the log cut into this many robots, each switched on where its piece starts
 
   std::string run_name() const {
     if (!name.empty()) return name;
     return strip_log_extension(std::filesystem::path(log).filename().string()) +
            (observations.v1 ? "-v1" : "") +
-           (observations.beams > 0 ? fmt::format("-{}beams", observations.beams) : "");
+           (observations.beams > 0 ? fmt::format("-{}beams", observations.beams) : "") +
+           (pieces > 1 ? fmt::format("-{}pieces", pieces) : "");
   }
   std::string relation_path() const {
     return relations.empty() ? strip_log_extension(log) + ".relations" : relations;
@@ -91,6 +94,30 @@ Result<std::vector<Pose>> final_sensor_poses(DeterministicMapLoop& loop, const L
   return out;
 }
 
+// The log cut into `pieces` robots one after another, each as if switched on where its piece starts:
+// its odometry from (0, 0, 0), its own robot id. Relations between stamps of different pieces then
+// measure how well the robots were placed on each other's map.
+LogObservations piece_observations(std::vector<robot_log::LaserScan> scans, int pieces,
+                                   LogObservationOptions options) {
+  if (pieces <= 1) return log_observations(scans, options);
+  LogObservations out;
+  const size_t n = scans.size();
+  for (size_t k = 0; k < static_cast<size_t>(pieces); ++k) {
+    const size_t from = n * k / static_cast<size_t>(pieces), to = n * (k + 1) / static_cast<size_t>(pieces);
+    const Pose origin = scans[from].odom.inverse();
+    for (size_t i = from; i < to; ++i) scans[i].odom = origin.compose(scans[i].odom);
+    options.robot = fmt::format("piece-{}", k + 1);
+    LogObservations piece = log_observations(std::span(scans).subspan(from, to - from), options);
+    for (mapper::OwnedObservation& obs : piece.observations) obs.seq += from;
+    std::move(piece.observations.begin(), piece.observations.end(), std::back_inserter(out.observations));
+    out.stamps_s.insert(out.stamps_s.end(), piece.stamps_s.begin(), piece.stamps_s.end());
+    out.sensor_odom.insert(out.sensor_odom.end(), piece.sensor_odom.begin(), piece.sensor_odom.end());
+    out.sensor_in_robot.insert(out.sensor_in_robot.end(), piece.sensor_in_robot.begin(),
+                               piece.sensor_in_robot.end());
+  }
+  return out;
+}
+
 struct Played {
   std::vector<Pose> published;  // sensor poses, by the correction in force at each scan's arrival
   std::vector<Pose> final;      // sensor poses, by the final trajectory
@@ -107,18 +134,18 @@ Result<Played> play(const LogObservations& log, const correction::CorrectorOptio
   played.published.resize(log.observations.size());
   const auto wall0 = std::chrono::steady_clock::now();
   const int64_t t0 = log.observations.front().stamp_ns;
-  Pose correction;
+  std::unordered_map<std::string, Pose> corrections;  // per robot (a piece of the log)
   std::vector<correction::RobotCorrection> changed;
   size_t next = 0;
   int64_t tick = t0 + kLoopPeriodNs;
   for (; next < log.observations.size(); tick += kLoopPeriodNs) {
     for (; next < log.observations.size() && log.observations[next].stamp_ns <= tick; ++next) {
       loop.add(log.observations[next], tick - t0);
-      played.published[next] = correction.compose(log.sensor_odom[next]);
+      played.published[next] = corrections[log.observations[next].robot_id].compose(log.sensor_odom[next]);
     }
     changed.clear();
     loop.step(tick, tick - t0, changed);
-    for (const auto& c : changed) correction = c.map_from_odom;
+    for (const auto& c : changed) corrections[c.robot] = c.map_from_odom;
   }
   changed.clear();
   loop.finish(tick, tick - t0, changed);
@@ -138,7 +165,9 @@ Result<nlohmann::json> run(const Options& o) {
   if (read->scans.empty()) return Error{o.log + " holds no scan"};
   auto relations = read_relations(o.relation_path());
   if (!relations) return relations.error();
-  const LogObservations log = log_observations(read->scans, o.observations);
+  if (o.pieces > 1 && read->scans.size() < static_cast<size_t>(o.pieces))
+    return Error{"fewer scans than --pieces"};
+  const LogObservations log = piece_observations(read->scans, o.pieces, o.observations);
   std::filesystem::create_directories(o.out_dir);
   const std::string base = std::filesystem::absolute(o.out_dir + "/" + o.run_name()).string();
   auto played = play(log, o.slam, base + ".yaml");
@@ -180,7 +209,10 @@ Result<nlohmann::json> run(const Options& o) {
                {"closures_accepted", st.closures_accepted},
                {"closures_rejected", st.closures_rejected},
                {"optimisations", st.optimisations},
-               {"segments", st.segments}};
+               {"segments", st.segments},
+               {"robots_placed", st.robots_placed},
+               {"placements_given_up", st.placements_given_up}};
+  j["pieces"] = o.pieces;
   j["image"] = std::filesystem::path(base + ".png").filename().string();
   return j;
 }
@@ -214,6 +246,8 @@ void add_slam_options(CLI::App& app, correction::CorrectorOptions& s) {
   add("--odom-sigma-rad", s.odom_sigma_rad_per_m, "odometry heading noise (rad per m)");
   add("--wall-heading", s.wall_heading, "hold headings to the walls' axes (true/false)");
   add("--point-refine", s.point_refine, "refine matches against the points (true/false)");
+  add("--global-localisation", s.global_localisation,
+      "search for each robot joining the map on it before drawing it (true/false)");
 }
 
 std::string row(const nlohmann::json& j, const char* key) {
@@ -247,6 +281,10 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_flag("--v1", o.observations.v1,
                "as a legacy v1 robot: centimetre positions, no heading, <= 16 points");
+  app.add_option("--pieces", o.pieces,
+                 "cut the log into N robots, each switched on where its piece starts (odometry from 0, 0, 0)")
+      ->check(CLI::Range(1, 100))
+      ->capture_default_str();
   app.add_option("--log-level", o.log_level, "log level of the pose correction")
       ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error", "off"}))
       ->capture_default_str();
