@@ -1,8 +1,8 @@
 // slam-planner: path requests, per-robot goals, waypoint streams and exploration over DDS.
 // Only wiring: the common service skeleton around PlannerNode.
 #include "common/fastdds/run_service.hpp"
-#include "planner/planner_node.hpp"
-#include "planner/planner_options.hpp"
+#include "planner/core/planner_options.hpp"
+#include "planner/dds/planner_node.hpp"
 
 int main(int argc, char** argv) {
   using namespace slam::planner;

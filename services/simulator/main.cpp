@@ -3,10 +3,10 @@
 #include "common/core/counters.hpp"
 #include "common/core/service_options.hpp"
 #include "common/core/shutdown.hpp"
-#include "simulator/log_player.hpp"
-#include "simulator/sim_node.hpp"
-#include "simulator/sim_options.hpp"
-#include "simulator/world_loader.hpp"
+#include "simulator/core/sim_options.hpp"
+#include "simulator/core/world_loader.hpp"
+#include "simulator/dds/sim_node.hpp"
+#include "simulator/mqtt/log_player.hpp"
 
 int main(int argc, char** argv) {
   using namespace slam::sim;

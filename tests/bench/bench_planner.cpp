@@ -12,11 +12,11 @@
 #include <random>
 #include <string>
 
-#include "planner/fleet.hpp"
-#include "planner/fleet_coordinator.hpp"
-#include "planner/frontiers.hpp"
-#include "planner/grid_astar.hpp"
-#include "planner/path_planner.hpp"
+#include "planner/core/fleet.hpp"
+#include "planner/core/fleet_coordinator.hpp"
+#include "planner/core/frontiers.hpp"
+#include "planner/core/grid_astar.hpp"
+#include "planner/core/path_planner.hpp"
 
 namespace {
 std::atomic<uint64_t> g_allocations{0};

@@ -10,8 +10,8 @@
 #include <utility>
 #include <vector>
 
-#include "simulator/builtin_worlds.hpp"
-#include "simulator/simulation.hpp"
+#include "simulator/core/builtin_worlds.hpp"
+#include "simulator/core/simulation.hpp"
 
 namespace {
 

@@ -22,8 +22,8 @@
 #include "common/fastdds/fast_topics.hpp"
 #include "eval/world_places.hpp"
 #include "process_group.hpp"
-#include "simulator/builtin_worlds.hpp"
-#include "simulator/config.hpp"
+#include "simulator/core/builtin_worlds.hpp"
+#include "simulator/core/config.hpp"
 
 namespace slam::bench {
 namespace {

@@ -28,8 +28,8 @@
 #include "eval/world_places.hpp"
 #include "eval_mapping_tap.hpp"
 #include "process_group.hpp"
-#include "simulator/config.hpp"
-#include "simulator/world_loader.hpp"
+#include "simulator/core/config.hpp"
+#include "simulator/core/world_loader.hpp"
 
 namespace slam::bench {
 namespace {

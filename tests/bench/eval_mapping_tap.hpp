@@ -14,7 +14,7 @@
 #include "common/core/result.hpp"
 #include "common/fastdds/fast_topics.hpp"
 #include "eval/run_recorder.hpp"
-#include "simulator/geometry.hpp"
+#include "simulator/core/geometry.hpp"
 
 namespace slam::bench {
 

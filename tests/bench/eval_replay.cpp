@@ -16,7 +16,7 @@
 #include "eval/replay.hpp"
 #include "eval/run_score.hpp"
 #include "eval/truth_log.hpp"
-#include "simulator/builtin_worlds.hpp"
+#include "simulator/core/builtin_worlds.hpp"
 
 namespace slam::bench {
 namespace {

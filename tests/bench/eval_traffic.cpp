@@ -17,10 +17,10 @@
 #include <vector>
 
 #include "eval/world_places.hpp"
-#include "planner/fleet.hpp"
-#include "planner/fleet_coordinator.hpp"
-#include "simulator/builtin_worlds.hpp"
-#include "simulator/simulation.hpp"
+#include "planner/core/fleet.hpp"
+#include "planner/core/fleet_coordinator.hpp"
+#include "simulator/core/builtin_worlds.hpp"
+#include "simulator/core/simulation.hpp"
 
 namespace slam::bench {
 namespace {

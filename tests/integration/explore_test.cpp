@@ -21,7 +21,7 @@
 
 #include "common/fastdds/fast_topics.hpp"
 #include "process_group.hpp"
-#include "simulator/builtin_worlds.hpp"
+#include "simulator/core/builtin_worlds.hpp"
 #include "world_truth.hpp"
 
 namespace slam {

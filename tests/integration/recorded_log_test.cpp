@@ -23,10 +23,10 @@
 #include "fastdds_inbox.hpp"
 #include "mqtt_test_client.hpp"
 #include "process_group.hpp"
-#include "simulator/builtin_worlds.hpp"
-#include "simulator/log_recorder.hpp"
+#include "simulator/core/builtin_worlds.hpp"
+#include "simulator/core/log_recorder.hpp"
+#include "simulator/core/simulation.hpp"
 #include "simulator/robot_log/carmen_log.hpp"
-#include "simulator/simulation.hpp"
 #include "temp_dir.hpp"
 
 namespace slam::testkit {

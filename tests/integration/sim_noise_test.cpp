@@ -16,7 +16,7 @@
 #include "mqtt_test_client.hpp"
 #include "process_group.hpp"
 #include "protocol/v1_codec.hpp"
-#include "simulator/builtin_worlds.hpp"
+#include "simulator/core/builtin_worlds.hpp"
 
 namespace slam::testkit {
 namespace {

@@ -21,7 +21,7 @@
 #include "protocol/v1_codec.hpp"
 #include "protocol/v2_robot_decode.hpp"
 #include "protocol/v2_server_codec.hpp"
-#include "simulator/builtin_worlds.hpp"
+#include "simulator/core/builtin_worlds.hpp"
 
 namespace slam {
 namespace {

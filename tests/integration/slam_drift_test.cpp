@@ -24,7 +24,7 @@
 #include "common/fastdds/fast_topics.hpp"
 #include "fastdds_inbox.hpp"
 #include "process_group.hpp"
-#include "simulator/builtin_worlds.hpp"
+#include "simulator/core/builtin_worlds.hpp"
 
 namespace slam::testkit {
 namespace {

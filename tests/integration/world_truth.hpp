@@ -9,7 +9,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "simulator/world.hpp"
+#include "simulator/core/world.hpp"
 
 namespace slam::testkit {
 

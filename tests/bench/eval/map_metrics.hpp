@@ -8,7 +8,7 @@
 
 #include "common/core/map_io.hpp"
 #include "common/core/result.hpp"
-#include "simulator/geometry.hpp"
+#include "simulator/core/geometry.hpp"
 
 namespace slam::bench {
 

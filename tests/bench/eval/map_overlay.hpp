@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "common/core/map_io.hpp"
-#include "simulator/geometry.hpp"
+#include "simulator/core/geometry.hpp"
 #include "viewer/core/png_file.hpp"
 
 namespace slam::bench {

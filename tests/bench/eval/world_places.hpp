@@ -5,8 +5,8 @@
 #include <span>
 #include <vector>
 
-#include "planner/planning_grid.hpp"
-#include "simulator/world.hpp"
+#include "planner/core/planning_grid.hpp"
+#include "simulator/core/world.hpp"
 
 namespace slam::bench {
 

@@ -4,7 +4,7 @@
 
 #include <vector>
 
-#include "simulator/builtin_worlds.hpp"
+#include "simulator/core/builtin_worlds.hpp"
 
 namespace slam::bench {
 namespace {

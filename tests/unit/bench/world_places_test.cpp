@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <random>
 
-#include "simulator/builtin_worlds.hpp"
+#include "simulator/core/builtin_worlds.hpp"
 
 namespace slam::bench {
 namespace {

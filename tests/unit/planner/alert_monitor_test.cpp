@@ -1,5 +1,5 @@
 // AlertMonitor: which facts raise and clear which alerts, and that only the owner speaks.
-#include "planner/alert_monitor.hpp"
+#include "planner/core/alert_monitor.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,7 +1,7 @@
 // Traffic rules: who goes, who waits, who steps aside, and deadlocks broken; checked on single
 // decisions and on a small kinematic run (robots drive to their next waypoint or to where they are
 // told to hold) that must end with every robot arrived and no two ever closer than two bodies.
-#include "planner/fleet_coordinator.hpp"
+#include "planner/core/fleet_coordinator.hpp"
 
 #include <gtest/gtest.h>
 
@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "grid_builder.hpp"
-#include "planner/planner_options.hpp"
+#include "planner/core/planner_options.hpp"
 #include "traffic_run.hpp"
 
 namespace slam::planner {

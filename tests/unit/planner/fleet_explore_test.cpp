@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "grid_builder.hpp"
-#include "planner/fleet.hpp"
+#include "planner/core/fleet.hpp"
 
 namespace slam::planner {
 namespace {

@@ -1,7 +1,7 @@
 // FleetMissions: a mission drives a robot through its waypoints on a real Fleet (a patrol wraps and
 // keeps going), goals and missions replace each other by their senders' order, a planner that does
 // not own the robot follows the owner's progress, and a restart resumes from the store.
-#include "planner/fleet_missions.hpp"
+#include "planner/core/fleet_missions.hpp"
 
 #include <gtest/gtest.h>
 

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "grid_builder.hpp"
-#include "planner/fleet.hpp"
+#include "planner/core/fleet.hpp"
 
 namespace slam::planner {
 namespace {

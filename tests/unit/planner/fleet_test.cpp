@@ -1,6 +1,6 @@
 // Fleet: goal fan-out, waypoint streaming, and a whole exploration run on a hidden world where
 // simulated robots reveal what they can see and drive to the waypoints they are given.
-#include "planner/fleet.hpp"
+#include "planner/core/fleet.hpp"
 
 #include <gtest/gtest.h>
 

@@ -3,8 +3,8 @@
 // reports again starts afresh.
 #include <gtest/gtest.h>
 
-#include "planner/fleet.hpp"
-#include "planner/goal_store.hpp"
+#include "planner/core/fleet.hpp"
+#include "planner/core/goal_store.hpp"
 
 namespace slam::planner {
 namespace {

@@ -1,5 +1,5 @@
 // Frontier assignment (unique, utility-driven, lazy costs), blacklist and progress watch.
-#include "planner/frontier_assignment.hpp"
+#include "planner/core/frontier_assignment.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
 // FrontierMap: which cells are frontiers, incremental updates equal a rebuild, clustering.
-#include "planner/frontiers.hpp"
+#include "planner/core/frontiers.hpp"
 
 #include <gtest/gtest.h>
 

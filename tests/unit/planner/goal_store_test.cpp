@@ -1,6 +1,6 @@
 // GoalStore: the goal file round-trips, bad files are refused with the field named, goals resume
 // in the order they were given, and replays from DDS caches are recognised as stale.
-#include "planner/goal_store.hpp"
+#include "planner/core/goal_store.hpp"
 
 #include <gtest/gtest.h>
 
@@ -8,7 +8,7 @@
 #include <fstream>
 #include <string>
 
-#include "planner/fleet.hpp"
+#include "planner/core/fleet.hpp"
 #include "temp_dir.hpp"
 
 namespace slam::planner {

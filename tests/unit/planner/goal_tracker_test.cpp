@@ -1,5 +1,5 @@
 // GoalTracker: every mode's transitions, re-plan triggers and resend timing.
-#include "planner/goal_tracker.hpp"
+#include "planner/core/goal_tracker.hpp"
 
 #include <gtest/gtest.h>
 

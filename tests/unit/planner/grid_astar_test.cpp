@@ -1,5 +1,5 @@
 // GridAstar against a brute-force Dijkstra with the same move rules, plus the failure cases.
-#include "planner/grid_astar.hpp"
+#include "planner/core/grid_astar.hpp"
 
 #include <gtest/gtest.h>
 

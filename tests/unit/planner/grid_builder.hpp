@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "planner/planning_grid.hpp"
+#include "planner/core/planning_grid.hpp"
 
 namespace slam::planner::test {
 

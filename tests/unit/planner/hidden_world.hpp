@@ -7,8 +7,8 @@
 #include <vector>
 
 #include "grid_builder.hpp"
-#include "planner/frontiers.hpp"
-#include "planner/line_of_sight.hpp"
+#include "planner/core/frontiers.hpp"
+#include "planner/core/line_of_sight.hpp"
 
 namespace slam::planner::test {
 

@@ -1,5 +1,5 @@
 // LocalisationWatch: when an exploring robot is sent back to re-localise, and where to.
-#include "planner/localisation_watch.hpp"
+#include "planner/core/localisation_watch.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
 // MissionRunner: legs in order, looping, skipping unreachable waypoints, adopting another planner's progress.
-#include "planner/mission_runner.hpp"
+#include "planner/core/mission_runner.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
 // BucketNearestNeighbors answers exactly as OMPL's brute-force structure does.
-#include "planner/ompl_planner_neighbors.hpp"
+#include "planner/core/ompl_planner_neighbors.hpp"
 
 #include <gtest/gtest.h>
 #include <ompl/datastructures/NearestNeighborsLinear.h>

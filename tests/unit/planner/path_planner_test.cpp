@@ -1,5 +1,5 @@
 // PathPlanner: request checks and statuses, A* and each OMPL planner on a small map.
-#include "planner/path_planner.hpp"
+#include "planner/core/path_planner.hpp"
 
 #include <gtest/gtest.h>
 
@@ -7,7 +7,7 @@
 #include <limits>
 
 #include "grid_builder.hpp"
-#include "planner/line_of_sight.hpp"
+#include "planner/core/line_of_sight.hpp"
 
 namespace slam::planner {
 namespace {

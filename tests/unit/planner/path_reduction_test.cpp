@@ -1,5 +1,5 @@
 // Supercover walks, line of sight and path reduction.
-#include "planner/path_reduction.hpp"
+#include "planner/core/path_reduction.hpp"
 
 #include <gtest/gtest.h>
 
@@ -7,8 +7,8 @@
 #include <random>
 
 #include "grid_builder.hpp"
-#include "planner/grid_astar.hpp"
-#include "planner/line_of_sight.hpp"
+#include "planner/core/grid_astar.hpp"
+#include "planner/core/line_of_sight.hpp"
 
 namespace slam::planner {
 namespace {

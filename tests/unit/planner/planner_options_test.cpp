@@ -1,5 +1,5 @@
 // PlannerOptions: defaults are valid, flags land in the core's config, bad values name their key.
-#include "planner/planner_options.hpp"
+#include "planner/core/planner_options.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
 // PlanningGrid: snapshot and patch intake, coordinate conversion, cell classes.
-#include "planner/planning_grid.hpp"
+#include "planner/core/planning_grid.hpp"
 
 #include <gtest/gtest.h>
 

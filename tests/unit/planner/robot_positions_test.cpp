@@ -1,6 +1,6 @@
 // RobotPositions: the newest position per robot wins, whichever source offered it, and a take
 // hands over each robot once.
-#include "planner/robot_positions.hpp"
+#include "planner/core/robot_positions.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,12 +1,12 @@
 // StartEscape, segment_clear_leaving and PathPlanner::plan_for_robot: a robot standing in an
 // inflated or unexplored cell still gets a path, through the nearest passable cell beside it.
-#include "planner/start_escape.hpp"
+#include "planner/core/start_escape.hpp"
 
 #include <gtest/gtest.h>
 
 #include "grid_builder.hpp"
-#include "planner/line_of_sight.hpp"
-#include "planner/path_planner.hpp"
+#include "planner/core/line_of_sight.hpp"
+#include "planner/core/path_planner.hpp"
 
 namespace slam::planner {
 namespace {

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "grid_builder.hpp"
-#include "planner/fleet_coordinator.hpp"
+#include "planner/core/fleet_coordinator.hpp"
 #include "traffic_run.hpp"
 
 namespace slam::planner {

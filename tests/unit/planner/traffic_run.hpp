@@ -8,7 +8,7 @@
 #include <limits>
 #include <vector>
 
-#include "planner/fleet_coordinator.hpp"
+#include "planner/core/fleet_coordinator.hpp"
 
 namespace slam::planner::test {
 

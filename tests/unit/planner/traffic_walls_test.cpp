@@ -10,9 +10,9 @@
 #include <vector>
 
 #include "grid_builder.hpp"
-#include "planner/fleet.hpp"
-#include "planner/fleet_coordinator.hpp"
-#include "planner/traffic_geometry.hpp"
+#include "planner/core/fleet.hpp"
+#include "planner/core/fleet_coordinator.hpp"
+#include "planner/core/traffic_geometry.hpp"
 
 namespace slam::planner {
 namespace {

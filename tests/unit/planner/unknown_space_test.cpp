@@ -10,9 +10,9 @@
 
 #include "grid_builder.hpp"
 #include "hidden_world.hpp"
-#include "planner/fleet.hpp"
-#include "planner/line_of_sight.hpp"
-#include "planner/path_planner.hpp"
+#include "planner/core/fleet.hpp"
+#include "planner/core/line_of_sight.hpp"
+#include "planner/core/path_planner.hpp"
 
 namespace slam::planner {
 namespace {

@@ -2,15 +2,15 @@
 // the same directions (a full circle and a partial field of view), ranges to 0.1 mm, no-returns
 // still no-returns (also for a maximum a float cannot hold), the odometry pose, the sensor mount and
 // the stamp as written.
-#include "simulator/carmen_writer.hpp"
+#include "simulator/core/carmen_writer.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <numbers>
 
+#include "simulator/core/sensor.hpp"
 #include "simulator/robot_log/carmen_log.hpp"
-#include "simulator/sensor.hpp"
 
 namespace slam::sim {
 namespace {

@@ -2,7 +2,7 @@
 // read back with the log player's reader (every report a scan, the odometry pose and the stamp as
 // reported) and the relations' stamps exactly the log's, their motions the truth's; a missing
 // directory and writing after the end are errors.
-#include "simulator/log_recorder.hpp"
+#include "simulator/core/log_recorder.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -12,10 +12,10 @@
 #include <set>
 #include <sstream>
 
-#include "simulator/builtin_worlds.hpp"
-#include "simulator/carmen_writer.hpp"
+#include "simulator/core/builtin_worlds.hpp"
+#include "simulator/core/carmen_writer.hpp"
+#include "simulator/core/simulation.hpp"
 #include "simulator/robot_log/carmen_log.hpp"
-#include "simulator/simulation.hpp"
 #include "temp_dir.hpp"
 
 namespace slam::sim {

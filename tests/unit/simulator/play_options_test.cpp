@@ -1,5 +1,5 @@
 // The log player's flags: defaults, robot ids from file names or given, and one-line errors.
-#include "simulator/play_options.hpp"
+#include "simulator/core/play_options.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "simulator/sim_options.hpp"
+#include "simulator/core/sim_options.hpp"
 
 namespace slam::sim {
 namespace {

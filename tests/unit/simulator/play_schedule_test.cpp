@@ -1,6 +1,6 @@
 // The log player's schedule: the start/end window, pieces, send times at a rate (held when stamps
 // step back, paced at rate 0), and scans thinned and clipped into what one v2 scan carries.
-#include "simulator/play_schedule.hpp"
+#include "simulator/core/play_schedule.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>

@@ -1,5 +1,5 @@
 // Operator commands: each kind applied, and every impossible value refused without changing the fleet.
-#include "simulator/sim_control.hpp"
+#include "simulator/core/sim_control.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -7,7 +7,7 @@
 #include <cmath>
 #include <limits>
 
-#include "simulator/builtin_worlds.hpp"
+#include "simulator/core/builtin_worlds.hpp"
 
 namespace slam::sim {
 namespace {

@@ -1,5 +1,5 @@
 // slam-simulator's flags: defaults, the configuration they build, and one-line errors naming the flag.
-#include "simulator/sim_options.hpp"
+#include "simulator/core/sim_options.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>

@@ -1,6 +1,6 @@
 // Fleet behaviour: driving to waypoints, never passing walls or other robots, odometry drift,
 // beams and reports, spawning rules, pause, random walk, and bit-for-bit determinism per seed.
-#include "simulator/simulation.hpp"
+#include "simulator/core/simulation.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -8,8 +8,8 @@
 #include <cmath>
 #include <numbers>
 
-#include "simulator/builtin_worlds.hpp"
-#include "simulator/kinematics.hpp"
+#include "simulator/core/builtin_worlds.hpp"
+#include "simulator/core/kinematics.hpp"
 
 namespace slam::sim {
 namespace {

@@ -2,7 +2,7 @@
 // tens of seconds from an anchor every few seconds, each is the true motion in the first pose's frame
 // (so a chain of short ones composes into the long one over the same stretch), and the lines read as
 // the benchmark's eight numbers.
-#include "simulator/truth_relations.hpp"
+#include "simulator/core/truth_relations.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>

@@ -1,6 +1,6 @@
 // World specs: built-in names, Java text files and ROS map_server maps (written with the shared
 // map writer, read back through load_world).
-#include "simulator/world_loader.hpp"
+#include "simulator/core/world_loader.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>

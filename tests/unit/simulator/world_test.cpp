@@ -1,6 +1,6 @@
 // World geometry: ray casts (against a brute-force reference over every wall), clearance and
 // motion checks, the built-in worlds, and occupancy images turned into merged walls.
-#include "simulator/world.hpp"
+#include "simulator/core/world.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -10,8 +10,8 @@
 #include <numbers>
 #include <random>
 
-#include "simulator/builtin_worlds.hpp"
-#include "simulator/world_image.hpp"
+#include "simulator/core/builtin_worlds.hpp"
+#include "simulator/core/world_image.hpp"
 
 namespace slam::sim {
 namespace {

@@ -1,6 +1,6 @@
 // Java world text format: every legacy sample loads, and malformed input is rejected with the
 // file, token number and problem in the message.
-#include "simulator/world_text.hpp"
+#include "simulator/core/world_text.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>

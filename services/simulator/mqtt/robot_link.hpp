@@ -1,0 +1,114 @@
+#pragma once
+// The fleet's MQTT side: each simulated robot speaks the robot protocol (v1 or v2) exactly as a
+// real one does, over its own connection (client id = robot id) or one shared multiplexed
+// connection. Reports go out from the simulation loop; waypoint commands arrive on paho threads,
+// are decoded and checked there, and wait in a locked intake the loop drains.
+#include <chrono>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include "common/core/counters.hpp"
+#include "common/core/log.hpp"
+#include "common/core/result.hpp"
+#include "common/mqtt/mqtt_connection.hpp"
+#include "protocol/codec_types.hpp"
+#include "simulator/core/geometry.hpp"
+#include "simulator/core/report.hpp"
+#include "simulator/core/sim_options.hpp"
+
+namespace slam::sim {
+
+// A decoded server command for one robot. No target: stop (a v2 path with no points).
+struct WaypointOrder {
+  std::string robot_id;
+  std::optional<Vec2> target;
+};
+
+class RobotLinks {
+ public:
+  static constexpr double kStatusPeriodS = 5.0;  // simulated seconds between repeated v2 statuses
+
+  struct Settings {
+    std::string broker;
+    RobotProtocol protocol = RobotProtocol::V1;
+    bool multiplex = false;
+    protocol::CodecLimits limits;
+    // Not empty: each robot's own connection logs in as its robot id with this password (a broker
+    // with a password file and an ACL keyed by user name, like compose/mosquitto).
+    std::string password;
+    std::string tls_ca_file;  // trusted for an ssl:// broker (empty: the system's CAs)
+  };
+
+  // Registers the counters it keeps (reports_sent, waypoints_received, mqtt_reconnects, ...) and,
+  // when multiplexed, opens the shared connection.
+  static Result<std::unique_ptr<RobotLinks>> create(Settings settings, Counters& counters);
+  // v2 robots announce "offline" first; every connection then closes cleanly, all at once.
+  ~RobotLinks();
+  RobotLinks(const RobotLinks&) = delete;
+  RobotLinks& operator=(const RobotLinks&) = delete;
+
+  // Starts speaking for `robot_id` (its own connection unless multiplexed).
+  Status add(const std::string& robot_id);
+  // Stops speaking for it; a v2 robot says "offline" first.
+  void remove(const std::string& robot_id);
+
+  // Publishes the robot's report (v1 adv, or v2 scan stamped with the simulated time, plus a status
+  // when `driving` changed, the connection is new, or kStatusPeriodS passed, so late subscribers
+  // learn it too). Unknown robots and failed publishes are counted, never fatal.
+  void publish(const RobotReport& report, bool driving);
+
+  // Reconnection attempts that are due and the mqtt_connected gauge; call every loop iteration.
+  void poll(std::chrono::steady_clock::time_point now);
+
+  // Moves the commands received since the last call into `out` (cleared first).
+  void drain_orders(std::vector<WaypointOrder>& out);
+
+ private:
+  struct Endpoint {
+    std::string report_topic;
+    std::string status_topic;
+    std::unique_ptr<mqtt::Connection> own_link;  // per-robot mode
+    mqtt::Connection* link = nullptr;
+    uint64_t status_connects = 0;   // link->connects() when the last status went out
+    double status_time_s = -1e300;  // simulated time of the last status
+    bool driving = false;
+  };
+
+  RobotLinks(Settings settings, Counters& counters);
+  Result<std::unique_ptr<mqtt::Connection>> open(const std::string& client_id,
+                                                 std::vector<std::string> subscriptions,
+                                                 std::optional<mqtt::Will> will);
+  void on_message(std::string_view topic, std::span<const uint8_t> payload);
+  void reject(std::string_view robot_id, const std::string& reason, const std::string& detail);
+  void send(Endpoint& e, const std::string& topic, std::span<const uint8_t> payload);
+  void send_status(Endpoint& e, bool driving, double time_s);
+
+  Settings settings_;
+  std::atomic<int64_t>& reports_sent_;
+  std::atomic<int64_t>& reports_dropped_;
+  std::atomic<int64_t>& waypoints_received_;
+  std::atomic<int64_t>& waypoints_rejected_;
+  std::atomic<int64_t>& orders_dropped_;
+  std::atomic<int64_t>& mqtt_connected_;  // gauge, refreshed by poll()
+  std::atomic<int64_t>& mqtt_reconnects_;
+  std::atomic<int64_t>& mqtt_connect_failures_;
+  RateLimitedLog warnings_;
+
+  std::unique_ptr<mqtt::Connection> shared_link_;  // multiplexed mode
+  std::unordered_map<std::string, Endpoint> endpoints_;
+
+  std::mutex intake_mutex_;
+  std::vector<WaypointOrder> intake_;
+
+  // Encoding scratch, reused report after report.
+  std::vector<protocol::Point> hits_;
+  std::vector<uint8_t> bytes_;
+  std::string text_;
+  std::vector<double> ranges_;
+};
+
+}  // namespace slam::sim
