@@ -112,6 +112,18 @@ void fill_correction(const correction::RobotCorrection& in, int64_t stamp_ns, sl
   out->segment(in.segment);
   out->keyframes(in.keyframes);
   out->loop_closures(in.loop_closures);
+  switch (in.placement) {
+    case correction::Placement::Placed:
+      out->placement(slam::PLACEMENT_PLACED);
+      break;
+    case correction::Placement::Placing:
+      out->placement(slam::PLACEMENT_PLACING);
+      break;
+    case correction::Placement::Unplaced:
+      out->placement(slam::PLACEMENT_UNPLACED);
+      break;
+  }
+  out->localisation_score(in.localisation_score);
   switch (in.source) {
     case correction::CorrectionSource::Identity:
       out->source(slam::CORRECTION_IDENTITY);

@@ -175,7 +175,9 @@ std::string robots_json(const std::vector<RobotSeen>& robots, int64_t now_ns) {
                              {"keyframes", c.keyframes},
                              {"loop_closures", c.loop_closures},
                              {"sigma_m", position_sigma(c.covariance)},
-                             {"source", msg::correction_source_id(c.source)}};
+                             {"source", msg::correction_source_id(c.source)},
+                             {"placement", msg::robot_placement_name(c.placement)},
+                             {"localisation_score", c.localisation_score}};
     }
     out.push_back(std::move(robot));
   }
@@ -205,9 +207,15 @@ std::string alerts_json(const std::vector<msg::Alert>& alerts, int64_t now_ns) {
 }
 
 std::string format_correction(const msg::PoseCorrection& c) {
-  return fmt("%s ±%.0f cm version %llu keyframes %u loops %u %s", pose_deg(c.map_from_odom).c_str(),
-             100.0 * position_sigma(c.covariance), static_cast<unsigned long long>(c.version), c.keyframes,
-             c.loop_closures, msg::correction_source_id(c.source));
+  // An unplaced robot says so first: its pose is its odometry's until the map search finds it.
+  const std::string placement =
+      c.placement == msg::RobotPlacement::Placed
+          ? ""
+          : fmt("%s (score %.2f) ", msg::robot_placement_name(c.placement), c.localisation_score);
+  return fmt("%s%s ±%.0f cm version %llu keyframes %u loops %u %s", placement.c_str(),
+             pose_deg(c.map_from_odom).c_str(), 100.0 * position_sigma(c.covariance),
+             static_cast<unsigned long long>(c.version), c.keyframes, c.loop_closures,
+             msg::correction_source_id(c.source));
 }
 
 std::string format_robot(const msg::RobotState& s, const msg::PoseCorrection* correction,

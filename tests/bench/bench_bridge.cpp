@@ -90,7 +90,7 @@ void BM_BridgeOneSecondOfFleetInput(benchmark::State& state) {
         const std::string& id = ids[static_cast<size_t>(rng()) % kRobots];
         for (auto& w : waypoints) w = {coord(rng), coord(rng)};
         fleet.ingest(msg::RobotPath{id, 0, msg::GoalMode::Explore, msg::GoalStatus::Active, waypoints.back(),
-                                    waypoints, 0});
+                                    waypoints, 0, ""});
       }
       if (loop % (kLoopsPerSecond / kRateHz) == 0) {
         patch.version = ++version;

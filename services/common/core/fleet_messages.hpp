@@ -29,6 +29,7 @@ enum class MissionStatus : uint8_t { Active, Done, Failed, Cancelled };
 enum class PlanStatus : uint8_t { Ok, StartBlocked, GoalBlocked, NoPath, Timeout, NoMap, InvalidRequest };
 // correction.idl
 enum class CorrectionSource : uint8_t { Identity, Match, Loop, Operator, Restored };
+enum class RobotPlacement : uint8_t { Placed, Placing, Unplaced };
 // system.idl
 enum class ServiceState : uint8_t { Starting, Running, Stopping };
 using AlertKind = alerts::Kind;
@@ -51,6 +52,7 @@ inline constexpr std::array<const char*, 5> kCorrectionSourceIds{"identity", "ma
 // For people (the viewer's panels).
 inline constexpr std::array<const char*, 5> kCorrectionSourceNames{"identity", "match", "loop closure",
                                                                    "operator", "restored"};
+inline constexpr std::array<const char*, 3> kRobotPlacementNames{"placed", "placing", "unplaced"};
 inline constexpr std::array<const char*, 3> kServiceStateNames{"starting", "running", "stopping"};
 
 // names[value], or "?" for a value outside the enumeration.
@@ -95,6 +97,9 @@ constexpr const char* correction_source_name(CorrectionSource s) {
 constexpr const char* correction_source_id(CorrectionSource s) {
   return name_of(s, kCorrectionSourceIds);
 }
+constexpr const char* robot_placement_name(RobotPlacement p) {
+  return name_of(p, kRobotPlacementNames);
+}
 constexpr const char* service_state_name(ServiceState s) {
   return name_of(s, kServiceStateNames);
 }
@@ -137,6 +142,8 @@ struct PoseCorrection {
   uint32_t keyframes = 0;
   uint32_t loop_closures = 0;
   CorrectionSource source = CorrectionSource::Identity;
+  RobotPlacement placement = RobotPlacement::Placed;
+  double localisation_score = 1.0;
 };
 
 // nav.idl RobotPath: the path a robot follows, from the planner that drives it. Map frame.

@@ -19,6 +19,7 @@ static_assert(mirrors(PlanStatus::InvalidRequest, slam::PLAN_INVALID_REQUEST, kP
 static_assert(mirrors(PlanStatus::InvalidRequest, slam::PLAN_INVALID_REQUEST, kPlanStatusIds.size()));
 static_assert(mirrors(CorrectionSource::Restored, slam::CORRECTION_RESTORED, kCorrectionSourceIds.size()));
 static_assert(mirrors(CorrectionSource::Restored, slam::CORRECTION_RESTORED, kCorrectionSourceNames.size()));
+static_assert(mirrors(RobotPlacement::Unplaced, slam::PLACEMENT_UNPLACED, kRobotPlacementNames.size()));
 static_assert(mirrors(ServiceState::Stopping, slam::SERVICE_STOPPING, kServiceStateNames.size()));
 static_assert(mirrors(AlertKind::BatteryLow, slam::ALERT_BATTERY_LOW, 3));  // named in alert_kind.hpp
 
@@ -125,6 +126,8 @@ PoseCorrection from_idl(const slam::PoseCorrection& c) {
   d.keyframes = c.keyframes();
   d.loop_closures = c.loop_closures();
   d.source = from_idl(c.source());
+  d.placement = cast<RobotPlacement>(c.placement());
+  d.localisation_score = c.localisation_score();
   return d;
 }
 

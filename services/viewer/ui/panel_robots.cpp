@@ -58,6 +58,9 @@ void robot_details(RobotsTab& tab, ViewerState& state, CommandSink& sink, RobotV
                 static_cast<unsigned long long>(c.version));
     ImGui::Text("  keyframes %u  loop closures %u  source %s", c.keyframes, c.loop_closures,
                 correction_source_name(c.source));
+    if (c.placement != msg::RobotPlacement::Placed)
+      ImGui::Text("  %s on the map (score %.2f): not drawn yet", msg::robot_placement_name(c.placement),
+                  c.localisation_score);
   } else {
     ImGui::TextDisabled("correction: none yet (identity)");
   }

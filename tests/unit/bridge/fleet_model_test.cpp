@@ -40,8 +40,8 @@ TEST(FleetModel, AForgottenRobotLeavesUntilItSpeaksAgain) {
   EXPECT_GT(fleet.versions().robots, before.robots);
   fleet.ingest(msg::RobotPose{"r1", Pose{1, 0, 0}, true, true, 200});
   fleet.ingest(ObservationInput{"r1", {{1.0, 1.0}}});
-  fleet.ingest(
-      msg::RobotPath{"r1", 0, msg::GoalMode::Planned, msg::GoalStatus::Active, {2.0, 0.0}, {{2.0, 0.0}}, 0});
+  fleet.ingest(msg::RobotPath{
+      "r1", 0, msg::GoalMode::Planned, msg::GoalStatus::Active, {2.0, 0.0}, {{2.0, 0.0}}, 0, ""});
   EXPECT_TRUE(fleet.robots().empty());
   fleet.ingest(msg::RobotPose{"r1", Pose{1.5, 0, 0}, true, true, 300});
   ASSERT_EQ(fleet.robots().count("r1"), 1u);
@@ -61,7 +61,8 @@ TEST(FleetModel, CountsChangesPerKind) {
   FleetModel fleet(10);
   const FleetVersions before = fleet.versions();
   fleet.ingest(msg::RobotPose{"r1", Pose{1, 2, 0}, true, true, 5});
-  fleet.ingest(msg::RobotPath{"r1", 0, msg::GoalMode::Planned, msg::GoalStatus::Active, {3, 4}, {{3, 4}}, 0});
+  fleet.ingest(
+      msg::RobotPath{"r1", 0, msg::GoalMode::Planned, msg::GoalStatus::Active, {3, 4}, {{3, 4}}, 0, ""});
   fleet.ingest(msg::Heartbeat{"mapper", "vm:1", 1, "vm", 0, 2.0, msg::ServiceState::Running, {}}, 100);
   fleet.ingest(ObservationInput{"r1", {}});  // no points: no news
   EXPECT_EQ(fleet.versions().robots, before.robots + 1);

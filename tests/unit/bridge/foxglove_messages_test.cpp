@@ -67,14 +67,14 @@ TEST(FoxgloveMessages, AnActivePathRunsFromTheRobotAndAFinishedOneIsCleared) {
   FleetModel fleet(0);
   fleet.ingest(msg::RobotPose{"r1", Pose{0, 0, 0}, true, true, 0});
   fleet.ingest(msg::RobotPath{
-      "r1", 0, msg::GoalMode::Planned, msg::GoalStatus::Active, {2, 2}, {{1, 0}, {2, 0}, {2, 2}}, 1});
+      "r1", 0, msg::GoalMode::Planned, msg::GoalStatus::Active, {2, 2}, {{1, 0}, {2, 0}, {2, 2}}, 1, ""});
   json j = json::parse(paths_message(fleet, 0));
   ASSERT_EQ(j["entities"][0]["lines"].size(), 1u);
   EXPECT_EQ(j["entities"][0]["lines"][0]["points"].size(), 3u);  // robot, then waypoints from `current`
   EXPECT_EQ(j["entities"][0]["spheres"].size(), 1u);
   EXPECT_EQ(j["entities"][0]["metadata"][1]["value"], "planned");
   EXPECT_EQ(j["entities"][0]["metadata"][2]["value"], "active");
-  fleet.ingest(msg::RobotPath{"r1", 0, msg::GoalMode::Planned, msg::GoalStatus::Reached, {2, 2}, {}, 0});
+  fleet.ingest(msg::RobotPath{"r1", 0, msg::GoalMode::Planned, msg::GoalStatus::Reached, {2, 2}, {}, 0, ""});
   j = json::parse(paths_message(fleet, 0));
   EXPECT_EQ(j["entities"][0]["lines"].size(), 0u);
   EXPECT_EQ(j["entities"][0]["spheres"].size(), 0u);

@@ -49,6 +49,19 @@ TEST(SlamctlFormat, RobotLineShowsTheCorrection) {
       << line;
 }
 
+TEST(SlamctlFormat, ARobotNotYetFoundOnTheMapSaysSoWithItsScore) {
+  msg::RobotState s;
+  s.robot_id = "r8";
+  msg::PoseCorrection c;
+  c.robot_id = "r8";
+  c.placement = msg::RobotPlacement::Placing;
+  c.localisation_score = 0.62;
+  const std::string line = format_robot(s, &c, nullptr, 0);
+  EXPECT_NE(line.find("correction placing (score 0.62) (0.00, 0.00, 0.0 deg)"), std::string::npos) << line;
+  c.placement = msg::RobotPlacement::Placed;
+  EXPECT_EQ(format_robot(s, &c, nullptr, 0).find("placing"), std::string::npos);
+}
+
 TEST(SlamctlFormat, PathReplyListsStatusAndPoints) {
   msg::PathReply r;
   r.status = msg::PlanStatus::GoalBlocked;

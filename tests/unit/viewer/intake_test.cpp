@@ -22,7 +22,7 @@ TEST(Intake, DrainHandsOverOnce) {
 TEST(Intake, SnapshotDropsEarlierPatches) {
   Intake in;
   in.push(msg::GridTiles{1, 5, 0, 1, 0, {0}, {1}});
-  in.push(msg::GridSnapshot{1, 6, {}, {}});
+  in.push(msg::GridSnapshot{1, 6, {}, {}, {}});
   in.push(msg::GridTiles{1, 7, 0, 1, 0, {0}, {1}});
   IntakeBatch b;
   in.drain(b);
