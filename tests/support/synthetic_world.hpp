@@ -49,6 +49,33 @@ struct SyntheticWorld {
   }
 };
 
+// Three by two rooms of 4 x 4 m joined by 1 m doorways. Bare, the plan is the same turned by half a
+// turn: callers add the furniture that tells rooms apart.
+inline SyntheticWorld six_rooms() {
+  SyntheticWorld w;
+  w.room({0.0, 0.0}, {12.0, 8.0});
+  for (double x : {4.0, 8.0}) {
+    w.wall({x, 0.0}, {x, 1.5});
+    w.wall({x, 2.5}, {x, 5.5});
+    w.wall({x, 6.5}, {x, 8.0});
+  }
+  w.wall({0.0, 4.0}, {1.5, 4.0});
+  w.wall({2.5, 4.0}, {9.5, 4.0});
+  w.wall({10.5, 4.0}, {12.0, 4.0});
+  return w;
+}
+
+// A grid over [lo, hi] whose cell centres lie on multiples of the resolution, so walls drawn at round
+// coordinates run through cell centres and the rasterised map carries no half-cell bias.
+inline GridGeometry centred_geometry(Vec2 lo, Vec2 hi, double resolution = 0.05) {
+  GridGeometry g;
+  g.resolution = resolution;
+  g.origin = {lo.x - resolution / 2.0, lo.y - resolution / 2.0};
+  g.width = static_cast<int32_t>(std::lround((hi.x - lo.x) / resolution)) + 1;
+  g.height = static_cast<int32_t>(std::lround((hi.y - lo.y) / resolution)) + 1;
+  return g;
+}
+
 // A grid of class octets: free everywhere, occupied in every cell a wall passes through.
 struct ClassGrid {
   GridGeometry geometry;

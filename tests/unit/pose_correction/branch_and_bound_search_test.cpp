@@ -22,28 +22,9 @@ using testkit::SyntheticWorld;
 
 constexpr double kResolution = 0.05;
 
-GridGeometry geometry_over(Vec2 lo, Vec2 hi) {
-  GridGeometry g;
-  g.resolution = kResolution;
-  g.origin = {lo.x - kResolution / 2.0, lo.y - kResolution / 2.0};
-  g.width = static_cast<int32_t>(std::lround((hi.x - lo.x) / kResolution)) + 1;
-  g.height = static_cast<int32_t>(std::lround((hi.y - lo.y) / kResolution)) + 1;
-  return g;
-}
-
-// Three by two rooms of 4 x 4 m joined by doorways, with furniture that tells every room apart (the
-// bare plan is the same turned by half a turn).
+// Six rooms with furniture that tells every one apart.
 SyntheticWorld floor_plan() {
-  SyntheticWorld w;
-  w.room({0.0, 0.0}, {12.0, 8.0});
-  for (double x : {4.0, 8.0}) {
-    w.wall({x, 0.0}, {x, 1.5});
-    w.wall({x, 2.5}, {x, 5.5});
-    w.wall({x, 6.5}, {x, 8.0});
-  }
-  w.wall({0.0, 4.0}, {1.5, 4.0});
-  w.wall({2.5, 4.0}, {9.5, 4.0});
-  w.wall({10.5, 4.0}, {12.0, 4.0});
+  SyntheticWorld w = testkit::six_rooms();
   w.wall({1.0, 1.0}, {1.0, 2.0});
   w.wall({2.5, 6.0}, {3.5, 7.0});
   w.wall({5.0, 5.0}, {6.0, 5.0});
@@ -81,7 +62,7 @@ struct Map {
 };
 
 Map map_of(const SyntheticWorld& world, Vec2 lo, Vec2 hi) {
-  return {ClassGrid::rasterise(world, geometry_over(lo, hi))};
+  return {ClassGrid::rasterise(world, testkit::centred_geometry(lo, hi))};
 }
 
 class GlobalPoses : public ::testing::TestWithParam<Pose> {};

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "pose_correction/pose_corrector.hpp"
+#include "room_scene.hpp"
 
 namespace slam::correction {
 namespace {
@@ -20,44 +21,9 @@ constexpr int64_t kHour_ns = 3'600'000'000'000;
 constexpr int64_t kMessage_ns = 100'000'000;  // 10 scans a second
 constexpr double kStep_m = 0.05;              // 0.5 m/s
 
-struct Wall {
-  Vec2 a, b;
-};
-
-// A 6 x 5 m room with an L-shaped inner wall and a pillar: enough structure to pin x, y and theta.
-std::vector<Wall> room() {
-  return {{{0, 0}, {6, 0}}, {{6, 0}, {6, 5}},   {{6, 5}, {0, 5}},   {{0, 5}, {0, 0}},
-          {{2, 2}, {4, 2}}, {{4, 2}, {4, 3.5}}, {{1, 4}, {1.4, 4}}, {{1.4, 4}, {1.4, 4.4}}};
-}
-
-std::optional<double> cast(const std::vector<Wall>& walls, Vec2 origin, Vec2 dir, double range) {
-  std::optional<double> best;
-  for (const Wall& w : walls) {
-    const Vec2 e = w.b - w.a;
-    const double denom = cross(dir, e);
-    if (std::abs(denom) < 1e-12) continue;
-    const Vec2 d = w.a - origin;
-    const double t = cross(d, e) / denom, u = cross(d, dir) / denom;
-    if (t > 0 && t <= range && u >= 0 && u <= 1 && (!best || t < *best)) best = t;
-  }
-  return best;
-}
-
-// The room drawn into class octets (occupied = 2) at 5 cm, walls on cell centres.
-struct RoomMap {
-  GridGeometry geometry{{-0.525, -0.525}, 0.05, 140, 120};
-  std::vector<uint8_t> cells;
-  RoomMap() : cells(geometry.cells(), 0) {
-    for (const Wall& w : room()) {
-      const int steps = static_cast<int>(distance(w.a, w.b) / 0.01) + 1;
-      for (int i = 0; i <= steps; ++i) {
-        const Vec2 p = w.a + (w.b - w.a) * (static_cast<double>(i) / steps);
-        if (auto c = geometry.cell_at(p)) cells[geometry.index(*c)] = 2;
-      }
-    }
-  }
-  GridView view() const { return {geometry, cells}; }
-};
+using testing_scene::cast;
+using testing_scene::room;
+using RoomMap = testing_scene::WallMap;
 
 // A laser scan (120 beams, 4 m) taken at `truth`, its points in the odometry frame of `odom`.
 std::vector<Vec2> scan(const Pose& truth, const Pose& odom) {
@@ -143,7 +109,7 @@ class LapRun {
 
  private:
   PoseCorrector corrector_;
-  RoomMap map_;
+  RoomMap map_{room()};
   Pose truth_{1, 1, 0};
   Pose belief_{1, 1, 0};
   Pose odom_shift_;  // what the odometry adds to the robot's belief (its jump)

@@ -9,48 +9,16 @@
 #include <random>
 #include <vector>
 
+#include "room_scene.hpp"
+
 namespace slam::correction {
 namespace {
 
-struct Wall {
-  Vec2 a, b;
-};
-
-// A 6 x 5 m room with an L-shaped inner wall and a pillar: enough structure to pin x, y and theta.
-std::vector<Wall> room() {
-  return {{{0, 0}, {6, 0}}, {{6, 0}, {6, 5}},   {{6, 5}, {0, 5}},   {{0, 5}, {0, 0}},
-          {{2, 2}, {4, 2}}, {{4, 2}, {4, 3.5}}, {{1, 4}, {1.4, 4}}, {{1.4, 4}, {1.4, 4.4}}};
-}
-
-std::optional<double> cast(const std::vector<Wall>& walls, Vec2 origin, Vec2 dir, double range) {
-  std::optional<double> best;
-  for (const Wall& w : walls) {
-    const Vec2 e = w.b - w.a;
-    const double denom = cross(dir, e);
-    if (std::abs(denom) < 1e-12) continue;
-    const Vec2 d = w.a - origin;
-    const double t = cross(d, e) / denom, u = cross(d, dir) / denom;
-    if (t > 0 && t <= range && u >= 0 && u <= 1 && (!best || t < *best)) best = t;
-  }
-  return best;
-}
-
-// The true map drawn into class octets (occupied = 2) at 5 cm, cell centres on the walls (the
-// matcher puts a point on the centre of its cell: walls on cell edges would shift the map).
-struct TrueMap {
-  GridGeometry geometry{{-0.525, -0.525}, 0.05, 140, 120};  // walls at whole metres on cell centres
-  std::vector<uint8_t> cells;
-  explicit TrueMap(const std::vector<Wall>& walls) : cells(geometry.cells(), 0) {
-    for (const Wall& w : walls) {
-      const int steps = static_cast<int>(distance(w.a, w.b) / 0.01) + 1;
-      for (int i = 0; i <= steps; ++i) {
-        const Vec2 p = w.a + (w.b - w.a) * (static_cast<double>(i) / steps);
-        if (auto c = geometry.cell_at(p)) cells[geometry.index(*c)] = 2;
-      }
-    }
-  }
-  GridView view() const { return {geometry, cells}; }
-};
+using testing_scene::cast;
+using testing_scene::room;
+using testing_scene::Wall;
+using testkit::centred_geometry;
+using TrueMap = testing_scene::WallMap;
 
 // Sparse sensing: 10 beams over 360 degrees, 4 m range, each range off by `range_noise` (metres, or
 // none); hits given in the robot's belief frame.
@@ -282,26 +250,6 @@ TEST(PoseCorrector, ARobotWhoseOdometryStartsFarAwayStartsAtTheOrigin) {
   EXPECT_EQ(corrector.correction("near"), Pose{});  // within far_start_m: the odometry frame as it is
 }
 
-// A map of `walls` at 5 cm over [lo, hi], cell centres on whole metres.
-struct WallMap {
-  GridGeometry geometry;
-  std::vector<uint8_t> cells;
-  WallMap(const std::vector<Wall>& walls, Vec2 lo, Vec2 hi) {
-    geometry = {{lo.x - 0.025, lo.y - 0.025},
-                0.05,
-                static_cast<int32_t>(std::lround((hi.x - lo.x) / 0.05)) + 1,
-                static_cast<int32_t>(std::lround((hi.y - lo.y) / 0.05)) + 1};
-    cells.assign(geometry.cells(), 1);
-    for (const Wall& w : walls) {
-      const int steps = static_cast<int>(distance(w.a, w.b) / 0.01) + 1;
-      for (int i = 0; i <= steps; ++i)
-        if (auto c = geometry.cell_at(w.a + (w.b - w.a) * (static_cast<double>(i) / steps)))
-          cells[geometry.index(*c)] = 2;
-    }
-  }
-  GridView view() const { return {geometry, cells}; }
-};
-
 struct Placed {
   double error_m = 0.0;            // the second robot's corrected pose against the truth at the end
   double worst_finalised_m = 0.0;  // its finalised keyframes against the truth where they were made
@@ -311,7 +259,7 @@ struct Placed {
 
 // A first robot maps the room at its true pose; a second, with a laser (180 beams, 8 m), is switched
 // on at `start` with its odometry at (0, 0, 0) and drives a slow arc.
-Placed switch_on_anywhere(const std::vector<Wall>& walls, const WallMap& map, const Pose& start) {
+Placed switch_on_anywhere(const std::vector<Wall>& walls, const TrueMap& map, const Pose& start) {
   CorrectorOptions options;
   options.global_localisation = true;
   PoseCorrector corrector(options);
@@ -364,7 +312,7 @@ Placed switch_on_anywhere(const std::vector<Wall>& walls, const WallMap& map, co
 }
 
 TEST(PoseCorrector, ARobotSwitchedOnAnywhereIsFoundOnTheMapBeforeItDrawsAnything) {
-  const WallMap map(room(), {-0.5, -0.5}, {6.5, 5.5});
+  const TrueMap map(room(), centred_geometry({-0.5, -0.5}, {6.5, 5.5}));
   for (const Pose start : {Pose{4.6, 3.0, 2.0}, Pose{1.0, 3.2, -1.2}, Pose{3.0, 1.0, 3.0}}) {
     SCOPED_TRACE(testing::Message() << "start " << start.x << ", " << start.y << ", " << start.theta);
     const Placed p = switch_on_anywhere(room(), map, start);
@@ -378,7 +326,7 @@ TEST(PoseCorrector, ARobotSwitchedOnAnywhereIsFoundOnTheMapBeforeItDrawsAnything
 TEST(PoseCorrector, ARobotInOneOfTwoIdenticalRoomsIsNotPlacedInEither) {
   std::vector<Wall> twins = room();
   for (const Wall& w : room()) twins.push_back({w.a + Vec2{8.0, 0.0}, w.b + Vec2{8.0, 0.0}});
-  const WallMap map(twins, {-0.5, -0.5}, {14.5, 5.5});
+  const TrueMap map(twins, centred_geometry({-0.5, -0.5}, {14.5, 5.5}));
   const Placed p = switch_on_anywhere(twins, map, {12.6, 3.0, 2.0});
   EXPECT_EQ(p.stats.robots_placed, 0);
   EXPECT_GE(p.stats.placement_searches, 5);  // every keyframe searched, none placed

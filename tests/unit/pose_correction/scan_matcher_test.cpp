@@ -30,15 +30,8 @@ double degrees(double d) {
   return d * std::numbers::pi / 180.0;
 }
 
-// A grid whose cell centres lie on multiples of the resolution, so walls drawn at round
-// coordinates run through cell centres and the rasterised map carries no half-cell bias.
 GridGeometry geometry_over(Vec2 lo, Vec2 hi) {
-  GridGeometry g;
-  g.resolution = kResolution;
-  g.origin = {lo.x - kHalfCell, lo.y - kHalfCell};
-  g.width = static_cast<int32_t>(std::lround((hi.x - lo.x) / kResolution)) + 1;
-  g.height = static_cast<int32_t>(std::lround((hi.y - lo.y) / kResolution)) + 1;
-  return g;
+  return testkit::centred_geometry(lo, hi, kResolution);
 }
 
 // A 6 x 5 m room with an L-shaped inner wall.
@@ -50,18 +43,9 @@ SyntheticWorld l_room() {
   return w;
 }
 
-// Three by two rooms of 4 x 4 m joined by 1 m doorways.
+// Six rooms of 4 x 4 m joined by 1 m doorways.
 SyntheticWorld several_rooms() {
-  SyntheticWorld w;
-  w.room({0.0, 0.0}, {12.0, 8.0});
-  for (double x : {4.0, 8.0}) {
-    w.wall({x, 0.0}, {x, 1.5});
-    w.wall({x, 2.5}, {x, 5.5});
-    w.wall({x, 6.5}, {x, 8.0});
-  }
-  w.wall({0.0, 4.0}, {1.5, 4.0});
-  w.wall({2.5, 4.0}, {9.5, 4.0});
-  w.wall({10.5, 4.0}, {12.0, 4.0});
+  SyntheticWorld w = testkit::six_rooms();
   w.wall({5.0, 5.0}, {6.0, 5.0});  // a cupboard breaks the symmetry of the middle room
   return w;
 }
