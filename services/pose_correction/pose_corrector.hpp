@@ -338,6 +338,8 @@ class PoseCorrector {
   // Global localisation (pose_corrector_placement.cpp): a robot's newest held keyframe searched for
   // on `grid`; placed once enough agree, or by its odometry once it has waited too long.
   void search_placement(Robot& rb, const GridView& grid, int64_t now_ns);
+  // Places the robot by its odometry when it has waited too long (keyframes or time); whether it did.
+  bool give_up_placement(Robot& rb, int64_t now_ns);
   void prepare_placement_map(const GridView& grid);
   void place(Robot& rb, std::optional<Pose> map_from_odom, double score);
   // `t_ns` on `clock` with its steps back taken out; a step is counted and logged as `what`'s.

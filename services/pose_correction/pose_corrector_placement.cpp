@@ -65,19 +65,23 @@ void PoseCorrector::prepare_placement_map(const GridView& grid) {
   placement_map_ready_ = static_cast<bool>(placement_search_.set_map(GridView{coarse, placement_cells_}));
 }
 
-void PoseCorrector::search_placement(Robot& rb, const GridView& grid, int64_t now_ns) {
-  if (rb.held.empty()) return;
+bool PoseCorrector::give_up_placement(Robot& rb, int64_t now_ns) {
+  if (rb.held.empty()) return false;
   const double waited_s = static_cast<double>(now_ns - rb.held.front().first_stamp_ns) * 1e-9;
-  if (static_cast<int>(rb.held.size()) >= options_.placement_max_keyframes ||
-      waited_s > options_.placement_max_wait_s) {
-    ++stats_.placements_given_up;
-    spdlog::warn(
-        "pose correction: robot {} not found on the map in {} keyframes, {:.0f} s: placed where its "
-        "odometry says",
-        rb.name, rb.held.size(), waited_s);
-    place(rb, std::nullopt, 0.0);
-    return;
-  }
+  if (static_cast<int>(rb.held.size()) < options_.placement_max_keyframes &&
+      waited_s <= options_.placement_max_wait_s)
+    return false;
+  ++stats_.placements_given_up;
+  spdlog::warn(
+      "pose correction: robot {} not found on the map in {} keyframes, {:.0f} s: placed where its "
+      "odometry says",
+      rb.name, rb.held.size(), waited_s);
+  place(rb, std::nullopt, 0.0);
+  return true;
+}
+
+void PoseCorrector::search_placement(Robot& rb, const GridView& grid, int64_t now_ns) {
+  if (rb.held.empty() || give_up_placement(rb, now_ns)) return;
   const Keyframe& keyframe = rb.held.back();
   if (!placement_map_ready_ || now_ns - placement_map_ns_ > kPlacementMapAge_ns) {
     prepare_placement_map(grid);

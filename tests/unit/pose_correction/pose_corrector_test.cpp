@@ -255,6 +255,7 @@ struct Placed {
   double worst_finalised_m = 0.0;  // its finalised keyframes against the truth where they were made
   CorrectorStats stats;
   Placement placement = Placement::Unplaced;
+  bool placed_after_wait = false;  // found, or placed by its odometry once it fell silent for the wait
 };
 
 // A first robot maps the room at its true pose; a second, with a laser (180 beams, 8 m), is switched
@@ -308,6 +309,10 @@ Placed switch_on_anywhere(const std::vector<Wall>& walls, const TrueMap& map, co
   corrector.take_changed(changed);
   for (const RobotCorrection& c : changed)
     if (c.robot == "second") out.placement = c.placement;
+  // Silent from now on: not left waiting (its observations are held) once the wait is over.
+  corrector.process(map.view(), stamp + static_cast<int64_t>((options.placement_max_wait_s + 1.0) * 1e9),
+                    finalised);
+  out.placed_after_wait = corrector.stats().placements_given_up + corrector.stats().robots_placed == 1;
   return out;
 }
 
@@ -331,6 +336,7 @@ TEST(PoseCorrector, ARobotInOneOfTwoIdenticalRoomsIsNotPlacedInEither) {
   EXPECT_EQ(p.stats.robots_placed, 0);
   EXPECT_GE(p.stats.placement_searches, 5);  // every keyframe searched, none placed
   EXPECT_NE(p.placement, Placement::Placed);
+  EXPECT_TRUE(p.placed_after_wait);
 }
 
 TEST(PoseCorrector, TheObserverSeesEveryKeyframeWhereItWasPlaced) {
