@@ -1,7 +1,7 @@
 #pragma once
 // Supercover segment walks: every grid cell a segment touches, including both side cells where it
 // passes exactly through a corner. Planners use this instead of sampling along segments, which
-// lets paths clip the corners of occupied cells (PITFALLS.md, OMPL).
+// lets paths clip the corners of occupied cells (OMPL's motion validator samples that way).
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
