@@ -34,8 +34,9 @@ uint32_t PoseCorrector::robot_index(std::string_view robot) {
   const auto index = static_cast<uint32_t>(robots_.size());
   Robot robot_state(key, options_.keyframe);
   robot_state.state.robot = key;
-  // Others have mapped already: where this one is must be found before it draws anything.
-  if (options_.global_localisation && graph_keyframes() > 0) {
+  // Another robot maps already (or a restored map is there): where this one is must be found before
+  // it draws anything. Only the first robot of an empty map starts it where its odometry says.
+  if (options_.global_localisation && (graph_keyframes() > 0 || !robots_.empty())) {
     robot_state.state.placement = Placement::Unplaced;
     robot_state.state.localisation_score = 0.0;
   }

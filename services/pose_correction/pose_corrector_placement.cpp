@@ -87,12 +87,7 @@ void PoseCorrector::search_placement(Robot& rb, const GridView& grid, int64_t no
     prepare_placement_map(grid);
     placement_map_ns_ = now_ns;
   }
-  if (!placement_map_ready_) {  // nothing on the map to find it on: it starts the map where it is
-    spdlog::info("pose correction: robot {}: no map to search for it on: placed where its odometry says",
-                 rb.name);
-    place(rb, std::nullopt, 0.0);
-    return;
-  }
+  if (!placement_map_ready_) return;  // nothing on the map yet: it waits for the others' (or the wait's end)
   // Evenly thinned: the search's cost follows the points, and a few hundred pin a place.
   placement_points_.clear();
   const size_t n = keyframe.points.size();

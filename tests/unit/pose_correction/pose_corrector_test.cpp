@@ -260,7 +260,8 @@ struct Placed {
 
 // A first robot maps the room at its true pose; a second, with a laser (180 beams, 8 m), is switched
 // on at `start` with its odometry at (0, 0, 0) and drives a slow arc.
-Placed switch_on_anywhere(const std::vector<Wall>& walls, const TrueMap& map, const Pose& start) {
+Placed switch_on_anywhere(const std::vector<Wall>& walls, const TrueMap& map, const Pose& start,
+                          int lead_messages = 30) {
   CorrectorOptions options;
   options.global_localisation = true;
   PoseCorrector corrector(options);
@@ -276,7 +277,7 @@ Placed switch_on_anywhere(const std::vector<Wall>& walls, const TrueMap& map, co
     }
     return hits;
   };
-  for (int i = 0; i < 30; ++i) {  // the first robot: 0.9 m along the room, where it truly is
+  for (int i = 0; i < lead_messages; ++i) {  // the first robot, along the room where it truly is
     const Pose truth{1.5 + 0.03 * i, 1.0, 0.0};
     stamp += 100'000'000;
     EXPECT_TRUE(corrector.add("first", stamp, truth, true, scan(truth, truth)));
@@ -326,6 +327,15 @@ TEST(PoseCorrector, ARobotSwitchedOnAnywhereIsFoundOnTheMapBeforeItDrawsAnything
     EXPECT_LT(p.error_m, 0.05);
     EXPECT_LT(p.worst_finalised_m, 0.05);  // none of its keyframes was finalised where it is not
   }
+}
+
+TEST(PoseCorrector, ARobotSwitchedOnWithTheFirstIsSearchedForToo) {
+  // The first robot has sent one message, no keyframe yet: the second is still not taken to start
+  // where its odometry says (stacked on the first's origin).
+  const TrueMap map(room(), centred_geometry({-0.5, -0.5}, {6.5, 5.5}));
+  const Placed p = switch_on_anywhere(room(), map, {4.6, 3.0, 2.0}, 1);
+  EXPECT_EQ(p.stats.robots_placed, 1);
+  EXPECT_LT(p.error_m, 0.05);
 }
 
 TEST(PoseCorrector, ARobotInOneOfTwoIdenticalRoomsIsNotPlacedInEither) {
