@@ -57,8 +57,8 @@ void OccupancyGrid::set_class(size_t i, uint8_t cls) {
   if (old == cls) return;
   classes_[i] = cls;
   mark_dirty(i);
-  const bool was = blocked(old);
-  const bool now = blocked(cls);
+  const bool was = is_wall(old);
+  const bool now = is_wall(cls);
   if (was == now) return;
   const auto x = static_cast<int32_t>(i % static_cast<size_t>(width_));
   const auto y = static_cast<int32_t>(i / static_cast<size_t>(width_));
@@ -135,7 +135,7 @@ void OccupancyGrid::grow(int64_t bx0, int64_t by0, int64_t bx1, int64_t by1) {
   // Growth is rare (chunked), so a full re-inflation is simpler than patching disks at the old border.
   inflation_.reset(width_, height_);
   for (size_t i = 0; i < n; ++i) {
-    if (!blocked(classes_[i])) continue;
+    if (!is_wall(classes_[i])) continue;
     inflation_.add(static_cast<int32_t>(i % static_cast<size_t>(width_)),
                    static_cast<int32_t>(i / static_cast<size_t>(width_)),
                    [this](size_t j) { classes_[j] = static_cast<uint8_t>(classes_[j] | kCellInflated); });

@@ -91,9 +91,6 @@ class OccupancyGrid {
   uint8_t state_of(int32_t value) const {
     return value >= occ_ ? kCellOccupied : (value <= free_ ? kCellFree : kCellUnknown);
   }
-  static bool blocked(uint8_t cls) {
-    return (cls & kCellStateMask) == kCellOccupied || (cls & kCellObstructed) != 0;
-  }
   // Cell coordinates relative to the current grid, unbounded (may lie outside).
   double cell_x(double x) const;
   double cell_y(double y) const;

@@ -13,10 +13,6 @@ constexpr double kKernelReachSigmas = 3.0;
 
 }  // namespace
 
-bool is_occupied_class(uint8_t cell_class) {
-  return (cell_class & kCellStateMask) == kCellOccupied || (cell_class & kCellObstructed) != 0;
-}
-
 void LikelihoodField::build_kernel(double resolution) {
   if (kernel_resolution_ == resolution && !kernel_.empty()) return;
   const double sigma_cells = sigma_m_ / resolution;
@@ -46,7 +42,7 @@ Status LikelihoodField::build(const GridView& grid, const CellBox& box, size_t m
   for (int32_t gy = gy0; gy < gy1; ++gy) {
     const uint8_t* row = grid.classes.data() + static_cast<size_t>(gy) * static_cast<size_t>(geo.width);
     for (int32_t gx = gx0; gx < gx1; ++gx) {
-      if (!is_occupied_class(row[gx])) continue;
+      if (!is_wall(row[gx])) continue;
       const int32_t cx = gx - box.x0, cy = gy - box.y0;
       const int32_t y_from = std::max(cy - r, 0), y_to = std::min(cy + r, fh - 1);
       const int32_t x_from = std::max(cx - r, 0), x_to = std::min(cx + r, fw - 1);

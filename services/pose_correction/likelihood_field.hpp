@@ -12,9 +12,6 @@
 
 namespace slam::correction {
 
-// An occupied cell, or one an obstacle obstructs: what a point of a scan can lie on.
-bool is_occupied_class(uint8_t cell_class);
-
 class LikelihoodField {
  public:
   explicit LikelihoodField(double sigma_m = 0.05) : sigma_m_(sigma_m) {}

@@ -20,7 +20,7 @@ CellBox occupied_box(const GridView& grid, int32_t margin) {
   for (int32_t y = 0; y < g.height; ++y) {
     const uint8_t* row = grid.classes.data() + static_cast<size_t>(y) * static_cast<size_t>(g.width);
     for (int32_t x = 0; x < g.width; ++x) {
-      if (!is_occupied_class(row[x])) continue;
+      if (!is_wall(row[x])) continue;
       x0 = std::min(x0, x);
       x1 = std::max(x1, x);
       y0 = std::min(y0, y);
@@ -60,7 +60,7 @@ void PoseCorrector::prepare_placement_map(const GridView& grid) {
   for (int32_t y = 0; y < box.height; ++y) {
     const uint8_t* row = grid.classes.data() + g.index({box.x0, box.y0 + y});
     for (int32_t x = 0; x < box.width; ++x)
-      if (is_occupied_class(row[x])) placement_cells_[coarse.index({x / factor, y / factor})] = kCellOccupied;
+      if (is_wall(row[x])) placement_cells_[coarse.index({x / factor, y / factor})] = kCellOccupied;
   }
   placement_map_ready_ = static_cast<bool>(placement_search_.set_map(GridView{coarse, placement_cells_}));
 }

@@ -17,7 +17,6 @@ namespace {
 using testing_scene::cast;
 using testing_scene::room;
 using testing_scene::Wall;
-using testkit::centred_geometry;
 using TrueMap = testing_scene::WallMap;
 
 // Sparse sensing: 10 beams over 360 degrees, 4 m range, each range off by `range_noise` (metres, or
@@ -248,105 +247,6 @@ TEST(PoseCorrector, ARobotWhoseOdometryStartsFarAwayStartsAtTheOrigin) {
   EXPECT_NEAR(c.theta, 0.0, 1e-12);  // heading kept
   ASSERT_TRUE(corrector.add("near", 1, Pose{30.0, 4.0, 0.0}, true, hits));
   EXPECT_EQ(corrector.correction("near"), Pose{});  // within far_start_m: the odometry frame as it is
-}
-
-struct Placed {
-  double error_m = 0.0;            // the second robot's corrected pose against the truth at the end
-  double worst_finalised_m = 0.0;  // its finalised keyframes against the truth where they were made
-  CorrectorStats stats;
-  Placement placement = Placement::Unplaced;
-  bool placed_after_wait = false;  // found, or placed by its odometry once it fell silent for the wait
-};
-
-// A first robot maps the room at its true pose; a second, with a laser (180 beams, 8 m), is switched
-// on at `start` with its odometry at (0, 0, 0) and drives a slow arc.
-Placed switch_on_anywhere(const std::vector<Wall>& walls, const TrueMap& map, const Pose& start,
-                          int lead_messages = 30) {
-  CorrectorOptions options;
-  options.global_localisation = true;
-  PoseCorrector corrector(options);
-  std::vector<KeyframeCorrection> finalised;
-  int64_t stamp = 0;
-  const auto scan = [&](const Pose& truth, const Pose& belief) {
-    std::vector<Vec2> hits;
-    for (int i = 0; i < 180; ++i) {
-      const double a = truth.theta + 2.0 * std::numbers::pi * i / 180.0;
-      const Vec2 dir{std::cos(a), std::sin(a)};
-      if (auto t = cast(walls, truth.position(), dir, 8.0))
-        hits.push_back(belief.compose(truth.inverse()).transform(truth.position() + dir * *t));
-    }
-    return hits;
-  };
-  for (int i = 0; i < lead_messages; ++i) {  // the first robot, along the room where it truly is
-    const Pose truth{1.5 + 0.03 * i, 1.0, 0.0};
-    stamp += 100'000'000;
-    EXPECT_TRUE(corrector.add("first", stamp, truth, true, scan(truth, truth)));
-    corrector.process(map.view(), stamp, finalised);
-  }
-  std::vector<std::pair<uint64_t, Pose>> truth_at;  // keyframe id -> the second robot's truth
-  Pose truth = start, belief;
-  for (int i = 0; i < 40; ++i) {
-    const Pose step{0.03, 0.0, 0.01};
-    truth = truth.compose(step);
-    belief = belief.compose(step);
-    stamp += 100'000'000;
-    const auto id = corrector.add("second", stamp, belief, true, scan(truth, belief));
-    EXPECT_TRUE(id);
-    if (id) truth_at.emplace_back(*id, truth.compose(belief.inverse()));  // map_from_odom's truth
-    corrector.process(map.view(), stamp, finalised);
-  }
-  Placed out;
-  for (const KeyframeCorrection& k : finalised) {
-    if (k.robot != "second") continue;
-    for (const auto& [id, frame] : truth_at)
-      if (id == k.id)
-        out.worst_finalised_m =
-            std::max(out.worst_finalised_m,
-                     distance(k.correction.compose(k.odom).position(), frame.compose(k.odom).position()));
-  }
-  out.error_m = distance(corrector.correction("second").compose(belief).position(), truth.position());
-  out.stats = corrector.stats();
-  std::vector<RobotCorrection> changed;
-  corrector.take_changed(changed);
-  for (const RobotCorrection& c : changed)
-    if (c.robot == "second") out.placement = c.placement;
-  // Silent from now on: not left waiting (its observations are held) once the wait is over.
-  corrector.process(map.view(), stamp + static_cast<int64_t>((options.placement_max_wait_s + 1.0) * 1e9),
-                    finalised);
-  out.placed_after_wait = corrector.stats().placements_given_up + corrector.stats().robots_placed == 1;
-  return out;
-}
-
-TEST(PoseCorrector, ARobotSwitchedOnAnywhereIsFoundOnTheMapBeforeItDrawsAnything) {
-  const TrueMap map(room(), centred_geometry({-0.5, -0.5}, {6.5, 5.5}));
-  for (const Pose start : {Pose{4.6, 3.0, 2.0}, Pose{1.0, 3.2, -1.2}, Pose{3.0, 1.0, 3.0}}) {
-    SCOPED_TRACE(testing::Message() << "start " << start.x << ", " << start.y << ", " << start.theta);
-    const Placed p = switch_on_anywhere(room(), map, start);
-    EXPECT_EQ(p.stats.robots_placed, 1);
-    EXPECT_EQ(p.placement, Placement::Placed);
-    EXPECT_LT(p.error_m, 0.05);
-    EXPECT_LT(p.worst_finalised_m, 0.05);  // none of its keyframes was finalised where it is not
-  }
-}
-
-TEST(PoseCorrector, ARobotSwitchedOnWithTheFirstIsSearchedForToo) {
-  // The first robot has sent one message, no keyframe yet: the second is still not taken to start
-  // where its odometry says (stacked on the first's origin).
-  const TrueMap map(room(), centred_geometry({-0.5, -0.5}, {6.5, 5.5}));
-  const Placed p = switch_on_anywhere(room(), map, {4.6, 3.0, 2.0}, 1);
-  EXPECT_EQ(p.stats.robots_placed, 1);
-  EXPECT_LT(p.error_m, 0.05);
-}
-
-TEST(PoseCorrector, ARobotInOneOfTwoIdenticalRoomsIsNotPlacedInEither) {
-  std::vector<Wall> twins = room();
-  for (const Wall& w : room()) twins.push_back({w.a + Vec2{8.0, 0.0}, w.b + Vec2{8.0, 0.0}});
-  const TrueMap map(twins, centred_geometry({-0.5, -0.5}, {14.5, 5.5}));
-  const Placed p = switch_on_anywhere(twins, map, {12.6, 3.0, 2.0});
-  EXPECT_EQ(p.stats.robots_placed, 0);
-  EXPECT_GE(p.stats.placement_searches, 5);  // every keyframe searched, none placed
-  EXPECT_NE(p.placement, Placement::Placed);
-  EXPECT_TRUE(p.placed_after_wait);
 }
 
 TEST(PoseCorrector, TheObserverSeesEveryKeyframeWhereItWasPlaced) {
