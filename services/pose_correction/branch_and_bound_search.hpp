@@ -61,6 +61,7 @@ class BranchAndBoundSearch {
   // the levels; it need not outlive this call.
   Status set_map(const GridView& grid);
   bool has_map() const { return !levels_.empty(); }
+  const BranchAndBoundOptions& options() const { return options_; }
   const GridGeometry& geometry() const { return geometry_; }
 
   // `points` in the keyframe's own frame. Errors: no map, too few points, a region off the map, or

@@ -66,6 +66,7 @@ struct MatchJob {
   WallAxisReader wall_reader;            // scratch
   PointRefiner refiner;                  // scratch
   BranchAndBoundSearch recovery_search;  // scratch: a tracking match off its window's edge
+  std::vector<uint8_t> recovery_cells;   // scratch: the part of the track grid it searches
   bool point_refined = false;            // the narrow match was refined against track_points
   Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
   bool wide = false;          // the tie searched the wide window

@@ -201,7 +201,11 @@ void PoseCorrector::prepare(Keyframe&& keyframe, const GridView& grid, bool matc
 void PoseCorrector::recover_track(ScanMatcher& matcher, const GridView& view, MatchJob& job,
                                   Result<MatchResult>& narrow) const {
   const SearchWindow& wide = options_.scan_recovery_window;
-  if (!job.recovery_search.set_map(view)) return;
+  // Only what the search reads: its points reach max_point_range_m, not the scan's farthest return.
+  const double half =
+      job.recovery_search.options().max_point_range_m + wide.linear_m + options_.window_margin_m;
+  const GridGeometry around = copy_window(view, job.predicted.position(), half, job.recovery_cells);
+  if (!job.recovery_search.set_map(GridView{around, job.recovery_cells})) return;
   const auto found =
       job.recovery_search.search(job.keyframe.points, {job.predicted, wide.linear_m, wide.angular_rad});
   if (!found) return;
