@@ -3,10 +3,10 @@
 #include <iostream>
 
 #include "common/fastdds/run_service.hpp"
-#include "mapper/domain_claim.hpp"
-#include "mapper/mapper_node.hpp"
-#include "mapper/mapper_offline.hpp"
-#include "mapper/mapper_options.hpp"
+#include "mapper/core/mapper_offline.hpp"
+#include "mapper/core/mapper_options.hpp"
+#include "mapper/dds/domain_claim.hpp"
+#include "mapper/dds/mapper_node.hpp"
 
 int main(int argc, char** argv) {
   using namespace slam::mapper;

@@ -12,10 +12,10 @@
 #include <string>
 #include <vector>
 
-#include "mapper/observation_store.hpp"
-#include "mapper/occupancy_grid.hpp"
-#include "mapper/ray_trace.hpp"
-#include "mapper/rebuild.hpp"
+#include "mapper/core/observation_store.hpp"
+#include "mapper/core/occupancy_grid.hpp"
+#include "mapper/core/ray_trace.hpp"
+#include "mapper/core/rebuild.hpp"
 #include "temp_dir.hpp"
 
 namespace {

@@ -26,8 +26,8 @@
 #include <thread>
 #include <vector>
 
-#include "mapper/correction_stage.hpp"
-#include "mapper/mapper.hpp"
+#include "mapper/core/correction_stage.hpp"
+#include "mapper/core/mapper.hpp"
 #include "synthetic_world.hpp"
 #include "temp_dir.hpp"
 

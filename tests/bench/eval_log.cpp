@@ -22,9 +22,9 @@
 #include "eval/map_overlay.hpp"
 #include "eval/relation_metric.hpp"
 #include "eval/replay.hpp"
-#include "mapper/map_files.hpp"
-#include "mapper/observation_store.hpp"
-#include "mapper/trajectory_export.hpp"
+#include "mapper/core/map_files.hpp"
+#include "mapper/core/observation_store.hpp"
+#include "mapper/core/trajectory_export.hpp"
 #include "simulator/robot_log/carmen_log.hpp"
 #include "viewer/core/png_file.hpp"
 

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "common/core/geometry.hpp"
-#include "mapper/mapper.hpp"
+#include "mapper/core/mapper.hpp"
 #include "protocol/codec_types.hpp"
 #include "simulator/robot_log/robot_log.hpp"
 

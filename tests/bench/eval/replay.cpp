@@ -10,9 +10,9 @@
 #include <map>
 #include <string>
 
-#include "mapper/correction_stage.hpp"
-#include "mapper/map_files.hpp"
-#include "mapper/observation_store.hpp"
+#include "mapper/core/correction_stage.hpp"
+#include "mapper/core/map_files.hpp"
+#include "mapper/core/observation_store.hpp"
 #include "temp_dir.hpp"
 
 namespace slam::bench {

@@ -8,8 +8,8 @@
 
 #include "common/core/result.hpp"
 #include "eval/run_recorder.hpp"
-#include "mapper/correction_stage.hpp"
-#include "mapper/mapper.hpp"
+#include "mapper/core/correction_stage.hpp"
+#include "mapper/core/mapper.hpp"
 #include "pose_correction/pose_corrector.hpp"
 #include "temp_dir.hpp"
 

@@ -1,7 +1,7 @@
 // CorrectionStage with a real Mapper on a temporary store (no DDS): observations wait for their
 // keyframe, then reach the grid and the store with its id; with SLAM off they pass straight through;
 // initial poses are checked before anything changes; a reopened store restores every correction.
-#include "mapper/correction_stage.hpp"
+#include "mapper/core/correction_stage.hpp"
 
 #include <gtest/gtest.h>
 

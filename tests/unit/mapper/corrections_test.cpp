@@ -1,12 +1,12 @@
 // Pose correction in the grid: the odometry -> map transform of an observation, the correction
 // lookup, and rebuilds that re-render the store with keyframe corrections.
-#include "mapper/corrections.hpp"
+#include "mapper/core/corrections.hpp"
 
 #include <gtest/gtest.h>
 
 #include <vector>
 
-#include "mapper/rebuild.hpp"
+#include "mapper/core/rebuild.hpp"
 #include "mapper_test_data.hpp"
 #include "temp_dir.hpp"
 

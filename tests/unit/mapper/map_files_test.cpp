@@ -1,5 +1,5 @@
 // Map files: export/import, how failures are sorted, and the start-up layout.
-#include "mapper/map_files.hpp"
+#include "mapper/core/map_files.hpp"
 
 #include <gtest/gtest.h>
 

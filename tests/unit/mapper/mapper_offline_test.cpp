@@ -1,12 +1,12 @@
 // The offline --export/--import/--export-trajectory commands.
-#include "mapper/mapper_offline.hpp"
+#include "mapper/core/mapper_offline.hpp"
 
 #include <gtest/gtest.h>
 
 #include <fstream>
 #include <sstream>
 
-#include "mapper/map_files.hpp"
+#include "mapper/core/map_files.hpp"
 #include "mapper_test_data.hpp"
 #include "temp_dir.hpp"
 

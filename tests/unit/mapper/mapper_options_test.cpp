@@ -1,5 +1,5 @@
 // MapperOptions: defaults, flags, and validation naming the bad key.
-#include "mapper/mapper_options.hpp"
+#include "mapper/core/mapper_options.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // Mapper without DDS: edit replies, rebuilds after a robot reset and a resolution change, a failed
 // import, observations that arrive while a rebuild runs (their robot stamps too), and trajectory requests.
-#include "mapper/mapper.hpp"
+#include "mapper/core/mapper.hpp"
 
 #include <gtest/gtest.h>
 
@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "mapper/map_files.hpp"
+#include "mapper/core/map_files.hpp"
 #include "mapper_test_data.hpp"
 #include "temp_dir.hpp"
 

@@ -4,8 +4,8 @@
 
 #include <vector>
 
-#include "mapper/observation_store.hpp"
-#include "mapper/occupancy_grid.hpp"
+#include "mapper/core/observation_store.hpp"
+#include "mapper/core/occupancy_grid.hpp"
 
 namespace slam::mapper::test_data {
 

@@ -1,6 +1,6 @@
 // The rebuild's reader → integrator hand-off: observations arrive whole and in order across
 // threads, and only the batches made at the start are ever used.
-#include "mapper/observation_batches.hpp"
+#include "mapper/core/observation_batches.hpp"
 
 #include <gtest/gtest.h>
 

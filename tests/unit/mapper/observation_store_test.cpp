@@ -1,6 +1,6 @@
 // ObservationStore: round trip in insertion order, batching, delete by robot, persistence of
 // obstructions, config and prior, and open errors for unwritable and corrupt files.
-#include "mapper/observation_store.hpp"
+#include "mapper/core/observation_store.hpp"
 
 #include <gtest/gtest.h>
 

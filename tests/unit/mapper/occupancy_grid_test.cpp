@@ -1,6 +1,6 @@
 // OccupancyGrid: ray updates, clamping and thresholds, one update per cell per observation,
 // inflation, obstructions, growth and its limit, legacy mode, bad input and dirty tracking.
-#include "mapper/occupancy_grid.hpp"
+#include "mapper/core/occupancy_grid.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
 // Bresenham traversal: shapes of axis-aligned, diagonal and steep rays, zero length, and clipping.
-#include "mapper/ray_trace.hpp"
+#include "mapper/core/ray_trace.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // Rebuild from the store: same config reproduces the live grid, a new resolution works, obstructions
 // and the prior survive, a reset robot's data disappears, and a bad config changes nothing.
-#include "mapper/rebuild.hpp"
+#include "mapper/core/rebuild.hpp"
 
 #include <gtest/gtest.h>
 

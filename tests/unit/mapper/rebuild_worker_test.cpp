@@ -1,11 +1,11 @@
 // RebuildWorker: rebuilds off the caller's thread and hands the grid back once.
-#include "mapper/rebuild_worker.hpp"
+#include "mapper/core/rebuild_worker.hpp"
 
 #include <gtest/gtest.h>
 
 #include <atomic>
 
-#include "mapper/map_files.hpp"
+#include "mapper/core/map_files.hpp"
 #include "mapper_test_data.hpp"
 #include "temp_dir.hpp"
 

@@ -1,6 +1,6 @@
 // RobotFootprints: hits on robots that were just reported nearby become misses; the robot's own
 // pose, stale poses and hits elsewhere are left alone.
-#include "mapper/robot_footprints.hpp"
+#include "mapper/core/robot_footprints.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "mapper/sole_mapper.hpp"
+#include "mapper/core/sole_mapper.hpp"
 
 #include <gtest/gtest.h>
 

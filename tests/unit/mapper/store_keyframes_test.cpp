@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "mapper/observation_store.hpp"
+#include "mapper/core/observation_store.hpp"
 #include "temp_dir.hpp"
 
 namespace slam::mapper {

@@ -1,7 +1,7 @@
 // A robot's trajectory from the store: each observation placed by its keyframe's stored correction
 // (or the robot's nearest earlier one), stamped by the robot's clock when it sent one, other robots
 // left out; the TUM and CARMEN lines; and the failures a trajectory request is answered with.
-#include "mapper/trajectory_export.hpp"
+#include "mapper/core/trajectory_export.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,0 +1,87 @@
+// Rebuild: replays the store into a new grid. Rows stream from SQLite into a few reused batches,
+// so the only memory that grows is the grid itself.
+#include "mapper/core/rebuild.hpp"
+
+#include <thread>
+#include <vector>
+
+#include "mapper/core/observation_batches.hpp"
+
+namespace slam::mapper {
+namespace {
+
+// Enough per batch that the hand-off costs nothing next to the ray casting; three batches let the
+// reader fill one while the integrator works through another.
+constexpr size_t kBatchObservations = 2048;
+constexpr size_t kBatchesInFlight = 3;
+
+}  // namespace
+
+Result<OccupancyGrid> rebuild_grid(const GridConfig& config, ObservationStore& store, RebuildStats* stats,
+                                   const KeyframeCorrections& corrections) {
+  RebuildStats local;
+  RebuildStats& st = stats ? *stats : local;
+  st = RebuildStats{};
+  auto grid = OccupancyGrid::create(config);
+  if (!grid) return grid.error();
+
+  auto prior = store.load_prior();
+  if (!prior) return prior.error();
+  if (prior->has_value()) {
+    auto cells = grid->apply_prior(**prior);
+    if (cells)
+      st.prior_cells = *cells;
+    else if (st.first_error.empty())
+      st.first_error = cells.message();
+  }
+
+  // SQLite reads, decodes and corrects on a second thread while this one ray-casts: together they
+  // take about as long as the ray casting alone (docs/performance.md, mapper rebuild).
+  ObservationBatches batches(kBatchesInFlight);
+  Status read = Status::ok();
+  std::thread reader([&] {
+    ObservationBatch* batch = batches.take_empty();
+    std::vector<Vec2> hits;
+    std::vector<Vec2> misses;
+    read = store.for_each([&](const ObservationRecord& rec) {
+      const Pose& correction = corrections.lookup(rec.keyframe_id);
+      if (is_identity(correction))
+        batch->add(rec.id, rec.obs);
+      else
+        batch->add(rec.id, to_map_frame(correction, rec.obs, hits, misses));
+      if (batch->entries.size() < kBatchObservations) return;
+      batches.push_full(batch);
+      batch = batches.take_empty();
+    });
+    if (!batch->entries.empty()) batches.push_full(batch);
+    batches.finish();
+  });
+  while (ObservationBatch* batch = batches.pop_full()) {
+    batch->for_each([&](int64_t id, const ObservationView& obs) {
+      auto r = grid->integrate(obs);
+      if (!r) {
+        ++st.rejected;
+        if (st.first_error.empty()) st.first_error = "observation " + std::to_string(id) + ": " + r.message();
+        return;
+      }
+      ++st.observations;
+      st.clipped += r->clipped;
+    });
+    batches.give_back(batch);
+  }
+  reader.join();
+  if (!read) return read.error();
+
+  auto obstructions = store.obstructions();
+  if (!obstructions) return obstructions.error();
+  for (const Vec2& p : *obstructions) {
+    if (Status s = grid->obstruct(p.x, p.y); !s) {
+      if (st.first_error.empty()) st.first_error = s.message();
+      continue;
+    }
+    ++st.obstructions;
+  }
+  return std::move(*grid);
+}
+
+}  // namespace slam::mapper

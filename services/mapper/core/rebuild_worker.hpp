@@ -1,0 +1,56 @@
+#pragma once
+// Rebuilds off the map loop: a layout change, a robot reset or a re-render with new keyframe
+// corrections replays the whole store, which may take seconds, while the loop keeps integrating and
+// publishing with the current grid. The worker reads through its own SQLite connection (WAL lets it read
+// while the loop's connection stays open) and the loop swaps the finished grid in. One rebuild at a time.
+#include <chrono>
+#include <filesystem>
+#include <functional>
+#include <mutex>
+#include <optional>
+#include <thread>
+
+#include "common/core/result.hpp"
+#include "mapper/core/corrections.hpp"
+#include "mapper/core/grid_config.hpp"
+#include "mapper/core/observation_store.hpp"
+#include "mapper/core/occupancy_grid.hpp"
+#include "mapper/core/rebuild.hpp"
+
+namespace slam::mapper {
+
+struct RebuildOutcome {
+  Result<OccupancyGrid> grid;
+  RebuildStats stats;
+  std::chrono::milliseconds took{0};
+};
+
+class RebuildWorker {
+ public:
+  // `on_done` runs on the worker thread when a result is ready (e.g. to wake the loop); keep it short.
+  explicit RebuildWorker(std::function<void()> on_done) : on_done_(std::move(on_done)) {}
+  ~RebuildWorker();  // waits for a running rebuild
+  RebuildWorker(const RebuildWorker&) = delete;
+  RebuildWorker& operator=(const RebuildWorker&) = delete;
+
+  // Starts rebuilding `config` from the store at `path`, each observation moved by its keyframe's
+  // correction (a re-render is a rebuild with the current config and new corrections). The caller
+  // must not append observations until the result is taken (the rebuild must see exactly what was
+  // committed when it started).
+  Status start(const GridConfig& config, const std::filesystem::path& path,
+               KeyframeCorrections corrections = {});
+  bool busy() const;
+  // The finished rebuild, once; nullopt while running or idle.
+  std::optional<RebuildOutcome> take();
+  // Blocks until a running rebuild finishes, then returns it (nullopt when idle).
+  std::optional<RebuildOutcome> wait();
+
+ private:
+  std::function<void()> on_done_;
+  mutable std::mutex mutex_;
+  bool running_ = false;
+  std::optional<RebuildOutcome> result_;
+  std::thread thread_;
+};
+
+}  // namespace slam::mapper
