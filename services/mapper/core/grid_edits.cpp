@@ -1,9 +1,11 @@
-// The grid's operator-facing side: manual obstructions, map priors and trinary export.
+// The grid's operator-facing side: manual obstructions, map priors and trinary export; and the tiles a
+// partial re-render drew.
 #include <algorithm>
 #include <cmath>
 #include <string>
 
 #include "mapper/core/occupancy_grid.hpp"
+#include "mapper/core/tile_canvas.hpp"
 
 namespace slam::mapper {
 
@@ -112,6 +114,10 @@ Result<int64_t> OccupancyGrid::apply_prior(const MapImage& image) {
     }
   }
   return set;
+}
+
+void OccupancyGrid::redraw(const TileCanvas& canvas) {
+  canvas.for_each_cell([this](int32_t x, int32_t y, int16_t log_odds) { set_value(index(x, y), log_odds); });
 }
 
 MapImage OccupancyGrid::to_map_image() const {

@@ -70,7 +70,9 @@ Mapper::Metrics::Metrics(Counters& c)
       request_errors(c.get("request_errors")),
       store_observations(c.get("store_observations")),
       store_errors(c.get("store_errors")),
-      robot_hits_filtered(c.get("robot_hits_filtered")) {}
+      robot_hits_filtered(c.get("robot_hits_filtered")),
+      rerenders_partial(c.get("rerenders_partial")),
+      rerender_observations(c.get("rerender_observations")) {}
 
 ObservationView Mapper::Deferred::view() const {
   return ObservationView{x, y, theta, has_heading, hits, misses};
@@ -108,15 +110,16 @@ Status Mapper::open() {
   if (!keyframes) return keyframes.error();
   for (const Keyframe& k : *keyframes) corrections_.set(k.id, k.map_from_odom);
   RebuildStats stats;
-  auto grid = rebuild_grid(*config, *store_, &stats, corrections_);
+  auto grid = rebuild_grid(*config, *store_, &stats, corrections_, &index_);
   if (!grid) return grid.error();
   grid_.emplace(std::move(*grid));
   const auto took = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   spdlog::info(
       "store {}: {} observations, {} keyframes, {} obstructions, {} prior cells rebuilt in {:.3f} s ({}x{} "
-      "cells of {} m)",
+      "cells of {} m; footprint index {} groups, {} kB)",
       options_.store, stats.observations, corrections_.size(), stats.obstructions, stats.prior_cells, took,
-      grid_->width(), grid_->height(), grid_->resolution());
+      grid_->width(), grid_->height(), grid_->resolution(), index_.groups().size(),
+      index_.memory_bytes() / 1024);
   if (stats.rejected > 0)
     spdlog::warn("store: {} observations rejected: {}", stats.rejected, stats.first_error);
   auto count = store_->count();
@@ -166,17 +169,20 @@ void Mapper::integrate(const RobotScan& scan, int64_t now_ns) {
                                  odom.has_heading, odom_hits_, odom_misses_});
     return;
   }
-  store_observation(scan.robot_id, scan.seq, scan.stamp_ns, scan.keyframe_id, odom, scan.robot_stamp_ns);
+  store_observation(scan.robot_id, scan.seq, scan.stamp_ns, scan.keyframe_id, odom, scan.robot_stamp_ns,
+                    scan.map_from_odom, box_of(view));
 }
 
 void Mapper::store_observation(std::string_view robot, uint64_t seq, int64_t stamp_ns, KeyframeId keyframe_id,
-                               const ObservationView& odom, int64_t robot_stamp_ns) {
+                               const ObservationView& odom, int64_t robot_stamp_ns, const Pose& drawn,
+                               const MapBox& box) {
   if (Status s = store_->append(robot, seq, stamp_ns, keyframe_id, odom, robot_stamp_ns); !s) {
     bump(metrics_.store_errors);
     log_.warn("store", "observation of robot '{}' not stored (the map has it until restart): {}", robot,
               s.message());
     return;
   }
+  index_.add(keyframe_id, store_->last_row(), drawn, box);
   bump(metrics_.store_observations);
 }
 
@@ -243,9 +249,7 @@ void Mapper::run_queued_commands() {
   }
   if (!worker_.busy() && rerender_waiting_) {
     rerender_waiting_ = false;
-    start_rebuild(RebuildTicket{
-        RebuildCause::Rerender, 0, grid_->config(),
-        "re-render with " + std::to_string(corrections_.size()) + " keyframe corrections", std::nullopt});
+    start_rerender(std::exchange(full_rerender_waiting_, false));
   }
 }
 
@@ -389,6 +393,7 @@ void Mapper::start_rebuild(RebuildTicket ticket) {
 }
 
 void Mapper::finish_rebuild(RebuildOutcome outcome) {
+  if (ticket_->cause == RebuildCause::PartialRerender) return finish_partial(std::move(outcome));
   RebuildTicket ticket = std::move(*ticket_);
   ticket_.reset();
   if (!outcome.grid) {
@@ -397,9 +402,7 @@ void Mapper::finish_rebuild(RebuildOutcome outcome) {
           ticket.previous_prior ? store_->save_prior(*ticket.previous_prior) : store_->clear_prior();
       if (!restored) spdlog::error("{}", restored.message());
     }
-    for (const Deferred& d : deferred_)
-      store_observation(d.robot_id, d.seq, d.stamp_ns, d.keyframe_id, d.view(), d.robot_stamp_ns);
-    deferred_.clear();
+    store_deferred_as_drawn();
     std::string message = "rebuild failed, the map is unchanged: " + outcome.grid.message();
     if (ticket.cause == RebuildCause::ResetRobot) message = ticket.done + "; " + message;
     if (ticket.cause == RebuildCause::Rerender)
@@ -409,6 +412,7 @@ void Mapper::finish_rebuild(RebuildOutcome outcome) {
     return;
   }
   OccupancyGrid& fresh = *outcome.grid;
+  index_ = std::move(outcome.index);  // the fresh grid's; the observations kept aside join it below
   for (const Deferred& d : deferred_) {
     const Pose& correction =
         corrections_.contains(d.keyframe_id) ? corrections_.lookup(d.keyframe_id) : d.map_from_odom;
@@ -421,7 +425,8 @@ void Mapper::finish_rebuild(RebuildOutcome outcome) {
                 d.robot_id, d.seq, r.message());
       continue;
     }
-    store_observation(d.robot_id, d.seq, d.stamp_ns, d.keyframe_id, odom, d.robot_stamp_ns);
+    store_observation(d.robot_id, d.seq, d.stamp_ns, d.keyframe_id, odom, d.robot_stamp_ns, correction,
+                      box_of(view));
   }
   deferred_.clear();
   if (ticket.cause == RebuildCause::Layout) {
@@ -435,6 +440,8 @@ void Mapper::finish_rebuild(RebuildOutcome outcome) {
   seen_layout_ = grid_->layout_version();
   if (!same) ++layout_id_;
   bump(metrics_.rebuilds);
+  if (ticket.cause == RebuildCause::Rerender)
+    bump(metrics_.rerender_observations, outcome.stats.observations);
   swapped_ = true;
 
   const RebuildStats& st = outcome.stats;

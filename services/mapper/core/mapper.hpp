@@ -5,10 +5,13 @@
 // The DDS edge (MapperNode) feeds it plain requests and observations and sends what it returns.
 //
 // Rebuilds (layout change, robot reset, import, re-render after new corrections) run on a worker with its own
-// store connection. While one runs, observations are integrated into the current grid and kept aside (not yet
-// stored, so the rebuild sees exactly what was committed when it started); when the new grid is ready they
-// are integrated into it and stored, and it is swapped in. Requests arriving meanwhile wait and run
-// afterwards, in order. Not thread-safe: one loop thread calls everything.
+// store connection. A re-render redraws only the tiles of the keyframes that moved (partial_rerender.hpp,
+// mapper_rerender.cpp), found through the FootprintIndex the mapper keeps of every stored observation;
+// when that cannot be exact or would cost more, it rebuilds the whole grid. While one runs, observations are
+// integrated into the current grid and kept aside (not yet stored, so the rebuild sees exactly what was
+// committed when it started); when the new grid is ready they are integrated into it and stored, and it is
+// swapped in. Requests arriving meanwhile wait and run afterwards, in order. Not thread-safe: one loop thread
+// calls everything.
 #include <cstdint>
 #include <deque>
 #include <functional>
@@ -24,6 +27,7 @@
 #include "common/core/log.hpp"
 #include "common/core/result.hpp"
 #include "mapper/core/corrections.hpp"
+#include "mapper/core/footprint_index.hpp"
 #include "mapper/core/mapper_options.hpp"
 #include "mapper/core/observation_store.hpp"
 #include "mapper/core/occupancy_grid.hpp"
@@ -149,6 +153,8 @@ class Mapper {
   // swap publishes a snapshot.
   void rerender();
   const KeyframeCorrections& corrections() const { return corrections_; }
+  // Where every stored observation is drawn, per keyframe (what a re-render plans with).
+  const FootprintIndex& footprints() const { return index_; }
   // Every stored keyframe (to restore the pose graph at start-up).
   Result<std::vector<Keyframe>> load_keyframes() { return store_->keyframes(); }
 
@@ -195,6 +201,8 @@ class Mapper {
     std::atomic<int64_t>& store_observations;
     std::atomic<int64_t>& store_errors;
     std::atomic<int64_t>& robot_hits_filtered;
+    std::atomic<int64_t>& rerenders_partial;      // re-renders that redrew only what moved
+    std::atomic<int64_t>& rerender_observations;  // observations replayed by re-renders (partial or full)
   };
 
   // An observation integrated while a rebuild runs, kept (raw) for the new grid and the store.
@@ -212,7 +220,7 @@ class Mapper {
     ObservationView view() const;
   };
 
-  enum class RebuildCause { Layout, ResetRobot, Import, Rerender };
+  enum class RebuildCause { Layout, ResetRobot, Import, Rerender, PartialRerender };
   // Who waits for the running rebuild, and what to do when it lands.
   struct RebuildTicket {
     RebuildCause cause = RebuildCause::Layout;
@@ -226,14 +234,22 @@ class Mapper {
          std::function<void()> on_rebuild_done);
   Status open();
 
+  // Stores it raw and records in the index where it is drawn (`drawn`: its correction, `box`: map frame).
   void store_observation(std::string_view robot, uint64_t seq, int64_t stamp_ns, KeyframeId keyframe_id,
-                         const ObservationView& odom, int64_t robot_stamp_ns);
+                         const ObservationView& odom, int64_t robot_stamp_ns, const Pose& drawn,
+                         const MapBox& box);
+  // Stores the observations kept aside during a rebuild that did not replace the grid: they are drawn
+  // where the live grid drew them.
+  void store_deferred_as_drawn();
   void handle(const MapCommand& command);
   void handle_layout(const LayoutRequest& request);
   void handle_edit(const EditRequest& edit);
   void handle_file(const FileRequest& request);
   void start_rebuild(RebuildTicket ticket);
   void finish_rebuild(RebuildOutcome outcome);
+  // mapper_rerender.cpp: a partial re-render when the plan allows one (`full`: a full one regardless).
+  void start_rerender(bool full);
+  void finish_partial(RebuildOutcome outcome);
   void run_queued_commands();
   void reply(uint64_t request_id, RequestResult result, const std::string& message);
 
@@ -248,8 +264,10 @@ class Mapper {
   uint64_t version_ = 0;      // last published change set (patch, or grid-replacing snapshot)
   bool swapped_ = false;      // a rebuild replaced the grid; not yet published
   KeyframeCorrections corrections_;
-  bool rerender_waiting_ = false;  // a re-render requested while a rebuild ran
-  std::vector<Vec2> odom_hits_;    // the observation being integrated, odometry frame
+  FootprintIndex index_;
+  bool rerender_waiting_ = false;       // a re-render requested while a rebuild ran
+  bool full_rerender_waiting_ = false;  // ... and it must be a full one (a partial one could not be exact)
+  std::vector<Vec2> odom_hits_;         // the observation being integrated, odometry frame
   std::vector<Vec2> odom_misses_;
   std::vector<Vec2> hits_;  // the same, map frame
   std::vector<Vec2> misses_;

@@ -48,6 +48,12 @@ void add_mapper_options(CLI::App& app, MapperOptions& o) {
                  "a robot position older than this no longer filters hits")
       ->capture_default_str();
 
+  app.add_option("--rerender-min-shift-cells", o.rerender.min_shift_cells,
+                 "a keyframe whose points moved less than this many cells is not redrawn")
+      ->capture_default_str();
+  app.add_option("--rerender-max-tile-fraction", o.rerender.max_tile_fraction,
+                 "a re-render redrawing more than this share of the tiles rebuilds the whole grid")
+      ->capture_default_str();
   app.add_option("--patch-rate", o.patch_rate_hz, "GridPatch rate (Hz)")->capture_default_str();
   app.add_option("--snapshot-period", o.snapshot_period_s, "full GridSnapshot at least every S seconds")
       ->capture_default_str();
@@ -99,6 +105,7 @@ Status validate(const MapperOptions& o) {
   if (o.store_batch < 1 || o.store_batch > 100000) return Error{"store_batch: must be between 1 and 100000"};
   if (auto s = validate(o.grid); !s) return Error{"grid." + s.message()};
   if (auto s = validate(o.robot_filter); !s) return s;
+  if (auto s = validate(o.rerender); !s) return s;
   if (!std::isfinite(o.patch_rate_hz) || o.patch_rate_hz < 0.1 || o.patch_rate_hz > 1000.0)
     return Error{"patch_rate: must be between 0.1 and 1000 Hz"};
   if (!std::isfinite(o.snapshot_period_s) || o.snapshot_period_s < 0.1 || o.snapshot_period_s > 3600.0)

@@ -9,6 +9,7 @@
 #include "common/core/result.hpp"
 #include "common/core/service_options.hpp"
 #include "mapper/core/grid_config.hpp"
+#include "mapper/core/rerender_options.hpp"
 #include "mapper/core/robot_footprints.hpp"
 
 namespace slam::mapper {
@@ -22,6 +23,7 @@ struct MapperOptions {
   // (resolution, origin, size, inflation, legacy mode) wins over these flags at start.
   GridConfig grid;
   FootprintConfig robot_filter;             // hits on other robots become misses
+  RerenderOptions rerender;                 // what a re-render after moved keyframes redraws
   double patch_rate_hz = 10.0;              // GridPatch rate (the changed box since the last patch)
   double snapshot_period_s = 5.0;           // a full GridSnapshot at least this often
   size_t max_queued_observations = 100000;  // intake bound: beyond it observations are dropped, counted

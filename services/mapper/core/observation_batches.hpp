@@ -17,7 +17,8 @@ namespace slam::mapper {
 // Observations back to back: entry i's hits, then its misses, follow entry i-1's in `points`.
 struct ObservationBatch {
   struct Entry {
-    int64_t id = 0;  // the store's row id, for error messages
+    int64_t id = 0;         // the store's row id
+    uint64_t keyframe = 0;  // its keyframe (0: none)
     double x = 0.0, y = 0.0, theta = 0.0;
     bool has_heading = false;
     uint32_t hits = 0;
@@ -31,17 +32,22 @@ struct ObservationBatch {
     points.clear();
   }
   // Copies `obs` in (the spans it points at may be reused by the caller).
-  void add(int64_t id, const ObservationView& obs);
-  // Calls visit(id, view) for each entry in order; the views point into this batch.
+  void add(int64_t id, const ObservationView& obs, uint64_t keyframe = 0);
+  // Calls visit(entry, view) for each entry in order; the views point into this batch.
   template <class Visit>
-  void for_each(Visit&& visit) const {
+  void for_each_entry(Visit&& visit) const {
     size_t at = 0;
     for (const Entry& e : entries) {
       const std::span<const Vec2> hits(points.data() + at, e.hits);
       const std::span<const Vec2> misses(points.data() + at + e.hits, e.misses);
       at += size_t{e.hits} + e.misses;
-      visit(e.id, ObservationView{e.x, e.y, e.theta, e.has_heading, hits, misses});
+      visit(e, ObservationView{e.x, e.y, e.theta, e.has_heading, hits, misses});
     }
+  }
+  // Calls visit(id, view) for each entry in order.
+  template <class Visit>
+  void for_each(Visit&& visit) const {
+    for_each_entry([&](const Entry& e, const ObservationView& v) { visit(e.id, v); });
   }
 };
 

@@ -16,8 +16,9 @@ static_assert(sizeof(Vec2) == 2 * sizeof(double), "Vec2 must be two packed doubl
 namespace {
 
 // 1: observations without keyframe ids. 2: observations.keyframe, the keyframes table.
-// 3: observations.robot_stamp_ns (the robot's own clock).
-constexpr int kSchemaVersion = 3;
+// 3: observations.robot_stamp_ns (the robot's own clock). 4: an index of observations by keyframe (a
+// partial re-render reads the rows of the keyframes it redraws).
+constexpr int kSchemaVersion = 4;
 
 constexpr const char* kSchema = R"sql(
 CREATE TABLE IF NOT EXISTS observations(
@@ -40,6 +41,10 @@ CREATE TABLE IF NOT EXISTS prior(
   width INTEGER NOT NULL, height INTEGER NOT NULL, resolution REAL NOT NULL,
   origin_x REAL NOT NULL, origin_y REAL NOT NULL, origin_yaw REAL NOT NULL, cells BLOB NOT NULL);
 )sql";
+
+// After the columns older stores gain: (keyframe, rowid) entries, so one keyframe's rows are a range.
+constexpr const char* kIndexes =
+    "CREATE INDEX IF NOT EXISTS observations_keyframe ON observations(keyframe);";
 
 // The columns visit_rows() reads, in its order; hits and misses follow as columns 10 and 11.
 constexpr std::string_view kRowColumns =
@@ -140,6 +145,7 @@ Result<ObservationStore> ObservationStore::open(const std::filesystem::path& pat
       schema = store.exec("ALTER TABLE observations ADD COLUMN keyframe INTEGER NOT NULL DEFAULT 0");
     if (schema && (found == 1 || found == 2))
       schema = store.exec("ALTER TABLE observations ADD COLUMN robot_stamp_ns INTEGER NOT NULL DEFAULT 0");
+    if (schema) schema = store.exec(kIndexes);
     if (schema) schema = store.exec(("PRAGMA user_version=" + std::to_string(kSchemaVersion)).c_str());
     if (schema) schema = store.exec("COMMIT");
     if (!schema) {
@@ -255,6 +261,49 @@ Status ObservationStore::for_each(const std::function<void(const ObservationReco
   auto q = prepare(sql.c_str());
   if (!q) return q.status();
   return visit_rows(q->get(), true, visit);
+}
+
+Status ObservationStore::rows_of(KeyframeId keyframe, int64_t first_row, int64_t last_row,
+                                 const std::function<void(int64_t)>& visit) {
+  if (!rows_of_) {
+    auto q = prepare("SELECT id FROM observations WHERE keyframe = ? AND id BETWEEN ? AND ? ORDER BY id");
+    if (!q) return q.status();
+    rows_of_ = std::move(*q);
+  }
+  sqlite3_stmt* st = rows_of_.get();
+  sqlite3_reset(st);
+  sqlite3_bind_int64(st, 1, static_cast<sqlite3_int64>(keyframe));
+  sqlite3_bind_int64(st, 2, first_row);
+  sqlite3_bind_int64(st, 3, last_row);
+  int rc = SQLITE_ROW;
+  while ((rc = sqlite3_step(st)) == SQLITE_ROW) visit(sqlite3_column_int64(st, 0));
+  sqlite3_reset(st);
+  if (rc != SQLITE_DONE) return db_error("reading the rows of keyframe " + std::to_string(keyframe));
+  return Status::ok();
+}
+
+Status ObservationStore::for_each_row(std::span<const int64_t> rows,
+                                      const std::function<void(const ObservationRecord&)>& visit) {
+  if (!row_) {
+    const std::string sql =
+        "SELECT " + std::string(kRowColumns) + ", hits, misses FROM observations WHERE id = ?";
+    auto q = prepare(sql.c_str());
+    if (!q) return q.status();
+    row_ = std::move(*q);
+  }
+  sqlite3_stmt* st = row_.get();
+  for (const int64_t row : rows) {
+    sqlite3_reset(st);
+    sqlite3_bind_int64(st, 1, row);
+    const Status s = visit_rows(st, true, visit);
+    sqlite3_reset(st);
+    SLAM_TRY(s);
+  }
+  return Status::ok();
+}
+
+int64_t ObservationStore::last_row() const {
+  return static_cast<int64_t>(sqlite3_last_insert_rowid(db_.get()));
 }
 
 Status ObservationStore::for_each_pose(std::string_view robot_id,

@@ -46,7 +46,8 @@ struct ObservationRecord {
 class ObservationStore {
  public:
   // Opens or creates the database; a store written by schema 1 gains the keyframe column (0 for its
-  // rows) and the keyframes table, one written by schema 1 or 2 the robot_stamp_ns column (0). Errors
+  // rows) and the keyframes table, one written by schema 1 or 2 the robot_stamp_ns column (0), one
+  // written by schema 1 to 3 the index by keyframe (built once, at the first open). Errors
   // name the path: cannot open, not a database (corrupt), written by a newer schema.
   static Result<ObservationStore> open(const std::filesystem::path& path, StoreOptions options = {});
 
@@ -64,8 +65,18 @@ class ObservationStore {
   Status save_keyframes(std::span<const Keyframe> keyframes);
   Status flush();  // commits the open batch, if any
 
+  // The row id of the last append (valid right after a successful append()).
+  int64_t last_row() const;
+
   // Every observation in insertion order (pending appends included).
   Status for_each(const std::function<void(const ObservationRecord&)>& visit);
+  // The row ids of `keyframe`'s observations within [first_row, last_row], ascending (an index
+  // range: cheap whatever the store's size).
+  Status rows_of(KeyframeId keyframe, int64_t first_row, int64_t last_row,
+                 const std::function<void(int64_t)>& visit);
+  // The observations of `rows` (ascending ids), in that order; ids that do not exist are skipped.
+  Status for_each_row(std::span<const int64_t> rows,
+                      const std::function<void(const ObservationRecord&)>& visit);
   // One robot's observations in insertion order, without their points (obs.hits and obs.misses
   // empty): its poses, cheaply.
   Status for_each_pose(std::string_view robot_id, const std::function<void(const ObservationRecord&)>& visit);
@@ -113,6 +124,8 @@ class ObservationStore {
   Db db_;
   Stmt insert_;
   Stmt upsert_keyframe_;
+  Stmt rows_of_;  // prepared on first use
+  Stmt row_;
   bool in_batch_ = false;
   int pending_ = 0;
   std::vector<Vec2> hits_buf_;

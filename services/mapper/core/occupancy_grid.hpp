@@ -18,6 +18,8 @@
 
 namespace slam::mapper {
 
+class TileCanvas;
+
 // One robot message as the grid needs it (the store and the DDS edge both produce this view).
 struct ObservationView {
   double x = 0.0;  // sensor origin, map frame
@@ -58,6 +60,9 @@ class OccupancyGrid {
   // A prior: known pixels of the image overwrite the cells they cover (occupied -> prior_occupied,
   // free -> prior_free); the grid grows to hold it. Returns the number of cells set.
   Result<int64_t> apply_prior(const MapImage& image);
+  // A partial re-render lands: the canvas's tiles (drawn in this layout) take its log-odds; classes,
+  // inflation and dirty tiles follow cell by cell. Obstructions stay.
+  void redraw(const TileCanvas& canvas);
   // Trinary export (obstructed cells count as occupied; inflation is not exported).
   MapImage to_map_image() const;
 

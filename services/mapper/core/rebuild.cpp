@@ -18,12 +18,13 @@ constexpr size_t kBatchesInFlight = 3;
 }  // namespace
 
 Result<OccupancyGrid> rebuild_grid(const GridConfig& config, ObservationStore& store, RebuildStats* stats,
-                                   const KeyframeCorrections& corrections) {
+                                   const KeyframeCorrections& corrections, FootprintIndex* index) {
   RebuildStats local;
   RebuildStats& st = stats ? *stats : local;
   st = RebuildStats{};
   auto grid = OccupancyGrid::create(config);
   if (!grid) return grid.error();
+  if (index) index->clear();
 
   auto prior = store.load_prior();
   if (!prior) return prior.error();
@@ -46,9 +47,9 @@ Result<OccupancyGrid> rebuild_grid(const GridConfig& config, ObservationStore& s
     read = store.for_each([&](const ObservationRecord& rec) {
       const Pose& correction = corrections.lookup(rec.keyframe_id);
       if (is_identity(correction))
-        batch->add(rec.id, rec.obs);
+        batch->add(rec.id, rec.obs, rec.keyframe_id);
       else
-        batch->add(rec.id, to_map_frame(correction, rec.obs, hits, misses));
+        batch->add(rec.id, to_map_frame(correction, rec.obs, hits, misses), rec.keyframe_id);
       if (batch->entries.size() < kBatchObservations) return;
       batches.push_full(batch);
       batch = batches.take_empty();
@@ -57,15 +58,17 @@ Result<OccupancyGrid> rebuild_grid(const GridConfig& config, ObservationStore& s
     batches.finish();
   });
   while (ObservationBatch* batch = batches.pop_full()) {
-    batch->for_each([&](int64_t id, const ObservationView& obs) {
+    batch->for_each_entry([&](const ObservationBatch::Entry& e, const ObservationView& obs) {
       auto r = grid->integrate(obs);
       if (!r) {
         ++st.rejected;
-        if (st.first_error.empty()) st.first_error = "observation " + std::to_string(id) + ": " + r.message();
+        if (st.first_error.empty())
+          st.first_error = "observation " + std::to_string(e.id) + ": " + r.message();
         return;
       }
       ++st.observations;
       st.clipped += r->clipped;
+      if (index) index->add(e.keyframe, e.id, corrections.lookup(e.keyframe), box_of(obs));
     });
     batches.give_back(batch);
   }

@@ -7,6 +7,7 @@
 
 #include "common/core/result.hpp"
 #include "mapper/core/corrections.hpp"
+#include "mapper/core/footprint_index.hpp"
 #include "mapper/core/grid_config.hpp"
 #include "mapper/core/observation_store.hpp"
 #include "mapper/core/occupancy_grid.hpp"
@@ -24,10 +25,11 @@ struct RebuildStats {
 
 // A fresh grid with `config`: the stored prior, then every observation in insertion order moved into
 // the map frame by its keyframe's correction (identity for keyframe 0 or ids `corrections` does not
-// hold), then the manual obstructions. Errors: invalid config, or the store cannot be read; the
-// caller keeps its current grid in that case.
+// hold), then the manual obstructions. `index`, when given, is cleared and records where every
+// integrated observation was drawn (a partial re-render starts from it). Errors: invalid config, or
+// the store cannot be read; the caller keeps its current grid in that case.
 Result<OccupancyGrid> rebuild_grid(const GridConfig& config, ObservationStore& store,
-                                   RebuildStats* stats = nullptr,
-                                   const KeyframeCorrections& corrections = {});
+                                   RebuildStats* stats = nullptr, const KeyframeCorrections& corrections = {},
+                                   FootprintIndex* index = nullptr);
 
 }  // namespace slam::mapper

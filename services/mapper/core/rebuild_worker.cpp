@@ -12,11 +12,23 @@ RebuildOutcome run(const GridConfig& config, const std::filesystem::path& path,
   const auto start = std::chrono::steady_clock::now();
   RebuildStats stats;
   auto store = ObservationStore::open(path);
-  Result<OccupancyGrid> grid = store ? rebuild_grid(config, *store, &stats, corrections)
+  FootprintIndex index;
+  Result<OccupancyGrid> grid = store ? rebuild_grid(config, *store, &stats, corrections, &index)
                                      : Result<OccupancyGrid>(Error{store.message()});
   const auto took =
       std::chrono::duration_cast<std::chrono::milliseconds>(std::chrono::steady_clock::now() - start);
-  return RebuildOutcome{std::move(grid), std::move(stats), took};
+  return RebuildOutcome{std::move(grid), std::move(stats), took, std::move(index), std::nullopt};
+}
+
+RebuildOutcome run_partial(RerenderPlan plan, const std::filesystem::path& path) {
+  const auto start = std::chrono::steady_clock::now();
+  auto store = ObservationStore::open(path);
+  RebuildOutcome outcome;
+  outcome.partial =
+      store ? render_tiles(std::move(plan), *store) : Result<TileRender>(Error{store.message()});
+  outcome.took =
+      std::chrono::duration_cast<std::chrono::milliseconds>(std::chrono::steady_clock::now() - start);
+  return outcome;
 }
 
 }  // namespace
@@ -27,17 +39,27 @@ RebuildWorker::~RebuildWorker() {
 
 Status RebuildWorker::start(const GridConfig& config, const std::filesystem::path& path,
                             KeyframeCorrections corrections) {
+  return launch(
+      [config, path, corrections = std::move(corrections)] { return run(config, path, corrections); });
+}
+
+Status RebuildWorker::start_partial(RerenderPlan plan, const std::filesystem::path& path) {
+  return launch([plan = std::move(plan), path]() mutable { return run_partial(std::move(plan), path); });
+}
+
+Status RebuildWorker::launch(std::function<RebuildOutcome()> job) {
   std::lock_guard lock(mutex_);
   if (running_ || result_) return Error{"a rebuild is already running"};
   if (thread_.joinable()) thread_.join();  // the previous one has finished (its result was taken)
   running_ = true;
   try {
-    thread_ = std::thread([this, config, path, corrections = std::move(corrections)] {
+    thread_ = std::thread([this, job = std::move(job)] {
       std::optional<RebuildOutcome> outcome;
       try {
-        outcome.emplace(run(config, path, corrections));
+        outcome.emplace(job());
       } catch (const std::exception& e) {  // allocation failure on a huge layout, mostly
-        outcome.emplace(RebuildOutcome{Error{std::string("rebuild failed: ") + e.what()}, {}, {}});
+        outcome.emplace();
+        outcome->grid = Error{std::string("rebuild failed: ") + e.what()};
       }
       {
         std::lock_guard done(mutex_);

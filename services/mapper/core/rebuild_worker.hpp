@@ -1,8 +1,9 @@
 #pragma once
-// Rebuilds off the map loop: a layout change, a robot reset or a re-render with new keyframe
+// Rebuilds off the map loop: a layout change, a robot reset or a full re-render with new keyframe
 // corrections replays the whole store, which may take seconds, while the loop keeps integrating and
-// publishing with the current grid. The worker reads through its own SQLite connection (WAL lets it read
-// while the loop's connection stays open) and the loop swaps the finished grid in. One rebuild at a time.
+// publishing with the current grid; a partial re-render draws a few tiles (partial_rerender.hpp). The worker
+// reads through its own SQLite connection (WAL lets it read while the loop's connection stays open) and the
+// loop swaps the finished grid in. One rebuild at a time.
 #include <chrono>
 #include <filesystem>
 #include <functional>
@@ -15,14 +16,17 @@
 #include "mapper/core/grid_config.hpp"
 #include "mapper/core/observation_store.hpp"
 #include "mapper/core/occupancy_grid.hpp"
+#include "mapper/core/partial_rerender.hpp"
 #include "mapper/core/rebuild.hpp"
 
 namespace slam::mapper {
 
 struct RebuildOutcome {
-  Result<OccupancyGrid> grid;
+  Result<OccupancyGrid> grid = Error{"a partial re-render draws tiles, not a grid"};
   RebuildStats stats;
   std::chrono::milliseconds took{0};
+  FootprintIndex index;                       // a full rebuild's: where it drew each observation
+  std::optional<Result<TileRender>> partial;  // set by start_partial (then `grid` is not used)
 };
 
 class RebuildWorker {
@@ -39,6 +43,9 @@ class RebuildWorker {
   // committed when it started).
   Status start(const GridConfig& config, const std::filesystem::path& path,
                KeyframeCorrections corrections = {});
+  // Starts drawing a partial re-render's tiles from the store at `path` (same rule: nothing appended
+  // until the result is taken).
+  Status start_partial(RerenderPlan plan, const std::filesystem::path& path);
   bool busy() const;
   // The finished rebuild, once; nullopt while running or idle.
   std::optional<RebuildOutcome> take();
@@ -46,6 +53,8 @@ class RebuildWorker {
   std::optional<RebuildOutcome> wait();
 
  private:
+  Status launch(std::function<RebuildOutcome()> job);
+
   std::function<void()> on_done_;
   mutable std::mutex mutex_;
   bool running_ = false;

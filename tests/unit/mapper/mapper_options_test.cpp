@@ -25,9 +25,12 @@ Status parse(MapperOptions& o, std::vector<std::string> args) {
 TEST(MapperOptions, DefaultsAreValidAndFlagsBind) {
   MapperOptions o;
   EXPECT_TRUE(validate(o));
-  ASSERT_TRUE(parse(o, {"--store", "/tmp/x.db", "--grid-resolution", "0.1", "--patch-rate", "5",
-                        "--snapshot-period", "2", "--grid-legacy-mode"}));
+  ASSERT_TRUE(parse(
+      o, {"--store", "/tmp/x.db", "--grid-resolution", "0.1", "--patch-rate", "5", "--snapshot-period", "2",
+          "--grid-legacy-mode", "--rerender-min-shift-cells", "0.5", "--rerender-max-tile-fraction", "0.3"}));
   EXPECT_EQ(o.store, "/tmp/x.db");
+  EXPECT_DOUBLE_EQ(o.rerender.min_shift_cells, 0.5);
+  EXPECT_DOUBLE_EQ(o.rerender.max_tile_fraction, 0.3);
   EXPECT_DOUBLE_EQ(o.grid.resolution, 0.1);
   EXPECT_DOUBLE_EQ(o.patch_rate_hz, 5.0);
   EXPECT_TRUE(o.grid.legacy_mode);
@@ -46,6 +49,9 @@ TEST(MapperOptions, ValidationNamesTheBadKey) {
   EXPECT_NE(error([](MapperOptions& o) { o.snapshot_period_s = 1e9; }).find("snapshot_period"),
             std::string::npos);
   EXPECT_NE(error([](MapperOptions& o) { o.store.clear(); }).find("store"), std::string::npos);
+  EXPECT_NE(
+      error([](MapperOptions& o) { o.rerender.max_tile_fraction = 2; }).find("rerender.max_tile_fraction"),
+      std::string::npos);
   MapperOptions both;
   EXPECT_FALSE(parse(both, {"--export", "a.yaml", "--import", "b.yaml"}))
       << "--export and --import exclude each other";

@@ -274,7 +274,11 @@ TEST_F(MapperCore, ReRenderAppliesTheKeyframeCorrectionsAndARestartKeepsThem) {
     mapper->wait_for_rebuild();
     EXPECT_FALSE(mapper->rebuilding());
     EXPECT_TRUE(mapper->take_replies().empty());  // nobody asked: no reply
-    EXPECT_TRUE(mapper->take_swapped());
+    // Redrawn in place (a partial re-render): the changed tiles go out in the next patch.
+    EXPECT_FALSE(mapper->take_swapped());
+    EXPECT_TRUE(mapper->grid().dirty_tiles().any());
+    EXPECT_EQ(counters_.get("rerenders_partial").load(), 1);
+    EXPECT_EQ(counters_.get("rerender_observations").load(), 6);
     EXPECT_TRUE(test_data::same_grid(mapper->grid(), *expected));
   }
   auto restarted = make();

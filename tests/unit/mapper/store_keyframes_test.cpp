@@ -1,6 +1,6 @@
 // ObservationStore's pose-correction support: keyframe ids on observations, the keyframes table
-// (upsert in the append batch, load all, deleted with their robot) and the migration of a store
-// written by schema 1.
+// (upsert in the append batch, load all, deleted with their robot), the rows of one keyframe (what a
+// partial re-render reads) and the migration of a store written by schema 1.
 #include <gtest/gtest.h>
 #include <sqlite3.h>
 
@@ -76,6 +76,9 @@ TEST(StoreKeyframes, ASchema1StoreOpensWithKeyframeZeroAndTakesKeyframes) {
   }
   auto reopened = ObservationStore::open(path);  // now at the current schema: no second migration
   ASSERT_TRUE(reopened.is_ok()) << reopened.message();
+  std::vector<int64_t> rows;
+  ASSERT_TRUE(reopened->rows_of(3, 0, 100, [&](int64_t row) { rows.push_back(row); }));
+  EXPECT_EQ(rows, (std::vector<int64_t>{2}));
   EXPECT_EQ(keyframe_ids_of_observations(*reopened), (std::vector<KeyframeId>{0, 3}));
   auto keyframes = reopened->keyframes();
   ASSERT_TRUE(keyframes.is_ok());
@@ -124,6 +127,45 @@ TEST(StoreKeyframes, ResettingARobotDeletesItsKeyframes) {
   ASSERT_TRUE(deleted.is_ok());
   EXPECT_EQ(*deleted, 1);
   EXPECT_EQ(*store->keyframes(), (std::vector<Keyframe>{keyframe(2, "b", 0.2)}));
+}
+
+TEST(StoreKeyframes, TheRowsOfAKeyframeComeByIndexAndReadBackInOrder) {
+  testkit::TempDir dir("mapper");
+  const auto path = dir.path() / "m.db";
+  auto store = ObservationStore::open(path);
+  ASSERT_TRUE(store.is_ok());
+  std::vector<int64_t> appended;
+  for (uint64_t i = 0; i < 9; ++i) {
+    ASSERT_TRUE(
+        store->append("r", i, 0, 1 + i % 3, ObservationView{static_cast<double>(i), 0, 0, false, {}, {}}));
+    appended.push_back(store->last_row());
+  }
+  EXPECT_EQ(appended, (std::vector<int64_t>{1, 2, 3, 4, 5, 6, 7, 8, 9}));
+  std::vector<int64_t> rows;
+  ASSERT_TRUE(store->rows_of(2, 0, 100, [&](int64_t row) { rows.push_back(row); }));
+  EXPECT_EQ(rows, (std::vector<int64_t>{2, 5, 8}));
+  rows.clear();
+  ASSERT_TRUE(store->rows_of(2, 3, 7, [&](int64_t row) { rows.push_back(row); }));
+  EXPECT_EQ(rows, (std::vector<int64_t>{5}));
+  std::vector<double> xs;
+  const std::vector<int64_t> wanted{2, 5, 42, 8};  // 42 does not exist
+  ASSERT_TRUE(store->for_each_row(wanted, [&](const ObservationRecord& r) { xs.push_back(r.obs.x); }));
+  EXPECT_EQ(xs, (std::vector<double>{1, 4, 7}));
+  ASSERT_TRUE(store->flush());
+  sqlite3* db = nullptr;  // the plan SQLite picks: the keyframe index, not a scan of the table
+  ASSERT_EQ(sqlite3_open(path.c_str(), &db), SQLITE_OK);
+  sqlite3_stmt* st = nullptr;
+  ASSERT_EQ(
+      sqlite3_prepare_v2(db,
+                         "EXPLAIN QUERY PLAN SELECT id FROM observations WHERE keyframe = 2 AND id BETWEEN "
+                         "0 AND 100 ORDER BY id",
+                         -1, &st, nullptr),
+      SQLITE_OK);
+  std::string plan;
+  while (sqlite3_step(st) == SQLITE_ROW) plan += reinterpret_cast<const char*>(sqlite3_column_text(st, 3));
+  sqlite3_finalize(st);
+  sqlite3_close(db);
+  EXPECT_NE(plan.find("observations_keyframe"), std::string::npos) << plan;
 }
 
 }  // namespace
