@@ -1,4 +1,4 @@
-// FleetCoordinator: the traffic rules (traffic_rules.cpp) applied to the fleet's waypoint commands.
+// FleetCoordinator: the traffic rules (traffic_rules.hpp) applied to the fleet's waypoint commands.
 #include "planner/core/fleet_coordinator.hpp"
 
 #include <algorithm>

@@ -1,6 +1,5 @@
 #pragma once
-// Polyline and wall distances shared by the traffic rules (traffic_rules.cpp, way_clearing.cpp,
-// fleet_coordinator.cpp).
+// Polyline and wall distances shared by the traffic rules' passes and fleet_coordinator.cpp.
 #include <algorithm>
 #include <cmath>
 #include <limits>

@@ -1,12 +1,20 @@
-// The leader rule of the traffic rules (TrafficRules::clear_way, declared in fleet_coordinator.hpp):
-// the way of the robot waiting longest is reserved for it and the robots on it are
-// pushed into side room off it. The local rules (traffic_rules.cpp) decide first; this overrides
-// the decisions of the leader, of the robots on its way and of those about to enter it.
+// Pass 5 of the traffic rules (traffic_rules.hpp), the leader rule (`clear_way`, on by default; not
+// combined with one-way sections). The local passes step robots aside within yield_search_m; on a
+// tree-like map (one way between two places, corridors one robot wide) a jam has no room near it.
+// So the robot waiting longest, once clear_after_s, leads: its way ahead (clear_horizon_m) is its
+// alone, robots about to enter it wait, and robots on it are pushed off the whole of its route into
+// side room within clear_search_m (the furthest ahead the deepest), or on along the route when there
+// is none. It leads until its route ends or changes, or until neither it nor a robot clearing its
+// way has moved for clear_stall_s (then the others are tried first). This pass overrides the
+// decisions of the leader, of the robots on its way and of those about to enter it.
+// Invariant: one leader at a time, the longest wait first, so a robot's wait is bounded by the
+// routes of the leaders that waited longer, unless a jam has no side room within clear_search_m
+// (a stall, after which the lead passes on).
 #include <algorithm>
 #include <limits>
 
-#include "planner/core/fleet_coordinator.hpp"
 #include "planner/core/traffic_geometry.hpp"
+#include "planner/core/traffic_rules.hpp"
 
 namespace slam::planner {
 namespace {
@@ -77,8 +85,7 @@ void TrafficRules::choose_leader(std::span<const TrafficRobot> robots, int64_t n
   ++clearings_;
 }
 
-void TrafficRules::clear_way(const PlanningGrid& grid, std::span<const TrafficRobot> robots, int64_t now_ns,
-                             std::vector<TrafficDecision>& decisions) {
+void TrafficRules::clear_way(const PlanningGrid& grid, Robots robots, int64_t now_ns, Decisions& decisions) {
   const size_t n = robots.size();
   pushed_.resize(n, 0);
   pushed_from_.resize(n);
@@ -91,31 +98,33 @@ void TrafficRules::clear_way(const PlanningGrid& grid, std::span<const TrafficRo
   push_order_.reserve(n);
   committed_.reserve(n);
   committed_.clear();
-  // With one-way sections the waits before a section are bounded by that rule, and a leader driving
-  // into a section against its users would undo it: the two rules are not combined.
-  if (!config_.clear_way || config_.one_way_sections) return;
   if (leader_ >= 0 && !keep_leader(robots, now_ns)) {
     leader_ = -1;
     std::fill(pushed_.begin(), pushed_.end(), 0);
   }
   if (leader_ < 0) choose_leader(robots, now_ns, decisions);
   if (leader_ < 0) return;
-  const auto l = static_cast<size_t>(leader_);
-  const TrafficRobot& leader = robots[l];
   // Robots on the first clear_horizon_m of its way are pushed, and off the whole of it: on a tree a
   // robot left further along the way would only be met again.
+  const TrafficRobot& leader = robots[static_cast<size_t>(leader_)];
   way_points_.clear();
   append_way(leader, std::numeric_limits<double>::infinity(), way_points_);
   const size_t route_end = way_points_.size();
   append_way(leader, config_.clear_horizon_m, way_points_);
   const std::span<const Vec2> all(way_points_);
-  const auto route = all.first(route_end), way = all.subspan(route_end);
-  const double reach = this->reach();
+  find_robots_on_way(robots, all.subspan(route_end), decisions);
+  const bool stuck = push_off_way(grid, robots, all.first(route_end), now_ns, decisions);
+  committed_.clear();  // the local rules' searches (next tick) see bodies only
+  lead(robots, stuck, decisions);
+}
 
+void TrafficRules::find_robots_on_way(Robots robots, std::span<const Vec2> way, Decisions& decisions) {
+  const auto l = static_cast<size_t>(leader_);
+  const double reach = this->reach();
   // Who is on the way and who is about to enter it. A robot driving along it away from the leader
   // clears it by itself and goes on; a pushed robot stays pushed (off the way, it goes deeper).
   push_order_.clear();
-  for (size_t k = 0; k < n; ++k) {
+  for (size_t k = 0; k < robots.size(); ++k) {
     if (k == l) continue;
     TrafficDecision& d = decisions[k];
     const Vec2 at = robots[k].position;
@@ -135,6 +144,12 @@ void TrafficRules::clear_way(const PlanningGrid& grid, std::span<const TrafficRo
     }
   }
   std::sort(push_order_.begin(), push_order_.end(), std::greater<>());
+}
+
+bool TrafficRules::push_off_way(const PlanningGrid& grid, Robots robots, std::span<const Vec2> route,
+                                int64_t now_ns, Decisions& decisions) {
+  const TrafficRobot& leader = robots[static_cast<size_t>(leader_)];
+  const double reach = this->reach();
   size_t on_way_behind =
       static_cast<size_t>(std::count_if(push_order_.begin(), push_order_.end(),
                                         [&](const auto& e) { return e.first <= config_.clear_horizon_m; }));
@@ -192,23 +207,21 @@ void TrafficRules::clear_way(const PlanningGrid& grid, std::span<const TrafficRo
       stuck = stuck || (!searched && s <= config_.clear_horizon_m);
     }
   }
+  return stuck;
+}
 
-  committed_.clear();  // the local rules' searches (next tick) see bodies only
-
+void TrafficRules::lead(Robots robots, bool stuck, Decisions& decisions) {
   // The leader goes unless a body stands close ahead of it (the others keep off its way) or a robot
   // on its way has nowhere to go yet (driving up to it would only close the room left).
-  TrafficDecision& d = decisions[l];
+  const auto l = static_cast<size_t>(leader_);
   int32_t body = stuck ? static_cast<int32_t>(push_order_.back().second) : -1;
-  for (size_t k = 0; k < n && body < 0; ++k) {
-    if (k == l) continue;
-    const double now_gap = distance(leader.position, robots[k].position);
-    const double gap = traffic::gap_to_prefix(claim(l), config_.body_lookahead_m, robots[k].position);
-    if (gap < reach && gap < now_gap - 1e-6) body = static_cast<int32_t>(k);
-  }
+  for (size_t k = 0; k < robots.size() && body < 0; ++k)
+    if (k != l && body_ahead(robots, l, k)) body = static_cast<int32_t>(k);
+  TrafficDecision& d = decisions[l];
   d.deadlock = d.section = false;
   d.blocker = body;
   d.order = body < 0 ? TrafficOrder::Go : TrafficOrder::Wait;
-  d.hold = leader.position;
+  d.hold = robots[l].position;
 }
 
 }  // namespace slam::planner
