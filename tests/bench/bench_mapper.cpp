@@ -1,8 +1,11 @@
 // Mapper grid core throughput. Targets (one core): ray casting >= 200 M cells/s, ingest >= 1 M
-// points/s, rebuild of 1 M stored observations at a new resolution <= 1 s.
+// points/s, rebuild of 1 M stored observations at a new resolution <= 1 s; a re-render after one
+// small loop closure costs what the closure moved, not what the store holds (full vs partial).
 // Rays are 1-5 m long at 5 cm from many origins in a 40 m x 40 m area, like robots' range beams.
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -14,6 +17,7 @@
 
 #include "mapper/core/observation_store.hpp"
 #include "mapper/core/occupancy_grid.hpp"
+#include "mapper/core/partial_rerender.hpp"
 #include "mapper/core/ray_trace.hpp"
 #include "mapper/core/rebuild.hpp"
 #include "temp_dir.hpp"
@@ -180,6 +184,142 @@ void BM_StoreScan1M(benchmark::State& state) {
   state.counters["rows_per_s"] = benchmark::Counter(static_cast<double>(rows), benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_StoreScan1M)->Unit(benchmark::kMillisecond)->Iterations(3);
+
+// A fleet's store: 10 robots random-walking over 60 m x 60 m at 0.1 m per observation, 16 beams of
+// 1-5 m each (the simulator's default scan), a keyframe every 15 observations of a robot (what the
+// issue-39 run stored: 370 000 observations, 24 500 keyframes). Keyframe corrections start at identity.
+class FleetStore {
+ public:
+  static constexpr int kRobots = 10;
+  static constexpr int kPerKeyframe = 15;
+
+  explicit FleetStore(int64_t observations) : observations_(observations) {
+    ObservationStore store = must(ObservationStore::open(path_, {4096}), "store");
+    std::mt19937 rng(31);
+    std::uniform_real_distribution<double> turn(-0.3, 0.3);
+    std::uniform_real_distribution<double> range(1.0, 5.0);
+    struct Walker {
+      double x, y, heading;
+    };
+    std::vector<Walker> walkers;
+    for (int r = 0; r < kRobots; ++r) walkers.push_back({-25.0 + 5.0 * r, -25.0 + 5.0 * r, 0.3 * r});
+    std::vector<Vec2> hits, misses;
+    for (int64_t i = 0; i < observations; ++i) {
+      const int r = static_cast<int>(i % kRobots);
+      const int64_t n = i / kRobots;  // this robot's observation number
+      Walker& w = walkers[static_cast<size_t>(r)];
+      w.heading += turn(rng);
+      w.x += 0.1 * std::cos(w.heading);
+      w.y += 0.1 * std::sin(w.heading);
+      if (std::abs(w.x) > 27.0 || std::abs(w.y) > 27.0)
+        w.heading += std::numbers::pi;  // turn back at the walls
+      w.x = std::clamp(w.x, -27.0, 27.0);
+      w.y = std::clamp(w.y, -27.0, 27.0);
+      hits.clear();
+      misses.clear();
+      for (int b = 0; b < 16; ++b) {
+        const double a = w.heading + 2.0 * std::numbers::pi * b / 16;
+        const double d = range(rng);
+        (b % 4 == 3 ? misses : hits).push_back({w.x + d * std::cos(a), w.y + d * std::sin(a)});
+      }
+      const auto keyframe = static_cast<slam::mapper::KeyframeId>(1 + r * 1'000'000 + n / kPerKeyframe);
+      if (n % kPerKeyframe == 0) keyframes_.push_back(keyframe);
+      const ObservationView v{w.x, w.y, w.heading, true, hits, misses};
+      if (!store.append(std::string("r") + std::to_string(r), static_cast<uint64_t>(n), i, keyframe, v))
+        std::abort();
+    }
+    if (!store.flush()) std::abort();
+  }
+  const std::filesystem::path& path() const { return path_; }
+  int64_t observations() const { return observations_; }
+  // A keyframe in the middle of the store (what a loop closure moves).
+  slam::mapper::KeyframeId closed_keyframe() const { return keyframes_[keyframes_.size() / 2]; }
+  // The corrections after the closure: that keyframe 5 cm off, the rest where they are drawn.
+  slam::mapper::KeyframeCorrections after_closure() const {
+    slam::mapper::KeyframeCorrections c;
+    c.set(closed_keyframe(), slam::Pose{0.05, -0.03, 0.002});
+    return c;
+  }
+
+ private:
+  int64_t observations_;
+  std::vector<slam::mapper::KeyframeId> keyframes_;
+  slam::testkit::TempDir dir_{"bench-mapper-fleet"};
+  std::filesystem::path path_ = dir_ / "fleet.db";
+};
+
+const FleetStore& fleet_store(int64_t observations) {
+  static const FleetStore small(100'000);
+  if (observations == small.observations()) return small;
+  static const FleetStore large(400'000);
+  return large;
+}
+
+GridConfig fleet_config() {
+  GridConfig c = area_config(0.05);
+  c.origin_x = -32.0;
+  c.origin_y = -32.0;
+  c.width_m = 64.0;
+  c.height_m = 64.0;
+  return c;
+}
+
+// Today's re-render before issue 39: the whole store replayed into a new grid with the corrections.
+void BM_RerenderFull(benchmark::State& state) {
+  const FleetStore& fleet = fleet_store(state.range(0));
+  ObservationStore store = must(ObservationStore::open(fleet.path()), "reopen");
+  const slam::mapper::KeyframeCorrections corrections = fleet.after_closure();
+  int64_t replayed = 0;
+  for (auto _ : state) {
+    slam::mapper::RebuildStats stats;
+    auto grid = slam::mapper::rebuild_grid(fleet_config(), store, &stats, corrections);
+    if (!grid || stats.observations != fleet.observations()) state.SkipWithError("rebuild failed");
+    replayed = stats.observations;
+    benchmark::DoNotOptimize(grid->classes().data());
+  }
+  state.counters["observations_replayed"] = static_cast<double>(replayed);
+}
+BENCHMARK(BM_RerenderFull)->Arg(100'000)->Arg(400'000)->Unit(benchmark::kMillisecond)->Iterations(3);
+
+// The same closure re-rendered partially: the plan (map loop), the tiles drawn from the store (worker),
+// the tiles copied into the grid (map loop). Each iteration redraws the same closure.
+void BM_RerenderPartial(benchmark::State& state) {
+  using Clock = std::chrono::steady_clock;
+  const FleetStore& fleet = fleet_store(state.range(0));
+  ObservationStore store = must(ObservationStore::open(fleet.path()), "reopen");
+  slam::mapper::FootprintIndex index;
+  OccupancyGrid grid =
+      must(slam::mapper::rebuild_grid(fleet_config(), store, nullptr, {}, &index), "rebuild");
+  const slam::mapper::KeyframeCorrections corrections = fleet.after_closure();
+  double plan_s = 0, render_s = 0, redraw_s = 0;
+  int64_t replayed = 0, rows = 0;
+  size_t tiles = 0;
+  for (auto _ : state) {
+    const auto t0 = Clock::now();
+    slam::mapper::RerenderDecision d = plan_rerender(index, corrections, grid, {});
+    const auto t1 = Clock::now();
+    if (d.kind != slam::mapper::RerenderDecision::Kind::Partial) state.SkipWithError("not partial");
+    tiles = d.plan.tiles.size();
+    auto render = must(slam::mapper::render_tiles(std::move(d.plan), store), "render");
+    const auto t2 = Clock::now();
+    grid.redraw(render.canvas);
+    const auto t3 = Clock::now();
+    plan_s += std::chrono::duration<double>(t1 - t0).count();
+    render_s += std::chrono::duration<double>(t2 - t1).count();
+    redraw_s += std::chrono::duration<double>(t3 - t2).count();
+    replayed = render.replayed;
+    rows = render.rows_read;
+  }
+  const auto n = static_cast<double>(state.iterations());
+  state.counters["plan_ms"] = 1e3 * plan_s / n;
+  state.counters["render_ms"] = 1e3 * render_s / n;
+  state.counters["redraw_ms"] = 1e3 * redraw_s / n;
+  state.counters["observations_replayed"] = static_cast<double>(replayed);
+  state.counters["rows_read"] = static_cast<double>(rows);
+  state.counters["tiles"] = static_cast<double>(tiles);
+  state.counters["index_kb"] = static_cast<double>(index.memory_bytes()) / 1024.0;
+}
+BENCHMARK(BM_RerenderPartial)->Arg(100'000)->Arg(400'000)->Unit(benchmark::kMillisecond)->Iterations(10);
 
 }  // namespace
 

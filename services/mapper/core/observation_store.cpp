@@ -302,6 +302,14 @@ Status ObservationStore::for_each_row(std::span<const int64_t> rows,
   return Status::ok();
 }
 
+Status ObservationStore::read_together(const std::function<Status()>& reads) {
+  if (in_batch_) return reads();
+  SLAM_TRY(exec("BEGIN"));
+  const Status s = reads();
+  const Status end = exec("COMMIT");
+  return s ? end : s;
+}
+
 int64_t ObservationStore::last_row() const {
   return static_cast<int64_t>(sqlite3_last_insert_rowid(db_.get()));
 }

@@ -77,6 +77,9 @@ class ObservationStore {
   // The observations of `rows` (ascending ids), in that order; ids that do not exist are skipped.
   Status for_each_row(std::span<const int64_t> rows,
                       const std::function<void(const ObservationRecord&)>& visit);
+  // Runs `reads` in one read transaction (in the open batch's, if any): many small queries then take
+  // the file lock once and keep the page cache, instead of once per query.
+  Status read_together(const std::function<Status()>& reads);
   // One robot's observations in insertion order, without their points (obs.hits and obs.misses
   // empty): its poses, cheaply.
   Status for_each_pose(std::string_view robot_id, const std::function<void(const ObservationRecord&)>& visit);

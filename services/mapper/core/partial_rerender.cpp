@@ -133,11 +133,13 @@ RerenderDecision plan_rerender(const FootprintIndex& index, const KeyframeCorrec
   return decision;
 }
 
-Result<TileRender> render_tiles(RerenderPlan plan, ObservationStore& store) {
-  TileRender out;
+namespace {
+
+// render_tiles' reads and drawing, in one read transaction.
+Status draw_tiles(const RerenderPlan& plan, ObservationStore& store, TileRender& out) {
   out.canvas.reset(plan.geometry, plan.config, plan.tiles);
   auto prior = store.load_prior();
-  if (!prior) return prior.error();
+  if (!prior) return prior.status();
   if (prior->has_value()) out.canvas.apply_prior(**prior);
 
   // The replayed groups' rows, in insertion order.
@@ -180,7 +182,14 @@ Result<TileRender> render_tiles(RerenderPlan plan, ObservationStore& store) {
         return;
     }
   });
-  if (!read) return read.error();
+  return read;
+}
+
+}  // namespace
+
+Result<TileRender> render_tiles(RerenderPlan plan, ObservationStore& store) {
+  TileRender out;
+  SLAM_TRY(store.read_together([&] { return draw_tiles(plan, store, out); }));
   out.plan = std::move(plan);
   return out;
 }

@@ -12,6 +12,7 @@ void TileCanvas::reset(const GridGeometry& geometry, const GridConfig& config,
                        std::span<const uint32_t> tiles) {
   geometry_ = geometry;
   layout_ = TileLayout{geometry.width, geometry.height, kSide};
+  tiles_x_ = layout_.tiles_x();
   log_odds_ = config.log_odds;
   max_range_m_ = config.max_range_m;
   legacy_ = config.legacy_mode;
@@ -151,13 +152,19 @@ void TileCanvas::draw_rays(const ObservationView& obs) {
       const int64_t steps = dx > -dy ? dx : -dy;
       int64_t err = dx + dy;
       int32_t x = robot.x, y = robot.y;
+      bool entered = false;  // the tiles' bounds are convex: a ray that left them stays out
       for (int64_t i = 0; i < steps; ++i) {
-        if (CanvasCell* cell = at(x, y)) {
-          const int32_t old = cell->log_odds;
-          if (old != lo && cell->mark != epoch) {
-            cell->mark = epoch;
-            cell->log_odds = static_cast<int16_t>(std::max(old + miss, lo));
+        if (x >= bx0 && y >= by0 && x < bx1 && y < by1) {
+          entered = true;
+          if (CanvasCell* cell = at(x, y)) {
+            const int32_t old = cell->log_odds;
+            if (old != lo && cell->mark != epoch) {
+              cell->mark = epoch;
+              cell->log_odds = static_cast<int16_t>(std::max(old + miss, lo));
+            }
           }
+        } else if (entered) {
+          break;
         }
         const int64_t e2 = 2 * err;
         if (e2 >= dy) {

@@ -58,18 +58,22 @@ class TileCanvas {
     int16_t log_odds = 0;
     uint16_t mark = 0;  // the observation that last updated it (one update per observation)
   };
-  static size_t cell_index(size_t slot, int32_t x, int32_t y) {
-    return slot * static_cast<size_t>(kSide * kSide) + static_cast<size_t>((y % kSide) * kSide + x % kSide);
+  static_assert((kSide & (kSide - 1)) == 0, "tile sides are a power of two: cells are found by shifts");
+  static constexpr int kShift = __builtin_ctz(kSide);
+  static size_t cell_index(size_t slot, int32_t x, int32_t y) {  // x, y >= 0
+    return slot * static_cast<size_t>(kSide * kSide) +
+           static_cast<size_t>(((y & (kSide - 1)) << kShift) | (x & (kSide - 1)));
   }
   // The canvas cell of grid cell (x, y), or nullptr outside the tiles (x, y inside the grid).
   CanvasCell* at(int32_t x, int32_t y) {
-    const int32_t slot = slot_of_tile_[layout_.tile_of(x, y)];
+    const int32_t slot = slot_of_tile_[static_cast<size_t>((y >> kShift) * tiles_x_ + (x >> kShift))];
     return slot < 0 ? nullptr : &cells_[cell_index(static_cast<size_t>(slot), x, y)];
   }
   void draw_rays(const ObservationView& obs);
 
   GridGeometry geometry_;
   TileLayout layout_;
+  int32_t tiles_x_ = 0;
   LogOddsConfig log_odds_;
   double max_range_m_ = 0.0;
   bool legacy_ = false;
