@@ -24,6 +24,12 @@ def figures: [
    field: "real_time", scale: 1, unit: "s", target: {op: "<=", value: 1, text: "≤ 1 s"}},
   {fig: "mapper: rebuild of 1 M observations at 5 cm (wall, reader thread + ray casting)", bench: "mapper", name: "BM_Rebuild1M/5/iterations:3",
    field: "real_time", scale: 1, unit: "s", target: {op: "<=", value: 1, text: "≤ 1 s"}},
+  {fig: "mapper: re-render after one small closure, 100 k / 400 k observations: full (CPU)", bench: "mapper",
+   name: ["BM_RerenderFull/100000/iterations:3", "BM_RerenderFull/400000/iterations:3"],
+   field: "cpu_time", scale: 1e3, unit: "ms"},
+  {fig: "mapper: re-render after one small closure, 100 k / 400 k observations: partial (CPU)", bench: "mapper",
+   name: ["BM_RerenderPartial/100000/iterations:10", "BM_RerenderPartial/400000/iterations:10"],
+   field: "cpu_time", scale: 1e3, unit: "ms"},
 
   {fig: "planner: A* corner to corner, 1024² map (CPU)", bench: "planner", name: "BM_AstarCornerToCorner/repeats:5",
    field: "cpu_time", scale: 1e3, unit: "ms", target: {op: "<=", value: 20, text: "≤ 20 ms"}},
