@@ -3,6 +3,8 @@
 #include <cmath>
 #include <utility>
 
+#include "mapper/core/map_error.hpp"
+
 namespace slam::mapper {
 
 namespace {
@@ -89,10 +91,10 @@ void CorrectionStage::step(Mapper& mapper, int64_t now_ns, int64_t now_mono_ns) 
 }
 
 void CorrectionStage::rerender_when_due(Mapper& mapper, int64_t now_mono_ns) {
-  // A re-render rebuilds the whole grid from the store, so it costs more the longer the mapper
-  // runs, while with hundreds of robots optimisations land every few hundred milliseconds. One
-  // starts only after the last one took a fifth of the time since it started: re-rendering takes
-  // at most a fifth of a core, and the keyframes moved meanwhile join the next one (their
+  // A re-render redraws the tiles of the keyframes that moved (the whole grid when a closure moves
+  // much of it), while with hundreds of robots optimisations land every few hundred milliseconds.
+  // One starts only after the last one took a fifth of the time since it started: re-rendering
+  // takes at most a fifth of a core, and the keyframes moved meanwhile join the next one (their
   // corrections are stored at once; only the grid waits).
   if (rerender_started_ns_ && !mapper.rebuilding()) {
     next_rerender_ns_ = now_mono_ns + kRerenderDutyFactor * (now_mono_ns - *rerender_started_ns_);
@@ -105,17 +107,22 @@ void CorrectionStage::rerender_when_due(Mapper& mapper, int64_t now_mono_ns) {
 }
 
 Status CorrectionStage::set_initial_pose(const Mapper& mapper, std::string_view robot, const Pose& map_pose) {
-  if (!enabled_) return Error{"pose correction is off (slam-mapper --slam off)"};
-  if (!std::isfinite(map_pose.x) || !std::isfinite(map_pose.y) || !std::isfinite(map_pose.theta))
-    return Error{"initial pose is not finite"};
-  const GridGeometry g = mapper.grid().geometry();
-  if (!g.cell_at(map_pose.position())) {
-    return Error{
-        fmt::format("initial pose ({:.2f}, {:.2f}) lies outside the map [{:.2f}, {:.2f}] x [{:.2f}, {:.2f}]",
-                    map_pose.x, map_pose.y, g.origin.x, g.origin.x + g.width * g.resolution, g.origin.y,
-                    g.origin.y + g.height * g.resolution)};
-  }
-  return corrector_.set_initial_pose(robot, map_pose);
+  if (!enabled_) return Error{"pose correction is off (slam-mapper --slam off)", MapError::InvalidRequest};
+  Status placed = [&]() -> Status {
+    if (!std::isfinite(map_pose.x) || !std::isfinite(map_pose.y) || !std::isfinite(map_pose.theta))
+      return Error{"initial pose is not finite"};
+    const GridGeometry g = mapper.grid().geometry();
+    if (!g.cell_at(map_pose.position())) {
+      return Error{fmt::format(
+          "initial pose ({:.2f}, {:.2f}) lies outside the map [{:.2f}, {:.2f}] x [{:.2f}, {:.2f}]",
+          map_pose.x, map_pose.y, g.origin.x, g.origin.x + g.width * g.resolution, g.origin.y,
+          g.origin.y + g.height * g.resolution)};
+    }
+    return corrector_.set_initial_pose(robot, map_pose);
+  }();
+  if (placed) return placed;
+  // A robot the corrector has not heard from is the cause first, whatever else the pose has wrong.
+  return Error{placed.message(), corrector_.knows(robot) ? MapError::InvalidRequest : MapError::UnknownRobot};
 }
 
 size_t CorrectionStage::reset_robot(std::string_view robot) {
