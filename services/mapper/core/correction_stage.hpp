@@ -37,7 +37,8 @@ class CorrectionStage {
   // finished optimisation. `now_ns`: the observations' clock (Unix epoch).
   void step(Mapper& mapper, int64_t now_ns, int64_t now_mono_ns);
 
-  // An operator's initial pose; errors: unknown robot, not finite, outside the map, SLAM off.
+  // An operator's initial pose. Errors (MapError): UnknownRobot for a robot not heard from yet,
+  // else InvalidRequest (not finite, outside the map, SLAM off).
   Status set_initial_pose(const Mapper& mapper, std::string_view robot, const Pose& map_pose);
   // An operator's robot reset: its keyframes leave the pose graph and index, and its observations
   // still waiting for a keyframe are dropped (the store forgets the robot's older ones). Returns

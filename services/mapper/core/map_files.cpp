@@ -6,19 +6,16 @@
 namespace slam::mapper {
 namespace {
 
-FileOutcome failed(FileFailure kind, std::string message) {
-  return FileOutcome{kind, std::move(message), {}};
-}
-
 // Remote requests name files on the mapper's disk: refuse what cannot be a map path before touching it.
 std::optional<FileOutcome> check_path(const std::string& yaml_path) {
-  if (yaml_path.empty()) return failed(FileFailure::InvalidRequest, "yaml_path is empty");
+  if (yaml_path.empty()) return FileOutcome::failed(MapError::InvalidRequest, "yaml_path is empty");
   if (yaml_path.find('\0') != std::string::npos)
-    return failed(FileFailure::InvalidRequest, "yaml_path contains a NUL character");
+    return FileOutcome::failed(MapError::InvalidRequest, "yaml_path contains a NUL character");
   const std::filesystem::path p(yaml_path);
   const std::string ext = p.extension().string();
   if (ext != ".yaml" && ext != ".yml")
-    return failed(FileFailure::InvalidRequest, "yaml_path '" + yaml_path + "' must end in .yaml or .yml");
+    return FileOutcome::failed(MapError::InvalidRequest,
+                               "yaml_path '" + yaml_path + "' must end in .yaml or .yml");
   return std::nullopt;
 }
 
@@ -68,12 +65,12 @@ FileOutcome export_map_file(const OccupancyGrid& grid, const std::string& yaml_p
   const std::filesystem::path dir = p.parent_path().empty() ? std::filesystem::path(".") : p.parent_path();
   std::error_code ec;
   if (!std::filesystem::is_directory(dir, ec))
-    return failed(FileFailure::Io, "directory " + dir.string() + " does not exist");
+    return FileOutcome::failed(MapError::Io, "directory " + dir.string() + " does not exist");
   const MapImage image = grid.to_map_image();
-  if (Status s = write_ros_map(p, image); !s) return failed(FileFailure::Io, s.message());
+  if (Status s = write_ros_map(p, image); !s) return FileOutcome::failed(MapError::Io, s.message());
   std::filesystem::path pgm = p;
   pgm.replace_extension(".pgm");
-  return FileOutcome{FileFailure::None,
+  return FileOutcome{{},
                      "exported " + std::to_string(image.width) + "x" + std::to_string(image.height) +
                          " cells at " + std::to_string(image.resolution) + " m to " + yaml_path + " and " +
                          pgm.string(),
@@ -84,11 +81,11 @@ FileOutcome read_map_file(const std::string& yaml_path) {
   if (auto bad = check_path(yaml_path)) return *bad;
   std::error_code ec;
   if (!std::filesystem::is_regular_file(yaml_path, ec))
-    return failed(FileFailure::Io, yaml_path + ": no such file");
+    return FileOutcome::failed(MapError::Io, yaml_path + ": no such file");
   auto image = read_ros_map(yaml_path);
   // The YAML exists: what fails now is its content or the image it names.
-  if (!image) return failed(FileFailure::BadFile, image.message());
-  FileOutcome out{FileFailure::None,
+  if (!image) return FileOutcome::failed(MapError::BadFile, image.message());
+  FileOutcome out{{},
                   "read " + std::to_string(image->width) + "x" + std::to_string(image->height) +
                       " pixels at " + std::to_string(image->resolution) + " m from " + yaml_path,
                   std::move(*image)};

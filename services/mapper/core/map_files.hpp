@@ -6,10 +6,12 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <utility>
 
 #include "common/core/map_io.hpp"
 #include "common/core/result.hpp"
 #include "mapper/core/grid_config.hpp"
+#include "mapper/core/map_error.hpp"
 #include "mapper/core/observation_store.hpp"
 #include "mapper/core/occupancy_grid.hpp"
 
@@ -25,13 +27,12 @@ Result<GridConfig> startup_config(const GridConfig& defaults, ObservationStore& 
 // True when the fields a GridConfig request sets are equal (no rebuild needed).
 bool same_layout(const GridConfig& a, const GridConfig& b);
 
-enum class FileFailure { None, InvalidRequest, Io, BadFile, UnknownRobot };
-
 struct FileOutcome {
-  FileFailure failure = FileFailure::None;
+  ErrorCode failure;              // none: done; else a MapError
   std::string message;            // what was done, or what went wrong (naming the file or robot)
   std::optional<MapImage> image;  // read_map_file: the decoded map
-  bool ok() const { return failure == FileFailure::None; }
+  bool ok() const { return failure == ErrorCode{}; }
+  static FileOutcome failed(MapError kind, std::string message) { return {kind, std::move(message), {}}; }
 };
 
 // Writes the grid as <yaml_path> + <yaml_path>.pgm. The path must end in .yaml or .yml and its

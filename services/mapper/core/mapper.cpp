@@ -7,6 +7,7 @@
 #include <type_traits>
 #include <utility>
 
+#include "mapper/core/map_error.hpp"
 #include "mapper/core/map_files.hpp"
 #include "mapper/core/rebuild.hpp"
 #include "mapper/core/trajectory_export.hpp"
@@ -29,23 +30,26 @@ bool same_geometry(const OccupancyGrid& a, const OccupancyGrid& b) {
          a.origin_x() == b.origin_x() && a.origin_y() == b.origin_y();
 }
 
-RequestResult to_request_result(FileFailure failure) {
-  switch (failure) {
-    case FileFailure::None:
-      return RequestResult::Ok;
-    case FileFailure::InvalidRequest:
-      return RequestResult::InvalidRequest;
-    case FileFailure::Io:
-      return RequestResult::IoError;
-    case FileFailure::BadFile:
-      return RequestResult::BadFile;
-    case FileFailure::UnknownRobot:
-      return RequestResult::UnknownRobot;
-  }
-  return RequestResult::IoError;
+RequestResult file_result(const FileOutcome& outcome) {
+  return outcome.ok() ? RequestResult::Ok : failure_result(outcome.failure);
 }
 
 }  // namespace
+
+RequestResult failure_result(ErrorCode code) {
+  if (code.domain() != ErrorDomain::Map) return RequestResult::InvalidRequest;
+  switch (static_cast<MapError>(code.value())) {
+    case MapError::InvalidRequest:
+      return RequestResult::InvalidRequest;
+    case MapError::Io:
+      return RequestResult::IoError;
+    case MapError::BadFile:
+      return RequestResult::BadFile;
+    case MapError::UnknownRobot:
+      return RequestResult::UnknownRobot;
+  }
+  return RequestResult::InvalidRequest;
+}
 
 Result<GridConfig> requested_config(const LayoutRequest& request, const GridConfig& current) {
   GridConfig c = current;
@@ -350,7 +354,7 @@ void Mapper::handle_file(const FileRequest& request) {
   const std::string& path = request.yaml_path;
   if (request.action == FileAction::Export) {
     const FileOutcome out = export_map_file(*grid_, path);
-    return reply(id, to_request_result(out.failure), out.message);
+    return reply(id, file_result(out), out.message);
   }
   if (request.action == FileAction::ExportTrajectoryTum ||
       request.action == FileAction::ExportTrajectoryCarmen) {
@@ -359,13 +363,13 @@ void Mapper::handle_file(const FileRequest& request) {
     const FileOutcome out = export_trajectory_file(
         *store_, request.robot_id, path,
         request.action == FileAction::ExportTrajectoryTum ? TrajectoryFormat::Tum : TrajectoryFormat::Carmen);
-    return reply(id, to_request_result(out.failure), out.message);
+    return reply(id, file_result(out), out.message);
   }
   if (request.action != FileAction::Import)
     return reply(id, RequestResult::InvalidRequest,
                  "unknown action " + std::to_string(static_cast<int>(request.action)));
   FileOutcome in = read_map_file(path);
-  if (!in.ok()) return reply(id, to_request_result(in.failure), in.message);
+  if (!in.ok()) return reply(id, failure_result(in.failure), in.message);
   auto previous = store_->load_prior();
   Status saved = previous ? store_->save_prior(*in.image) : previous.status();
   if (!saved) {

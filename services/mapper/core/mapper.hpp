@@ -38,6 +38,8 @@ namespace slam::mapper {
 
 // A request's outcome (map.idl's MapResult).
 enum class RequestResult { Ok, InvalidRequest, IoError, BadFile, UnknownRobot };
+// The reply's result for a failure's code (MapError); a failure without one is an invalid request.
+RequestResult failure_result(ErrorCode code);
 
 struct RequestReply {
   uint64_t request_id = 0;

@@ -28,7 +28,7 @@ Result<std::string> export_store(const MapperOptions& o, ObservationStore& store
 Result<std::string> export_trajectory(const MapperOptions& o, ObservationStore& store) {
   const auto format = trajectory_format_named(o.trajectory_format).value_or(TrajectoryFormat::Tum);
   FileOutcome out = export_trajectory_file(store, o.export_trajectory, o.trajectory_out, format);
-  if (out.failure == FileFailure::UnknownRobot) return Error{out.message + " in " + o.store};
+  if (out.failure == MapError::UnknownRobot) return Error{out.message + " in " + o.store};
   if (!out.ok()) return Error{out.message};
   return out.message;
 }

@@ -33,10 +33,6 @@ void append_line(std::string& out, const TrajectoryPose& p, TrajectoryFormat for
   }
 }
 
-FileOutcome failed(FileFailure kind, std::string message) {
-  return FileOutcome{kind, std::move(message), {}};
-}
-
 }  // namespace
 
 std::optional<TrajectoryFormat> trajectory_format_named(std::string_view name) {
@@ -79,22 +75,26 @@ Status write_trajectory(std::span<const TrajectoryPose> poses, const std::filesy
 
 FileOutcome export_trajectory_file(ObservationStore& store, std::string_view robot, const std::string& path,
                                    TrajectoryFormat format) {
-  if (robot.empty()) return failed(FileFailure::InvalidRequest, "robot_id is empty");
-  if (path.empty()) return failed(FileFailure::InvalidRequest, "the trajectory file's path is empty");
+  if (robot.empty()) return FileOutcome::failed(MapError::InvalidRequest, "robot_id is empty");
+  if (path.empty())
+    return FileOutcome::failed(MapError::InvalidRequest, "the trajectory file's path is empty");
   if (path.find('\0') != std::string::npos)
-    return failed(FileFailure::InvalidRequest, "the trajectory file's path contains a NUL character");
+    return FileOutcome::failed(MapError::InvalidRequest,
+                               "the trajectory file's path contains a NUL character");
   const std::filesystem::path p(path);
   const std::filesystem::path dir = p.parent_path().empty() ? std::filesystem::path(".") : p.parent_path();
   std::error_code ec;
   if (!std::filesystem::is_directory(dir, ec))
-    return failed(FileFailure::Io, "directory " + dir.string() + " does not exist");
+    return FileOutcome::failed(MapError::Io, "directory " + dir.string() + " does not exist");
   auto poses = robot_trajectory(store, robot);
-  if (!poses) return failed(FileFailure::Io, poses.message());
+  if (!poses) return FileOutcome::failed(MapError::Io, poses.message());
   if (poses->empty())
-    return failed(FileFailure::UnknownRobot, "no stored observations of robot '" + std::string(robot) + "'");
-  if (Status s = write_trajectory(*poses, p, format); !s) return failed(FileFailure::Io, s.message());
+    return FileOutcome::failed(MapError::UnknownRobot,
+                               "no stored observations of robot '" + std::string(robot) + "'");
+  if (Status s = write_trajectory(*poses, p, format); !s)
+    return FileOutcome::failed(MapError::Io, s.message());
   return FileOutcome{
-      FileFailure::None,
+      {},
       fmt::format("wrote {} poses of robot '{}' ({} to {} s) to {}", poses->size(), robot,
                   seconds_text(poses->front().stamp_ns), seconds_text(poses->back().stamp_ns), path),
       {}};

@@ -172,8 +172,7 @@ void MapperNode::handle_initial_pose(const slam::InitialPose& request) {
                                 pose.y, pose.theta * 180.0 / 3.141592653589793);
     spdlog::info("{}", reply.message);
   } else {
-    reply.result = corrections_->enabled() && !corrections_->knows(robot) ? RequestResult::UnknownRobot
-                                                                          : RequestResult::InvalidRequest;
+    reply.result = failure_result(s.code());
     reply.message = s.message();
     bump(counters_.get("initial_poses_rejected"));
   }

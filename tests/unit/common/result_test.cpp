@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdint>
+
 namespace slam {
 namespace {
 
@@ -57,6 +59,45 @@ TEST(Result, ErrorCarriesTheMessageAcrossTypes) {
 TEST(Result, StatusOfAResultKeepsTheMessage) {
   EXPECT_TRUE(number(true).status().is_ok());
   EXPECT_EQ(number(false).status().message(), "no number");
+}
+
+enum class SampleError : uint16_t { Busy = 1, Gone };
+constexpr ErrorDomain error_domain(SampleError) {
+  return ErrorDomain::Map;
+}
+
+Result<int> coded(bool ok) {
+  if (!ok) return Error{"the service is busy", SampleError::Busy};
+  return 1;
+}
+
+Status coded_through_try(bool ok) {
+  SLAM_TRY(coded(ok));
+  return {};
+}
+
+TEST(Result, AnErrorsCodeSaysItsCauseWithoutTheText) {
+  const auto r = coded(false);
+  EXPECT_TRUE(r.is(SampleError::Busy));
+  EXPECT_FALSE(r.is(SampleError::Gone));
+  EXPECT_EQ(r.code(), ErrorCode(SampleError::Busy));
+  EXPECT_EQ(r.code().domain(), ErrorDomain::Map);
+  EXPECT_FALSE(coded(true).is(SampleError::Busy));
+  EXPECT_EQ(coded(true).code(), ErrorCode{});
+}
+
+TEST(Result, TheCodeTravelsWithTheFailure) {
+  const Status s = coded_through_try(false);
+  EXPECT_TRUE(s.is(SampleError::Busy));
+  EXPECT_EQ(s.message(), "the service is busy");
+  EXPECT_TRUE(coded(false).status().is(SampleError::Busy));
+  EXPECT_TRUE(s.error().is(SampleError::Busy));
+  EXPECT_FALSE(coded_through_try(true).is(SampleError::Busy));
+}
+
+TEST(Result, AFailureSaidOnlyInWordsHasNoCode) {
+  EXPECT_EQ(fails("x").code(), ErrorCode{});
+  EXPECT_FALSE(fails("x").is(SampleError::Busy));
 }
 
 }  // namespace

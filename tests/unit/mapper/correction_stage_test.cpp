@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "mapper/core/map_error.hpp"
 #include "mapper_test_data.hpp"
 #include "temp_dir.hpp"
 
@@ -157,7 +158,7 @@ TEST_F(CorrectionStageTest, WithSlamOffObservationsPassStraightThrough) {
   EXPECT_TRUE(touched(*mapper, {0.03, kWallY}));
   step(stage, *mapper, 1);
   EXPECT_TRUE(changed(stage).empty());
-  EXPECT_FALSE(stage.set_initial_pose(*mapper, "r1", Pose{0.5, 0.5, 0.0}));
+  EXPECT_TRUE(stage.set_initial_pose(*mapper, "r1", Pose{0.5, 0.5, 0.0}).is(MapError::InvalidRequest));
   EXPECT_TRUE(changed(stage).empty());
 
   mapper->commit();
@@ -180,10 +181,15 @@ TEST_F(CorrectionStageTest, RejectsBadInitialPosesAndChangesNothing) {
   const auto unknown = stage.set_initial_pose(*mapper, "nobody", Pose{0.5, 0.5, 0.0});
   EXPECT_FALSE(unknown);
   EXPECT_NE(unknown.message().find("unknown robot"), std::string::npos) << unknown.message();
-  EXPECT_FALSE(stage.set_initial_pose(*mapper, "r1", Pose{nan, 0.5, 0.0}));
+  EXPECT_TRUE(unknown.is(MapError::UnknownRobot));
+  EXPECT_TRUE(stage.set_initial_pose(*mapper, "nobody", Pose{nan, 0.5, 0.0}).is(MapError::UnknownRobot));
+  EXPECT_TRUE(stage.set_initial_pose(*mapper, "r1", Pose{nan, 0.5, 0.0}).is(MapError::InvalidRequest));
   EXPECT_FALSE(stage.set_initial_pose(*mapper, "r1", Pose{0.5, 0.5, nan}));
   const auto outside = stage.set_initial_pose(*mapper, "r1", Pose{50.0, 0.5, 0.0});
   EXPECT_FALSE(outside);
+  EXPECT_TRUE(outside.is(MapError::InvalidRequest));
+  EXPECT_EQ(failure_result(unknown.code()), RequestResult::UnknownRobot);
+  EXPECT_EQ(failure_result(outside.code()), RequestResult::InvalidRequest);
   EXPECT_NE(outside.message().find("outside the map"), std::string::npos) << outside.message();
   EXPECT_TRUE(changed(stage).empty()) << "a refused initial pose changed a correction";
 }

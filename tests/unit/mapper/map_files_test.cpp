@@ -28,13 +28,13 @@ TEST(MapFiles, ExportReadsBackAndFailuresAreSorted) {
   ASSERT_TRUE(in.ok()) << in.message;
   EXPECT_EQ(in.image->cells, grid->to_map_image().cells);
 
-  EXPECT_EQ(export_map_file(*grid, "").failure, FileFailure::InvalidRequest);
-  EXPECT_EQ(export_map_file(*grid, (dir.path() / "map.pgm").string()).failure, FileFailure::InvalidRequest);
-  EXPECT_EQ(export_map_file(*grid, "/nonexistent-dir/map.yaml").failure, FileFailure::Io);
-  EXPECT_EQ(read_map_file((dir.path() / "missing.yaml").string()).failure, FileFailure::Io);
+  EXPECT_EQ(export_map_file(*grid, "").failure, MapError::InvalidRequest);
+  EXPECT_EQ(export_map_file(*grid, (dir.path() / "map.pgm").string()).failure, MapError::InvalidRequest);
+  EXPECT_EQ(export_map_file(*grid, "/nonexistent-dir/map.yaml").failure, MapError::Io);
+  EXPECT_EQ(read_map_file((dir.path() / "missing.yaml").string()).failure, MapError::Io);
   std::ofstream(dir.path() / "bad.yaml") << "image: missing.pgm\nresolution: 0.1\norigin: [0, 0, 0]\n";
   const FileOutcome bad = read_map_file((dir.path() / "bad.yaml").string());
-  EXPECT_EQ(bad.failure, FileFailure::BadFile);
+  EXPECT_EQ(bad.failure, MapError::BadFile);
   EXPECT_NE(bad.message.find("missing.pgm"), std::string::npos) << bad.message;
 }
 

@@ -136,15 +136,15 @@ TEST_F(TrajectoryExport, AFileRequestSaysWhatItWroteOrWhyNot) {
   const auto failure = [&](std::string_view robot, const std::string& file) {
     return export_trajectory_file(*store_, robot, file, TrajectoryFormat::Tum);
   };
-  EXPECT_EQ(failure("ghost", path).failure, FileFailure::UnknownRobot);
+  EXPECT_EQ(failure("ghost", path).failure, MapError::UnknownRobot);
   EXPECT_NE(failure("ghost", path).message.find("ghost"), std::string::npos);
-  EXPECT_EQ(failure("", path).failure, FileFailure::InvalidRequest);
-  EXPECT_EQ(failure("r1", "").failure, FileFailure::InvalidRequest);
-  EXPECT_EQ(failure("r1", std::string("a\0b", 3)).failure, FileFailure::InvalidRequest);
+  EXPECT_EQ(failure("", path).failure, MapError::InvalidRequest);
+  EXPECT_EQ(failure("r1", "").failure, MapError::InvalidRequest);
+  EXPECT_EQ(failure("r1", std::string("a\0b", 3)).failure, MapError::InvalidRequest);
   const FileOutcome no_dir = failure("r1", "/nonexistent-dir/r1.tum");
-  EXPECT_EQ(no_dir.failure, FileFailure::Io);
+  EXPECT_EQ(no_dir.failure, MapError::Io);
   EXPECT_NE(no_dir.message.find("/nonexistent-dir"), std::string::npos) << no_dir.message;
-  EXPECT_EQ(failure("r1", dir_.path().string()).failure, FileFailure::Io);  // a directory, not a file
+  EXPECT_EQ(failure("r1", dir_.path().string()).failure, MapError::Io);  // a directory, not a file
 }
 
 }  // namespace
