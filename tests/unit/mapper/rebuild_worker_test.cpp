@@ -1,4 +1,5 @@
-// RebuildWorker: rebuilds off the caller's thread and hands the grid back once.
+// RebuildWorker: rebuilds off the caller's thread and hands the grid back once; a partial re-render
+// hands back its tiles and the index its full rebuild built.
 #include "mapper/core/rebuild_worker.hpp"
 
 #include <gtest/gtest.h>
@@ -6,6 +7,7 @@
 #include <atomic>
 
 #include "mapper/core/map_files.hpp"
+#include "mapper/core/partial_rerender.hpp"
 #include "mapper_test_data.hpp"
 #include "temp_dir.hpp"
 
@@ -46,6 +48,37 @@ TEST(RebuildWorker, RebuildsOffThreadAndHandsTheGridBackOnce) {
   auto failed = worker.wait();
   ASSERT_TRUE(failed);
   EXPECT_FALSE(failed->grid) << "an unreadable store is an error, not an empty map";
+}
+
+TEST(RebuildWorker, APartialRerenderHandsBackItsTiles) {
+  testkit::TempDir dir("mapper");
+  const auto path = dir.path() / "map.db";
+  auto store = open_store(path);
+  ASSERT_TRUE(store);
+  auto live = OccupancyGrid::create(small());
+  feed(*live, *store);
+
+  RebuildWorker worker([] {});
+  ASSERT_TRUE(worker.start(small(), path));
+  auto full = worker.wait();
+  ASSERT_TRUE(full && full->grid);
+  EXPECT_EQ(full->index.observations(), 1);
+  EXPECT_FALSE(full->partial);
+
+  RerenderPlan plan;  // redraws the tile of the wall, from the one stored observation
+  plan.geometry = full->grid->geometry();
+  plan.config = small();
+  plan.layout_version = full->grid->layout_version();
+  const Cell wall = *full->grid->cell_at({1.03, 0.03});
+  plan.tiles = {TileLayout{plan.geometry.width, plan.geometry.height, kGridTileSide}.tile_of(wall.x, wall.y)};
+  plan.replays = {RerenderPlan::Replay{0, 1, 1, Pose{}, 0, false}};
+  ASSERT_TRUE(worker.start_partial(plan, path));
+  EXPECT_TRUE(worker.busy());
+  auto partial = worker.wait();
+  ASSERT_TRUE(partial && partial->partial);
+  ASSERT_TRUE(*partial->partial) << partial->partial->message();
+  EXPECT_EQ((*partial->partial)->replayed, 1);
+  EXPECT_EQ((*partial->partial)->plan.tiles, plan.tiles);
 }
 
 }  // namespace
