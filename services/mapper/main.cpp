@@ -18,18 +18,12 @@ int main(int argc, char** argv) {
     return *code;
   if (options.offline()) {
     auto done = run_offline(options);
-    if (!done) {
-      slam::report_error("slam-mapper", done.message());
-      return slam::kExitFailure;
-    }
+    if (!done) return slam::exit_error("slam-mapper", done.message());
     std::cout << *done << "\n";
     return slam::kExitOk;
   }
   // One mapper per domain (sole_mapper.hpp): decided before the store is opened.
   auto claim = DomainClaim::take(options.service.domain);
-  if (!claim) {
-    slam::report_error("slam-mapper", claim.message());
-    return slam::kExitFailure;
-  }
+  if (!claim) return slam::exit_error("slam-mapper", claim.message());
   return slam::run_service<MapperNode>("mapper", options, [&claim] { (*claim).reset(); });
 }

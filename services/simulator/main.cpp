@@ -1,6 +1,5 @@
 // slam-simulator: options -> world -> service (Cyclone DDS + MQTT) -> run -> tear down; or, with
 // --play, recorded logs played over MQTT (log_player.hpp).
-#include "common/core/counters.hpp"
 #include "common/core/service_options.hpp"
 #include "common/core/shutdown.hpp"
 #include "simulator/core/sim_options.hpp"
@@ -17,28 +16,13 @@ int main(int argc, char** argv) {
                               "protocol over MQTT and taking commands over DDS",
                               argc, argv, options, add_sim_options))
     return *code;
-  if (options.play.enabled()) {
-    slam::install_shutdown_handlers();
-    slam::Counters counters;
-    if (auto s = play_logs(options, counters); !s) {
-      slam::report_error("slam-simulator", s.message());
-      return slam::kExitFailure;
-    }
-    return slam::kExitOk;
-  }
-  auto world = load_world(options.world);
-  if (!world) {
-    slam::report_error("slam-simulator", "--world: " + world.message());
-    return slam::kExitUsage;
-  }
   slam::install_shutdown_handlers();
-
-  slam::Counters counters;
+  slam::Counters counters;  // the node's or the log player's
+  if (options.play.enabled()) return slam::exit_code("slam-simulator", play_logs(options, counters));
+  auto world = load_world(options.world);
+  if (!world) return slam::exit_error("slam-simulator", "--world: " + world.message(), slam::kExitUsage);
   auto node = SimNode::create(options, std::move(*world), counters);
-  if (!node) {
-    slam::report_error("slam-simulator", node.message());
-    return slam::kExitFailure;
-  }
+  if (!node) return slam::exit_error("slam-simulator", node.message());
   (*node)->run();
   return slam::kExitOk;
 }

@@ -125,6 +125,22 @@ Handler add_echo(CLI::App& cli) {
 
 }  // namespace
 
+Handlers add_subcommands(CLI::App& app) {
+  app.require_subcommand(1);
+  Handlers handlers;
+  for (const Subcommand& sub : subcommands()) {
+    CLI::App* cli = app.add_subcommand(std::string(sub.name), std::string(sub.help));
+    handlers.emplace_back(cli, sub.add_options(*cli));
+  }
+  return handlers;
+}
+
+int run_parsed(const Handlers& handlers, Session& session) {
+  for (const auto& [cli, run] : handlers)
+    if (cli->parsed()) return run(session);
+  return kExitUsage;
+}
+
 const std::vector<Subcommand>& subcommands() {
   static const std::vector<Subcommand> table{
       {"status", "one line per service: state, uptime, main rates, error counters", add_status},

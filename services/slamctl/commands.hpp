@@ -8,6 +8,7 @@
 #include <memory>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "common/core/request_retry.hpp"
@@ -44,5 +45,11 @@ struct Subcommand {
 
 // Every subcommand, in the order --help lists them.
 const std::vector<Subcommand>& subcommands();
+
+// Every subcommand of the table added to `app` (exactly one required), each with its handler.
+using Handlers = std::vector<std::pair<const CLI::App*, Handler>>;
+Handlers add_subcommands(CLI::App& app);
+// Runs the handler of the subcommand parsed; kExitUsage when none was.
+int run_parsed(const Handlers& handlers, Session& session);
 
 }  // namespace slam::ctl

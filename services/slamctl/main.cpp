@@ -7,7 +7,6 @@
 
 int main(int argc, char** argv) {
   CLI::App app{"slamctl: inspect and command the SLAM fleet over DDS"};
-  app.require_subcommand(1);
   slam::ServiceOptions options;
   options.log_level = "warn";
   slam::add_service_options(app, options);
@@ -15,28 +14,16 @@ int main(int argc, char** argv) {
   app.add_option("--timeout", timeout_s, "seconds to wait for services and replies")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
-
-  std::vector<std::pair<const CLI::App*, slam::ctl::Handler>> handlers;
-  for (const slam::ctl::Subcommand& sub : slam::ctl::subcommands()) {
-    CLI::App* cli = app.add_subcommand(std::string(sub.name), std::string(sub.help));
-    handlers.emplace_back(cli, sub.add_options(*cli));
-  }
+  const slam::ctl::Handlers handlers = slam::ctl::add_subcommands(app);
 
   if (auto code = slam::parse_command_line(app, argc, argv)) return *code;
-  if (slam::Status s = slam::start_logging("slamctl", options); !s) {
-    slam::report_error("slamctl", s.message());
-    return slam::kExitUsage;
-  }
+  if (slam::Status s = slam::start_logging("slamctl", options); !s)
+    return slam::exit_error("slamctl", s.message(), slam::kExitUsage);
   slam::install_shutdown_handlers();
 
   auto participant = slam::dds::Participant::create(options.domain, "slamctl");
-  if (!participant) {
-    slam::report_error("slamctl", participant.message());
-    return slam::kExitFailure;
-  }
+  if (!participant) return slam::exit_error("slamctl", participant.message());
   slam::ctl::Session session(std::move(*participant),
                              std::chrono::milliseconds(static_cast<int64_t>(timeout_s * 1000)));
-  for (const auto& [cli, run] : handlers)
-    if (cli->parsed()) return run(session);
-  return slam::kExitUsage;  // unreachable: require_subcommand(1)
+  return slam::ctl::run_parsed(handlers, session);
 }

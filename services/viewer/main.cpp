@@ -1,5 +1,5 @@
 // slam-viewer: the operator's window. Only wiring: options → DDS edge → window → run → tear down
-// in reverse order.
+// in reverse order (the window, then the DDS edge, as they go out of scope).
 #include "common/core/service_options.hpp"
 #include "common/core/shutdown.hpp"
 #include "viewer/dds/viewer_node.hpp"
@@ -18,19 +18,11 @@ int main(int argc, char** argv) {
   slam::Counters counters;
   Intake intake;
   auto node = ViewerNode::configure(options.service.domain, intake, counters);
-  if (!node) {
-    slam::report_error("slam-viewer", "cannot start the DDS edge: " + node.message());
-    return slam::kExitFailure;
-  }
+  if (!node) return slam::exit_error("slam-viewer", "cannot start the DDS edge: " + node.message());
   auto app = ViewerApp::create(options, intake, **node, counters);
-  if (!app) {
-    slam::report_error("slam-viewer", "cannot open the window: " + app.message());
-    return slam::kExitFailure;
-  }
+  if (!app) return slam::exit_error("slam-viewer", "cannot open the window: " + app.message());
   (*node)->set_running();
   const int code = (*app)->run();
   (*node)->set_stopping();
-  app->reset();
-  node->reset();
   return code;
 }

@@ -13,6 +13,15 @@ void report_error(std::string_view program, std::string_view message) {
   std::cerr << program << ": error: " << message << "\n";
 }
 
+int exit_error(std::string_view program, std::string_view message, int code) {
+  report_error(program, message);
+  return code;
+}
+
+int exit_code(std::string_view program, const Status& outcome) {
+  return outcome ? kExitOk : exit_error(program, outcome.message());
+}
+
 std::string program_name(std::string_view service) {
   return "slam-" + std::string(service);
 }

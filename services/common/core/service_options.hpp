@@ -22,6 +22,10 @@ struct ServiceOptions {
 
 // The one way a program reports why it stops: "PROGRAM: error: MESSAGE", one line on stderr.
 void report_error(std::string_view program, std::string_view message);
+// report_error(), then the exit code to stop with: `if (!r) return exit_error("slamctl", r.message());`
+int exit_error(std::string_view program, std::string_view message, int code = kExitFailure);
+// kExitOk for an ok outcome, else exit_error(program, its message).
+int exit_code(std::string_view program, const Status& outcome);
 
 // The program a service runs as: "slam-" + service ("gateway" -> "slam-gateway").
 std::string program_name(std::string_view service);

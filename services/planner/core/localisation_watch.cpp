@@ -6,13 +6,13 @@ namespace slam::planner {
 
 Status validate(const RelocaliseConfig& config) {
   if (!std::isfinite(config.return_sigma_m) || config.return_sigma_m < 0.0) {
-    return Error{"relocalise.return_sigma_m must be a finite number >= 0 (0: off)"};
+    return Error{"explore.return_sigma_m must be a finite number >= 0 (0: off)"};
   }
   if (!std::isfinite(config.tied_sigma_m) || config.tied_sigma_m <= 0.0) {
-    return Error{"relocalise.tied_sigma_m must be positive"};
+    return Error{"explore.tied_sigma_m must be positive"};
   }
   if (config.return_sigma_m > 0.0 && config.tied_sigma_m >= config.return_sigma_m) {
-    return Error{"relocalise.tied_sigma_m must be below return_sigma_m"};
+    return Error{"explore.tied_sigma_m must be below explore.return_sigma_m"};
   }
   return Status::ok();
 }

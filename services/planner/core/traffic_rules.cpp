@@ -21,23 +21,23 @@ bool finite_positive(double v) {
 }  // namespace
 
 Status validate(const CoordinationConfig& c) {
-  if (!finite_positive(c.robot_radius_m)) return Error{"coordination robot_radius_m must be positive"};
+  if (!finite_positive(c.robot_radius_m)) return Error{"coordination.robot_radius_m must be positive"};
   if (!std::isfinite(c.clearance_m) || c.clearance_m < 0.0)
-    return Error{"coordination clearance_m must be zero or more"};
-  if (!finite_positive(c.lookahead_m)) return Error{"coordination lookahead_m must be positive"};
+    return Error{"coordination.clearance_m must be zero or more"};
+  if (!finite_positive(c.lookahead_m)) return Error{"coordination.lookahead_m must be positive"};
   if (!finite_positive(c.body_lookahead_m) || c.body_lookahead_m > c.lookahead_m)
-    return Error{"coordination body_lookahead_m must be positive and at most lookahead_m"};
+    return Error{"coordination.body_lookahead_m must be positive and at most lookahead_m"};
   if (!finite_positive(c.yield_search_m) || c.yield_search_m > 20.0)
-    return Error{"coordination yield_search_m must be in (0, 20]"};
-  if (!finite_positive(c.yield_step_m)) return Error{"coordination yield_step_m must be positive"};
-  if (!finite_positive(c.replan_after_s)) return Error{"coordination replan_after_s must be positive"};
-  if (!finite_positive(c.section_horizon_m)) return Error{"coordination section_horizon_m must be positive"};
+    return Error{"coordination.yield_search_m must be in (0, 20]"};
+  if (!finite_positive(c.yield_step_m)) return Error{"coordination.yield_step_m must be positive"};
+  if (!finite_positive(c.replan_after_s)) return Error{"coordination.replan_after_s must be positive"};
+  if (!finite_positive(c.section_horizon_m)) return Error{"coordination.section_horizon_m must be positive"};
   if (!std::isfinite(c.clear_horizon_m) || c.clear_horizon_m < c.lookahead_m)
-    return Error{"coordination clear_horizon_m must be at least lookahead_m"};
-  if (!finite_positive(c.clear_after_s)) return Error{"coordination clear_after_s must be positive"};
+    return Error{"coordination.clear_horizon_m must be at least lookahead_m"};
+  if (!finite_positive(c.clear_after_s)) return Error{"coordination.clear_after_s must be positive"};
   if (!finite_positive(c.clear_search_m) || c.clear_search_m > 20.0)
-    return Error{"coordination clear_search_m must be in (0, 20]"};
-  if (!finite_positive(c.clear_stall_s)) return Error{"coordination clear_stall_s must be positive"};
+    return Error{"coordination.clear_search_m must be in (0, 20]"};
+  if (!finite_positive(c.clear_stall_s)) return Error{"coordination.clear_stall_s must be positive"};
   return Status::ok();
 }
 

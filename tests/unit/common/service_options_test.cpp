@@ -150,5 +150,20 @@ TEST(ReportError, WritesOneLineNamingTheProgram) {
   EXPECT_EQ(testing::internal::GetCapturedStderr(), "slamctl: error: no service seen on DDS domain 3\n");
 }
 
+TEST(ReportError, ExitErrorReportsAndReturnsTheCode) {
+  testing::internal::CaptureStderr();
+  EXPECT_EQ(exit_error("slam-toy", "no world"), kExitFailure);
+  EXPECT_EQ(exit_error("slam-toy", "--world: no such file", kExitUsage), kExitUsage);
+  EXPECT_EQ(testing::internal::GetCapturedStderr(),
+            "slam-toy: error: no world\nslam-toy: error: --world: no such file\n");
+}
+
+TEST(ReportError, ExitCodeIsZeroForAnOkOutcomeAndReportsAFailure) {
+  testing::internal::CaptureStderr();
+  EXPECT_EQ(exit_code("slam-toy", Status::ok()), kExitOk);
+  EXPECT_EQ(exit_code("slam-toy", Error{"log ended early"}), kExitFailure);
+  EXPECT_EQ(testing::internal::GetCapturedStderr(), "slam-toy: error: log ended early\n");
+}
+
 }  // namespace
 }  // namespace slam

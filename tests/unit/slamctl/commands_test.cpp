@@ -13,15 +13,7 @@ namespace {
 
 struct CommandLine {
   CLI::App app{"slamctl"};
-  std::vector<std::pair<const CLI::App*, Handler>> handlers;
-
-  CommandLine() {
-    app.require_subcommand(1);
-    for (const Subcommand& sub : subcommands()) {
-      CLI::App* cli = app.add_subcommand(std::string(sub.name), std::string(sub.help));
-      handlers.emplace_back(cli, sub.add_options(*cli));
-    }
-  }
+  Handlers handlers = add_subcommands(app);
 
   // The exit code parse_command_line asks for (std::nullopt: carry on).
   std::optional<int> parse(std::vector<std::string> args) {
