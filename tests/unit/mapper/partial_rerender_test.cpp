@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <random>
 #include <vector>
 
 #include "mapper/core/rebuild.hpp"
@@ -213,6 +214,58 @@ TEST_P(PartialRerender, WithAPriorEqualsAFullRebuild) {
 
 INSTANTIATE_TEST_SUITE_P(Modes, PartialRerender, ::testing::Values(false, true),
                          [](const ::testing::TestParamInfo<bool>& p) { return p.param ? "Legacy" : "Rays"; });
+
+// The corrections every observation is drawn with, as the index says (keyframe-0 runs: identity).
+KeyframeCorrections drawn_corrections(const FootprintIndex& index) {
+  KeyframeCorrections c;
+  for (const FootprintGroup& g : index.groups())
+    if (g.keyframe != 0) c.set(g.keyframe, g.drawn);
+  return c;
+}
+
+TEST(PartialRerenderRandom, AnySequenceOfClosuresEqualsAFullRebuildOfWhatIsDrawn) {
+  // Rounds of random moves, some under a quarter cell (not redrawn: they add up), some of decimetres
+  // and a few degrees; after each, the grid equals a full rebuild with the corrections it is drawn
+  // with, and those are the wanted ones wherever a keyframe moved by more than a quarter cell.
+  Fixture f(120);
+  const GridConfig config = corridor_config();
+  FootprintIndex index;
+  OccupancyGrid grid = full_rebuild(config, *f.store, f.drawn, &index);
+  KeyframeCorrections wanted = f.drawn;
+  std::mt19937 rng(5);
+  std::uniform_int_distribution<size_t> pick(0, f.keyframes.size() - 1);
+  std::uniform_real_distribution<double> small(-0.004, 0.004), large(-0.25, 0.25), turn(-0.04, 0.04);
+  int partial = 0;
+  for (int round = 0; round < 8; ++round) {
+    const int moves = 1 + round % 4;
+    for (int m = 0; m < moves; ++m) {
+      const KeyframeId kf = f.keyframes[pick(rng)];
+      if (m % 2 == 0)
+        move(wanted, kf, large(rng), large(rng) * 0.5, turn(rng));
+      else
+        move(wanted, kf, small(rng), small(rng), 0.0);
+    }
+    const Redrawn r = redraw(grid, index, *f.store, wanted);
+    if (r.decision.kind == RerenderDecision::Kind::Full) {  // as the mapper does
+      grid = full_rebuild(config, *f.store, wanted, &index);
+      continue;
+    }
+    partial += r.decision.kind == RerenderDecision::Kind::Partial ? 1 : 0;
+    expect_same(grid, full_rebuild(config, *f.store, drawn_corrections(index)));
+    const double quarter = 0.25 * config.resolution;
+    for (const FootprintGroup& g : index.groups()) {
+      if (g.keyframe == 0) continue;
+      const Pose w = wanted.lookup(g.keyframe);
+      const Pose delta = w.compose(g.drawn.inverse());
+      for (const Vec2 c : {Vec2{g.box.x0, g.box.y0}, Vec2{g.box.x1, g.box.y1}, Vec2{g.box.x0, g.box.y1},
+                           Vec2{g.box.x1, g.box.y0}}) {
+        const Vec2 m = delta.transform(c);
+        EXPECT_LE(std::hypot(m.x - c.x, m.y - c.y), quarter + 1e-9) << "keyframe " << g.keyframe;
+      }
+    }
+  }
+  EXPECT_GE(partial, 4);
+}
 
 TEST(PartialRerenderTiles, TilesNoMovedKeyframeTouchesStayAsTheyWere) {
   Fixture f;
