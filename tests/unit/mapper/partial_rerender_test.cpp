@@ -6,9 +6,13 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <optional>
 #include <random>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 #include "mapper/core/rebuild.hpp"
