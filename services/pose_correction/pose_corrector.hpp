@@ -37,6 +37,7 @@
 #include "pose_correction/branch_and_bound_search.hpp"
 #include "pose_correction/clock_steps.hpp"
 #include "pose_correction/correction_schedule.hpp"
+#include "pose_correction/free_space_check.hpp"
 #include "pose_correction/grid_view.hpp"
 #include "pose_correction/keyframe_builder.hpp"
 #include "pose_correction/keyframe_index.hpp"
@@ -133,7 +134,15 @@ struct CorrectorOptions {
   double placement_agree_rad = 0.1;
   int placement_max_keyframes = 40;
   double placement_max_wait_s = 30.0;
-  size_t placement_max_points = 300;         // a keyframe's points searched, evenly thinned
+  // What is searched: the newest keyframe and the ones before it within this much travel, by
+  // odometry (a sparse robot's single keyframe fits many places), evenly thinned to max_points.
+  double placement_trail_m = 4.0;
+  size_t placement_max_points = 400;
+  // A match whose rays run through more than this share of the map's walls is a look-alike place
+  // (free_space_check.hpp), however well its points land. True placements of the benchmark logs'
+  // robots cross 10-18 % (a few metres of real odometry smear the trail; 30 m rays pass doorways
+  // and glass), look-alikes in the simulator's office about 40 %.
+  double placement_max_crossed_walls = 0.3;
   size_t placement_max_map_cells = 1 << 20;  // a larger map is searched at a coarser resolution
   int optimise_every = 40;                   // keyframes tied to the old map between optimisations
   double rerender_shift_m = 0.02;            // keyframe moves smaller than this are not re-rendered
@@ -435,7 +444,9 @@ class PoseCorrector {
   int64_t placement_map_ns_ = 0;
   bool placement_map_ready_ = false;
   std::vector<uint8_t> placement_cells_;  // scratch: the grid's occupied part, maybe coarsened
-  std::vector<Vec2> placement_points_;    // scratch: a keyframe's points, thinned
+  std::vector<Ray> placement_trail_;      // scratch: the searched keyframes' rays
+  std::vector<Ray> placement_rays_;       // scratch: ...thinned
+  std::vector<Vec2> placement_points_;    // scratch: ...their ends
   std::vector<uint32_t> searching_;       // scratch: robots with a keyframe held in this pass
   int64_t last_process_ns_ = 0;           // now_ns of the latest process()
   int64_t submitted_ns_ = 0;              // ...when the running optimisation started

@@ -5,12 +5,19 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <span>
+#include <vector>
 
 #include "common/core/cell_class.hpp"
+#include "pose_correction/free_space_check.hpp"
 #include "pose_correction/pose_corrector.hpp"
 
 namespace slam::correction {
 namespace {
+
+// The last stretch of a ray a wall may lie on at a true placement: the search's lattice (a cell, a
+// heading step) and the map's walls a cell or two thick.
+constexpr double kWallCrossingMargin_m = 0.3;
 
 // The occupied part of `grid` (cells of a wall or an obstruction), with a margin: what a keyframe
 // can be placed against. Empty when nothing is occupied.
@@ -33,6 +40,32 @@ CellBox occupied_box(const GridView& grid, int32_t margin) {
   x1 = std::min(g.width - 1, x1 + margin);
   y1 = std::min(g.height - 1, y1 + margin);
   return {x0, y0, x1 - x0 + 1, y1 - y0 + 1};
+}
+
+// The rays of the newest keyframe of `held` and of those before it in its segment within
+// `trail_m` of travel, in the newest one's frame (by odometry, which holds over a few metres),
+// evenly thinned to at most `max_rays`: one sparse keyframe (a v1 robot's 16 points a message)
+// fits many places of a building, a few metres of them fit one. Each ray starts at its keyframe's
+// origin (the robot moves a few decimetres within one).
+void gather_trail(std::span<const Keyframe> held, double trail_m, size_t max_rays, std::vector<Ray>& trail,
+                  std::vector<Ray>& out) {
+  trail.clear();
+  const Keyframe& newest = held.back();
+  const Pose to_newest = newest.odom.inverse();
+  double travelled = 0.0;
+  for (size_t i = held.size(); i-- > 0;) {
+    const Keyframe& k = held[i];
+    if (k.segment != newest.segment) break;
+    if (i + 1 < held.size()) travelled += distance(k.odom.position(), held[i + 1].odom.position());
+    if (travelled > trail_m) break;
+    const Pose into_newest = to_newest.compose(k.odom);
+    const Vec2 origin = into_newest.position();
+    for (const Vec2& p : k.points) trail.push_back({origin, into_newest.transform(p)});
+  }
+  // Evenly thinned: the search's cost follows the points, and a few hundred pin a place.
+  out.clear();
+  const size_t stride = std::max<size_t>(1, (trail.size() + max_rays - 1) / max_rays);
+  for (size_t i = 0; i < trail.size(); i += stride) out.push_back(trail[i]);
 }
 
 // Map a correction found for `keyframe` (its origin at `pose`) gives its robot's odometry frame.
@@ -88,12 +121,10 @@ void PoseCorrector::search_placement(Robot& rb, const GridView& grid, int64_t no
     placement_map_ns_ = now_ns;
   }
   if (!placement_map_ready_) return;  // nothing on the map yet: it waits for the others' (or the wait's end)
-  // Evenly thinned: the search's cost follows the points, and a few hundred pin a place.
+  gather_trail(rb.held, options_.placement_trail_m, options_.placement_max_points, placement_trail_,
+               placement_rays_);
   placement_points_.clear();
-  const size_t n = keyframe.points.size();
-  const size_t stride =
-      std::max<size_t>(1, (n + options_.placement_max_points - 1) / options_.placement_max_points);
-  for (size_t i = 0; i < n; i += stride) placement_points_.push_back(keyframe.points[i]);
+  for (const Ray& r : placement_rays_) placement_points_.push_back(r.end);
 
   // No hypothesis: the whole map at every heading. A hypothesis: around where it puts this keyframe.
   const GridGeometry& map = placement_search_.geometry();
@@ -110,8 +141,12 @@ void PoseCorrector::search_placement(Robot& rb, const GridView& grid, int64_t no
   }
   ++stats_.placement_searches;
   const auto found = placement_search_.search(placement_points_, region);
+  const double crossed = found ? crossed_wall_share(GridView{map, placement_cells_}, found->pose,
+                                                    placement_rays_, kWallCrossingMargin_m)
+                               : 1.0;
   const bool good = found && found->score >= options_.placement_min_score &&
-                    (rb.hypothesis || found->ambiguity() <= options_.placement_max_ambiguity);
+                    (rb.hypothesis || found->ambiguity() <= options_.placement_max_ambiguity) &&
+                    crossed <= options_.placement_max_crossed_walls;
   rb.state.localisation_score = found ? found->score * (1.0 - found->ambiguity()) : 0.0;
   if (good) {
     const Pose frame = frame_of(found->pose, keyframe);

@@ -224,12 +224,17 @@ void add_slam_options(CLI::App& app, correction::CorrectorOptions& s) {
   auto add = [&](const char* name, auto& value, const char* help) {
     g->add_option(name, value, help)->capture_default_str();
   };
+  add("--scan-points", s.keyframe.scan_points,
+      "a message with this many points is a laser scan, matchable alone");
   add("--scan-travel", s.keyframe.scan_travel_m, "a keyframe of scans closes after this travel (m)");
   add("--scan-turn", s.keyframe.scan_turn_rad, "...or this turn (rad)");
   add("--keyframe-travel", s.keyframe.travel_m, "a sparse keyframe closes after this travel (m)");
+  add("--keyframe-turn", s.keyframe.turn_rad, "...or this turn (rad)");
   add("--keyframe-messages", s.keyframe.max_messages, "...or this many messages");
   add("--scan-track-window-m", s.scan_track_window.linear_m, "tracking search of a scan keyframe (m)");
   add("--scan-track-window-rad", s.scan_track_window.angular_rad, "...and its heading (rad)");
+  add("--track-window-m", s.track_window.linear_m, "tracking search of a sparse keyframe (m)");
+  add("--track-window-rad", s.track_window.angular_rad, "...and its heading (rad)");
   add("--scan-track-variance-scale", s.scan_track_variance_scale, "a scan match's covariance scale");
   add("--scan-independent-points", s.scan_independent_points, "independent points of a scan keyframe");
   add("--scan-max-ambiguity", s.scan_distinct.max_ambiguity, "a scan closure's largest ambiguity");
@@ -246,6 +251,10 @@ void add_slam_options(CLI::App& app, correction::CorrectorOptions& s) {
   add("--odom-sigma-rad", s.odom_sigma_rad_per_m, "odometry heading noise (rad per m)");
   add("--wall-heading", s.wall_heading, "hold headings to the walls' axes (true/false)");
   add("--point-refine", s.point_refine, "refine matches against the points (true/false)");
+  add("--placement-trail", s.placement_trail_m,
+      "travel (m) of keyframes searched together for an unplaced robot");
+  add("--placement-max-crossed-walls", s.placement_max_crossed_walls,
+      "share of a placement's rays that may cross walls");
   add("--global-localisation", s.global_localisation,
       "search for each robot joining the map on it before drawing it (true/false)");
 }
