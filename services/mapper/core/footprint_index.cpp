@@ -22,7 +22,8 @@ MapBox box_of(const ObservationView& obs) {
   return box;
 }
 
-void FootprintIndex::add(KeyframeId keyframe, int64_t row, const Pose& drawn, const MapBox& box) {
+void FootprintIndex::add(KeyframeId keyframe, int64_t row, const Pose& drawn, const MapBox& box,
+                         int64_t stamp_ns) {
   uint32_t slot = kNone;
   if (keyframe == 0) {
     if (open_run_ != kNone && groups_[open_run_].rows >= kStaticRun) open_run_ = kNone;
@@ -33,7 +34,7 @@ void FootprintIndex::add(KeyframeId keyframe, int64_t row, const Pose& drawn, co
   ++observations_;
   if (slot == kNone) {
     slot = static_cast<uint32_t>(groups_.size());
-    groups_.push_back(FootprintGroup{keyframe, row, row, 1, drawn, box});
+    groups_.push_back(FootprintGroup{keyframe, row, row, 1, drawn, box, stamp_ns, 0});
     if (keyframe == 0)
       open_run_ = slot;
     else
@@ -48,9 +49,33 @@ void FootprintIndex::add(KeyframeId keyframe, int64_t row, const Pose& drawn, co
   g.box.add(box);
 }
 
-void FootprintIndex::redraw(size_t group, const Pose& drawn, const MapBox& box) {
+void FootprintIndex::redraw(size_t group, const Pose& drawn, const MapBox& box, int64_t stamp_ns) {
   groups_[group].drawn = drawn;
   groups_[group].box = box;
+  groups_[group].moved_stamp_ns = stamp_ns;
+}
+
+void FootprintIndex::drop_through(int64_t row, int64_t deleted) {
+  const FootprintGroup* open = open_run_ == kNone ? nullptr : &groups_[open_run_];
+  const bool open_kept = open && open->last_row > row;
+  size_t kept = 0;
+  uint32_t new_open = kNone;
+  for (size_t i = 0; i < groups_.size(); ++i) {
+    FootprintGroup g = groups_[i];
+    if (g.last_row <= row) continue;
+    if (g.first_row <= row) {
+      // Rows are not counted per row here: the ones kept are at most what it had, at least one.
+      g.first_row = row + 1;
+    }
+    if (open_kept && i == open_run_) new_open = static_cast<uint32_t>(kept);
+    groups_[kept++] = g;
+  }
+  groups_.resize(kept);
+  open_run_ = new_open;
+  slot_.clear();
+  for (size_t i = 0; i < groups_.size(); ++i)
+    if (groups_[i].keyframe != 0) slot_.emplace(groups_[i].keyframe, static_cast<uint32_t>(i));
+  observations_ -= deleted;
 }
 
 void FootprintIndex::clear() {

@@ -2,7 +2,7 @@
 // Where the stored observations lie in the grid as it is drawn, per keyframe: the correction its
 // observations were drawn with and the map-frame box they cover (sensor origins, hits and misses:
 // every ray lies inside). A re-render asks it which keyframes moved and which others touch the tiles
-// those leave or enter, and replays only those (partial_rerender.hpp). One entry of 80 bytes per
+// those leave or enter, and replays only those (partial_rerender.hpp). One entry of 96 bytes per
 // keyframe (plus its hash slot), never per observation; every full rebuild (start-up included)
 // builds it afresh from the store and the mapper extends it as it stores observations.
 // Observations without a keyframe (id 0) never move but may lie in a redrawn tile: they are kept in
@@ -52,6 +52,8 @@ struct FootprintGroup {
   int64_t rows = 0;
   Pose drawn;  // the correction they are drawn with; NaN when drawn with several (a re-render redraws all)
   MapBox box;  // where they are drawn
+  int64_t first_stamp_ns = 0;  // its first observation's gateway stamp (how old it is)
+  int64_t moved_stamp_ns = 0;  // the newest stamp stored when it was last redrawn at a new correction
 };
 
 class FootprintIndex {
@@ -59,10 +61,15 @@ class FootprintIndex {
   // Keyframe-0 rows per run: a run's box grows with its robots' paths, so runs stay short.
   static constexpr int64_t kStaticRun = 256;
 
-  // Stored row `row` of `keyframe`, drawn with `drawn` over `box`.
-  void add(KeyframeId keyframe, int64_t row, const Pose& drawn, const MapBox& box);
-  // Group `group`'s observations are drawn again, with `drawn` over `box`.
-  void redraw(size_t group, const Pose& drawn, const MapBox& box);
+  // Stored row `row` of `keyframe` (gateway stamp `stamp_ns`), drawn with `drawn` over `box`.
+  void add(KeyframeId keyframe, int64_t row, const Pose& drawn, const MapBox& box, int64_t stamp_ns = 0);
+  // Group `group`'s observations are drawn again, with `drawn` over `box` (at `stamp_ns`, the newest
+  // stamp stored then).
+  void redraw(size_t group, const Pose& drawn, const MapBox& box, int64_t stamp_ns = 0);
+  // The rows up to `row` are compacted into the baseline: groups with no row after it go, the others
+  // keep their rows after it (their boxes stay: they still hold every remaining row). `deleted`: how
+  // many rows that was (the index counts observations, not rows per group).
+  void drop_through(int64_t row, int64_t deleted);
   void clear();
 
   std::span<const FootprintGroup> groups() const { return groups_; }

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "mapper/core/occupancy_grid.hpp"
+#include "mapper/core/store_baseline.hpp"
 #include "mapper/core/tile_canvas.hpp"
 
 namespace slam::mapper {
@@ -51,6 +52,32 @@ void OccupancyGrid::clear_obstructions() {
     set_class(i, static_cast<uint8_t>(classes_[i] & ~kCellObstructed));
   }
   obstructions_.clear();
+}
+
+int64_t OccupancyGrid::apply_baseline(const Baseline& baseline) {
+  const GridGeometry& b = baseline.geometry;
+  if (!(b.resolution > 0.0) || b.width <= 0 || b.height <= 0) return 0;
+  // The cells of its first and last cell centres, in this layout.
+  const auto x0 = static_cast<int64_t>(cell_x(b.origin.x + 0.5 * b.resolution));
+  const auto y0 = static_cast<int64_t>(cell_y(b.origin.y + 0.5 * b.resolution));
+  const auto x1 = static_cast<int64_t>(cell_x(b.origin.x + (b.width - 0.5) * b.resolution)) + 1;
+  const auto y1 = static_cast<int64_t>(cell_y(b.origin.y + (b.height - 0.5) * b.resolution)) + 1;
+  if ((x0 < 0 || y0 < 0 || x1 > width_ || y1 > height_) && fits(x0, y0, x1, y1)) {
+    if (b.resolution == config_.resolution)  // the layout the rebuild it replaces had: no padding
+      resize(std::min<int64_t>(x0, 0), std::min<int64_t>(y0, 0), std::max<int64_t>(x1, width_),
+             std::max<int64_t>(y1, height_));
+    else
+      grow(x0, y0, x1, y1);
+  }
+  const GridGeometry g = geometry();
+  int64_t cells = 0;
+  baseline.for_each_known([&](Vec2 centre, int16_t value) {
+    const auto cell = g.cell_at(centre);
+    if (!cell) return;
+    set_value(index(cell->x, cell->y), value);
+    ++cells;
+  });
+  return cells;
 }
 
 Result<int64_t> OccupancyGrid::apply_prior(const MapImage& image) {

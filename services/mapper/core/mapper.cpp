@@ -2,6 +2,7 @@
 // Every request gets one reply; a refused request leaves the map and the store as they were.
 #include "mapper/core/mapper.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <type_traits>
@@ -14,6 +15,8 @@
 
 namespace slam::mapper {
 namespace {
+
+const MapBox kNoRegion{};  // a baseline load of this region reads its header only
 
 std::string point_text(double x, double y) {
   return "(" + std::to_string(x) + ", " + std::to_string(y) + ")";
@@ -76,7 +79,9 @@ Mapper::Metrics::Metrics(Counters& c)
       store_errors(c.get("store_errors")),
       robot_hits_filtered(c.get("robot_hits_filtered")),
       rerenders_partial(c.get("rerenders_partial")),
-      rerender_observations(c.get("rerender_observations")) {}
+      rerender_observations(c.get("rerender_observations")),
+      compactions(c.get("compactions")),
+      compacted_observations(c.get("compacted_observations")) {}
 
 ObservationView Mapper::Deferred::view() const {
   return ObservationView{x, y, theta, has_heading, hits, misses};
@@ -126,6 +131,11 @@ Status Mapper::open() {
       index_.memory_bytes() / 1024);
   if (stats.rejected > 0)
     spdlog::warn("store: {} observations rejected: {}", stats.rejected, stats.first_error);
+  auto baseline = store_->load_baseline(&kNoRegion);  // its through_row only
+  if (!baseline) return baseline.error();
+  compacted_through_ = baseline->has_value() ? (*baseline)->through_row : 0;
+  for (const FootprintGroup& g : index_.groups())
+    newest_stamp_ns_ = std::max(newest_stamp_ns_, g.first_stamp_ns);
   auto count = store_->count();
   if (!count) return count.error();
   metrics_.store_observations.store(*count);
@@ -141,6 +151,7 @@ void Mapper::reject(std::string_view robot_id, uint64_t seq, const std::string& 
 }
 
 void Mapper::integrate(const RobotScan& scan, int64_t now_ns) {
+  loop_now_ns_ = now_ns;
   odom_hits_.assign(scan.view.hits.begin(), scan.view.hits.end());
   odom_misses_.assign(scan.view.misses.begin(), scan.view.misses.end());
   // Uncorrected, the odometry buffers are the map frame's; corrected, the filter decides in the map
@@ -186,7 +197,8 @@ void Mapper::store_observation(std::string_view robot, uint64_t seq, int64_t sta
               s.message());
     return;
   }
-  index_.add(keyframe_id, store_->last_row(), drawn, box);
+  index_.add(keyframe_id, store_->last_row(), drawn, box, stamp_ns);
+  newest_stamp_ns_ = std::max(newest_stamp_ns_, stamp_ns);
   bump(metrics_.store_observations);
 }
 
@@ -238,6 +250,7 @@ void Mapper::submit(MapCommand command) {
 void Mapper::poll_rebuild() {
   if (auto outcome = worker_.take()) finish_rebuild(std::move(*outcome));
   run_queued_commands();
+  maybe_compact();
 }
 
 void Mapper::wait_for_rebuild() {
@@ -398,6 +411,7 @@ void Mapper::start_rebuild(RebuildTicket ticket) {
 
 void Mapper::finish_rebuild(RebuildOutcome outcome) {
   if (ticket_->cause == RebuildCause::PartialRerender) return finish_partial(std::move(outcome));
+  if (ticket_->cause == RebuildCause::Compaction) return finish_compaction(std::move(outcome));
   RebuildTicket ticket = std::move(*ticket_);
   ticket_.reset();
   if (!outcome.grid) {
@@ -444,8 +458,10 @@ void Mapper::finish_rebuild(RebuildOutcome outcome) {
   seen_layout_ = grid_->layout_version();
   if (!same) ++layout_id_;
   bump(metrics_.rebuilds);
-  if (ticket.cause == RebuildCause::Rerender)
+  if (ticket.cause == RebuildCause::Rerender) {
     bump(metrics_.rerender_observations, outcome.stats.observations);
+    last_full_redraw_ns_ = newest_stamp_ns_;  // the fresh index does not know who moved: all may have
+  }
   swapped_ = true;
 
   const RebuildStats& st = outcome.stats;

@@ -165,6 +165,11 @@ class Mapper {
   // Lands a finished rebuild (swaps the grid, stores the observations kept aside, replies) and runs
   // the requests that waited for it. Call every loop pass.
   void poll_rebuild();
+  // mapper_compaction.cpp. Starts a compaction on the worker when one is due (compaction.hpp): at
+  // most every --store-compact-interval-s, while nothing else runs or waits. poll_rebuild() calls it.
+  void maybe_compact();
+  // Starts one now if the plan finds rows to compact (tests, benches); true when started.
+  bool compact_now();
   // Blocks until a running rebuild finishes and lands it (shutdown, tests).
   void wait_for_rebuild();
   bool rebuilding() const { return worker_.busy(); }
@@ -203,8 +208,10 @@ class Mapper {
     std::atomic<int64_t>& store_observations;
     std::atomic<int64_t>& store_errors;
     std::atomic<int64_t>& robot_hits_filtered;
-    std::atomic<int64_t>& rerenders_partial;      // re-renders that redrew only what moved
-    std::atomic<int64_t>& rerender_observations;  // observations replayed by re-renders (partial or full)
+    std::atomic<int64_t>& rerenders_partial;       // re-renders that redrew only what moved
+    std::atomic<int64_t>& rerender_observations;   // observations replayed by re-renders (partial or full)
+    std::atomic<int64_t>& compactions;             // compactions landed
+    std::atomic<int64_t>& compacted_observations;  // raw rows they replaced by the baseline
   };
 
   // An observation integrated while a rebuild runs, kept (raw) for the new grid and the store.
@@ -222,7 +229,7 @@ class Mapper {
     ObservationView view() const;
   };
 
-  enum class RebuildCause { Layout, ResetRobot, Import, Rerender, PartialRerender };
+  enum class RebuildCause { Layout, ResetRobot, Import, Rerender, PartialRerender, Compaction };
   // Who waits for the running rebuild, and what to do when it lands.
   struct RebuildTicket {
     RebuildCause cause = RebuildCause::Layout;
@@ -252,6 +259,9 @@ class Mapper {
   // mapper_rerender.cpp: a partial re-render when the plan allows one (`full`: a full one regardless).
   void start_rerender(bool full);
   void finish_partial(RebuildOutcome outcome);
+  // mapper_compaction.cpp.
+  bool start_compaction(bool due_only);
+  void finish_compaction(RebuildOutcome outcome);
   void run_queued_commands();
   void reply(uint64_t request_id, RequestResult result, const std::string& message);
 
@@ -267,6 +277,11 @@ class Mapper {
   bool swapped_ = false;      // a rebuild replaced the grid; not yet published
   KeyframeCorrections corrections_;
   FootprintIndex index_;
+  int64_t newest_stamp_ns_ = 0;      // the newest stored gateway stamp: the clock compaction ages by
+  int64_t last_full_redraw_ns_ = 0;  // newest_stamp_ns_ when a full re-render last moved everything
+  int64_t compacted_through_ = 0;    // the store's baseline holds rows up to this
+  int64_t loop_now_ns_ = 0;          // the last integrate()'s monotonic time
+  int64_t next_compaction_check_ns_ = 0;
   bool rerender_waiting_ = false;       // a re-render requested while a rebuild ran
   bool full_rerender_waiting_ = false;  // ... and it must be a full one (a partial one could not be exact)
   std::vector<Vec2> odom_hits_;         // the observation being integrated, odometry frame

@@ -48,6 +48,20 @@ void add_mapper_options(CLI::App& app, MapperOptions& o) {
                  "a robot position older than this no longer filters hits")
       ->capture_default_str();
 
+  CompactionOptions& c = o.compaction;
+  app.add_option(
+         "--store-retention-days", c.retention_days,
+         "raw observations older than this are compacted into the per-tile baseline (0: never by age)")
+      ->capture_default_str();
+  app.add_option(
+         "--store-max-mb", c.max_mb,
+         "a store using more than this compacts everything older than --store-min-age-s (0: no bound)")
+      ->capture_default_str();
+  app.add_option("--store-min-age-s", c.min_age_s,
+                 "a keyframe first seen or moved less than this long ago (gateway stamps) is never compacted")
+      ->capture_default_str();
+  app.add_option("--store-compact-interval-s", c.interval_s, "how often the mapper checks whether to compact")
+      ->capture_default_str();
   app.add_option("--rerender-min-shift-cells", o.rerender.min_shift_cells,
                  "a keyframe whose points moved less than this many cells is not redrawn")
       ->capture_default_str();
@@ -106,6 +120,7 @@ Status validate(const MapperOptions& o) {
   if (auto s = validate(o.grid); !s) return Error{"grid." + s.message()};
   if (auto s = validate(o.robot_filter); !s) return s;
   if (auto s = validate(o.rerender); !s) return s;
+  if (auto s = validate(o.compaction); !s) return s;
   if (!std::isfinite(o.patch_rate_hz) || o.patch_rate_hz < 0.1 || o.patch_rate_hz > 1000.0)
     return Error{"patch_rate: must be between 0.1 and 1000 Hz"};
   if (!std::isfinite(o.snapshot_period_s) || o.snapshot_period_s < 0.1 || o.snapshot_period_s > 3600.0)

@@ -8,6 +8,7 @@
 
 #include "common/core/result.hpp"
 #include "common/core/service_options.hpp"
+#include "mapper/core/compaction_options.hpp"
 #include "mapper/core/grid_config.hpp"
 #include "mapper/core/rerender_options.hpp"
 #include "mapper/core/robot_footprints.hpp"
@@ -18,7 +19,8 @@ struct MapperOptions {
   ServiceOptions service;
   // SQLite file holding every observation; its directory is created when missing.
   std::string store = "run/data/map.db";
-  int store_batch = 512;  // appends per transaction (a commit also happens every patch period)
+  int store_batch = 512;         // appends per transaction (a commit also happens every patch period)
+  CompactionOptions compaction;  // how long raw observations are kept, how large the store may grow
   // The layout of a new store. A store remembers the layout GridConfig requests set last; that layout
   // (resolution, origin, size, inflation, legacy mode) wins over these flags at start.
   GridConfig grid;

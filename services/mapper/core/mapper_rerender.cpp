@@ -70,7 +70,7 @@ void Mapper::finish_partial(RebuildOutcome outcome) {
         is_identity(d.map_from_odom) ? odom : to_map_frame(d.map_from_odom, odom, hits_, misses_));
   }
   grid_->redraw(render.canvas);
-  record_redraw(render, index_);
+  record_redraw(render, index_, newest_stamp_ns_);
   store_deferred_as_drawn();
   bump(metrics_.rerenders_partial);
   bump(metrics_.rerender_observations, render.replayed);

@@ -3,8 +3,8 @@
 
 namespace slam::mapper {
 
-void ObservationBatch::add(int64_t id, const ObservationView& obs, uint64_t keyframe) {
-  entries.push_back({id, keyframe, obs.x, obs.y, obs.theta, obs.has_heading,
+void ObservationBatch::add(int64_t id, const ObservationView& obs, uint64_t keyframe, int64_t stamp_ns) {
+  entries.push_back({id, keyframe, stamp_ns, obs.x, obs.y, obs.theta, obs.has_heading,
                      static_cast<uint32_t>(obs.hits.size()), static_cast<uint32_t>(obs.misses.size())});
   points.insert(points.end(), obs.hits.begin(), obs.hits.end());
   points.insert(points.end(), obs.misses.begin(), obs.misses.end());

@@ -19,6 +19,7 @@ struct ObservationBatch {
   struct Entry {
     int64_t id = 0;         // the store's row id
     uint64_t keyframe = 0;  // its keyframe (0: none)
+    int64_t stamp_ns = 0;   // its gateway stamp
     double x = 0.0, y = 0.0, theta = 0.0;
     bool has_heading = false;
     uint32_t hits = 0;
@@ -32,7 +33,7 @@ struct ObservationBatch {
     points.clear();
   }
   // Copies `obs` in (the spans it points at may be reused by the caller).
-  void add(int64_t id, const ObservationView& obs, uint64_t keyframe = 0);
+  void add(int64_t id, const ObservationView& obs, uint64_t keyframe = 0, int64_t stamp_ns = 0);
   // Calls visit(entry, view) for each entry in order; the views point into this batch.
   template <class Visit>
   void for_each_entry(Visit&& visit) const {

@@ -17,8 +17,9 @@ namespace {
 
 // 1: observations without keyframe ids. 2: observations.keyframe, the keyframes table.
 // 3: observations.robot_stamp_ns (the robot's own clock). 4: an index of observations by keyframe (a
-// partial re-render reads the rows of the keyframes it redraws).
-constexpr int kSchemaVersion = 4;
+// partial re-render reads the rows of the keyframes it redraws). 5: the compacted baseline (baseline,
+// baseline_tiles).
+constexpr int kSchemaVersion = 5;
 
 constexpr const char* kSchema = R"sql(
 CREATE TABLE IF NOT EXISTS observations(
@@ -40,6 +41,13 @@ CREATE TABLE IF NOT EXISTS prior(
   id INTEGER PRIMARY KEY CHECK(id = 1),
   width INTEGER NOT NULL, height INTEGER NOT NULL, resolution REAL NOT NULL,
   origin_x REAL NOT NULL, origin_y REAL NOT NULL, origin_yaw REAL NOT NULL, cells BLOB NOT NULL);
+CREATE TABLE IF NOT EXISTS baseline(
+  id INTEGER PRIMARY KEY CHECK(id = 1),
+  resolution REAL NOT NULL, origin_x REAL NOT NULL, origin_y REAL NOT NULL,
+  width INTEGER NOT NULL, height INTEGER NOT NULL, through_row INTEGER NOT NULL,
+  prior_pending INTEGER NOT NULL DEFAULT 0);
+CREATE TABLE IF NOT EXISTS baseline_tiles(
+  ty INTEGER NOT NULL, tx INTEGER NOT NULL, cells BLOB NOT NULL, PRIMARY KEY(ty, tx));
 )sql";
 
 // After the columns older stores gain: (keyframe, rowid) entries, so one keyframe's rows are a range.
@@ -368,12 +376,13 @@ Status ObservationStore::save_prior(const MapImage& image) {
   sqlite3_bind_double(st, 6, image.origin_yaw);
   sqlite3_bind_blob64(st, 7, image.cells.data(), image.cells.size(), SQLITE_STATIC);
   if (sqlite3_step(st) != SQLITE_DONE) return db_error("save prior");
-  return Status::ok();
+  // A baseline holds the prior it was compacted over; a rebuild applies a newer one over it.
+  return exec("UPDATE baseline SET prior_pending = 1");
 }
 
 Status ObservationStore::clear_prior() {
   if (Status s = flush(); !s) return s;
-  return exec("DELETE FROM prior");
+  return exec("DELETE FROM prior; UPDATE baseline SET prior_pending = 0");
 }
 
 Result<std::optional<MapImage>> ObservationStore::load_prior() {

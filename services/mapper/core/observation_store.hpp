@@ -22,6 +22,7 @@
 #include "mapper/core/corrections.hpp"
 #include "mapper/core/grid_config.hpp"
 #include "mapper/core/occupancy_grid.hpp"
+#include "mapper/core/store_baseline.hpp"
 
 struct sqlite3;
 struct sqlite3_stmt;
@@ -30,6 +31,19 @@ namespace slam::mapper {
 
 struct StoreOptions {
   int batch_size = 512;  // appends per transaction
+};
+
+// What the store keeps (slamctl store stats).
+struct StoreStats {
+  int64_t rows = 0;               // raw observations
+  int64_t keyframes = 0;          // keyframes with a stored correction
+  int64_t raw_keyframes = 0;      // keyframes that still have raw observations
+  int64_t compacted_tiles = 0;    // baseline tiles (32 x 32 cells of log-odds)
+  int64_t compacted_through = 0;  // the baseline holds every observation up to this row (0: none)
+  int64_t bytes = 0;              // pages in use (the file keeps freed pages for reuse)
+  int64_t file_bytes = 0;         // the database file (its WAL aside)
+  int64_t oldest_stamp_ns = 0;    // the oldest raw observation's gateway stamp (0: none)
+  int64_t newest_stamp_ns = 0;
 };
 
 // One stored row as iteration presents it; the views are valid during the callback only.
@@ -68,8 +82,10 @@ class ObservationStore {
   // The row id of the last append (valid right after a successful append()).
   int64_t last_row() const;
 
-  // Every observation in insertion order (pending appends included).
+  // Every observation in insertion order (pending appends included); the second, those up to row
+  // `through_row` only.
   Status for_each(const std::function<void(const ObservationRecord&)>& visit);
+  Status for_each(const std::function<void(const ObservationRecord&)>& visit, int64_t through_row);
   // The row ids of `keyframe`'s observations within [first_row, last_row], ascending (an index
   // range: cheap whatever the store's size).
   Status rows_of(KeyframeId keyframe, int64_t first_row, int64_t last_row,
@@ -101,6 +117,16 @@ class ObservationStore {
   Status clear_prior();
   Result<std::optional<MapImage>> load_prior();
 
+  // observation_store_compaction.cpp. The compacted baseline (nullopt: never compacted); with
+  // `region` (map frame), only its tiles that overlap it.
+  Result<std::optional<Baseline>> load_baseline(const MapBox* region = nullptr);
+  // Replaces the baseline with `baseline` and deletes the rows up to its through_row, in one
+  // transaction (the open batch is committed first). Returns the rows deleted.
+  Result<int64_t> compact(const Baseline& baseline);
+  Result<StoreStats> stats();
+  // Bytes of the pages in use: what --store-max-mb bounds (cheap: two pragmas).
+  Result<int64_t> used_bytes();
+
   const std::filesystem::path& path() const { return path_; }
 
  private:
@@ -116,6 +142,7 @@ class ObservationStore {
   ObservationStore() = default;
   Status exec(const char* sql);
   Result<Stmt> prepare(const char* sql);
+  Result<int64_t> scalar(const char* sql);  // the first column of the first row (0 when none or NULL)
   Error db_error(std::string_view what) const;
   Status begin_batch();
   // Steps `st` (columns as kRowColumns, then hits and misses when `with_points`) and visits each row.

@@ -4,6 +4,7 @@
 #include <sqlite3.h>
 
 #include <cstring>
+#include <limits>
 
 #include "mapper/core/observation_store.hpp"
 
@@ -25,10 +26,16 @@ Status decode_points(const void* blob, int bytes, std::vector<Vec2>* out) {
 }  // namespace
 
 Status ObservationStore::for_each(const std::function<void(const ObservationRecord&)>& visit) {
+  return for_each(visit, std::numeric_limits<int64_t>::max());
+}
+
+Status ObservationStore::for_each(const std::function<void(const ObservationRecord&)>& visit,
+                                  int64_t through_row) {
   const std::string sql =
-      "SELECT " + std::string(kRowColumns) + ", hits, misses FROM observations ORDER BY id";
+      "SELECT " + std::string(kRowColumns) + ", hits, misses FROM observations WHERE id <= ? ORDER BY id";
   auto q = prepare(sql.c_str());
   if (!q) return q.status();
+  sqlite3_bind_int64(q->get(), 1, through_row);
   return visit_rows(q->get(), true, visit);
 }
 

@@ -108,6 +108,10 @@ void OccupancyGrid::grow(int64_t bx0, int64_t by0, int64_t bx1, int64_t by1) {
   int64_t x0 = 0, x1 = 0, y0 = 0, y1 = 0;
   grow_axis(bx0, bx1, width_, grow_chunk_, max_side_, &x0, &x1);
   grow_axis(by0, by1, height_, grow_chunk_, max_side_, &y0, &y1);
+  resize(x0, y0, x1, y1);
+}
+
+void OccupancyGrid::resize(int64_t x0, int64_t y0, int64_t x1, int64_t y1) {
   const auto new_w = static_cast<int32_t>(x1 - x0);
   const auto new_h = static_cast<int32_t>(y1 - y0);
   const size_t n = static_cast<size_t>(new_w) * static_cast<size_t>(new_h);

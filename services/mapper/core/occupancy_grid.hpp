@@ -19,6 +19,7 @@
 namespace slam::mapper {
 
 class TileCanvas;
+struct Baseline;
 
 // One robot message as the grid needs it (the store and the DDS edge both produce this view).
 struct ObservationView {
@@ -60,6 +61,10 @@ class OccupancyGrid {
   // A prior: known pixels of the image overwrite the cells they cover (occupied -> prior_occupied,
   // free -> prior_free); the grid grows to hold it. Returns the number of cells set.
   Result<int64_t> apply_prior(const MapImage& image);
+  // A compacted baseline (store_baseline.hpp): the grid grows to its layout (exactly when the resolution
+  // is the same, so a rebuild goes on as the one it replaces did; within the maximum extent) and takes
+  // the log-odds of its known cells, each at its centre. Returns the cells set.
+  int64_t apply_baseline(const Baseline& baseline);
   // A partial re-render lands: the canvas's tiles (drawn in this layout) take its log-odds; classes,
   // inflation and dirty tiles follow cell by cell. Obstructions stay.
   void redraw(const TileCanvas& canvas);
@@ -107,6 +112,8 @@ class OccupancyGrid {
   bool fits(int64_t bx0, int64_t by0, int64_t bx1, int64_t by1) const;
   // Grows to cover the box (already known to fit), padding by the growth chunk where room allows.
   void grow(int64_t bx0, int64_t by0, int64_t bx1, int64_t by1);
+  // Re-lays the grid over cells [x0, x1) x [y0, y1) of the current layout (which they contain).
+  void resize(int64_t x0, int64_t y0, int64_t x1, int64_t y1);
   void integrate_legacy(const ObservationView& obs, IntegrateStats* stats);
   void integrate_rays(const ObservationView& obs, IntegrateStats* stats);
 

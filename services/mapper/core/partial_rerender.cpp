@@ -138,9 +138,17 @@ namespace {
 // render_tiles' reads and drawing, in one read transaction.
 Status draw_tiles(const RerenderPlan& plan, ObservationStore& store, TileRender& out) {
   out.canvas.reset(plan.geometry, plan.config, plan.tiles);
-  auto prior = store.load_prior();
-  if (!prior) return prior.status();
-  if (prior->has_value()) out.canvas.apply_prior(**prior);
+  // The start a full rebuild has (rebuild.cpp apply_stored_start): the baseline's tiles under these,
+  // then the prior unless the baseline holds it.
+  const MapBox region = out.canvas.box();
+  auto baseline = store.load_baseline(&region);
+  if (!baseline) return baseline.status();
+  if (baseline->has_value()) out.canvas.apply_baseline(**baseline);
+  if (!baseline->has_value() || (*baseline)->prior_pending) {
+    auto prior = store.load_prior();
+    if (!prior) return prior.status();
+    if (prior->has_value()) out.canvas.apply_prior(**prior);
+  }
 
   // The replayed groups' rows, in insertion order.
   std::vector<std::pair<int64_t, uint32_t>> rows;  // row, replay
@@ -194,10 +202,10 @@ Result<TileRender> render_tiles(RerenderPlan plan, ObservationStore& store) {
   return out;
 }
 
-void record_redraw(const TileRender& render, FootprintIndex& index) {
+void record_redraw(const TileRender& render, FootprintIndex& index, int64_t stamp_ns) {
   for (size_t i = 0; i < render.plan.replays.size(); ++i) {
     const RerenderPlan::Replay& r = render.plan.replays[i];
-    if (r.moved) index.redraw(r.group, r.pose, render.boxes[i]);
+    if (r.moved) index.redraw(r.group, r.pose, render.boxes[i], stamp_ns);
   }
 }
 

@@ -7,7 +7,8 @@
 //     its current one (the largest move over the corners of its box: a rigid motion moves no point
 //     of a box farther than a corner). The tiles under its old box and its new one are redrawn; every
 //     keyframe (and run of keyframe-0 rows) whose box touches those tiles is replayed.
-//  2. render_tiles (the worker, its own store connection): the tiles start unknown (or at the prior);
+//  2. render_tiles (the worker, its own store connection): the tiles start as a full rebuild starts
+//     (the compacted baseline's cells there, the prior; unknown elsewhere);
 //     the replayed keyframes' rows are read by keyframe (an index of the store), sorted by row and
 //     drawn into the tiles only (TileCanvas), each with its keyframe's correction.
 //  3. The loop draws the observations it kept aside meanwhile into the same tiles, copies them into
@@ -77,7 +78,7 @@ struct TileRender {
 Result<TileRender> render_tiles(RerenderPlan plan, ObservationStore& store);
 
 // Once the tiles are in the grid: the moved groups are drawn with their new corrections, over their
-// new boxes.
-void record_redraw(const TileRender& render, FootprintIndex& index);
+// new boxes (moved at `stamp_ns`, the newest stamp stored: a compaction leaves recent movers alone).
+void record_redraw(const TileRender& render, FootprintIndex& index, int64_t stamp_ns = 0);
 
 }  // namespace slam::mapper

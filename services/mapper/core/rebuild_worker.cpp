@@ -31,6 +31,18 @@ RebuildOutcome run_partial(RerenderPlan plan, const std::filesystem::path& path)
   return outcome;
 }
 
+RebuildOutcome run_compaction(const GridConfig& config, const std::filesystem::path& path,
+                              const KeyframeCorrections& corrections, int64_t through_row) {
+  const auto start = std::chrono::steady_clock::now();
+  auto store = ObservationStore::open(path);
+  RebuildOutcome outcome;
+  outcome.compaction = store ? compact_store(config, *store, corrections, through_row)
+                             : Result<CompactionReport>(Error{store.message()});
+  outcome.took =
+      std::chrono::duration_cast<std::chrono::milliseconds>(std::chrono::steady_clock::now() - start);
+  return outcome;
+}
+
 }  // namespace
 
 RebuildWorker::~RebuildWorker() {
@@ -45,6 +57,13 @@ Status RebuildWorker::start(const GridConfig& config, const std::filesystem::pat
 
 Status RebuildWorker::start_partial(RerenderPlan plan, const std::filesystem::path& path) {
   return launch([plan = std::move(plan), path]() mutable { return run_partial(std::move(plan), path); });
+}
+
+Status RebuildWorker::start_compaction(const GridConfig& config, const std::filesystem::path& path,
+                                       KeyframeCorrections corrections, int64_t through_row) {
+  return launch([config, path, corrections = std::move(corrections), through_row] {
+    return run_compaction(config, path, corrections, through_row);
+  });
 }
 
 Status RebuildWorker::launch(std::function<RebuildOutcome()> job) {

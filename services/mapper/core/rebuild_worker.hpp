@@ -3,7 +3,8 @@
 // corrections replays the whole store, which may take seconds, while the loop keeps integrating and
 // publishing with the current grid; a partial re-render draws a few tiles (partial_rerender.hpp). The worker
 // reads through its own SQLite connection (WAL lets it read while the loop's connection stays open) and the
-// loop swaps the finished grid in. One rebuild at a time.
+// loop swaps the finished grid in; a compaction (compaction.hpp) writes the baseline through it too. One job
+// at a time.
 #include <chrono>
 #include <filesystem>
 #include <functional>
@@ -12,6 +13,7 @@
 #include <thread>
 
 #include "common/core/result.hpp"
+#include "mapper/core/compaction.hpp"
 #include "mapper/core/corrections.hpp"
 #include "mapper/core/grid_config.hpp"
 #include "mapper/core/observation_store.hpp"
@@ -25,8 +27,9 @@ struct RebuildOutcome {
   Result<OccupancyGrid> grid = Error{"a partial re-render draws tiles, not a grid"};
   RebuildStats stats;
   std::chrono::milliseconds took{0};
-  FootprintIndex index;                       // a full rebuild's: where it drew each observation
-  std::optional<Result<TileRender>> partial;  // set by start_partial (then `grid` is not used)
+  FootprintIndex index;                                // a full rebuild's: where it drew each observation
+  std::optional<Result<TileRender>> partial;           // set by start_partial (then `grid` is not used)
+  std::optional<Result<CompactionReport>> compaction;  // set by start_compaction (likewise)
 };
 
 class RebuildWorker {
@@ -46,6 +49,10 @@ class RebuildWorker {
   // Starts drawing a partial re-render's tiles from the store at `path` (same rule: nothing appended
   // until the result is taken).
   Status start_partial(RerenderPlan plan, const std::filesystem::path& path);
+  // Starts compacting the rows up to `through_row` of the store at `path` (compaction.hpp; same rule,
+  // and the loop's connection must hold no open batch: this one writes).
+  Status start_compaction(const GridConfig& config, const std::filesystem::path& path,
+                          KeyframeCorrections corrections, int64_t through_row);
   bool busy() const;
   // The finished rebuild, once; nullopt while running or idle.
   std::optional<RebuildOutcome> take();

@@ -55,6 +55,24 @@ void TileCanvas::apply_prior(const MapImage& image) {
   }
 }
 
+void TileCanvas::apply_baseline(const Baseline& baseline) {
+  baseline.for_each_known([&](Vec2 centre, int16_t value) {
+    const auto cell = geometry_.cell_at(centre);
+    if (!cell) return;
+    if (CanvasCell* c = at(cell->x, cell->y)) c->log_odds = value;
+  });
+}
+
+MapBox TileCanvas::box() const {
+  MapBox box;
+  if (bounds_.empty()) return box;
+  const double res = geometry_.resolution;
+  box.add(Vec2{geometry_.origin.x + bounds_.x0 * res, geometry_.origin.y + bounds_.y0 * res});
+  box.add(Vec2{geometry_.origin.x + (bounds_.x0 + bounds_.width) * res,
+               geometry_.origin.y + (bounds_.y0 + bounds_.height) * res});
+  return box;
+}
+
 bool TileCanvas::touches(const MapBox& box) const {
   if (box.empty() || bounds_.empty()) return false;
   const Vec2 lo = geometry_.to_grid({box.x0, box.y0});

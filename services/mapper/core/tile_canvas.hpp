@@ -17,6 +17,7 @@
 #include "mapper/core/footprint_index.hpp"
 #include "mapper/core/grid_config.hpp"
 #include "mapper/core/occupancy_grid.hpp"
+#include "mapper/core/store_baseline.hpp"
 
 namespace slam::mapper {
 
@@ -33,6 +34,10 @@ class TileCanvas {
   void reset(const GridGeometry& geometry, const GridConfig& config, std::span<const uint32_t> tiles);
   // Sets the cells a stored prior covers, as OccupancyGrid::apply_prior does (call before drawing).
   void apply_prior(const MapImage& image);
+  // Sets the cells a compacted baseline knows, as OccupancyGrid::apply_baseline does (call first).
+  void apply_baseline(const Baseline& baseline);
+  // The map-frame box of the tiles.
+  MapBox box() const;
   // Whether a map-frame box overlaps any of the tiles.
   bool touches(const MapBox& box) const;
   // Draws one observation (map frame) into the tiles.
