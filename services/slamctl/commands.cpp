@@ -6,6 +6,7 @@
 #include "slamctl/map_commands.hpp"
 #include "slamctl/record.hpp"
 #include "slamctl/session_io.hpp"
+#include "slamctl/store_commands.hpp"
 
 namespace slam::ctl {
 namespace {
@@ -162,6 +163,7 @@ const std::vector<Subcommand>& subcommands() {
       {"obstruct", "mark the cell at x y occupied by hand", add_obstruct},
       {"unobstruct", "remove a manual obstruction at x y", add_unobstruct},
       {"reset", "delete every observation of a robot and rebuild the map", add_reset},
+      {"store", "what the mapper's store keeps: store stats [--store FILE] (reads the file)", add_store},
       {"pose", "set a robot's pose in the map (initial pose): pose ROBOT X Y THETA_DEG", add_pose},
       {"sim", "control the simulator", add_sim},
       {"echo", "print samples of a topic (see docs/topics.md) until Ctrl-C", add_echo},
