@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "mapper/core/compaction.hpp"
 #include "mapper/core/observation_store.hpp"
 #include "mapper/core/occupancy_grid.hpp"
 #include "mapper/core/partial_rerender.hpp"
@@ -320,6 +321,54 @@ void BM_RerenderPartial(benchmark::State& state) {
   state.counters["index_kb"] = static_cast<double>(index.memory_bytes()) / 1024.0;
 }
 BENCHMARK(BM_RerenderPartial)->Arg(100'000)->Arg(400'000)->Unit(benchmark::kMillisecond)->Iterations(10);
+
+// Issue 39 item 3: the fleet store compacted but for its newest 40 000 rows (a copy; what a retention
+// leaves raw), then rebuilt from the baseline and those rows, and one closure re-rendered partially.
+// Counters: the store's size before and after (pages in use), the compaction's time, the rebuild's.
+void BM_CompactedRebuild(benchmark::State& state) {
+  using Clock = std::chrono::steady_clock;
+  constexpr int64_t kRaw = 40'000;
+  const FleetStore& fleet = fleet_store(state.range(0));
+  const slam::testkit::TempDir dir{"bench-mapper-compact"};
+  const std::filesystem::path copy = dir / "compacted.db";
+  std::filesystem::copy_file(fleet.path(), copy);
+  ObservationStore store = must(ObservationStore::open(copy), "copy");
+  const double mb = 1024.0 * 1024.0;
+  const double before_mb = static_cast<double>(must(store.used_bytes(), "size")) / mb;
+  const auto t0 = Clock::now();
+  const auto report =
+      must(slam::mapper::compact_store(fleet_config(), store, {}, fleet.observations() - kRaw), "compact");
+  const double compact_s = std::chrono::duration<double>(Clock::now() - t0).count();
+  double rebuild_s = 0.0, partial_s = 0.0;
+  for (auto _ : state) {
+    const auto t1 = Clock::now();
+    slam::mapper::FootprintIndex index;
+    slam::mapper::RebuildStats stats;
+    OccupancyGrid grid =
+        must(slam::mapper::rebuild_grid(fleet_config(), store, &stats, {}, &index), "rebuild");
+    const auto t2 = Clock::now();
+    if (stats.observations != kRaw) state.SkipWithError("rebuild replayed the wrong rows");
+    slam::mapper::KeyframeCorrections moved;  // a keyframe among the raw ones, 5 cm off
+    moved.set(index.groups()[index.groups().size() / 2].keyframe, slam::Pose{0.05, -0.03, 0.002});
+    slam::mapper::RerenderDecision d = plan_rerender(index, moved, grid, {});
+    if (d.kind != slam::mapper::RerenderDecision::Kind::Partial) state.SkipWithError("not partial");
+    auto render = must(slam::mapper::render_tiles(std::move(d.plan), store), "render");
+    grid.redraw(render.canvas);
+    const auto t3 = Clock::now();
+    rebuild_s += std::chrono::duration<double>(t2 - t1).count();
+    partial_s += std::chrono::duration<double>(t3 - t2).count();
+    benchmark::DoNotOptimize(grid.classes().data());
+  }
+  const auto n = static_cast<double>(state.iterations());
+  state.counters["store_mb_before"] = before_mb;
+  state.counters["store_mb_after"] = static_cast<double>(must(store.used_bytes(), "size")) / mb;
+  state.counters["compact_ms"] = 1e3 * compact_s;
+  state.counters["rebuild_ms"] = 1e3 * rebuild_s / n;
+  state.counters["partial_ms"] = 1e3 * partial_s / n;
+  state.counters["rows_deleted"] = static_cast<double>(report.rows_deleted);
+  state.counters["tiles"] = static_cast<double>(report.tiles);
+}
+BENCHMARK(BM_CompactedRebuild)->Arg(100'000)->Arg(400'000)->Unit(benchmark::kMillisecond)->Iterations(3);
 
 }  // namespace
 
