@@ -137,6 +137,10 @@ struct CorrectorOptions {
   // What is searched: the newest keyframe and the ones before it within this much travel, by
   // odometry (a sparse robot's single keyframe fits many places), evenly thinned to max_points.
   double placement_trail_m = 4.0;
+  // The whole map is searched again only once the robot has moved this far since the last search:
+  // the keyframes in between add little to a 4 m trail, and each whole-map search costs tens of
+  // milliseconds (confirming a hypothesis searches only around it, every keyframe).
+  double placement_search_travel_m = 0.5;
   size_t placement_max_points = 400;
   // A match whose rays run through more than this share of the map's walls is a look-alike place
   // (free_space_check.hpp), however well its points land. True placements of the benchmark logs'
@@ -319,6 +323,7 @@ class PoseCorrector {
     std::vector<Keyframe> held;
     std::optional<Pose> hypothesis;
     int confirmations = 0;
+    std::optional<Vec2> searched_at;  // odometry position of the keyframe last searched for
   };
   // One pose-graph node per finalised keyframe.
   struct Node {

@@ -116,6 +116,9 @@ bool PoseCorrector::give_up_placement(Robot& rb, int64_t now_ns) {
 void PoseCorrector::search_placement(Robot& rb, const GridView& grid, int64_t now_ns) {
   if (rb.held.empty() || give_up_placement(rb, now_ns)) return;
   const Keyframe& keyframe = rb.held.back();
+  if (!rb.hypothesis && rb.searched_at &&
+      distance(*rb.searched_at, keyframe.odom.position()) < options_.placement_search_travel_m)
+    return;
   if (!placement_map_ready_ || now_ns - placement_map_ns_ > kPlacementMapAge_ns) {
     prepare_placement_map(grid);
     placement_map_ns_ = now_ns;
@@ -140,6 +143,7 @@ void PoseCorrector::search_placement(Robot& rb, const GridView& grid, int64_t no
               2.0 * std::numbers::pi};
   }
   ++stats_.placement_searches;
+  rb.searched_at = keyframe.odom.position();
   const auto found = placement_search_.search(placement_points_, region);
   const double crossed = found ? crossed_wall_share(GridView{map, placement_cells_}, found->pose,
                                                     placement_rays_, kWallCrossingMargin_m)
@@ -183,6 +187,7 @@ void PoseCorrector::place(Robot& rb, std::optional<Pose> map_from_odom, double s
   rb.state.localisation_score = score;
   rb.hypothesis.reset();
   rb.confirmations = 0;
+  rb.searched_at.reset();
   // The waiting keyframes go the usual way now, oldest first, predicted from the placement.
   for (Keyframe& keyframe : rb.held) closed_.push_back(std::move(keyframe));
   rb.held.clear();

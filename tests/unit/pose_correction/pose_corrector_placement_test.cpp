@@ -115,7 +115,10 @@ TEST(PoseCorrector, ARobotInOneOfTwoIdenticalRoomsIsNotPlacedInEither) {
   const TrueMap map(twins, centred_geometry({-0.5, -0.5}, {14.5, 5.5}));
   const Placed p = switch_on_anywhere(twins, map, {12.6, 3.0, 2.0});
   EXPECT_EQ(p.stats.robots_placed, 0);
-  EXPECT_GE(p.stats.placement_searches, 5);  // every keyframe searched, none placed
+  // Its 1.2 m of driving searched each half metre (CorrectorOptions::placement_search_travel_m),
+  // not at each of its dozen keyframes; none placed.
+  EXPECT_GE(p.stats.placement_searches, 2);
+  EXPECT_LE(p.stats.placement_searches, 3);
   EXPECT_NE(p.placement, Placement::Placed);
   EXPECT_TRUE(p.placed_after_wait);
 }
