@@ -2,7 +2,7 @@
 // Where the stored observations lie in the grid as it is drawn, per keyframe: the correction its
 // observations were drawn with and the map-frame box they cover (sensor origins, hits and misses:
 // every ray lies inside). A re-render asks it which keyframes moved and which others touch the tiles
-// those leave or enter, and replays only those (partial_rerender.hpp). One entry of 96 bytes per
+// those leave or enter, and replays only those (partial_rerender.hpp). One entry of about 100 bytes per
 // keyframe (plus its hash slot), never per observation; every full rebuild (start-up included)
 // builds it afresh from the store and the mapper extends it as it stores observations.
 // Observations without a keyframe (id 0) never move but may lie in a redrawn tile: they are kept in

@@ -35,6 +35,13 @@ TEST(MapperOptions, DefaultsAreValidAndFlagsBind) {
   EXPECT_DOUBLE_EQ(o.patch_rate_hz, 5.0);
   EXPECT_TRUE(o.grid.legacy_mode);
   EXPECT_FALSE(o.offline());
+  MapperOptions store;
+  ASSERT_TRUE(parse(store, {"--store-retention-days", "2.5", "--store-max-mb", "300", "--store-min-age-s",
+                            "900", "--store-compact-interval-s", "30"}));
+  EXPECT_DOUBLE_EQ(store.compaction.retention_days, 2.5);
+  EXPECT_DOUBLE_EQ(store.compaction.max_mb, 300.0);
+  EXPECT_DOUBLE_EQ(store.compaction.min_age_s, 900.0);
+  EXPECT_DOUBLE_EQ(store.compaction.interval_s, 30.0);
 }
 
 TEST(MapperOptions, ValidationNamesTheBadKey) {
@@ -52,6 +59,8 @@ TEST(MapperOptions, ValidationNamesTheBadKey) {
   EXPECT_NE(
       error([](MapperOptions& o) { o.rerender.max_tile_fraction = 2; }).find("rerender.max_tile_fraction"),
       std::string::npos);
+  EXPECT_NE(error([](MapperOptions& o) { o.compaction.min_age_s = -1; }).find("store.min_age_s"),
+            std::string::npos);
   MapperOptions both;
   EXPECT_FALSE(parse(both, {"--export", "a.yaml", "--import", "b.yaml"}))
       << "--export and --import exclude each other";
