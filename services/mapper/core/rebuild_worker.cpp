@@ -17,7 +17,8 @@ RebuildOutcome run(const GridConfig& config, const std::filesystem::path& path,
                                      : Result<OccupancyGrid>(Error{store.message()});
   const auto took =
       std::chrono::duration_cast<std::chrono::milliseconds>(std::chrono::steady_clock::now() - start);
-  return RebuildOutcome{std::move(grid), std::move(stats), took, std::move(index), std::nullopt};
+  return RebuildOutcome{std::move(grid),  std::move(stats), took,
+                        std::move(index), std::nullopt,     std::nullopt};
 }
 
 RebuildOutcome run_partial(RerenderPlan plan, const std::filesystem::path& path) {
