@@ -30,8 +30,8 @@ Status validate(const CompactionOptions& o) {
 }
 
 std::optional<CompactionPlan> plan_compaction(const FootprintIndex& index, int64_t now_stamp_ns,
-                                              int64_t used_bytes, int64_t compacted_through,
-                                              int64_t last_global_move_ns, const CompactionOptions& o) {
+                                              int64_t used_bytes, int64_t last_global_move_ns,
+                                              const CompactionOptions& o) {
   const auto groups = index.groups();
   if (groups.empty()) return std::nullopt;
   const auto before = [&](double seconds) {
@@ -53,10 +53,14 @@ std::optional<CompactionPlan> plan_compaction(const FootprintIndex& index, int64
   int64_t through = last - 1;  // one row stays: row ids never restart below the baseline
   for (const FootprintGroup& g : groups)
     if (g.first_stamp_ns > cut || g.moved_stamp_ns > settled) through = std::min(through, g.first_row - 1);
-  if (through <= compacted_through) return std::nullopt;
   CompactionPlan plan;
   plan.through_row = through;
-  for (const FootprintGroup& g : groups) plan.groups += g.last_row <= through ? 1 : 0;
+  bool due = false;
+  for (const FootprintGroup& g : groups) {
+    due = due || g.first_row <= through;
+    plan.groups += g.last_row <= through ? 1 : 0;
+  }
+  if (!due) return std::nullopt;
   plan.why = over_size ? "store " + std::to_string(used_bytes / (1024 * 1024)) + " MB over --store-max-mb"
                        : "raw observations older than " + std::to_string(o.retention_days) + " days";
   return plan;

@@ -40,9 +40,12 @@ struct CompactionPlan {
 // What to compact now (nullopt: nothing). Ages are measured on the gateway stamps of the stored
 // observations: `now_stamp_ns` is the newest stored, so a simulation at 8x ages 8x too.
 // `last_global_move_ns`: when a full re-render last redrew everything (the index then forgets who moved).
+// Something is due when a group of the index has rows up to the cut (a compaction drops them from it;
+// row ids are not compared with the baseline's: a robot reset may delete the newest rows and SQLite
+// then numbers new rows from the largest left).
 std::optional<CompactionPlan> plan_compaction(const FootprintIndex& index, int64_t now_stamp_ns,
-                                              int64_t used_bytes, int64_t compacted_through,
-                                              int64_t last_global_move_ns, const CompactionOptions& options);
+                                              int64_t used_bytes, int64_t last_global_move_ns,
+                                              const CompactionOptions& options);
 
 struct CompactionReport {
   int64_t through_row = 0;

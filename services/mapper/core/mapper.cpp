@@ -16,8 +16,6 @@
 namespace slam::mapper {
 namespace {
 
-const MapBox kNoRegion{};  // a baseline load of this region reads its header only
-
 std::string point_text(double x, double y) {
   return "(" + std::to_string(x) + ", " + std::to_string(y) + ")";
 }
@@ -131,9 +129,6 @@ Status Mapper::open() {
       index_.memory_bytes() / 1024);
   if (stats.rejected > 0)
     spdlog::warn("store: {} observations rejected: {}", stats.rejected, stats.first_error);
-  auto baseline = store_->load_baseline(&kNoRegion);  // its through_row only
-  if (!baseline) return baseline.error();
-  compacted_through_ = baseline->has_value() ? (*baseline)->through_row : 0;
   for (const FootprintGroup& g : index_.groups())
     newest_stamp_ns_ = std::max(newest_stamp_ns_, g.first_stamp_ns);
   auto count = store_->count();

@@ -279,7 +279,6 @@ class Mapper {
   FootprintIndex index_;
   int64_t newest_stamp_ns_ = 0;      // the newest stored gateway stamp: the clock compaction ages by
   int64_t last_full_redraw_ns_ = 0;  // newest_stamp_ns_ when a full re-render last moved everything
-  int64_t compacted_through_ = 0;    // the store's baseline holds rows up to this
   int64_t loop_now_ns_ = 0;          // the last integrate()'s monotonic time
   int64_t next_compaction_check_ns_ = 0;
   bool rerender_waiting_ = false;       // a re-render requested while a rebuild ran

@@ -29,8 +29,7 @@ bool Mapper::start_compaction(bool due_only) {
     log_.warn("store", "cannot measure the store: {}", used.message());
     return false;
   }
-  const auto plan =
-      plan_compaction(index_, newest_stamp_ns_, *used, compacted_through_, last_full_redraw_ns_, o);
+  const auto plan = plan_compaction(index_, newest_stamp_ns_, *used, last_full_redraw_ns_, o);
   if (!plan) return false;
   // The worker writes through its own connection: nothing may be pending in this one's batch.
   Status ready = store_->flush();
@@ -61,7 +60,6 @@ void Mapper::finish_compaction(RebuildOutcome outcome) {
   const CompactionReport& report = **outcome.compaction;
   index_.drop_through(report.through_row,
                       report.rows_deleted);  // before the rows kept aside join it (their ids come after)
-  compacted_through_ = report.through_row;
   store_deferred_as_drawn();
   bump(metrics_.compactions);
   bump(metrics_.compacted_observations, report.rows_deleted);

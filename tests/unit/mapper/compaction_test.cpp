@@ -287,31 +287,38 @@ TEST(CompactionPlan, OnlyOldSettledKeyframesAndNeverTheNewestRow) {
                                    {2, 11, 20, 8 * day, 0},
                                    {3, 21, 30, 8 * day, 0},
                                    {4, 31, 40, 10 * day - 100, 0}});
-  auto plan = plan_compaction(index, now, 0, 0, 0, o);
+  auto plan = plan_compaction(index, now, 0, 0, o);
   ASSERT_TRUE(plan.has_value());
   EXPECT_EQ(plan->through_row, 30);
   EXPECT_EQ(plan->groups, 3u);
-  EXPECT_FALSE(plan_compaction(index, now, 0, 30, 0, o).has_value());  // done already
+  index.drop_through(30, 30);
+  EXPECT_FALSE(plan_compaction(index, now, 0, 0, o).has_value());  // done already
+  // A robot reset deleted every raw row: SQLite numbers new rows from 1 again, below the baseline's
+  // row; they are compacted all the same (the newest stays).
+  FootprintIndex renumbered = index_of({{7, 1, 4, 8 * day, 0}, {8, 5, 6, 8 * day, 0}});
+  auto again = plan_compaction(renumbered, now, 0, 0, o);
+  ASSERT_TRUE(again.has_value());
+  EXPECT_EQ(again->through_row, 5);
   // A keyframe moved recently holds back its rows and every later one.
   index = index_of({{1, 1, 10, 8 * day, 0}, {2, 11, 20, 8 * day, 10 * day - 60}, {3, 21, 30, 8 * day, 0}});
-  plan = plan_compaction(index, now, 0, 0, 0, o);
+  plan = plan_compaction(index, now, 0, 0, o);
   ASSERT_TRUE(plan.has_value());
   EXPECT_EQ(plan->through_row, 10);
   // A full re-render just now: nothing.
-  EXPECT_FALSE(plan_compaction(index, now, 0, 0, now - 60 * kSecond, o).has_value());
+  EXPECT_FALSE(plan_compaction(index, now, 0, now - 60 * kSecond, o).has_value());
   // All old: the newest row stays.
   index = index_of({{1, 1, 10, 8 * day, 0}, {0, 11, 20, 8 * day, 0}});
-  plan = plan_compaction(index, now, 0, 0, 0, o);
+  plan = plan_compaction(index, now, 0, 0, o);
   ASSERT_TRUE(plan.has_value());
   EXPECT_EQ(plan->through_row, 19);
   // Young by retention, but the store is over its size: compacted down to min_age_s.
   index = index_of({{1, 1, 10, now / kSecond - 3600, 0}, {2, 11, 20, now / kSecond - 60, 0}});
-  EXPECT_FALSE(plan_compaction(index, now, 0, 0, 0, o).has_value());
+  EXPECT_FALSE(plan_compaction(index, now, 0, 0, o).has_value());
   o.max_mb = 1.0;
-  plan = plan_compaction(index, now, 2 * 1024 * 1024, 0, 0, o);
+  plan = plan_compaction(index, now, 2 * 1024 * 1024, 0, o);
   ASSERT_TRUE(plan.has_value());
   EXPECT_EQ(plan->through_row, 10);
-  EXPECT_FALSE(plan_compaction(index, now, 512 * 1024, 0, 0, o).has_value());  // within its size
+  EXPECT_FALSE(plan_compaction(index, now, 512 * 1024, 0, o).has_value());  // within its size
 }
 
 TEST(CompactionOptions, BadValuesNameTheirKey) {
