@@ -94,28 +94,30 @@ class MapperTest : public ::testing::Test {
   std::string store() const { return group_.dir() + "/map.db"; }
 
   // Starts the mapper (snapshots only on change unless asked) and waits until it matches every topic.
-  void start_mapper(const std::string& snapshot_period = "600") {
-    group_.start("mapper", {testkit::bin_path("slam-mapper"),
-                            "--domain",
-                            std::to_string(domain_.id()),
-                            "--store",
-                            store(),
-                            "--grid-resolution",
-                            "0.1",
-                            "--grid-origin-x",
-                            "-5",
-                            "--grid-origin-y",
-                            "-5",
-                            "--grid-width-m",
-                            "10",
-                            "--grid-height-m",
-                            "10",
-                            "--patch-rate",
-                            "10",
-                            "--snapshot-period",
-                            snapshot_period,
-                            "--log-level",
-                            "debug"});
+  void start_mapper(const std::string& snapshot_period = "600", const std::vector<std::string>& extra = {}) {
+    std::vector<std::string> args{testkit::bin_path("slam-mapper"),
+                                  "--domain",
+                                  std::to_string(domain_.id()),
+                                  "--store",
+                                  store(),
+                                  "--grid-resolution",
+                                  "0.1",
+                                  "--grid-origin-x",
+                                  "-5",
+                                  "--grid-origin-y",
+                                  "-5",
+                                  "--grid-width-m",
+                                  "10",
+                                  "--grid-height-m",
+                                  "10",
+                                  "--patch-rate",
+                                  "10",
+                                  "--snapshot-period",
+                                  snapshot_period,
+                                  "--log-level",
+                                  "debug"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    group_.start("mapper", args);
     ASSERT_TRUE(wait_until(
         [&] {
           return observations_->matched_readers() > 0 && configs_->matched_readers() > 0 &&

@@ -1,5 +1,11 @@
 // The mapper's map as a receiver sees it: patches from observations, late joiners, kill -9 and
-// restart, resolution changes (fixture: mapper_fixture.hpp).
+// restart (also of a compacted store, with slamctl store stats), resolution changes (fixture:
+// mapper_fixture.hpp).
+#include <cstdio>
+#include <optional>
+#include <string>
+#include <vector>
+
 #include "mapper_fixture.hpp"
 
 namespace slam::mapper_test {
@@ -117,6 +123,54 @@ TEST_F(MapperTest, KillNineAndRestartRestoresTheSameMapFromTheStore) {
   EXPECT_EQ(current().value().state(2.03, 0.03), CELL_OCCUPIED);
   ASSERT_TRUE(wait_until([&] { return counter("store_observations") >= kSent; }, 30s));
   EXPECT_LE(counter("store_observations"), kSent + 200);
+}
+
+TEST_F(MapperTest, ACompactedStoreRestartsToTheSameMapAndSlamctlShowsWhatItKeeps) {
+  // Stamps are 1 ms per message: a retention of 1e-9 days (86 us) and no minimum age compact all but
+  // the newest rows, every 0.2 s of the stream.
+  start_mapper("600", {"--store-retention-days", "1e-9", "--store-min-age-s", "0",
+                       "--store-compact-interval-s", "0.2", "--slam", "off"});
+  constexpr int kSent = 400;
+  for (int i = 0; i < kSent; ++i) {
+    const double x = -3.0 + 0.01 * i;
+    std::vector<Point2> hits = wall_hits();
+    for (int k = -20; k <= 20; ++k) hits.push_back(pt(0.1 * k + 0.03, 3.03));
+    RobotObservation o = observation("r2", static_cast<uint64_t>(i + 1), pt(x, 0), hits);
+    o.misses({pt(x, -4.0), pt(x + 1.0, -4.0)});
+    ASSERT_TRUE(observations_->write(testkit::batch_of(o)));
+    std::this_thread::sleep_for(2ms);
+  }
+  ASSERT_TRUE(wait_until([&] { return counter("observations") == kSent; }, 60s));
+  ASSERT_TRUE(wait_until([&] { return counter("compactions") >= 1; }, 30s)) << "never compacted";
+  std::optional<Map> before;
+  ASSERT_TRUE(wait_until(
+      [&] {
+        auto now = current();
+        const bool stable = before && now && now->version == before->version;
+        before = now;
+        return stable;
+      },
+      60s, 1s));
+  ASSERT_EQ(before->state(2.03, 0.03), CELL_OCCUPIED);
+  EXPECT_LT(counter("store_observations"), kSent);
+  EXPECT_EQ(counter("store_observations") + counter("compacted_observations"), kSent);
+
+  group_.stop("mapper", SIGKILL);
+  const size_t seen = snapshots_.size();
+  start_mapper();
+  ASSERT_TRUE(wait_until([&] { return snapshots_.size() > seen; }, 60s)) << "no snapshot after the restart";
+  EXPECT_TRUE(snapshots_.items().back().cells() == before->cells)
+      << "the restarted mapper's map differs from the compacted one before kill -9";
+
+  const std::string command = testkit::bin_path("slamctl") + " store stats --store " + store();
+  FILE* out = popen(command.c_str(), "r");
+  ASSERT_NE(out, nullptr);
+  std::string text;
+  char buf[256];
+  while (std::fgets(buf, sizeof buf, out)) text += buf;
+  EXPECT_EQ(pclose(out), 0) << text;
+  EXPECT_NE(text.find("compacted tiles"), std::string::npos) << text;
+  EXPECT_EQ(text.find("compacted tiles      0 "), std::string::npos) << text;
 }
 
 TEST_F(MapperTest, GridConfigWithANewResolutionRebuildsWithTheSameWalls) {
