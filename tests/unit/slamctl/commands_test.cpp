@@ -40,7 +40,7 @@ TEST(SlamctlSubcommands, NamesAreUniqueAndEachHasAHandler) {
   }
   for (const char* name :
        {"status", "robots", "alerts", "forget", "mission", "missions", "record", "replay", "goal", "path",
-        "map", "grid", "obstruct", "unobstruct", "reset", "pose", "sim", "echo"})
+        "map", "grid", "obstruct", "unobstruct", "reset", "pose", "sim", "echo", "store"})
     EXPECT_TRUE(names.contains(name)) << name;
   for (const auto& [cli, run] : line.handlers) EXPECT_TRUE(run) << cli->get_name();
 }
@@ -56,6 +56,7 @@ TEST(SlamctlSubcommands, OnlyTheGivenSubcommandIsParsed) {
       {"map", "save", "/tmp/m.yaml"},
       {"grid", "--resolution", "0.1", "--origin", "-5", "-5"},
       {"unobstruct", "1.5", "2"},
+      {"store", "stats", "--store", "/tmp/m.db"},
       {"pose", "r1", "-1.5", "2", "-90"},
       {"sim", "spawn", "3"},
       {"echo", "slam/robot/state", "-n", "2"},
