@@ -24,7 +24,8 @@ bool crosses_wall(const GridView& map, Vec2 from, Vec2 to, double end_margin_m) 
 
 }  // namespace
 
-double crossed_wall_share(const GridView& map, const Pose& pose, std::span<const Ray> rays, double end_margin_m) {
+double crossed_wall_share(const GridView& map, const Pose& pose, std::span<const Ray> rays,
+                          double end_margin_m) {
   if (rays.empty() || map.geometry.cells() == 0) return 0.0;
   size_t crossed = 0;
   for (const Ray& r : rays)

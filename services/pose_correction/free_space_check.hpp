@@ -18,6 +18,7 @@ struct Ray {
 // The share (0..1) of `rays`, moved by `pose` onto `map`, that cross a wall cell of the map before
 // the last `end_margin_m` of their length (a wall seen a little off is not a crossing). Rays off
 // the map or shorter than the margin count as not crossing. 0 when there are no rays.
-double crossed_wall_share(const GridView& map, const Pose& pose, std::span<const Ray> rays, double end_margin_m);
+double crossed_wall_share(const GridView& map, const Pose& pose, std::span<const Ray> rays,
+                          double end_margin_m);
 
 }  // namespace slam::correction
