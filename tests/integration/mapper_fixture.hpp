@@ -145,6 +145,22 @@ class MapperTest : public ::testing::Test {
 
   std::optional<Map> current() const { return assemble(snapshots_.items(), patches_.items()); }
 
+  // The published map once its version held for a second (the mapper commits every patch tick);
+  // nothing if it kept changing for a minute.
+  std::optional<Map> stable_map() const {
+    std::optional<Map> before;
+    const bool stable = wait_until(
+        [&] {
+          auto now = current();
+          const bool same = before && now && now->version == before->version;
+          before = now;
+          return same;
+        },
+        60s, 1s);
+    if (!stable) return std::nullopt;
+    return before;
+  }
+
   // Sends the wall `times` times from (0, 0) and waits until the mapper integrated and published it.
   void send_wall(int times, uint64_t first_seq = 1) {
     for (int i = 0; i < times; ++i)

@@ -82,16 +82,8 @@ TEST_F(MapperTest, KillNineAndRestartRestoresTheSameMapFromTheStore) {
   }
   ASSERT_TRUE(wait_until([&] { return counter("observations") == kSent; }, 60s))
       << "not all observations integrated";
-  // Flushed: the mapper commits every patch tick. Wait until the published map stops changing.
-  std::optional<Map> before;
-  ASSERT_TRUE(wait_until(
-      [&] {
-        auto now = current();
-        const bool stable = before && now && now->version == before->version;
-        before = now;
-        return stable;
-      },
-      60s, 1s));
+  const std::optional<Map> before = stable_map();
+  ASSERT_TRUE(before) << "the published map kept changing";
   ASSERT_EQ(before->state(2.03, 0.03), CELL_OCCUPIED);
   ASSERT_EQ(before->state(0.03, 3.03), CELL_OCCUPIED);
   ASSERT_NE(before->at(-3.95, -3.95) & CELL_FLAG_OBSTRUCTED, 0);
@@ -142,15 +134,8 @@ TEST_F(MapperTest, ACompactedStoreRestartsToTheSameMapAndSlamctlShowsWhatItKeeps
   }
   ASSERT_TRUE(wait_until([&] { return counter("observations") == kSent; }, 60s));
   ASSERT_TRUE(wait_until([&] { return counter("compactions") >= 1; }, 30s)) << "never compacted";
-  std::optional<Map> before;
-  ASSERT_TRUE(wait_until(
-      [&] {
-        auto now = current();
-        const bool stable = before && now && now->version == before->version;
-        before = now;
-        return stable;
-      },
-      60s, 1s));
+  const std::optional<Map> before = stable_map();
+  ASSERT_TRUE(before) << "the published map kept changing";
   ASSERT_EQ(before->state(2.03, 0.03), CELL_OCCUPIED);
   EXPECT_LT(counter("store_observations"), kSent);
   EXPECT_EQ(counter("store_observations") + counter("compacted_observations"), kSent);

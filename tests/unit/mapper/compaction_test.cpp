@@ -14,6 +14,7 @@
 
 #include "mapper/core/partial_rerender.hpp"
 #include "mapper/core/rebuild.hpp"
+#include "mapper_test_data.hpp"
 #include "temp_dir.hpp"
 
 namespace slam::mapper {
@@ -110,20 +111,6 @@ struct Fixture {
   }
 };
 
-void expect_same(const OccupancyGrid& a, const OccupancyGrid& b) {
-  ASSERT_EQ(a.width(), b.width());
-  ASSERT_EQ(a.height(), b.height());
-  ASSERT_EQ(a.origin_x(), b.origin_x());
-  ASSERT_EQ(a.origin_y(), b.origin_y());
-  int64_t differ = 0;
-  for (int32_t y = 0; y < a.height(); ++y)
-    for (int32_t x = 0; x < a.width(); ++x)
-      if (a.log_odds(x, y) != b.log_odds(x, y) || a.cell_class(x, y) != b.cell_class(x, y) ||
-          a.inflation_count(x, y) != b.inflation_count(x, y))
-        ++differ;
-  EXPECT_EQ(differ, 0) << "cells differ";
-}
-
 OccupancyGrid rebuild(const GridConfig& config, ObservationStore& store, const KeyframeCorrections& c,
                       FootprintIndex* index = nullptr) {
   auto grid = rebuild_grid(config, store, nullptr, c, index);
@@ -148,10 +135,10 @@ TEST_P(Compaction, ARebuildFromACompactedStoreEqualsTheMapBeforeCellForCell) {
   EXPECT_GT(before.width(), 6.0 / config.resolution);  // it grew while replaying
 
   EXPECT_EQ(compact(config, *f.store, f.corrections, 200), 200);
-  expect_same(rebuild(config, *f.store, f.corrections), before);
+  test_data::expect_same(rebuild(config, *f.store, f.corrections), before);
   // Again, over the first baseline: still the same map, and far fewer raw rows.
   EXPECT_EQ(compact(config, *f.store, f.corrections, 400), 200);
-  expect_same(rebuild(config, *f.store, f.corrections), before);
+  test_data::expect_same(rebuild(config, *f.store, f.corrections), before);
   auto count = f.store->count();
   ASSERT_TRUE(count.is_ok());
   EXPECT_EQ(*count, f.rows - 400);
@@ -160,7 +147,7 @@ TEST_P(Compaction, ARebuildFromACompactedStoreEqualsTheMapBeforeCellForCell) {
   Fixture g;
   g.drive(200);
   f.drive(50, 150);
-  expect_same(rebuild(config, *f.store, f.corrections), rebuild(config, *g.store, g.corrections));
+  test_data::expect_same(rebuild(config, *f.store, f.corrections), rebuild(config, *g.store, g.corrections));
 }
 
 TEST_P(Compaction, APriorIsKeptAndOneImportedAfterwardsAppliesOverTheBaseline) {
@@ -178,7 +165,7 @@ TEST_P(Compaction, APriorIsKeptAndOneImportedAfterwardsAppliesOverTheBaseline) {
   ASSERT_TRUE(f.store->save_prior(prior));
   const OccupancyGrid before = rebuild(config, *f.store, f.corrections);
   compact(config, *f.store, f.corrections, 90);
-  expect_same(rebuild(config, *f.store, f.corrections), before);
+  test_data::expect_same(rebuild(config, *f.store, f.corrections), before);
 
   // A prior imported after the compaction: over the baseline, then the raw rows (as before, with the
   // baseline in place of the observations it holds).
@@ -197,10 +184,10 @@ TEST_P(Compaction, APriorIsKeptAndOneImportedAfterwardsAppliesOverTheBaseline) {
     (void)expected->integrate(to_map_frame(f.corrections.lookup(rec.keyframe_id), rec.obs, h, m));
   }));
   const OccupancyGrid after = rebuild(config, *f.store, f.corrections);
-  expect_same(after, *expected);
+  test_data::expect_same(after, *expected);
   // Compacting again folds that prior into the new baseline.
   compact(config, *f.store, f.corrections, 120);
-  expect_same(rebuild(config, *f.store, f.corrections), after);
+  test_data::expect_same(rebuild(config, *f.store, f.corrections), after);
 }
 
 TEST_P(Compaction, APartialRerenderAfterCompactionEqualsAFullRebuild) {
@@ -231,7 +218,7 @@ TEST_P(Compaction, APartialRerenderAfterCompactionEqualsAFullRebuild) {
   ASSERT_FALSE(render->outside_grid);
   grid.redraw(render->canvas);
   record_redraw(*render, index);
-  expect_same(grid, rebuild(config, *f.store, wanted));
+  test_data::expect_same(grid, rebuild(config, *f.store, wanted));
 }
 
 INSTANTIATE_TEST_SUITE_P(Modes, Compaction, ::testing::Values(false, true),
@@ -359,7 +346,7 @@ TEST(CompactionStore, StatsSayWhatIsKeptAndTheBaselineSurvivesAReopen) {
   f.store.reset();
   auto reopened = ObservationStore::open(f.dir.path() / "m.db");
   ASSERT_TRUE(reopened.is_ok()) << reopened.message();
-  expect_same(rebuild(config, *reopened, f.corrections), map);
+  test_data::expect_same(rebuild(config, *reopened, f.corrections), map);
 }
 
 TEST(FootprintIndexDrop, GroupsWhollyCompactedGoTheOthersKeepTheirLaterRows) {

@@ -2,6 +2,7 @@
 // What the mapper's unit tests share: a small grid layout and one robot's observation of a wall.
 #include <gtest/gtest.h>
 
+#include <cstdint>
 #include <vector>
 
 #include "mapper/core/observation_store.hpp"
@@ -19,6 +20,21 @@ inline GridConfig small() {
   c.height_m = 4.0;
   c.max_extent_m = 20.0;
   return c;
+}
+
+// Same layout; every cell's log-odds, class octet and inflation count.
+inline void expect_same(const OccupancyGrid& a, const OccupancyGrid& b) {
+  ASSERT_EQ(a.width(), b.width());
+  ASSERT_EQ(a.height(), b.height());
+  ASSERT_EQ(a.origin_x(), b.origin_x());
+  ASSERT_EQ(a.origin_y(), b.origin_y());
+  int64_t differ = 0;
+  for (int32_t y = 0; y < a.height(); ++y)
+    for (int32_t x = 0; x < a.width(); ++x)
+      if (a.log_odds(x, y) != b.log_odds(x, y) || a.cell_class(x, y) != b.cell_class(x, y) ||
+          a.inflation_count(x, y) != b.inflation_count(x, y))
+        ++differ;
+  EXPECT_EQ(differ, 0) << "cells differ";
 }
 
 // A robot at the origin seeing a wall at x = 1.03, integrated into `grid` and stored in `store`.

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "mapper/core/rebuild.hpp"
+#include "mapper_test_data.hpp"
 #include "temp_dir.hpp"
 
 namespace slam::mapper {
@@ -118,21 +119,6 @@ struct Fixture {
   }
 };
 
-// Same layout; every cell's log-odds, class octet and inflation count.
-void expect_same(const OccupancyGrid& a, const OccupancyGrid& b) {
-  ASSERT_EQ(a.width(), b.width());
-  ASSERT_EQ(a.height(), b.height());
-  ASSERT_EQ(a.origin_x(), b.origin_x());
-  ASSERT_EQ(a.origin_y(), b.origin_y());
-  int64_t differ = 0;
-  for (int32_t y = 0; y < a.height(); ++y)
-    for (int32_t x = 0; x < a.width(); ++x)
-      if (a.log_odds(x, y) != b.log_odds(x, y) || a.cell_class(x, y) != b.cell_class(x, y) ||
-          a.inflation_count(x, y) != b.inflation_count(x, y))
-        ++differ;
-  EXPECT_EQ(differ, 0) << "cells differ";
-}
-
 struct Redrawn {
   RerenderDecision decision;
   TileRender render;
@@ -185,14 +171,14 @@ TEST_P(PartialRerender, EqualsAFullRebuildCellForCell) {
   Redrawn first = redraw(grid, index, *f.store, wanted);
   ASSERT_EQ(first.decision.kind, RerenderDecision::Kind::Partial) << first.decision.reason;
   EXPECT_EQ(first.decision.plan.moved, 4u);
-  expect_same(grid, full_rebuild(config, *f.store, wanted));
+  test_data::expect_same(grid, full_rebuild(config, *f.store, wanted));
 
   move(wanted, 1020, -0.3, 0.2, -0.05);
   move(wanted, 13, -0.12, 0.07, -0.01);  // back where it was
   Redrawn second = redraw(grid, index, *f.store, wanted);
   ASSERT_EQ(second.decision.kind, RerenderDecision::Kind::Partial) << second.decision.reason;
   EXPECT_EQ(second.decision.plan.moved, 2u);
-  expect_same(grid, full_rebuild(config, *f.store, wanted));
+  test_data::expect_same(grid, full_rebuild(config, *f.store, wanted));
 }
 
 TEST_P(PartialRerender, WithAPriorEqualsAFullRebuild) {
@@ -213,7 +199,7 @@ TEST_P(PartialRerender, WithAPriorEqualsAFullRebuild) {
   move(wanted, 5, 0.0, 0.25, 0.02);
   const Redrawn r = redraw(grid, index, *f.store, wanted);
   ASSERT_EQ(r.decision.kind, RerenderDecision::Kind::Partial) << r.decision.reason;
-  expect_same(grid, full_rebuild(config, *f.store, wanted));
+  test_data::expect_same(grid, full_rebuild(config, *f.store, wanted));
 }
 
 INSTANTIATE_TEST_SUITE_P(Modes, PartialRerender, ::testing::Values(false, true),
@@ -255,7 +241,7 @@ TEST(PartialRerenderRandom, AnySequenceOfClosuresEqualsAFullRebuildOfWhatIsDrawn
       continue;
     }
     partial += r.decision.kind == RerenderDecision::Kind::Partial ? 1 : 0;
-    expect_same(grid, full_rebuild(config, *f.store, drawn_corrections(index)));
+    test_data::expect_same(grid, full_rebuild(config, *f.store, drawn_corrections(index)));
     const double quarter = 0.25 * config.resolution;
     for (const FootprintGroup& g : index.groups()) {
       if (g.keyframe == 0) continue;
