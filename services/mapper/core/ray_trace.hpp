@@ -7,6 +7,41 @@
 
 namespace slam::mapper {
 
+// Visits the cells trace_ray (below) would, as coordinates, skipping those outside the box
+// [bx0, bx1) x [by0, by1): visit(x, y). A ray that leaves the box after crossing it stops there (the
+// box is convex). Returns the number of cells visited.
+template <class Visit>
+int64_t trace_ray_in_box(int32_t x0, int32_t y0, int32_t x1, int32_t y1, int32_t bx0, int32_t by0,
+                         int32_t bx1, int32_t by1, bool include_end, Visit&& visit) {
+  const int64_t dx = std::llabs(int64_t{x1} - x0);
+  const int64_t dy = -std::llabs(int64_t{y1} - y0);
+  const int32_t sx = x0 < x1 ? 1 : -1;
+  const int32_t sy = y0 < y1 ? 1 : -1;
+  const int64_t steps = (dx > -dy ? dx : -dy) + (include_end ? 1 : 0);
+  int64_t err = dx + dy;
+  int64_t visited = 0;
+  int32_t x = x0;
+  int32_t y = y0;
+  for (int64_t i = 0; i < steps; ++i) {
+    if (x >= bx0 && y >= by0 && x < bx1 && y < by1) {
+      visit(x, y);
+      ++visited;
+    } else if (visited > 0) {
+      break;  // left the box after crossing it: nothing further can be inside
+    }
+    const int64_t e2 = 2 * err;
+    if (e2 >= dy) {
+      err += dy;
+      x += sx;
+    }
+    if (e2 <= dx) {
+      err += dx;
+      y += sy;
+    }
+  }
+  return visited;
+}
+
 // Visits the 8-connected Bresenham cells from (x0, y0) to (x1, y1), calling visit(linear_index)
 // with linear_index = y * width + x. The start cell is visited; the end cell only when include_end.
 // Cells outside [0, width) x [0, height) are skipped: a ray that leaves the grid stops there, one
@@ -41,27 +76,9 @@ int64_t trace_ray(int32_t x0, int32_t y0, int32_t x1, int32_t y1, int32_t width,
     return steps;
   }
 
-  int64_t visited = 0;
-  int32_t x = x0;
-  int32_t y = y0;
-  for (int64_t i = 0; i < steps; ++i) {
-    if (inside(x, y)) {
-      visit(static_cast<size_t>(static_cast<ptrdiff_t>(y) * width + x));
-      ++visited;
-    } else if (visited > 0) {
-      break;  // left the grid after crossing it: nothing further can be inside
-    }
-    const int64_t e2 = 2 * err;
-    if (e2 >= dy) {
-      err += dy;
-      x += sx;
-    }
-    if (e2 <= dx) {
-      err += dx;
-      y += sy;
-    }
-  }
-  return visited;
+  return trace_ray_in_box(x0, y0, x1, y1, 0, 0, width, height, include_end, [&](int32_t x, int32_t y) {
+    visit(static_cast<size_t>(static_cast<ptrdiff_t>(y) * width + x));
+  });
 }
 
 }  // namespace slam::mapper

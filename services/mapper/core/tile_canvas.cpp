@@ -6,6 +6,8 @@
 #include <cmath>
 #include <cstdlib>
 
+#include "mapper/core/ray_trace.hpp"
+
 namespace slam::mapper {
 
 void TileCanvas::reset(const GridGeometry& geometry, const GridConfig& config,
@@ -156,44 +158,22 @@ void TileCanvas::draw_rays(const ObservationView& obs) {
   const Cell robot = cell_of({obs.x, obs.y});
   const int32_t bx0 = bounds_.x0, by0 = bounds_.y0;
   const int32_t bx1 = bounds_.x0 + bounds_.width, by1 = bounds_.y0 + bounds_.height;
-  // The cells trace_ray visits (start included, end not) when both ends lie in the grid, as coordinates.
+  // The cells trace_ray visits (start included, end not), those within the tiles only.
   const auto trace = [&](std::span<const Vec2> pts) {
     for (const Vec2& p : pts) {
       const Cell end = cell_of(p);
       if (std::max(robot.x, end.x) < bx0 || std::min(robot.x, end.x) >= bx1 ||
           std::max(robot.y, end.y) < by0 || std::min(robot.y, end.y) >= by1)
         continue;  // the ray's box misses every tile
-      const int64_t dx = std::llabs(int64_t{end.x} - robot.x);
-      const int64_t dy = -std::llabs(int64_t{end.y} - robot.y);
-      const int32_t sx = robot.x < end.x ? 1 : -1;
-      const int32_t sy = robot.y < end.y ? 1 : -1;
-      const int64_t steps = dx > -dy ? dx : -dy;
-      int64_t err = dx + dy;
-      int32_t x = robot.x, y = robot.y;
-      bool entered = false;  // the tiles' bounds are convex: a ray that left them stays out
-      for (int64_t i = 0; i < steps; ++i) {
-        if (x >= bx0 && y >= by0 && x < bx1 && y < by1) {
-          entered = true;
-          if (CanvasCell* cell = at(x, y)) {
-            const int32_t old = cell->log_odds;
-            if (old != lo && cell->mark != epoch) {
-              cell->mark = epoch;
-              cell->log_odds = static_cast<int16_t>(std::max(old + miss, lo));
-            }
-          }
-        } else if (entered) {
-          break;
+      trace_ray_in_box(robot.x, robot.y, end.x, end.y, bx0, by0, bx1, by1, false, [&](int32_t x, int32_t y) {
+        CanvasCell* cell = at(x, y);
+        if (!cell) return;
+        const int32_t old = cell->log_odds;
+        if (old != lo && cell->mark != epoch) {
+          cell->mark = epoch;
+          cell->log_odds = static_cast<int16_t>(std::max(old + miss, lo));
         }
-        const int64_t e2 = 2 * err;
-        if (e2 >= dy) {
-          err += dy;
-          x += sx;
-        }
-        if (e2 <= dx) {
-          err += dx;
-          y += sy;
-        }
-      }
+      });
     }
   };
   trace(obs.hits);
