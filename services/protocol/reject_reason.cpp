@@ -16,7 +16,7 @@ constexpr std::array<ReasonText, kRejectReasonCount> kTexts = {{
     {"bad_length", "rejected_bad_length",
      "a length is wrong (v1 payload not a multiple of 4 bytes, or array sizes differ)"},
     {"too_many_points", "rejected_too_many_points", "message has more points than the configured limit"},
-    {"unknown_topic", "rejected_unknown_topic", "topic is not part of the v1 or v2 robot tree"},
+    {"unknown_topic", "rejected_unknown_topic", "topic is not part of the v1, v2 or VDA 5050 robot trees"},
     {"bad_robot_id", "rejected_bad_robot_id",
      "robot id is empty, too long, has wildcards, '/', control characters or bad UTF-8"},
     {"json_syntax", "rejected_json_syntax", "payload is not valid JSON"},
@@ -25,6 +25,8 @@ constexpr std::array<ReasonText, kRejectReasonCount> kTexts = {{
     {"non_finite", "rejected_non_finite", "a number is NaN, infinite or too large"},
     {"out_of_range", "rejected_out_of_range", "a number is outside its allowed range"},
     {"bad_text", "rejected_bad_text", "a text field is empty, too long or has control characters"},
+    {"bad_version", "rejected_bad_version", "VDA 5050 message of another major version"},
+    {"unknown_robot", "rejected_unknown_robot", "VDA 5050 message from a robot not configured as one"},
 }};
 
 const ReasonText& text(RejectReason reason) {

@@ -14,7 +14,7 @@ enum class RejectReason : std::uint8_t {
   Oversized,      // payload larger than CodecLimits::max_payload_bytes
   BadLength,      // v1 length not a multiple of 4, or scan angles/ranges counts differ
   TooManyPoints,  // more obstacle points or beams than CodecLimits::max_points
-  UnknownTopic,   // topic outside the v1/v2 trees
+  UnknownTopic,   // topic outside the v1/v2 trees and the VDA 5050 robot topics
   BadRobotId,     // robot id empty, too long, wildcard or '/', control character, bad UTF-8
   JsonSyntax,     // not JSON (includes invalid UTF-8 inside JSON strings)
   JsonType,       // JSON of the wrong shape: not an object, a string where a number belongs, ...
@@ -22,16 +22,19 @@ enum class RejectReason : std::uint8_t {
   NonFinite,      // NaN, infinity, or a number too large for a double
   OutOfRange,     // a finite number outside its allowed range (coordinates, battery, int16, ...)
   BadText,        // a text field that is empty, too long or holds control characters
+  BadVersion,     // a VDA 5050 message whose version is not the major version configured
+  UnknownRobot,   // a VDA 5050 message from a robot outside the configured list
 };
 
-inline constexpr std::size_t kRejectReasonCount = 12;
+inline constexpr std::size_t kRejectReasonCount = 14;
 
 // Every reason, in enum order: lets a service register all counters at start.
 inline constexpr std::array<RejectReason, kRejectReasonCount> kAllRejectReasons = {
     RejectReason::EmptyPayload,  RejectReason::Oversized,    RejectReason::BadLength,
     RejectReason::TooManyPoints, RejectReason::UnknownTopic, RejectReason::BadRobotId,
     RejectReason::JsonSyntax,    RejectReason::JsonType,     RejectReason::MissingField,
-    RejectReason::NonFinite,     RejectReason::OutOfRange,   RejectReason::BadText};
+    RejectReason::NonFinite,     RejectReason::OutOfRange,   RejectReason::BadText,
+    RejectReason::BadVersion,    RejectReason::UnknownRobot};
 
 // Stable snake_case name, e.g. "bad_length". Part of the operator-facing contract: never rename.
 std::string_view reason_name(RejectReason reason);

@@ -3,25 +3,41 @@
 #include "gateway/core/command_encoder.hpp"
 
 #include "gateway/core/frame_correction.hpp"
+#include "gateway/core/vda_orders.hpp"
 #include "protocol/topic.hpp"
 #include "protocol/v1_codec.hpp"
 #include "protocol/v2_server_codec.hpp"
 
 namespace slam::gateway {
 
+void CommandEncoder::robot_path(const Pose& map_from_odom, protocol::Point waypoint,
+                                std::span<const protocol::Point> remaining, bool with_rest) {
+  // Planners differ on whether "remaining" includes the current waypoint; robots get it once.
+  // (Compared in the map frame, where the planner made them equal.)
+  path_.assign(1, waypoint);
+  if (with_rest) {
+    const bool repeats = !remaining.empty() && remaining.front() == waypoint;
+    path_.insert(path_.end(), remaining.begin() + (repeats ? 1 : 0), remaining.end());
+  }
+  to_odometry_frame(map_from_odom, path_);
+}
+
+protocol::CodecStatus CommandEncoder::encode_vda(VdaOrders& orders, std::string_view robot_id,
+                                                 const Pose& map_from_odom, protocol::Point waypoint,
+                                                 std::span<const protocol::Point> remaining,
+                                                 std::optional<protocol::Point> odom_position,
+                                                 std::int64_t wall_ns, CommandMessages& out) {
+  robot_path(map_from_odom, waypoint, remaining, true);
+  return orders.command(robot_id, odom_position, path_, wall_ns, out);
+}
+
 protocol::CodecStatus CommandEncoder::encode(std::string_view robot_id, Protocol protocol, std::uint64_t seq,
                                              const Pose& map_from_odom, protocol::Point waypoint,
                                              std::span<const protocol::Point> remaining,
                                              CommandMessages& out) {
   out.count = 0;
-  // Planners differ on whether "remaining" includes the current waypoint; robots get it once.
-  // (Compared in the map frame, where the planner made them equal.) v1 robots take the waypoint only.
-  path_.assign(1, waypoint);
-  if (protocol == Protocol::V2) {
-    const bool repeats = !remaining.empty() && remaining.front() == waypoint;
-    path_.insert(path_.end(), remaining.begin() + (repeats ? 1 : 0), remaining.end());
-  }
-  to_odometry_frame(map_from_odom, path_);
+  // v1 robots take the waypoint only.
+  robot_path(map_from_odom, waypoint, remaining, protocol != Protocol::V1);
   const protocol::Point target = path_.front();
 
   if (protocol == Protocol::V1) {

@@ -2,10 +2,12 @@
 // A waypoint command from the planner (map frame), turned into what the robot understands: first
 // into the robot's odometry frame with its correction, then into the protocol it spoke last: v1
 // gets exactly one 4-byte int16 pair on v1/server/<id>/cmd (never wrapped: out of range is an
-// error), v2 gets the waypoint JSON and the whole remaining path JSON.
+// error), v2 gets the waypoint JSON and the whole remaining path JSON, a VDA 5050 robot an order (or a
+// cancelOrder) from VdaOrders.
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -17,6 +19,8 @@
 #include "protocol/reject_reason.hpp"
 
 namespace slam::gateway {
+
+class VdaOrders;
 
 struct OutboundMessage {
   std::string topic;
@@ -41,8 +45,18 @@ class CommandEncoder {
   protocol::CodecStatus encode(std::string_view robot_id, Protocol protocol, std::uint64_t seq,
                                const Pose& map_from_odom, protocol::Point waypoint,
                                std::span<const protocol::Point> remaining, CommandMessages& out);
+  // The same for a VDA 5050 robot standing at `odom_position` (its own frame, when known): the path,
+  // converted alike, goes to `orders`, which keeps each robot's order.
+  protocol::CodecStatus encode_vda(VdaOrders& orders, std::string_view robot_id, const Pose& map_from_odom,
+                                   protocol::Point waypoint, std::span<const protocol::Point> remaining,
+                                   std::optional<protocol::Point> odom_position, std::int64_t wall_ns,
+                                   CommandMessages& out);
 
  private:
+  // path_ = the waypoint, then (`with_rest`) the rest without a repeated waypoint, in the odometry frame.
+  void robot_path(const Pose& map_from_odom, protocol::Point waypoint,
+                  std::span<const protocol::Point> remaining, bool with_rest);
+
   protocol::CodecLimits limits_;
   std::vector<protocol::Point> path_;  // waypoint then the rest, in the odometry frame
 };

@@ -48,6 +48,17 @@ void add_gateway_options(CLI::App& app, GatewayOptions& o) {
                  "a scan's beam without a return clears free space this far at most (m)")
       ->capture_default_str();
 
+  app.add_option("--vda5050", o.vda5050, "serve VDA 5050 robots as their fleet control (on|off)")
+      ->capture_default_str();
+  app.add_option("--vda-interface", o.vda_tree.interface_name, "VDA 5050 interface name (first topic level)")
+      ->capture_default_str();
+  app.add_option("--vda-major-version", o.vda_tree.major_version,
+                 "VDA 5050 major version (second topic level): v2 speaks 2.x")
+      ->capture_default_str();
+  app.add_option(
+      "--vda-robot", o.vda_robots,
+      "a VDA 5050 robot as <manufacturer>/<serialNumber> (repeatable); none: any robot under the tree");
+
   app.add_option("--offline-after-s", o.offline_after_s, "a robot silent this long (s) is offline")
       ->capture_default_str();
   app.add_option("--state-period-s", o.state_period_s,
@@ -86,11 +97,42 @@ void add_gateway_options(CLI::App& app, GatewayOptions& o) {
 }
 
 std::vector<std::string> subscribed_filters(const GatewayOptions& o) {
-  if (!o.share) return o.mqtt.subscriptions;
+  std::vector<std::string> filters = o.mqtt.subscriptions;
+  if (o.vda5050) {
+    for (std::string& f : protocol::vda_robot_filters(o.vda_tree)) filters.push_back(std::move(f));
+  }
+  if (!o.share) return filters;
   std::vector<std::string> shared;
-  for (const std::string& f : o.mqtt.subscriptions) shared.push_back(mqtt::shared_filter(o.share_group, f));
+  for (const std::string& f : filters) shared.push_back(mqtt::shared_filter(o.share_group, f));
   return shared;
 }
+
+namespace {
+
+// A topic level the gateway builds topics from: not empty, no '/', '+', '#' and clean text.
+Status check_level(std::string_view key, std::string_view level) {
+  if (level.empty() || level.find_first_of("/+#") != std::string_view::npos)
+    return Error{std::string(key) + " '" + std::string(level) +
+                 "' must be one topic level without '/', '+' or '#'"};
+  return validate_topic_name(level);
+}
+
+Status validate_vda(const GatewayOptions& o) {
+  if (auto s = check_level("vda-interface", o.vda_tree.interface_name); !s) return s;
+  const std::string& major = o.vda_tree.major_version;
+  if (major.size() < 2 || major[0] != 'v' || major.find_first_not_of("0123456789", 1) != std::string::npos)
+    return Error{"vda-major-version '" + major + "' must be 'v' and a number, e.g. v2"};
+  for (const std::string& robot : o.vda_robots) {
+    const auto slash = robot.find('/');
+    if (slash == std::string::npos)
+      return Error{"vda-robot '" + robot + "' must be <manufacturer>/<serialNumber>"};
+    if (auto s = check_level("vda-robot manufacturer", robot.substr(0, slash)); !s) return s;
+    if (auto s = check_level("vda-robot serialNumber", robot.substr(slash + 1)); !s) return s;
+  }
+  return Status::ok();
+}
+
+}  // namespace
 
 Status validate(const GatewayOptions& o) {
   const MqttOptions& m = o.mqtt;
@@ -100,6 +142,7 @@ Status validate(const GatewayOptions& o) {
   }
 
   if (auto s = protocol::validate(o.limits); !s) return s;
+  if (auto s = validate_vda(o); !s) return s;
   if (auto s = check_seconds("offline-after-s", o.offline_after_s, 0.1, 86400.0); !s) return s;
   if (auto s = check_seconds("state-period-s", o.state_period_s, 0.01, 10.0); !s) return s;
   if (!std::isfinite(o.batch_ms) || o.batch_ms < 0.0 || o.batch_ms > 1000.0)

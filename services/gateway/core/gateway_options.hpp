@@ -12,6 +12,7 @@
 #include "common/core/service_options.hpp"
 #include "common/mqtt/mqtt_options.hpp"
 #include "protocol/codec_types.hpp"
+#include "protocol/vda5050_codec.hpp"
 
 namespace slam::gateway {
 
@@ -36,6 +37,12 @@ struct GatewayOptions {
   // Observations leave in batches (one DDS sample each): a batch waits at most this long.
   double batch_ms = 10.0;
   std::size_t max_robots = 10'000;
+  // VDA 5050 robots (docs/protocol.md, "VDA 5050"): the gateway is their fleet control on the tree
+  // <vda_tree.interface_name>/<vda_tree.major_version>/..., for the robots in vda_robots
+  // ("<manufacturer>/<serialNumber>") or, with none listed, for any robot publishing under it.
+  bool vda5050 = true;
+  protocol::VdaTree vda_tree;
+  std::vector<std::string> vda_robots;
   // The fleet digests (FleetDigest, FleetPoints): every robot in one sample each period, with up
   // to digest_points_per_robot of each robot's latest hits per points sample. The digest is the
   // pose stream the planner, the viewer and the bridge follow.
@@ -56,7 +63,8 @@ struct GatewayOptions {
 // Gateway heartbeats go out this often: peer_timeout_s must span a few of them.
 inline constexpr double kGatewayHeartbeatPeriodS = 0.5;
 
-// The filters the MQTT connection subscribes: mqtt.subscriptions, shared when `share` is on.
+// The filters the MQTT connection subscribes: mqtt.subscriptions and the VDA 5050 robot topics,
+// shared when `share` is on.
 std::vector<std::string> subscribed_filters(const GatewayOptions& options);
 
 // Adds the common flags and every gateway flag to `app`, bound to `options`.

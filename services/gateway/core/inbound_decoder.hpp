@@ -9,10 +9,13 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <unordered_set>
+#include <vector>
 
 #include "gateway/core/robot_registry.hpp"
 #include "protocol/message_decoder.hpp"
 #include "protocol/reject_reason.hpp"
+#include "protocol/vda5050_codec.hpp"
 
 namespace slam::gateway {
 
@@ -28,17 +31,34 @@ struct InboundMessage {
   std::string topic;     // as received (the rejection log names it)
   std::string robot_id;  // empty when the topic named no valid robot
   Instant received;      // when the MQTT thread took it: the robot's last-seen time and the batch's clock
-  protocol::DecodedMessage message;
-  protocol::CodecStatus status;  // ok, or why the message is rejected
+  protocol::DecodedMessage message;  // a VDA 5050 message's pose (observation) or its status too
+  protocol::CodecStatus status;      // ok, or why the message is rejected
+  // A VDA 5050 message: its address (manufacturer, serialNumber) and what it says.
+  bool is_vda = false;
+  std::string vda_manufacturer;
+  std::string vda_serial_number;
+  protocol::VdaMessage vda;
 
-  Protocol protocol() const { return protocol::is_v1(message.kind) ? Protocol::V1 : Protocol::V2; }
+  Protocol protocol() const {
+    if (is_vda) return Protocol::Vda5050;
+    return protocol::is_v1(message.kind) ? Protocol::V1 : Protocol::V2;
+  }
+  protocol::VdaAddress vda_address() const { return {vda.topic, vda_manufacturer, vda_serial_number}; }
   // Obstacle points (hits and misses) of a decoded observation; 0 for anything else.
   std::size_t points() const;
 };
 
+// Which VDA 5050 robots the gateway serves as fleet control (docs/protocol.md, "VDA 5050").
+struct VdaInbound {
+  bool enabled = false;
+  protocol::VdaTree tree;
+  // "<manufacturer>/<serialNumber>" of each VDA robot; empty: any robot publishing under the tree.
+  std::vector<std::string> robots;
+};
+
 class InboundDecoder {
  public:
-  explicit InboundDecoder(const protocol::CodecLimits& limits) : limits_(limits) {}
+  explicit InboundDecoder(const protocol::CodecLimits& limits, VdaInbound vda = {});
 
   // MQTT thread: parses `topic` and decodes `payload` into `out` (every field replaced). False when
   // the message is rejected (out.status says why).
@@ -46,7 +66,13 @@ class InboundDecoder {
               InboundMessage& out) const;
 
  private:
+  // A topic under the VDA tree: the robot's address, id and message.
+  bool decode_vda(std::string_view topic, std::span<const std::uint8_t> payload, InboundMessage& out) const;
+
   protocol::CodecLimits limits_;
+  VdaInbound vda_;
+  std::string vda_prefix_;  // "<interface>/"
+  std::unordered_set<std::string> vda_robots_;
 };
 
 // What recording a message did.
@@ -57,6 +83,9 @@ struct InboundResult {
 
 // Loop: records a decoded message in `registry`, or counts its rejection against the robot. A v2
 // points message without a pose may still be rejected here (missing_field, set in message.status).
+// A VDA 5050 state or visualization with an initialised position is an observation (the pose), one
+// without a status; a connection is a status (CONNECTIONBROKEN and OFFLINE: offline); a factsheet
+// only counts.
 InboundResult apply_inbound(RobotRegistry& registry, InboundMessage& message);
 
 }  // namespace slam::gateway

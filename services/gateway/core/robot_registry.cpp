@@ -5,6 +5,18 @@
 
 namespace slam::gateway {
 
+std::string_view protocol_name(Protocol protocol) {
+  switch (protocol) {
+    case Protocol::V1:
+      return "v1";
+    case Protocol::V2:
+      return "v2";
+    case Protocol::Vda5050:
+      return "vda5050";
+  }
+  return "unknown";
+}
+
 RobotRegistry::RobotRegistry(RegistryConfig config) : config_(config) {}
 
 RobotRecord* RobotRegistry::lookup(std::string_view id) {
@@ -89,14 +101,22 @@ AcceptResult RobotRegistry::accept_observation(std::string_view id, Protocol pro
 }
 
 AcceptResult RobotRegistry::accept_status(std::string_view id, const protocol::DecodedStatus& status,
-                                          Instant now) {
+                                          Instant now, Protocol protocol) {
   AcceptResult result;
-  RobotRecord* r = touch(id, Protocol::V2, now, result);
+  RobotRecord* r = touch(id, protocol, now, result);
   if (!r) return result;
   r->battery = status.battery;
   r->status = status.state;
   set_presence(*r, status.offline ? Presence::Offline : Presence::Online, result);
   return result;
+}
+
+void RobotRegistry::set_status(std::string_view id, const protocol::DecodedStatus& status) {
+  RobotRecord* r = lookup(id);
+  if (!r) return;
+  r->battery = status.battery;
+  r->status = status.state;
+  r->changed = true;
 }
 
 bool RobotRegistry::forget(std::string_view id) {

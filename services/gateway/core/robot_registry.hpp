@@ -14,7 +14,10 @@
 
 namespace slam::gateway {
 
-enum class Protocol : std::uint8_t { V1, V2 };
+// Vda5050: a VDA 5050 robot (docs/protocol.md); on DDS it shows as a JSON (v2) robot.
+enum class Protocol : std::uint8_t { V1, V2, Vda5050 };
+// "v1", "v2", "vda5050".
+std::string_view protocol_name(Protocol protocol);
 enum class Presence : std::uint8_t { Online, Offline };
 
 // Both clocks of one moment: wall time for what DDS consumers see, monotonic time for timeouts.
@@ -73,8 +76,12 @@ class RobotRegistry {
   // protocol and marks the robot online. On NoPose/RegistryFull nothing is recorded.
   AcceptResult accept_observation(std::string_view id, Protocol protocol,
                                   protocol::DecodedObservation& observation, Instant now);
-  // A valid v2 status: battery and state; the last will ({"state":"offline"}) turns it offline.
-  AcceptResult accept_status(std::string_view id, const protocol::DecodedStatus& status, Instant now);
+  // A valid v2 status (or a VDA 5050 state or connection without a pose): battery and state; the last
+  // will ({"state":"offline"}) turns it offline.
+  AcceptResult accept_status(std::string_view id, const protocol::DecodedStatus& status, Instant now,
+                             Protocol protocol = Protocol::V2);
+  // Battery and state reported beside a pose (a VDA 5050 state), on a known robot; not a message of its own.
+  void set_status(std::string_view id, const protocol::DecodedStatus& status);
   // A rejected message on a robot's topic: counted only for robots already known (an unknown id
   // must not create a robot, or a flood of bad ids would grow the registry).
   void count_rejected(std::string_view id);

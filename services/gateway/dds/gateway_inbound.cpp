@@ -29,6 +29,8 @@ void GatewayNode::take_inbound(InboundMessage& message) {
     presence_changed_ = true;
     log_presence(message, accepted);
   }
+  if (message.is_vda && (result.kind == InboundKind::Observation || result.kind == InboundKind::Status))
+    take_vda(message);
   switch (result.kind) {
     case InboundKind::Observation:
       if (const std::uint32_t errors = message.message.observation.error_beams; errors > 0) {
@@ -105,10 +107,22 @@ void GatewayNode::log_rejection(const InboundMessage& message) {
 
 void GatewayNode::log_presence(const InboundMessage& message, const AcceptResult& result) {
   const std::string id = protocol::escape_for_log(message.robot_id);
-  const char* protocol = message.protocol() == Protocol::V1 ? "v1" : "v2";
+  const std::string_view protocol = protocol_name(message.protocol());
   if (result.first_seen) spdlog::info("robot '{}' first seen ({})", id, protocol);
   if (result.came_online) spdlog::info("robot '{}' online again ({})", id, protocol);
   if (result.went_offline) spdlog::info("robot '{}' offline: last will / offline status", id);
+}
+
+void GatewayNode::take_vda(const InboundMessage& message) {
+  bool known = true;
+  const std::optional<std::string> rejection =
+      vda_orders_.take_message(message.robot_id, message.vda_address(), message.vda, known);
+  if (!known) bump(metrics_.robots_refused);
+  if (!rejection) return;
+  // Reported once per order update; the planner's next waypoint starts a new order.
+  bump(metrics_.vda_orders_rejected);
+  const std::string shown = protocol::escape_for_log(message.robot_id);
+  warn("vda-order:" + shown, "robot '" + shown + "' " + *rejection);
 }
 
 }  // namespace slam::gateway

@@ -73,7 +73,8 @@ GatewayNode::Metrics::Metrics(Counters& c)
       robots_forgotten(c.get("robots_forgotten")),
       fleet_digests(c.get("fleet_digests")),
       observation_batches(c.get("observation_batches")),
-      scan_error_beams(c.get("scan_error_beams")) {
+      scan_error_beams(c.get("scan_error_beams")),
+      vda_orders_rejected(c.get("vda_orders_rejected")) {
   for (protocol::RejectReason r : protocol::kAllRejectReasons) {
     rejected[static_cast<size_t>(r)] = &c.get(std::string(protocol::reason_counter(r)));
   }
@@ -94,7 +95,7 @@ GatewayNode::GatewayNode(const GatewayOptions& options, Counters& counters)
       points_period_(period(options.digest_points_period_s)),
       metrics_(counters),
       traffic_(options.traffic_queue, options.traffic_rate),
-      decoder_(options.limits),
+      decoder_(options.limits, VdaInbound{options.vda5050, options.vda_tree, options.vda_robots}),
       registry_(RegistryConfig{static_cast<int64_t>(options.offline_after_s * 1e9), options.max_robots}),
       digest_(options.digest_points_per_robot),
       corrections_(options.max_robots),
@@ -105,7 +106,8 @@ GatewayNode::GatewayNode(const GatewayOptions& options, Counters& counters)
       batch_policy_(options.batch_ms > 0.0
                         ? BatchLimits{.max_wait_ns = static_cast<std::int64_t>(options.batch_ms * 1e6)}
                         : BatchLimits{.max_observations = 1, .max_wait_ns = 0}),
-      encoder_(options.limits) {}
+      encoder_(options.limits),
+      vda_orders_(options.vda_tree, options.limits, VdaOrdersConfig{.max_robots = options.max_robots}) {}
 
 GatewayNode::~GatewayNode() {
   // The members' own order (readers, then the MQTT client), with the last batch written before the
@@ -289,6 +291,7 @@ void GatewayNode::take_correction(const CorrectionInput& input) {
 // Before collect_changed_robots: a forgotten robot's state must not go out after its disposal.
 void GatewayNode::forget_robot(const std::string& id) {
   protocols_.forget(id);
+  vda_orders_.forget(id);
   presence_changed_ = true;
   const RobotRecord* r = registry_.find(id);
   if (r == nullptr) return;

@@ -39,6 +39,7 @@
 #include "gateway/core/robot_protocols.hpp"
 #include "gateway/core/robot_registry.hpp"
 #include "gateway/core/traffic_queue.hpp"
+#include "gateway/core/vda_orders.hpp"
 #include "gateway/dds/traffic_publisher.hpp"
 #include "protocol/reject_reason.hpp"
 
@@ -107,7 +108,8 @@ class GatewayNode {
     std::atomic<int64_t>& robots_forgotten;
     std::atomic<int64_t>& fleet_digests;
     std::atomic<int64_t>& observation_batches;
-    std::atomic<int64_t>& scan_error_beams;  // v2 scan beams with range 0 (an error reading), left out
+    std::atomic<int64_t>& scan_error_beams;     // v2 scan beams with range 0 (an error reading), left out
+    std::atomic<int64_t>& vda_orders_rejected;  // VDA 5050 orders (updates) a robot's state rejected
   };
 
   GatewayNode(const GatewayOptions& options, Counters& counters);
@@ -144,6 +146,8 @@ class GatewayNode {
   InboundWake inbound_wake() const;
   void log_rejection(const InboundMessage& message);
   void log_presence(const InboundMessage& message, const AcceptResult& result);
+  // A VDA 5050 message: the robot's address and map, and what its state says of its order.
+  void take_vda(const InboundMessage& message);
 
   // Loop, DDS -> MQTT (gateway_outbound.cpp).
   void send_waypoint(const WaypointInput& command, const Tick& now);
@@ -179,6 +183,7 @@ class GatewayNode {
   std::vector<slam::RobotObservation> spare_observations_;  // written batches' elements, reused
   TokenBucket reject_log_budget_{20.0, 20.0};               // rejection lines per second, all robots together
   CommandEncoder encoder_;
+  VdaOrders vda_orders_;
   CommandMessages commands_;
   std::vector<protocol::Point> remaining_;
   bool presence_changed_ = false;                        // in this pass: a robot's state goes out at once

@@ -55,9 +55,10 @@ void GatewayNode::send_waypoint(const WaypointInput& command, const Tick& now) {
     bump(metrics_.commands_not_owned);
     return;
   }
-  const std::optional<Protocol> protocol = protocol_of(id);
+  // A VDA 5050 robot this gateway has heard is one whatever the RobotStates say (they show it as v2).
+  const std::optional<Protocol> protocol = vda_orders_.knows(id) ? Protocol::Vda5050 : protocol_of(id);
   const std::string shown = protocol::escape_for_log(id);
-  if (!protocol) {
+  if (!protocol || (*protocol == Protocol::Vda5050 && !vda_orders_.knows(id))) {
     bump(metrics_.commands_unknown_robot);
     warn("unknown-robot:" + shown,
          "waypoint for robot '" + shown +
@@ -68,17 +69,24 @@ void GatewayNode::send_waypoint(const WaypointInput& command, const Tick& now) {
   const Correction correction = corrections_.of(id);
   remaining_ = command.remaining;
   const protocol::Point waypoint = command.waypoint;
-  if (auto s = encoder_.encode(id, *protocol, command.seq, correction.map_from_odom, waypoint, remaining_,
-                               commands_);
-      !s) {
+  std::optional<protocol::Point> position;
+  if (const RobotRecord* r = registry_.find(id); r && r->has_pose) position = protocol::Point{r->x, r->y};
+  const protocol::CodecStatus encoded =
+      *protocol == Protocol::Vda5050
+          ? encoder_.encode_vda(vda_orders_, id, correction.map_from_odom, waypoint, remaining_, position,
+                                now.instant.wall_ns, commands_)
+          : encoder_.encode(id, *protocol, command.seq, correction.map_from_odom, waypoint, remaining_,
+                            commands_);
+  if (!encoded) {
     // Never wrapped or clamped: a v1 robot would drive somewhere else entirely.
     bump(metrics_.commands_failed);
     warn("command:" + shown, "waypoint " + std::to_string(command.seq) + " (" + std::to_string(waypoint.x) +
                                  ", " + std::to_string(waypoint.y) + ") m (map frame) for robot '" + shown +
-                                 "' (" + (*protocol == Protocol::V1 ? "v1" : "v2") +
-                                 ") not sent: " + s.message());
+                                 "' (" + std::string(protocol_name(*protocol)) +
+                                 ") not sent: " + encoded.message());
     return;
   }
+  if (commands_.count == 0) return;  // a VDA robot's cancel under way, or nothing to cancel
   for (const OutboundMessage& m : commands_.view()) {
     if (auto s = publish_mqtt(m.topic, bytes(m.payload), options_.mqtt.qos, false); !s) {
       warn("publish", "waypoint for robot '" + shown + "' not sent: " + s.message());

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "gateway/core/topic_filter.hpp"
@@ -117,8 +118,12 @@ GatewayOptions parsed(std::vector<std::string> args) {
 TEST(GatewayOptions, SharesTheRobotTopicsByDefault) {
   const GatewayOptions o;
   EXPECT_TRUE(o.share);
-  EXPECT_EQ(subscribed_filters(o), (std::vector<std::string>{"$share/slam-gateways/v1/robot/+/adv",
-                                                             "$share/slam-gateways/v2/robot/+/+"}));
+  EXPECT_EQ(
+      subscribed_filters(o),
+      (std::vector<std::string>{
+          "$share/slam-gateways/v1/robot/+/adv", "$share/slam-gateways/v2/robot/+/+",
+          "$share/slam-gateways/uagv/v2/+/+/connection", "$share/slam-gateways/uagv/v2/+/+/state",
+          "$share/slam-gateways/uagv/v2/+/+/visualization", "$share/slam-gateways/uagv/v2/+/+/factsheet"}));
   const auto grouped = parsed({"--share-group", "east", "--peer-timeout-s", "2.5"});
   EXPECT_EQ(subscribed_filters(grouped).front(), "$share/east/v1/robot/+/adv");
   EXPECT_DOUBLE_EQ(grouped.peer_timeout_s, 2.5);
@@ -127,7 +132,29 @@ TEST(GatewayOptions, SharesTheRobotTopicsByDefault) {
 TEST(GatewayOptions, NoShareSubscribesThePlainFilters) {
   const auto o = parsed({"--no-share"});
   EXPECT_FALSE(o.share);
-  EXPECT_EQ(subscribed_filters(o), o.mqtt.subscriptions);
+  EXPECT_EQ(subscribed_filters(o).front(), o.mqtt.subscriptions.front());
+  EXPECT_EQ(subscribed_filters(o).back(), "uagv/v2/+/+/factsheet");
+}
+
+TEST(GatewayOptions, Vda5050TreeAndRobotsAreConfigurable) {
+  const auto o = parsed({"--no-share", "--vda-interface", "agv", "--vda-major-version", "v3", "--vda-robot",
+                         "Acme/agv-1", "--vda-robot", "Acme/agv-2"});
+  EXPECT_TRUE(validate(o));
+  EXPECT_EQ(o.vda_robots, (std::vector<std::string>{"Acme/agv-1", "Acme/agv-2"}));
+  EXPECT_EQ(subscribed_filters(o).back(), "agv/v3/+/+/factsheet");
+  const auto off = parsed({"--no-share", "--vda5050", "off"});
+  EXPECT_EQ(subscribed_filters(off), off.mqtt.subscriptions);
+
+  for (const auto& [flag, value, key] : std::vector<std::tuple<std::string, std::string, std::string>>{
+           {"--vda-interface", "a/b", "vda-interface"},
+           {"--vda-major-version", "2", "vda-major-version"},
+           {"--vda-major-version", "vx", "vda-major-version"},
+           {"--vda-robot", "agv-1", "vda-robot"},
+           {"--vda-robot", "Acme/+", "vda-robot serialNumber"}}) {
+    const Status s = validate(parsed({flag, value}));
+    ASSERT_FALSE(s) << flag << " " << value;
+    EXPECT_NE(s.message().find(key), std::string::npos) << s.message();
+  }
 }
 
 TEST(GatewayOptions, BadSharingValuesNameTheKey) {

@@ -109,5 +109,68 @@ TEST_F(InboundDecoderTest, TheMessageKeepsTopicIdAndReceiveTimeAndReplacesEveryF
   EXPECT_TRUE(observation().hits.empty());
 }
 
+// A VDA 5050 message of robot Acme/agv-1: the header, then `members`.
+std::string vda(std::string_view members) {
+  std::string out =
+      R"({"headerId": 1, "timestamp": "2026-11-28T10:00:00.000Z", "version": "2.0.0", "manufacturer": "Acme", )"
+      R"("serialNumber": "agv-1")";
+  out.append(members);
+  out.append("}");
+  return out;
+}
+
+const std::string kVdaState =
+    vda(R"(, "orderId": "", "orderUpdateId": 0, "lastNodeId": "", "lastNodeSequenceId": 0,
+    "nodeStates": [], "edgeStates": [], "driving": false, "operatingMode": "AUTOMATIC", "errors": [],
+    "batteryState": {"batteryCharge": 40}, "agvPosition": {"x": 2, "y": 3, "theta": 0.5, "mapId": "hall",
+    "positionInitialized": true})");
+
+class VdaInboundTest : public InboundDecoderTest {
+ protected:
+  VdaInboundTest() { decoder = InboundDecoder{protocol::CodecLimits{}, VdaInbound{true, {}, {}}}; }
+};
+
+TEST_F(VdaInboundTest, AStateIsTheRobotsPoseBatteryAndOperatingMode) {
+  ASSERT_EQ(feed("uagv/v2/Acme/agv-1/state", kVdaState), InboundKind::Observation)
+      << message.status.message();
+  EXPECT_EQ(message.robot_id, "Acme:agv-1");
+  EXPECT_EQ(message.protocol(), Protocol::Vda5050);
+  EXPECT_EQ(message.vda_address().serial_number, "agv-1");
+  const RobotRecord* r = registry.find("Acme:agv-1");
+  ASSERT_NE(r, nullptr);
+  EXPECT_EQ(r->protocol, Protocol::Vda5050);
+  EXPECT_DOUBLE_EQ(r->x, 2.0);
+  EXPECT_DOUBLE_EQ(r->theta, 0.5);
+  EXPECT_FLOAT_EQ(r->battery, 0.4f);
+  EXPECT_EQ(r->status, "AUTOMATIC");
+  EXPECT_EQ(r->messages, 1u);
+}
+
+TEST_F(VdaInboundTest, ABrokenConnectionTurnsTheRobotOffline) {
+  ASSERT_EQ(feed("uagv/v2/Acme/agv-1/state", kVdaState), InboundKind::Observation);
+  ASSERT_EQ(feed("uagv/v2/Acme/agv-1/connection", vda(R"(, "connectionState": "CONNECTIONBROKEN")")),
+            InboundKind::Status);
+  EXPECT_TRUE(result.accepted.went_offline);
+  EXPECT_EQ(registry.find("Acme:agv-1")->presence, Presence::Offline);
+}
+
+TEST_F(VdaInboundTest, RejectionsCountAndAnUnlistedRobotIsNoRobot) {
+  ASSERT_EQ(feed("uagv/v2/Acme/agv-1/state", kVdaState), InboundKind::Observation);
+  ASSERT_EQ(feed("uagv/v2/Acme/agv-1/state", "{"), InboundKind::Rejected);
+  EXPECT_EQ(message.status.reason(), protocol::RejectReason::JsonSyntax);
+  EXPECT_EQ(registry.find("Acme:agv-1")->rejected, 1u);
+  ASSERT_EQ(feed("uagv/v2/Acme/agv-1/order", "{}"), InboundKind::Rejected);
+  EXPECT_EQ(message.status.reason(), protocol::RejectReason::UnknownTopic);
+
+  decoder = InboundDecoder{protocol::CodecLimits{}, VdaInbound{true, {}, {"Acme/agv-2"}}};
+  ASSERT_EQ(feed("uagv/v2/Acme/agv-1/state", kVdaState), InboundKind::Rejected);
+  EXPECT_EQ(message.status.reason(), protocol::RejectReason::UnknownRobot);
+  EXPECT_TRUE(message.robot_id.empty());
+  // Off: the tree is no robot tree at all.
+  decoder = InboundDecoder{protocol::CodecLimits{}};
+  ASSERT_EQ(feed("uagv/v2/Acme/agv-1/state", kVdaState), InboundKind::Rejected);
+  EXPECT_EQ(message.status.reason(), protocol::RejectReason::UnknownTopic);
+}
+
 }  // namespace
 }  // namespace slam::gateway

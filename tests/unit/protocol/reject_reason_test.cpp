@@ -22,6 +22,8 @@ TEST(RejectReason, NamesAreStableSnakeCase) {
   EXPECT_EQ(reason_name(RejectReason::NonFinite), "non_finite");
   EXPECT_EQ(reason_name(RejectReason::OutOfRange), "out_of_range");
   EXPECT_EQ(reason_name(RejectReason::BadText), "bad_text");
+  EXPECT_EQ(reason_name(RejectReason::BadVersion), "bad_version");
+  EXPECT_EQ(reason_name(RejectReason::UnknownRobot), "unknown_robot");
 }
 
 TEST(RejectReason, EveryReasonHasACounterAndDescription) {

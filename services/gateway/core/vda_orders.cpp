@@ -1,0 +1,176 @@
+// VdaOrders: base up to the planner's waypoint, horizon beyond, updates stitched at the last base node,
+// halts as cancelOrder, and what the robot's state says of each.
+#include "gateway/core/vda_orders.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <utility>
+
+namespace slam::gateway {
+namespace {
+
+using protocol::Point;
+
+double distance(Point a, Point b) {
+  return std::hypot(a.x - b.x, a.y - b.y);
+}
+
+std::string node_id(std::uint32_t sequence_id) {
+  return fmt::format("n{}", sequence_id);
+}
+
+}  // namespace
+
+VdaOrders::VdaOrders(protocol::VdaTree tree, protocol::CodecLimits limits, VdaOrdersConfig config)
+    : tree_(std::move(tree)), limits_(limits), config_(config) {}
+
+std::optional<std::string> VdaOrders::take_message(std::string_view id, const protocol::VdaAddress& address,
+                                                   const protocol::VdaMessage& message, bool& known) {
+  std::optional<std::string> rejection;
+  auto it = robots_.find(id);
+  if (it == robots_.end()) {
+    known = robots_.size() < config_.max_robots;
+    if (!known) return rejection;
+    it = robots_.emplace(std::string(id), Robot{}).first;
+  }
+  known = true;
+  Robot& robot = it->second;
+  robot.manufacturer.assign(address.manufacturer);
+  robot.serial_number.assign(address.serial_number);
+  if (message.has_position) robot.map_id = message.map_id;
+  if (message.topic == protocol::VdaTopic::State) take_state(robot, message, rejection);
+  return rejection;
+}
+
+void VdaOrders::take_state(Robot& robot, const protocol::VdaMessage& state,
+                           std::optional<std::string>& rejection) {
+  robot.has_state = true;
+  robot.busy = state.node_states + state.edge_states > 0;
+  robot.driving = state.driving;
+  robot.robot_order_id = state.order_id;
+  if (robot.cancelling && (!robot.busy || state.order_id != robot.order.order_id)) {
+    // Cancelled (or the robot dropped it): the next path starts a new order from where it stands.
+    robot.cancelling = false;
+    robot.order = {};
+  }
+  if (robot.order.order_id.empty()) return;
+  const std::string update = std::to_string(robot.order.order_update_id);
+  for (const protocol::VdaError& e : state.errors) {
+    if (e.order_id != robot.order.order_id || e.order_update_id != update) continue;
+    const std::string key = robot.order.order_id + "/" + update;
+    if (robot.rejection_reported == key) return;
+    robot.rejection_reported = key;
+    rejection = fmt::format("order {} update {} rejected: {} ({}): {}", robot.order.order_id, update, e.type,
+                            e.level, e.description);
+    // What it holds is the robot's business now: the next path starts afresh from the robot's state.
+    robot.order = {};
+    return;
+  }
+}
+
+void VdaOrders::forget(std::string_view id) {
+  if (const auto it = robots_.find(id); it != robots_.end()) robots_.erase(it);
+}
+
+protocol::CodecStatus VdaOrders::command(std::string_view id, std::optional<Point> position,
+                                         std::span<const Point> path, std::int64_t wall_ns,
+                                         CommandMessages& out) {
+  out.count = 0;
+  const auto it = robots_.find(id);
+  if (it == robots_.end())
+    return {protocol::RejectReason::UnknownRobot,
+            "no VDA 5050 message from the robot yet: its address is unknown"};
+  Robot& robot = it->second;
+  if (path.empty() || robot.cancelling) return protocol::CodecStatus::ok();
+
+  const bool ours =
+      !robot.order.order_id.empty() && (!robot.has_state || robot.robot_order_id == robot.order.order_id);
+  const bool halt = path.size() == 1 && position && robot.driving && is_halt(robot, *position, path[0]);
+  if (halt || (robot.busy && !ours)) {
+    // A halt cancels what is under way; so does an order of someone else's (a restarted gateway's),
+    // which a new order could only extend. Nothing to cancel: the robot stands already.
+    if (robot.busy || (ours && !robot.has_state)) {
+      cancel(robot, wall_ns, out.messages[0]);
+      out.count = 1;
+    }
+    return protocol::CodecStatus::ok();
+  }
+
+  if (robot.order.order_id.empty()) {
+    start_order(robot, position, path, wall_ns);
+  } else if (distance(path[0], robot.order.nodes[robot.base_end].position) > config_.same_node_m) {
+    extend_order(robot, path);
+  }
+  // Otherwise the order stands as sent: sent again (QoS 0 may have lost it; the robot ignores an
+  // orderUpdateId it has already).
+  if (auto s = send_order(robot, wall_ns, out.messages[0]); !s) return s;
+  out.count = 1;
+  return protocol::CodecStatus::ok();
+}
+
+bool VdaOrders::is_halt(const Robot& robot, Point position, Point point) const {
+  const double to_point = distance(point, position);
+  if (to_point > config_.halt_radius_m) return false;
+  // The next waypoint once the robot is (nearly) at its node is a destination, not a halt.
+  return robot.order.order_id.empty() ||
+         to_point < distance(robot.order.nodes[robot.base_end].position, position);
+}
+
+void VdaOrders::cancel(Robot& robot, std::int64_t wall_ns, OutboundMessage& out) {
+  robot.cancelling = true;
+  const protocol::VdaInstantAction action{fmt::format("cancel-{}-{}", wall_ns / 1'000'000, ++robot.actions),
+                                          "cancelOrder"};
+  protocol::vda_topic(tree_, robot.manufacturer, robot.serial_number, protocol::VdaTopic::InstantActions,
+                      out.topic);
+  protocol::encode_vda_instant_actions(
+      {robot.action_headers++, wall_ns, robot.manufacturer, robot.serial_number}, std::span(&action, 1),
+      out.payload);
+}
+
+protocol::CodecStatus VdaOrders::send_order(Robot& robot, std::int64_t wall_ns, OutboundMessage& out) {
+  protocol::vda_topic(tree_, robot.manufacturer, robot.serial_number, protocol::VdaTopic::Order, out.topic);
+  if (auto s =
+          protocol::encode_vda_order({robot.order_headers, wall_ns, robot.manufacturer, robot.serial_number},
+                                     robot.order, limits_, out.payload);
+      !s) {
+    robot.order = {};
+    return s;
+  }
+  ++robot.order_headers;
+  return protocol::CodecStatus::ok();
+}
+
+void VdaOrders::start_order(Robot& robot, std::optional<Point> position, std::span<const Point> path,
+                            std::int64_t wall_ns) {
+  protocol::VdaOrder& order = robot.order;
+  // Unique across gateway restarts (clock) and within a millisecond (count): a robot ignores an
+  // order whose id and update id it has seen.
+  order.order_id = fmt::format("slam-{}-{}", wall_ns / 1'000'000, ++orders_started_);
+  order.order_update_id = 0;
+  order.map_id = robot.map_id;
+  order.nodes.clear();
+  // The standard has a new order begin where the robot stands.
+  if (position && distance(*position, path[0]) > config_.same_node_m)
+    order.nodes.push_back({node_id(0), 0, true, *position});
+  append_route(order, path);
+  robot.base_end = order.nodes.size() - path.size();
+}
+
+void VdaOrders::extend_order(Robot& robot, std::span<const Point> path) {
+  protocol::VdaOrder& order = robot.order;
+  protocol::VdaNode stitch = std::move(order.nodes[robot.base_end]);
+  order.nodes.clear();
+  order.nodes.push_back(std::move(stitch));
+  ++order.order_update_id;
+  append_route(order, path);
+  robot.base_end = 1;
+}
+
+void VdaOrders::append_route(protocol::VdaOrder& order, std::span<const Point> path) {
+  std::uint32_t sequence_id = order.nodes.empty() ? 0 : order.nodes.back().sequence_id + 2;
+  for (std::size_t i = 0; i < path.size(); ++i, sequence_id += 2)
+    order.nodes.push_back({node_id(sequence_id), sequence_id, i == 0, path[i]});
+}
+
+}  // namespace slam::gateway

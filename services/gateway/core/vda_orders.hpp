@@ -1,0 +1,102 @@
+#pragma once
+// The fleet control's side of each VDA 5050 robot: its address (manufacturer, serialNumber) and map,
+// the header ids it has been sent per topic, and the order it drives. The planner streams a waypoint
+// and the rest of the path, as for v1/v2 robots; here that becomes an order whose base (released
+// nodes) ends at the waypoint and whose horizon is the rest, so the robot drives only as far as the
+// planner (and its traffic rules) released. When the planner moves the waypoint on, the order is
+// extended by an update stitched at the last base node; a halt (stop, or a traffic hold: a one-point
+// path where the robot is, while it drives towards a node further away) cancels it with the instant
+// action cancelOrder, and the robot's state says when that is done. Plain and single-threaded: the gateway's
+// loop owns it.
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <unordered_map>
+
+#include "gateway/core/command_encoder.hpp"
+#include "protocol/codec_types.hpp"
+#include "protocol/reject_reason.hpp"
+#include "protocol/vda5050_codec.hpp"
+
+namespace slam::gateway {
+
+struct VdaOrdersConfig {
+  // Path points this close are the same node: the planner re-sends its waypoint every second, and a
+  // correction update moves it by millimetres in the robot's frame.
+  double same_node_m = 0.05;
+  // A one-point path within this of a driving robot, nearer than the node it drives to, is a halt,
+  // not a destination: the planner's stop and traffic holds are the robot's own position as it last
+  // saw it. The standard's default deviation is 0.5 m.
+  double halt_radius_m = 0.5;
+  std::size_t max_robots = 10'000;
+};
+
+class VdaOrders {
+ public:
+  VdaOrders(protocol::VdaTree tree, protocol::CodecLimits limits, VdaOrdersConfig config = {});
+
+  // A valid message from robot `id` at `address`: learns its address and map; a state also says
+  // what became of the order sent last. Returns the robot's reason when that order (its current
+  // update) was rejected, once per update. False in `known` when the robot is new and max_robots
+  // are known already.
+  std::optional<std::string> take_message(std::string_view id, const protocol::VdaAddress& address,
+                                          const protocol::VdaMessage& message, bool& known);
+  bool knows(std::string_view id) const { return robots_.contains(id); }
+  void forget(std::string_view id);
+
+  // The messages that put the robot, standing at `position`, onto `path` (path[0] the waypoint to
+  // drive to now, the rest of the route after it; everything in the robot's map). Nothing to send
+  // (out.count 0) while a cancel is under way or for an empty path. UnknownRobot when no message from
+  // the robot was seen; codec errors for a node that cannot be encoded.
+  protocol::CodecStatus command(std::string_view id, std::optional<protocol::Point> position,
+                                std::span<const protocol::Point> path, std::int64_t wall_ns,
+                                CommandMessages& out);
+
+ private:
+  struct Robot {
+    std::string manufacturer;
+    std::string serial_number;
+    std::string map_id;
+    std::uint32_t order_headers = 0;   // headerId of the next order
+    std::uint32_t action_headers = 0;  // headerId of the next instantActions
+    std::uint64_t actions = 0;         // instant actions sent: their ids
+    protocol::VdaOrder order;          // the one sent last; order_id empty: none
+    std::size_t base_end = 0;          // its last released node
+    bool cancelling = false;           // cancelOrder sent, the robot's state has not shown it done
+    // From its latest state.
+    bool has_state = false;
+    bool busy = false;  // node or edge states left: an order (ours or not) is under way
+    bool driving = false;
+    std::string robot_order_id;
+    std::string rejection_reported;  // "<orderId>/<orderUpdateId>" whose rejection was reported
+  };
+  struct Hash {
+    using is_transparent = void;
+    std::size_t operator()(std::string_view s) const { return std::hash<std::string_view>{}(s); }
+  };
+
+  void take_state(Robot& robot, const protocol::VdaMessage& state, std::optional<std::string>& rejection);
+  // A one-point path to `point`, for a robot driving at `position`: a halt (see VdaOrdersConfig)?
+  bool is_halt(const Robot& robot, protocol::Point position, protocol::Point point) const;
+  void cancel(Robot& robot, std::int64_t wall_ns, OutboundMessage& out);
+  // Encodes robot.order as it stands into `out`.
+  protocol::CodecStatus send_order(Robot& robot, std::int64_t wall_ns, OutboundMessage& out);
+  // A new order: from where the robot stands (when known and not at path[0]) along the path.
+  void start_order(Robot& robot, std::optional<protocol::Point> position,
+                   std::span<const protocol::Point> path, std::int64_t wall_ns);
+  // The next update: from the last base node to path[0] released, the rest as horizon.
+  void extend_order(Robot& robot, std::span<const protocol::Point> path);
+  // Appends path[0] (released) and the rest (horizon) after the order's last node.
+  static void append_route(protocol::VdaOrder& order, std::span<const protocol::Point> path);
+
+  protocol::VdaTree tree_;
+  protocol::CodecLimits limits_;
+  VdaOrdersConfig config_;
+  std::uint64_t orders_started_ = 0;
+  std::unordered_map<std::string, Robot, Hash, std::equal_to<>> robots_;
+};
+
+}  // namespace slam::gateway

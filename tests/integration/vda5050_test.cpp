@@ -1,0 +1,148 @@
+// VDA 5050 against a client no one here wrote: vda-5050-lib's AgvController with its VirtualAgvAdapter
+// (Node, pinned in tests/node/package-lock.json; tests/node/vda5050_agv_test.mjs) joins a mixed fleet
+// (mosquitto, gateway, mapper, planner, one simulated v1 robot mapping the empty world), shows up as a
+// fleet robot, takes the planner's path for a goal as an order and its updates, and reaches the goal;
+// a robot whose connection breaks (the broker's last will) is marked offline.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+
+#include "common/fastdds/fast_topics.hpp"
+#include "fastdds_inbox.hpp"
+#include "process_group.hpp"
+
+namespace slam {
+namespace {
+
+using namespace std::chrono_literals;
+
+constexpr const char* kRobot = "SlamTest:agv-1";  // <manufacturer>:<serialNumber>
+
+bool node_ready() {
+  return std::system("node --version > /dev/null 2>&1") == 0 &&
+         std::filesystem::exists(std::string(SLAM_NODE_TESTS_DIR) + "/node_modules/vda-5050-lib");
+}
+
+class Vda5050Test : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    if (!node_ready())
+      GTEST_SKIP()
+          << "node or the pinned npm packages are missing: run scripts/setup.sh (npm ci in tests/node)";
+    auto p = dds::Participant::create(lease_.id(), "vda5050_test");
+    ASSERT_TRUE(p) << p.message();
+    participant_ = std::move(*p);
+    state_reader_ = testkit::make_inbox_reader(*participant_, dds::kRobotState, states_);
+    path_reader_ = testkit::make_inbox_reader(*participant_, dds::kRobotPath, paths_);
+    broker_ = "tcp://127.0.0.1:" + std::to_string(group_.start_mosquitto());
+    group_.start("gateway", {testkit::bin_path("slam-gateway"), "--domain", domain(), "--broker", broker_,
+                             "--no-share"});
+  }
+
+  std::string domain() const { return std::to_string(lease_.id()); }
+
+  // The virtual AGV on map "office" at (x, y).
+  void start_agv(double x, double y) {
+    const std::string url = "mqtt://" + broker_.substr(std::string("tcp://").size());
+    group_.start("agv", {"node", std::string(SLAM_NODE_TESTS_DIR) + "/vda5050_agv_test.mjs", url, "SlamTest",
+                         "agv-1", std::to_string(x), std::to_string(y), "office"});
+  }
+
+  std::optional<RobotState> wait_state(const std::function<bool(const RobotState&)>& pred,
+                                       std::chrono::milliseconds timeout) {
+    return states_.wait_for([&](const RobotState& s) { return s.robot_id() == kRobot && pred(s); }, timeout);
+  }
+
+  testkit::DomainLease lease_;
+  testkit::ProcessGroup group_;
+  std::string broker_;
+  std::unique_ptr<dds::Participant> participant_;
+  testkit::Inbox<RobotState> states_;
+  testkit::Inbox<RobotPath> paths_;
+  std::unique_ptr<dds::Reader<RobotState>> state_reader_;
+  std::unique_ptr<dds::Reader<RobotPath>> path_reader_;
+};
+
+TEST_F(Vda5050Test, VirtualAgvReachesAPlannedGoalAndASquareThroughOrders) {
+  group_.start("mapper", {testkit::bin_path("slam-mapper"), "--domain", domain(), "--store",
+                          group_.dir() + "/map.db", "--snapshot-period", "1"});
+  group_.start("planner", {testkit::bin_path("slam-planner"), "--domain", domain(), "--no-share",
+                           "--goal-store", group_.dir() + "/goals.json"});
+  group_.start("simulator", {testkit::bin_path("slam-simulator"), "--domain", domain(), "--broker", broker_,
+                             "--world", "empty", "--robots", "1", "--drift", "0", "--seed", "5"});
+  start_agv(2.0, 2.0);
+
+  const auto joined = wait_state(
+      [](const RobotState& s) {
+        return s.presence() == PRESENCE_ONLINE && std::abs(s.pose().x() - 2.0) < 0.01 &&
+               std::abs(s.pose().y() - 2.0) < 0.01;
+      },
+      60s);
+  ASSERT_TRUE(joined) << group_.log("agv") << group_.log("gateway");
+  EXPECT_GT(joined->battery(), 0.9f);
+  EXPECT_EQ(joined->status().to_string(), "AUTOMATIC");
+
+  auto goals = dds::make_writer(*participant_, dds::kNavGoal);
+  ASSERT_TRUE(goals) << goals.message();
+  ASSERT_TRUE((*goals)->wait_for_readers(30s));
+  NavGoal goal;
+  goal.robot_id(kRobot);
+  goal.goal_id(1);
+  goal.mode(GOAL_PLANNED);
+  Point2 target;
+  target.x(3.0);
+  target.y(8.0);
+  goal.target(target);
+  ASSERT_TRUE((*goals)->write(goal));
+
+  const auto reached = paths_.wait_for(
+      [](const RobotPath& p) {
+        return p.robot_id() == kRobot && p.goal_id() == 1 && p.status() == GOAL_STATUS_REACHED;
+      },
+      120s);
+  ASSERT_TRUE(reached) << group_.log("agv") << group_.log("planner") << group_.log("gateway");
+  const auto there = wait_state(
+      [](const RobotState& s) { return std::hypot(s.pose().x() - 3.0, s.pose().y() - 8.0) < 0.2; }, 10s);
+  EXPECT_TRUE(there) << "the planner saw the goal reached, but no state of the robot there";
+  // The robot took our order: its own log names the order and the nodes it passed.
+  EXPECT_NE(group_.log("agv").find("order slam-"), std::string::npos) << group_.log("agv");
+  EXPECT_NE(group_.log("agv").find("node n2 at slam-"), std::string::npos) << group_.log("agv");
+
+  // A square of four waypoints: one order released a corner at a time, extended by an update stitched
+  // at the last corner reached (its log shows update 4: the way back to the first corner).
+  goal.goal_id(2);
+  goal.mode(GOAL_SQUARE);
+  target.x(3.0);
+  target.y(6.0);
+  goal.target(target);
+  goal.square_size(1.5);
+  goal.square_anchor(SQUARE_CORNER);
+  ASSERT_TRUE((*goals)->write(goal));
+  const auto square = paths_.wait_for(
+      [](const RobotPath& p) {
+        return p.robot_id() == kRobot && p.goal_id() == 2 && p.status() == GOAL_STATUS_REACHED;
+      },
+      120s);
+  ASSERT_TRUE(square) << group_.log("agv") << group_.log("gateway");
+  const std::string agv = group_.log("agv");
+  EXPECT_NE(agv.find(" update 4"), std::string::npos) << agv;
+  EXPECT_EQ(agv.find("error "), std::string::npos) << agv;
+}
+
+TEST_F(Vda5050Test, ARobotWhoseConnectionBreaksIsOffline) {
+  start_agv(1.0, 1.0);
+  ASSERT_TRUE(wait_state([](const RobotState& s) { return s.presence() == PRESENCE_ONLINE; }, 60s))
+      << group_.log("agv") << group_.log("gateway");
+  // SIGKILL: no goodbye, so the broker sends the robot's last will, connection CONNECTIONBROKEN.
+  group_.stop("agv", SIGKILL);
+  ASSERT_TRUE(wait_state([](const RobotState& s) { return s.presence() == PRESENCE_OFFLINE; }, 30s))
+      << group_.log("gateway");
+  EXPECT_NE(group_.log("gateway").find("robot 'SlamTest:agv-1' offline: last will"), std::string::npos)
+      << group_.log("gateway");
+}
+
+}  // namespace
+}  // namespace slam

@@ -1,0 +1,154 @@
+// VdaOrders: the planner's path as an order released up to its waypoint, updates stitched at the last
+// base node, halts as cancelOrder, and the robot's state deciding what comes next.
+#include "gateway/core/vda_orders.hpp"
+
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+namespace slam::gateway {
+namespace {
+
+using protocol::Point;
+using Json = nlohmann::json;
+
+constexpr std::int64_t kNow = 1'764'327'042'000'000'000;
+const protocol::VdaAddress kAddress{protocol::VdaTopic::State, "Acme", "agv-1"};
+
+class VdaOrdersTest : public ::testing::Test {
+ protected:
+  VdaOrdersTest() { hear(state()); }
+
+  // A state: the order it drives (empty: none), nodes left and whether it drives.
+  static protocol::VdaMessage state(std::string order_id = "", std::size_t nodes_left = 0,
+                                    bool driving = false) {
+    protocol::VdaMessage m;
+    m.topic = protocol::VdaTopic::State;
+    m.has_position = m.position_initialized = true;
+    m.map_id = "hall";
+    m.order_id = std::move(order_id);
+    m.node_states = nodes_left;
+    m.driving = driving;
+    return m;
+  }
+  std::optional<std::string> hear(const protocol::VdaMessage& m) {
+    bool known = false;
+    auto rejection = orders.take_message("Acme:agv-1", kAddress, m, known);
+    EXPECT_TRUE(known);
+    return rejection;
+  }
+  // The one message the command produced, parsed; null when there was none.
+  Json command(Point position, std::vector<Point> path) {
+    const auto s = orders.command("Acme:agv-1", position, path, kNow, out);
+    EXPECT_TRUE(s) << s.message();
+    if (out.count == 0) return nullptr;
+    EXPECT_EQ(out.count, 1u);
+    topic = out.messages[0].topic;
+    return Json::parse(out.messages[0].payload);
+  }
+
+  VdaOrders orders{protocol::VdaTree{}, protocol::CodecLimits{}};
+  CommandMessages out;
+  std::string topic;
+};
+
+TEST_F(VdaOrdersTest, ARobotNeverHeardGetsNothing) {
+  const std::vector<Point> path{{1, 1}};
+  const auto s = orders.command("Acme:agv-9", Point{0, 0}, path, kNow, out);
+  ASSERT_FALSE(s);
+  EXPECT_EQ(s.reason(), protocol::RejectReason::UnknownRobot);
+  EXPECT_EQ(out.count, 0u);
+}
+
+TEST_F(VdaOrdersTest, FirstPathStartsWhereTheRobotStandsReleasedUpToTheWaypoint) {
+  const Json order = command({0, 0}, {{2, 0}, {2, 3}, {5, 3}});
+  EXPECT_EQ(topic, "uagv/v2/Acme/agv-1/order");
+  EXPECT_EQ(order["headerId"], 0);
+  EXPECT_EQ(order["orderUpdateId"], 0);
+  ASSERT_EQ(order["nodes"].size(), 4u);
+  EXPECT_EQ(order["nodes"][0]["nodePosition"]["x"], 0.0);
+  EXPECT_EQ(order["nodes"][0]["nodePosition"]["mapId"], "hall");
+  EXPECT_EQ(order["nodes"][1]["nodePosition"]["x"], 2.0);
+  EXPECT_EQ(order["nodes"][1]["released"], true);
+  EXPECT_EQ(order["nodes"][2]["released"], false);
+  EXPECT_EQ(order["nodes"][3]["sequenceId"], 6);
+  EXPECT_EQ(order["edges"].size(), 3u);
+}
+
+TEST_F(VdaOrdersTest, TheSameWaypointAgainResendsTheSameUpdateUnderTheNextHeaderId) {
+  const Json first = command({0, 0}, {{2, 0}, {2, 3}});
+  const Json again = command({0.5, 0}, {{2.001, 0}, {2, 3}});
+  EXPECT_EQ(again["headerId"], 1);
+  EXPECT_EQ(again["orderId"], first["orderId"]);
+  EXPECT_EQ(again["orderUpdateId"], 0);
+  EXPECT_EQ(again["nodes"], first["nodes"]);
+}
+
+TEST_F(VdaOrdersTest, TheNextWaypointExtendsTheOrderFromItsLastBaseNode) {
+  const Json first = command({0, 0}, {{2, 0}, {2, 3}, {5, 3}});
+  hear(state(first["orderId"], 3, true));
+  const Json update = command({1.9, 0}, {{2, 3}, {5, 3}});
+  EXPECT_EQ(update["orderId"], first["orderId"]);
+  EXPECT_EQ(update["orderUpdateId"], 1);
+  ASSERT_EQ(update["nodes"].size(), 3u);
+  // The stitching node is the previous base's last, id and sequence id alike.
+  EXPECT_EQ(update["nodes"][0]["nodeId"], first["nodes"][1]["nodeId"]);
+  EXPECT_EQ(update["nodes"][0]["sequenceId"], 2);
+  EXPECT_EQ(update["nodes"][1]["sequenceId"], 4);
+  EXPECT_EQ(update["nodes"][1]["released"], true);
+  EXPECT_EQ(update["nodes"][2]["released"], false);
+}
+
+TEST_F(VdaOrdersTest, AHaltCancelsTheOrderAndTheNextPathWaitsUntilTheStateShowsItDone) {
+  const Json first = command({0, 0}, {{4, 0}, {4, 3}});
+  hear(state(first["orderId"], 2, true));
+  const Json cancel = command({1, 0}, {{1.1, 0}});
+  EXPECT_EQ(topic, "uagv/v2/Acme/agv-1/instantActions");
+  EXPECT_EQ(cancel["instantActions"][0]["actionType"], "cancelOrder");
+  EXPECT_EQ(cancel["headerId"], 0);
+  EXPECT_TRUE(command({1.2, 0}, {{4, 0}, {4, 3}}).is_null()) << "the cancel is still under way";
+  hear(state(first["orderId"], 0, false));
+  const Json fresh = command({1.2, 0}, {{4, 0}, {4, 3}});
+  EXPECT_NE(fresh["orderId"], first["orderId"]);
+  EXPECT_EQ(fresh["orderUpdateId"], 0);
+  EXPECT_EQ(fresh["nodes"][0]["nodePosition"]["x"], 1.2);
+}
+
+TEST_F(VdaOrdersTest, AStandingRobotIsSentThereNotCancelled) {
+  command({1, 1}, {{1.05, 1.1}});
+  EXPECT_EQ(topic, "uagv/v2/Acme/agv-1/order");
+}
+
+TEST_F(VdaOrdersTest, AShortLastLegIsADestinationNotAHalt) {
+  // Nearly at its base's last node and on to a last waypoint 0.4 m further.
+  const Json order = command({0, 0}, {{2, 0}, {2.3, 0.3}});
+  hear(state(order["orderId"], 1, true));
+  const Json next = command({1.95, 0}, {{2.3, 0.3}});
+  EXPECT_EQ(topic, "uagv/v2/Acme/agv-1/order");
+  EXPECT_EQ(next["orderUpdateId"], 1);
+}
+
+TEST_F(VdaOrdersTest, ARejectionIsReportedOnceAndTheNextPathStartsAnOrderAfresh) {
+  const Json first = command({0, 0}, {{2, 0}});
+  protocol::VdaMessage rejected = state();
+  rejected.errors.push_back(
+      {"noRouteError", "WARNING", "first node not within deviation range", first["orderId"], "0"});
+  const auto reason = hear(rejected);
+  ASSERT_TRUE(reason);
+  EXPECT_NE(reason->find("noRouteError"), std::string::npos);
+  EXPECT_NE(reason->find("deviation range"), std::string::npos);
+  EXPECT_FALSE(hear(rejected)) << "reported once";
+  const Json fresh = command({0, 0}, {{2, 0}});
+  EXPECT_NE(fresh["orderId"], first["orderId"]);
+}
+
+TEST_F(VdaOrdersTest, AnOrderOfSomeoneElsesIsCancelledFirst) {
+  hear(state("theirs", 2, true));
+  const Json cancel = command({0, 0}, {{2, 0}});
+  EXPECT_EQ(cancel["instantActions"][0]["actionType"], "cancelOrder");
+}
+
+}  // namespace
+}  // namespace slam::gateway
