@@ -421,4 +421,135 @@ void encode_vda_instant_actions(const VdaHeader& header, std::span<const VdaInst
   out = doc.dump();
 }
 
+namespace {
+
+Json position_json(const VdaRobotReport& r) {
+  return {{"x", r.x}, {"y", r.y}, {"theta", r.theta}, {"mapId", r.map_id}, {"positionInitialized", true}};
+}
+
+CodecStatus read_node(const Json& node, std::size_t i, const CodecLimits& limits, VdaNode& out) {
+  if (auto s = json_fields::expect_object(node, {"nodes", i}); !s) return s;
+  if (auto s = read_text(node, "nodeId", {"nodes", i, "nodeId"}, kMaxVdaTextBytes, out.node_id); !s) return s;
+  if (auto s = read_uint32(node, "sequenceId", {"nodes", i, "sequenceId"}, out.sequence_id); !s) return s;
+  if (auto s = read_bool(node, "released", {"nodes", i, "released"}, out.released); !s) return s;
+  const Json* position = nullptr;
+  if (auto s = json_fields::require(node, "nodePosition", {"nodes", i, "nodePosition"}, position); !s)
+    return s;
+  if (auto s = json_fields::expect_object(*position, {"nodes", i, "nodePosition"}); !s) return s;
+  const double c = limits.max_abs_coordinate_m;
+  if (auto s = json_fields::member_number(*position, "x", {"nodes", i, "nodePosition.x"}, c, out.position.x);
+      !s)
+    return s;
+  return json_fields::member_number(*position, "y", {"nodes", i, "nodePosition.y"}, c, out.position.y);
+}
+
+}  // namespace
+
+CodecStatus parse_vda_command_topic(std::string_view topic, const VdaTree& tree, VdaAddress& out) {
+  const std::string prefix = tree.interface_name + "/" + tree.major_version + "/";
+  if (!topic.starts_with(prefix)) return unknown(topic);
+  const std::string_view rest = topic.substr(prefix.size());
+  const auto first = rest.find('/');
+  const auto last = rest.rfind('/');
+  if (first == std::string_view::npos || first == last) return unknown(topic);
+  const std::string_view kind = rest.substr(last + 1);
+  if (kind == vda_topic_name(VdaTopic::Order)) {
+    out.topic = VdaTopic::Order;
+  } else if (kind == vda_topic_name(VdaTopic::InstantActions)) {
+    out.topic = VdaTopic::InstantActions;
+  } else {
+    return unknown(topic);
+  }
+  out.manufacturer = rest.substr(0, first);
+  out.serial_number = rest.substr(first + 1, last - first - 1);
+  if (auto s = check_level(out.manufacturer, "manufacturer"); !s) return s;
+  if (out.serial_number.find('/') != std::string_view::npos) return unknown(topic);
+  return check_level(out.serial_number, "serialNumber");
+}
+
+std::string vda_command_filter(const VdaTree& tree, std::string_view manufacturer, VdaTopic topic) {
+  return fmt::format("{}/{}/{}/+/{}", tree.interface_name, tree.major_version, manufacturer,
+                     vda_topic_name(topic));
+}
+
+CodecStatus decode_vda_order(std::span<const std::uint8_t> payload, const CodecLimits& limits,
+                             VdaOrder& out) {
+  Json doc;
+  if (auto s = json_fields::parse_object(payload, limits, doc); !s) return s;
+  if (auto s = read_text(doc, "orderId", {"orderId"}, kMaxVdaTextBytes, out.order_id); !s) return s;
+  if (auto s = read_uint32(doc, "orderUpdateId", {"orderUpdateId"}, out.order_update_id); !s) return s;
+  const Json* nodes = nullptr;
+  if (auto s = read_array(doc, "nodes", {"nodes"}, limits, nodes); !s) return s;
+  out.nodes.resize(nodes->size());
+  for (std::size_t i = 0; i < nodes->size(); ++i)
+    if (auto s = read_node((*nodes)[i], i, limits, out.nodes[i]); !s) return s;
+  if (!out.nodes.empty()) {
+    const Json& first = (*nodes)[0]["nodePosition"];
+    if (auto s = read_text(first, "mapId", {"nodes", 0, "nodePosition.mapId"}, kMaxVdaTextBytes, out.map_id);
+        !s)
+      return s;
+  }
+  return CodecStatus::ok();
+}
+
+CodecStatus decode_vda_instant_actions(std::span<const std::uint8_t> payload, const CodecLimits& limits,
+                                       std::vector<VdaInstantAction>& out) {
+  Json doc;
+  if (auto s = json_fields::parse_object(payload, limits, doc); !s) return s;
+  const Json* actions = nullptr;
+  if (auto s = read_array(doc, "instantActions", {"instantActions"}, limits, actions); !s) return s;
+  out.resize(actions->size());
+  for (std::size_t i = 0; i < actions->size(); ++i) {
+    const Json& a = (*actions)[i];
+    if (auto s = json_fields::expect_object(a, {"instantActions", i}); !s) return s;
+    if (auto s =
+            read_text(a, "actionId", {"instantActions", i, "actionId"}, kMaxVdaTextBytes, out[i].action_id);
+        !s)
+      return s;
+    if (auto s = read_text(a, "actionType", {"instantActions", i, "actionType"}, kMaxVdaTextBytes,
+                           out[i].action_type);
+        !s)
+      return s;
+  }
+  return CodecStatus::ok();
+}
+
+void encode_vda_state(const VdaHeader& header, const VdaRobotReport& report, std::string& out) {
+  Json doc = Json::object();
+  append_header(doc, header);
+  doc["orderId"] = report.order_id;
+  doc["orderUpdateId"] = report.order_update_id;
+  doc["lastNodeId"] = report.last_node_id;
+  doc["lastNodeSequenceId"] = report.last_node_sequence_id;
+  Json nodes = Json::array();
+  for (const VdaNode& n : report.nodes_left)
+    nodes.push_back({{"nodeId", n.node_id}, {"sequenceId", n.sequence_id}, {"released", n.released}});
+  doc["nodeStates"] = std::move(nodes);
+  doc["edgeStates"] = Json::array();
+  doc["driving"] = report.driving;
+  doc["actionStates"] = Json::array();
+  doc["batteryState"] = {{"batteryCharge", report.battery * 100.0}, {"charging", false}};
+  doc["operatingMode"] = "AUTOMATIC";
+  doc["errors"] = Json::array();
+  doc["safetyState"] = {{"eStop", "NONE"}, {"fieldViolation", false}};
+  doc["agvPosition"] = position_json(report);
+  out = doc.dump();
+}
+
+void encode_vda_visualization(const VdaHeader& header, const VdaRobotReport& report, std::string& out) {
+  Json doc = Json::object();
+  append_header(doc, header);
+  doc["agvPosition"] = position_json(report);
+  out = doc.dump();
+}
+
+void encode_vda_connection(const VdaHeader& header, VdaConnection connection, std::string& out) {
+  Json doc = Json::object();
+  append_header(doc, header);
+  doc["connectionState"] = connection == VdaConnection::Online    ? "ONLINE"
+                           : connection == VdaConnection::Offline ? "OFFLINE"
+                                                                  : "CONNECTIONBROKEN";
+  out = doc.dump();
+}
+
 }  // namespace slam::protocol

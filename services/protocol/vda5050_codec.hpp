@@ -136,4 +136,37 @@ struct VdaInstantAction {
 void encode_vda_instant_actions(const VdaHeader& header, std::span<const VdaInstantAction> actions,
                                 std::string& out);
 
+// The robot's side, as slam-simulator --protocol vda5050 speaks it.
+
+// Fleet control -> robot topics (order, instantActions) of `tree`; UnknownTopic otherwise.
+CodecStatus parse_vda_command_topic(std::string_view topic, const VdaTree& tree, VdaAddress& out);
+// The subscription for `topic` of every robot of `manufacturer`.
+std::string vda_command_filter(const VdaTree& tree, std::string_view manufacturer, VdaTopic topic);
+
+// An order as the robot reads it: ids, and each node's id, sequence id, release and position (a node
+// without a position is refused: the robot drives to positions).
+CodecStatus decode_vda_order(std::span<const std::uint8_t> payload, const CodecLimits& limits, VdaOrder& out);
+// The action types of an instantActions message, with their ids.
+CodecStatus decode_vda_instant_actions(std::span<const std::uint8_t> payload, const CodecLimits& limits,
+                                       std::vector<VdaInstantAction>& out);
+
+// What a robot reports of itself in its state and visualization.
+struct VdaRobotReport {
+  double x = 0.0;
+  double y = 0.0;
+  double theta = 0.0;
+  std::string_view map_id;
+  bool driving = false;
+  std::string_view order_id;
+  std::uint32_t order_update_id = 0;
+  std::string_view last_node_id;
+  std::uint32_t last_node_sequence_id = 0;
+  std::span<const VdaNode> nodes_left;  // node states: the order's nodes not passed yet
+  float battery = 1.0f;                 // 0..1
+};
+
+void encode_vda_state(const VdaHeader& header, const VdaRobotReport& report, std::string& out);
+void encode_vda_visualization(const VdaHeader& header, const VdaRobotReport& report, std::string& out);
+void encode_vda_connection(const VdaHeader& header, VdaConnection connection, std::string& out);
+
 }  // namespace slam::protocol

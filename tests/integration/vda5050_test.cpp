@@ -144,5 +144,35 @@ TEST_F(Vda5050Test, ARobotWhoseConnectionBreaksIsOffline) {
       << group_.log("gateway");
 }
 
+// The simulator's own VDA robots (--protocol vda5050): the fleet's order, node by node, to a goal.
+TEST_F(Vda5050Test, SimulatedVdaRobotReachesASquareGoal) {
+  group_.start("planner", {testkit::bin_path("slam-planner"), "--domain", domain(), "--no-share",
+                           "--goal-store", group_.dir() + "/goals.json"});
+  group_.start("simulator", {testkit::bin_path("slam-simulator"), "--domain", domain(), "--broker", broker_,
+                             "--world", "empty", "--robots", "1", "--protocol", "vda5050", "--seed", "7"});
+  const std::string robot = "slamfleet-sim:sim-1";
+  ASSERT_TRUE(states_.wait_for([&](const RobotState& s) { return s.robot_id() == robot; }, 60s))
+      << group_.log("simulator") << group_.log("gateway");
+
+  auto goals = dds::make_writer(*participant_, dds::kNavGoal);
+  ASSERT_TRUE(goals) << goals.message();
+  ASSERT_TRUE((*goals)->wait_for_readers(30s));
+  NavGoal goal;
+  goal.robot_id(robot);
+  goal.goal_id(1);
+  goal.mode(GOAL_SQUARE);
+  Point2 target;
+  target.x(3.0);
+  target.y(3.0);
+  goal.target(target);
+  goal.square_size(2.0);
+  goal.square_anchor(SQUARE_CORNER);
+  ASSERT_TRUE((*goals)->write(goal));
+  ASSERT_TRUE(paths_.wait_for(
+      [&](const RobotPath& p) { return p.robot_id() == robot && p.status() == GOAL_STATUS_REACHED; }, 120s))
+      << group_.log("simulator") << group_.log("gateway") << group_.log("planner");
+  EXPECT_EQ(group_.log("simulator").find("ignored"), std::string::npos) << group_.log("simulator");
+}
+
 }  // namespace
 }  // namespace slam

@@ -23,8 +23,10 @@ void add_sim_options(CLI::App& app, SimOptions& o) {
   app.add_option("--robots", o.robots, "robots spawned at random free poses at start")
       ->check(CLI::Range(0, static_cast<int>(kMaxFleet)))
       ->capture_default_str();
-  app.add_option("--protocol", o.protocol, "robot protocol: v1 (binary) or v2 (JSON)")
-      ->check(CLI::IsMember({"v1", "v2"}))
+  app.add_option("--protocol", o.protocol,
+                 "robot protocol: v1 (binary), v2 (JSON) or vda5050 (VDA 5050 2.0: poses only, orders driven "
+                 "node by node)")
+      ->check(CLI::IsMember({"v1", "v2", "vda5050"}))
       ->capture_default_str();
   app.add_option("--rate", o.rate_hz, "reports per robot per second (Hz)")
       ->check(CLI::Range(0.1, 100.0))

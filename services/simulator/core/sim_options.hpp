@@ -13,13 +13,15 @@
 
 namespace slam::sim {
 
-enum class RobotProtocol : uint8_t { V1, V2 };
+// Vda5050: a VDA 5050 2.0 robot (manufacturer "slamfleet-sim", serialNumber its robot id), which
+// reports its pose (no scans: the standard has none) and drives the fleet control's orders.
+enum class RobotProtocol : uint8_t { V1, V2, Vda5050 };
 
 struct SimOptions {
   ServiceOptions service;
   std::string world = "office";                              // built-in name or file (see load_world)
   int robots = 3;                                            // spawned at random free poses at start
-  std::string protocol = "v1";                               // "v1" or "v2"
+  std::string protocol = "v1";                               // "v1", "v2" or "vda5050"
   double rate_hz = 10.0;                                     // reports per robot per second
   double noise = 0.01;                                       // range noise standard deviation, m
   double dropout = 0.0;                                      // probability a beam returns nothing
@@ -40,7 +42,10 @@ struct SimOptions {
   PlayOptions play;        // --play LOG: play recorded logs instead of simulating (log_player.hpp)
   std::string record_log;  // --record-log PREFIX: each robot's CARMEN log and relations (log_recorder.hpp)
 
-  RobotProtocol robot_protocol() const { return protocol == "v2" ? RobotProtocol::V2 : RobotProtocol::V1; }
+  RobotProtocol robot_protocol() const {
+    if (protocol == "vda5050") return RobotProtocol::Vda5050;
+    return protocol == "v2" ? RobotProtocol::V2 : RobotProtocol::V1;
+  }
 };
 
 void add_sim_options(CLI::App& app, SimOptions& options);

@@ -53,6 +53,9 @@ Result<std::unique_ptr<RobotLinks>> RobotLinks::create(Settings settings, Counte
     std::vector<std::string> filters;
     if (links->settings_.protocol == RobotProtocol::V1) {
       filters.emplace_back(protocol::kV1CommandFilter);
+    } else if (links->settings_.protocol == RobotProtocol::Vda5050) {
+      for (const auto topic : {protocol::VdaTopic::Order, protocol::VdaTopic::InstantActions})
+        filters.push_back(protocol::vda_command_filter(links->vda_tree_, kVdaManufacturer, topic));
     } else {
       filters.emplace_back(protocol::kV2WaypointFilter);
       filters.emplace_back(protocol::kV2PathFilter);
@@ -68,6 +71,8 @@ RobotLinks::~RobotLinks() {
   if (settings_.protocol == RobotProtocol::V2)
     for (auto& [id, e] : endpoints_)
       send(e, e.status_topic, as_bytes(std::string(protocol::kV2OfflineStatus)));
+  if (settings_.protocol == RobotProtocol::Vda5050)
+    for (auto& [id, e] : endpoints_) send_connection(e, id, protocol::VdaConnection::Offline);
   // Start every disconnect before waiting on any, so a large fleet closes in one round trip.
   for (auto& [id, e] : endpoints_)
     if (e.own_link) e.own_link->begin_disconnect();
@@ -110,6 +115,21 @@ Status RobotLinks::add(const std::string& robot_id) {
   if (endpoints_.contains(robot_id))
     return Error{fmt::format("robot '{}' already has a connection", robot_id)};
   Endpoint e;
+  if (settings_.protocol == RobotProtocol::Vda5050) {
+    std::vector<std::string> subscriptions;
+    std::optional<mqtt::Will> will;
+    if (auto s = add_vda(robot_id, e, subscriptions, will); !s) return s;
+    if (settings_.multiplex) {
+      e.link = shared_link_.get();
+    } else {
+      auto link = open(robot_id, std::move(subscriptions), std::move(will));
+      if (!link) return link.error();
+      e.own_link = std::move(*link);
+      e.link = e.own_link.get();
+    }
+    endpoints_.emplace(robot_id, std::move(e));
+    return {};
+  }
   const bool v1 = settings_.protocol == RobotProtocol::V1;
   auto s = v1 ? protocol::v1_adv_topic(robot_id, e.report_topic)
               : protocol::v2_scan_topic(robot_id, e.report_topic);
@@ -142,6 +162,8 @@ void RobotLinks::remove(const std::string& robot_id) {
   if (it == endpoints_.end()) return;
   if (settings_.protocol == RobotProtocol::V2)
     send(it->second, it->second.status_topic, as_bytes(std::string(protocol::kV2OfflineStatus)));
+  if (settings_.protocol == RobotProtocol::Vda5050)
+    send_connection(it->second, robot_id, protocol::VdaConnection::Offline);
   endpoints_.erase(it);
 }
 
@@ -168,6 +190,10 @@ void RobotLinks::publish(const RobotReport& report, bool driving) {
     return;
   }
   Endpoint& e = it->second;
+  if (settings_.protocol == RobotProtocol::Vda5050) {
+    publish_vda(e, it->first, report, driving);
+    return;
+  }
   protocol::CodecStatus status;
   if (settings_.protocol == RobotProtocol::V1) {
     hits_.resize(report.hits.size());
@@ -213,8 +239,17 @@ void RobotLinks::poll(std::chrono::steady_clock::time_point now) {
 
 void RobotLinks::drain_orders(std::vector<WaypointOrder>& out) {
   out.clear();
-  std::lock_guard lock(intake_mutex_);
-  out.swap(intake_);
+  {
+    std::lock_guard lock(intake_mutex_);
+    out.swap(intake_);
+    vda_commands_.swap(vda_intake_);
+    vda_intake_.clear();
+  }
+  // A VDA robot's waypoints come from its order: those its reports reached, then the new orders'.
+  out.insert(out.end(), steering_.begin(), steering_.end());
+  steering_.clear();
+  for (const VdaCommand& c : vda_commands_) take_vda(c, out);
+  vda_commands_.clear();
 }
 
 void RobotLinks::reject(std::string_view robot_id, const std::string& reason, const std::string& detail) {
@@ -224,6 +259,10 @@ void RobotLinks::reject(std::string_view robot_id, const std::string& reason, co
 }
 
 void RobotLinks::on_message(std::string_view topic, std::span<const uint8_t> payload) {
+  if (settings_.protocol == RobotProtocol::Vda5050) {
+    on_vda_message(topic, payload);
+    return;
+  }
   protocol::ParsedCommandTopic parsed;
   if (auto s = protocol::parse_command_topic(topic, parsed); !s) {
     reject("?", std::string(protocol::reason_name(s.reason())), s.detail());

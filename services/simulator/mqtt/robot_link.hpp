@@ -1,6 +1,6 @@
 #pragma once
-// The fleet's MQTT side: each simulated robot speaks the robot protocol (v1 or v2) exactly as a
-// real one does, over its own connection (client id = robot id) or one shared multiplexed
+// The fleet's MQTT side: each simulated robot speaks the robot protocol (v1, v2 or VDA 5050) exactly
+// as a real one does, over its own connection (client id = robot id) or one shared multiplexed
 // connection. Reports go out from the simulation loop; waypoint commands arrive on paho threads,
 // are decoded and checked there, and wait in a locked intake the loop drains.
 #include <chrono>
@@ -16,6 +16,7 @@
 #include "common/core/result.hpp"
 #include "common/mqtt/mqtt_connection.hpp"
 #include "protocol/codec_types.hpp"
+#include "protocol/vda5050_codec.hpp"
 #include "simulator/core/geometry.hpp"
 #include "simulator/core/report.hpp"
 #include "simulator/core/sim_options.hpp"
@@ -30,7 +31,10 @@ struct WaypointOrder {
 
 class RobotLinks {
  public:
-  static constexpr double kStatusPeriodS = 5.0;  // simulated seconds between repeated v2 statuses
+  static constexpr double kStatusPeriodS = 5.0;    // simulated seconds between repeated v2 statuses
+  static constexpr double kVdaStatePeriodS = 1.0;  // simulated seconds between VDA 5050 states at most
+  // A VDA robot's manufacturer; its serialNumber is its robot id.
+  static constexpr std::string_view kVdaManufacturer = "slamfleet-sim";
 
   struct Settings {
     std::string broker;
@@ -68,6 +72,29 @@ class RobotLinks {
   void drain_orders(std::vector<WaypointOrder>& out);
 
  private:
+  // A VDA 5050 robot's side: the order it drives, node by node (released nodes only; the horizon waits
+  // for an update stitched at the last released node).
+  struct VdaRobot {
+    std::string state_topic;
+    std::string visualization_topic;
+    std::string connection_topic;
+    std::uint32_t state_headers = 0;
+    std::uint32_t visualization_headers = 0;
+    std::uint32_t connection_headers = 0;
+    protocol::VdaOrder order;                   // ids and map of the order taken last
+    std::vector<protocol::VdaNode> nodes_left;  // not passed yet, base then horizon
+    protocol::VdaNode last_node;                // passed last (id and sequence id)
+    std::optional<std::uint32_t> steering_to;   // sequence id of the node the simulation drives to
+    bool state_due = true;
+    double state_time_s = -1e300;
+  };
+  // An order or instant actions, decoded on a paho thread, applied by the loop.
+  struct VdaCommand {
+    std::string robot_id;
+    protocol::VdaOrder order;  // empty order_id: instant actions
+    bool cancel = false;
+  };
+
   struct Endpoint {
     std::string report_topic;
     std::string status_topic;
@@ -76,6 +103,7 @@ class RobotLinks {
     uint64_t status_connects = 0;   // link->connects() when the last status went out
     double status_time_s = -1e300;  // simulated time of the last status
     bool driving = false;
+    VdaRobot vda;
   };
 
   RobotLinks(Settings settings, Counters& counters);
@@ -86,6 +114,15 @@ class RobotLinks {
   void reject(std::string_view robot_id, const std::string& reason, const std::string& detail);
   void send(Endpoint& e, const std::string& topic, std::span<const uint8_t> payload);
   void send_status(Endpoint& e, bool driving, double time_s);
+  // VDA 5050 (robot_link_vda.cpp).
+  Status add_vda(const std::string& robot_id, Endpoint& e, std::vector<std::string>& subscriptions,
+                 std::optional<mqtt::Will>& will);
+  void publish_vda(Endpoint& e, const std::string& robot_id, const RobotReport& report, bool driving);
+  void send_connection(Endpoint& e, const std::string& robot_id, protocol::VdaConnection connection);
+  bool on_vda_message(std::string_view topic, std::span<const uint8_t> payload);
+  void take_vda(const VdaCommand& command, std::vector<WaypointOrder>& out);
+  // The waypoint for the robot's next released node, or a stop, when it differs from what was sent.
+  void steer(Endpoint& e, const std::string& robot_id, std::vector<WaypointOrder>& out);
 
   Settings settings_;
   std::atomic<int64_t>& reports_sent_;
@@ -103,6 +140,10 @@ class RobotLinks {
 
   std::mutex intake_mutex_;
   std::vector<WaypointOrder> intake_;
+  std::vector<VdaCommand> vda_intake_;
+  std::vector<VdaCommand> vda_commands_;  // loop: the intake's, being applied
+  std::vector<WaypointOrder> steering_;   // loop: waypoints publish_vda() decided
+  protocol::VdaTree vda_tree_;
 
   // Encoding scratch, reused report after report.
   std::vector<protocol::Point> hits_;

@@ -205,5 +205,63 @@ TEST(Vda5050Codec, InstantActionsCarryTheirIdsAndTypes) {
   EXPECT_EQ(doc["instantActions"][0]["blockingType"], "HARD");
 }
 
+TEST(Vda5050Codec, TheRobotsSideReadsTheOrdersTheFleetControlWrites) {
+  VdaAddress a;
+  ASSERT_TRUE(parse_vda_command_topic("uagv/v2/Acme/agv-1/order", kTree, a));
+  EXPECT_EQ(a.topic, VdaTopic::Order);
+  EXPECT_EQ(a.serial_number, "agv-1");
+  EXPECT_FALSE(parse_vda_command_topic("uagv/v2/Acme/agv-1/state", kTree, a));
+  EXPECT_FALSE(parse_vda_command_topic("uagv/v2/Acme/x/y/order", kTree, a));
+  EXPECT_EQ(vda_command_filter(kTree, "Acme", VdaTopic::InstantActions), "uagv/v2/Acme/+/instantActions");
+
+  const VdaOrder sent{"o1", 2, "hall", {{"n4", 4, true, {1, 2}}, {"n6", 6, false, {3, 2.5}}}};
+  std::string text;
+  ASSERT_TRUE(encode_vda_order({1, 0, "Acme", "agv-1"}, sent, CodecLimits{}, text));
+  VdaOrder read;
+  ASSERT_TRUE(decode_vda_order(bytes(text), CodecLimits{}, read));
+  EXPECT_EQ(read.order_id, "o1");
+  EXPECT_EQ(read.order_update_id, 2u);
+  EXPECT_EQ(read.map_id, "hall");
+  ASSERT_EQ(read.nodes.size(), 2u);
+  EXPECT_EQ(read.nodes[1].node_id, "n6");
+  EXPECT_EQ(read.nodes[1].sequence_id, 6u);
+  EXPECT_FALSE(read.nodes[1].released);
+  EXPECT_EQ(read.nodes[1].position, (Point{3, 2.5}));
+  EXPECT_EQ(decode_vda_order(bytes(R"({"orderId": "o", "orderUpdateId": 0, "nodes": [{"nodeId": "n0",
+      "sequenceId": 0, "released": true}]})"),
+                             CodecLimits{}, read)
+                .reason(),
+            RejectReason::MissingField);
+
+  const VdaInstantAction cancel{"c1", "cancelOrder"};
+  encode_vda_instant_actions({0, 0, "Acme", "agv-1"}, std::span(&cancel, 1), text);
+  std::vector<VdaInstantAction> actions;
+  ASSERT_TRUE(decode_vda_instant_actions(bytes(text), CodecLimits{}, actions));
+  ASSERT_EQ(actions.size(), 1u);
+  EXPECT_EQ(actions[0].action_type, "cancelOrder");
+}
+
+TEST(Vda5050Codec, WhatTheRobotsSideWritesTheFleetControlReads) {
+  const std::vector<VdaNode> left{{"n6", 6, false, {3, 2}}};
+  const VdaRobotReport report{1.5, -2, 0.25, "hall", true, "o1", 2, "n4", 4, left, 0.5f};
+  std::string text;
+  encode_vda_state({5, 0, "Acme", "agv-1"}, report, text);
+  VdaMessage m;
+  ASSERT_TRUE(decode(VdaTopic::State, text, m)) << decode(VdaTopic::State, text, m).message();
+  EXPECT_DOUBLE_EQ(m.x, 1.5);
+  EXPECT_EQ(m.map_id, "hall");
+  EXPECT_EQ(m.order_id, "o1");
+  EXPECT_EQ(m.last_node_id, "n4");
+  EXPECT_EQ(m.node_states, 1u);
+  EXPECT_TRUE(m.driving);
+  EXPECT_FLOAT_EQ(m.battery, 0.5f);
+  encode_vda_visualization({6, 0, "Acme", "agv-1"}, report, text);
+  ASSERT_TRUE(decode(VdaTopic::Visualization, text, m));
+  EXPECT_DOUBLE_EQ(m.theta, 0.25);
+  encode_vda_connection({7, 0, "Acme", "agv-1"}, VdaConnection::Offline, text);
+  ASSERT_TRUE(decode(VdaTopic::Connection, text, m));
+  EXPECT_EQ(m.connection, VdaConnection::Offline);
+}
+
 }  // namespace
 }  // namespace slam::protocol

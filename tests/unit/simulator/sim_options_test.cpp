@@ -52,6 +52,9 @@ TEST(SimOptions, FlagsReachTheConfiguration) {
             "");
   EXPECT_EQ(o.robot_protocol(), RobotProtocol::V2);
   EXPECT_TRUE(o.mqtt_multiplex);
+  SimOptions vda;
+  ASSERT_EQ(parse(vda, {"--protocol", "vda5050"}), "");
+  EXPECT_EQ(vda.robot_protocol(), RobotProtocol::Vda5050);
   auto c = simulation_config(o);
   ASSERT_TRUE(c) << c.message();
   EXPECT_DOUBLE_EQ(c->report_period, 0.02);
