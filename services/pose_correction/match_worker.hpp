@@ -36,7 +36,8 @@ struct MatchJob {
   Pose prepared_correction;          // the robot's map_from_odom when the job was prepared
   Pose predicted;                    // keyframe origin in the map
   std::optional<uint32_t> previous;  // slot of the robot's previous keyframe (same segment)
-  Pose odom_relative;
+  Pose odom_motion;                  // from the previous keyframe, as the odometry reported it
+  Pose odom_relative;  // ...with the robot's learned odometry error taken out (OdometryCalibration)
   Eigen::Matrix3d odom_cov = Eigen::Matrix3d::Zero();
   // The robot stood still since its previous keyframe: placed by odometry, nothing matched.
   bool standing = false;

@@ -42,6 +42,7 @@
 #include "pose_correction/keyframe_builder.hpp"
 #include "pose_correction/keyframe_index.hpp"
 #include "pose_correction/match_worker.hpp"
+#include "pose_correction/odometry_calibration.hpp"
 #include "pose_correction/odometry_trust.hpp"
 #include "pose_correction/pose_graph.hpp"
 #include "pose_correction/scan_matcher.hpp"
@@ -94,6 +95,9 @@ struct CorrectorOptions {
   // map's walls agree on two perpendicular directions, so maps with walls at many angles are left
   // alone; off for a building whose walls are square to each other only in places.
   bool wall_heading = true;
+  // Each robot's systematic odometry heading error (odometry_calibration.hpp) learned from its
+  // matches and taken out of its odometry; off for robots whose odometry is calibrated already.
+  bool odometry_calibration = true;
   WallAxisOptions wall_axis;
   double wall_heading_floor_rad = 0.005;  // added to a reading's spread: no building is exactly square
   double wall_heading_gate_rad = 0.08;    // a larger correction is not taken: a wall at another angle
@@ -309,11 +313,12 @@ class PoseCorrector {
     // Its next keyframes' headings are given (its trusted start, an operator's pose): those whose
     // walls are clear anchor the map's axes (MapWallAxes). How many are left.
     int anchors_walls = 0;
-    OdometryTrust odometry_trust;       // scales its odometry covariance
-    std::optional<uint32_t> last_node;  // slot of its previous keyframe
-    std::optional<uint32_t> last_tied;  // slot of its last keyframe tied to the map
-    std::optional<Pose> operator_pose;  // correction set by an operator, for its next keyframe
-    bool has_heading = false;           // of its latest observation
+    OdometryTrust odometry_trust;              // scales its odometry covariance
+    OdometryCalibration odometry_calibration;  // its odometry's systematic heading error
+    std::optional<uint32_t> last_node;         // slot of its previous keyframe
+    std::optional<uint32_t> last_tied;         // slot of its last keyframe tied to the map
+    std::optional<Pose> operator_pose;         // correction set by an operator, for its next keyframe
+    bool has_heading = false;                  // of its latest observation
     bool changed = false;
     CorrectionSchedule::RobotState schedule;
     uint32_t generation = 0;  // bumped by a reset: its keyframes in matching are dropped

@@ -93,7 +93,9 @@ CorrectionSource PoseCorrector::learn_from_tracking(const MatchJob& job, Robot& 
   if (job.previous && narrow->flat_directions == 0) {
     const Eigen::Vector3d innovation(narrow->pose.x - job.predicted.x, narrow->pose.y - job.predicted.y,
                                      wrap_angle(narrow->pose.theta - job.predicted.theta));
-    rb.odometry_trust.learn(innovation, job.cov, odometry_covariance(job.odom_relative));
+    const Eigen::Matrix3d nominal = odometry_covariance(job.odom_relative);
+    rb.odometry_trust.learn(innovation, job.cov, nominal);
+    rb.odometry_calibration.learn(job.odom_motion, innovation.z(), job.cov(2, 2), nominal(2, 2));
   }
   return CorrectionSource::Match;
 }

@@ -17,8 +17,6 @@ constexpr double kLocalReachMargin_m = 0.5;
 
 }  // namespace
 
-namespace {}  // namespace
-
 void PoseCorrector::old_neighbours(uint32_t robot, int64_t stamp_ns, Vec2 centre,
                                    std::vector<uint32_t>& out) {
   out.clear();
@@ -119,11 +117,15 @@ void PoseCorrector::prepare(Keyframe&& keyframe, const GridView& grid, bool matc
 
   job.previous.reset();
   if (rb.last_node && nodes_[*rb.last_node].segment == keyframe.segment) job.previous = rb.last_node;
-  job.odom_relative = Pose{};
+  job.odom_motion = job.odom_relative = Pose{};
   job.odom_cov = diagonal(kSegmentSigma_m, kSegmentSigma_m, kSegmentSigma_rad);
   job.standing = false;
   if (job.previous) {
-    job.odom_relative = nodes_[*job.previous].odom.inverse().compose(keyframe.odom);
+    const Pose& previous_odom = nodes_[*job.previous].odom;
+    job.odom_motion = previous_odom.inverse().compose(keyframe.odom);
+    job.odom_relative =
+        options_.odometry_calibration ? rb.odometry_calibration.corrected(job.odom_motion) : job.odom_motion;
+    job.predicted = rb.state.map_from_odom.compose(previous_odom).compose(job.odom_relative);
     job.standing = keyframe.travel_m < options_.standing_travel_m &&
                    keyframe.turn_rad < options_.standing_turn_rad &&
                    norm(job.odom_relative.position()) < options_.standing_travel_m &&

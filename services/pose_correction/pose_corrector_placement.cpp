@@ -145,12 +145,11 @@ void PoseCorrector::search_placement(Robot& rb, const GridView& grid, int64_t no
   ++stats_.placement_searches;
   rb.searched_at = keyframe.odom.position();
   const auto found = placement_search_.search(placement_points_, region);
-  const double crossed = found ? crossed_wall_share(GridView{map, placement_cells_}, found->pose,
-                                                    placement_rays_, kWallCrossingMargin_m)
-                               : 1.0;
+  // The walls are traced only for a match that passes the cheaper tests.
   const bool good = found && found->score >= options_.placement_min_score &&
                     (rb.hypothesis || found->ambiguity() <= options_.placement_max_ambiguity) &&
-                    crossed <= options_.placement_max_crossed_walls;
+                    crossed_wall_share(GridView{map, placement_cells_}, found->pose, placement_rays_,
+                                       kWallCrossingMargin_m) <= options_.placement_max_crossed_walls;
   rb.state.localisation_score = found ? found->score * (1.0 - found->ambiguity()) : 0.0;
   if (good) {
     const Pose frame = frame_of(found->pose, keyframe);

@@ -251,6 +251,8 @@ void add_slam_options(CLI::App& app, correction::CorrectorOptions& s) {
   add("--odom-sigma-rad", s.odom_sigma_rad_per_m, "odometry heading noise (rad per m)");
   add("--wall-heading", s.wall_heading, "hold headings to the walls' axes (true/false)");
   add("--point-refine", s.point_refine, "refine matches against the points (true/false)");
+  add("--odometry-calibration", s.odometry_calibration,
+      "learn each robot's odometry heading error and take it out (true/false)");
   add("--placement-trail", s.placement_trail_m,
       "travel (m) of keyframes searched together for an unplaced robot");
   add("--placement-max-crossed-walls", s.placement_max_crossed_walls,

@@ -29,6 +29,7 @@ struct Options {
   std::string log_level = "warn";
   std::string wall_heading = "on";
   std::string point_refine = "on";
+  std::string odometry_calibration = "on";
   ReplayOptions replay;
   ScoreOptions score;
 
@@ -61,6 +62,7 @@ Result<nlohmann::json> run(const Options& o) {
   j["phase_ms"] = o.replay.phase_ms;
   j["wall_heading"] = o.wall_heading;
   j["point_refine"] = o.point_refine;
+  j["odometry_calibration"] = o.odometry_calibration;
   j["observations"] = observations->size();
   j["recorded_s"] = outcome->recorded_s;
   j["wall_s"] = outcome->wall_s;
@@ -108,6 +110,10 @@ int main(int argc, char** argv) {
   app.add_option("--point-refine", o.point_refine, "the mapper's --slam-point-refine: on or off")
       ->check(CLI::IsMember({"on", "off"}))
       ->capture_default_str();
+  app.add_option("--odometry-calibration", o.odometry_calibration,
+                 "the mapper's --slam-odometry-calibration: on or off")
+      ->check(CLI::IsMember({"on", "off"}))
+      ->capture_default_str();
   app.add_flag("--align", o.score.align, "fit the map frame to the world first (--odom-frame start runs)");
   app.add_option("--false-closure-increase", o.score.false_closure_increase_m,
                  "error increase (m) beyond which a loop-closure correction counts as false")
@@ -117,6 +123,7 @@ int main(int argc, char** argv) {
   spdlog::set_level(spdlog::level::from_str(o.log_level));
   o.replay.wall_heading = o.wall_heading == "on";
   o.replay.point_refine = o.point_refine == "on";
+  o.replay.odometry_calibration = o.odometry_calibration == "on";
 
   auto result = slam::bench::run(o);
   if (!result) {

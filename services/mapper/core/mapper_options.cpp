@@ -92,6 +92,12 @@ void add_mapper_options(CLI::App& app, MapperOptions& o) {
       ->check(CLI::IsMember({"on", "off"}))
       ->capture_default_str();
 
+  app.add_option("--slam-odometry-calibration", o.slam_odometry_calibration,
+                 "learn each robot's systematic odometry heading error (drift per metre, turn scale) from "
+                 "its matches and take it out of its odometry (off: odometry calibrated already)")
+      ->check(CLI::IsMember({"on", "off"}))
+      ->capture_default_str();
+
   app.add_option("--slam-point-refine", o.slam_point_refine,
                  "refine each match against the points of the keyframes around it, not only the grid's "
                  "cells (off: the grid alone, walls up to half a cell off)")

@@ -140,6 +140,7 @@ Result<ReplayOutcome> replay(std::span<const mapper::OwnedObservation> observati
   slam_options.old_age_s = mapper_defaults.slam_old_age_s;
   slam_options.wall_heading = options.wall_heading;
   slam_options.point_refine = options.point_refine;
+  slam_options.odometry_calibration = options.odometry_calibration;
   auto made = DeterministicMapLoop::create(slam_options);
   if (!made) return made.error();
   DeterministicMapLoop& loop = **made;

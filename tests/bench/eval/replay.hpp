@@ -20,8 +20,9 @@ struct ReplayOptions {
   bool trace = false;     // log (info) every robot's corrected and raw error at every truth instant
   // Log (info) every keyframe's predicted, matched and placed pose against the truth of its instant.
   bool trace_keyframes = false;
-  bool wall_heading = true;  // CorrectorOptions::wall_heading (the mapper's --slam-wall-heading)
-  bool point_refine = true;  // CorrectorOptions::point_refine (the mapper's --slam-point-refine)
+  bool wall_heading = true;          // CorrectorOptions::wall_heading (the mapper's --slam-wall-heading)
+  bool point_refine = true;          // CorrectorOptions::point_refine (the mapper's --slam-point-refine)
+  bool odometry_calibration = true;  // CorrectorOptions::odometry_calibration
 };
 
 struct ReplayOutcome {
