@@ -13,6 +13,7 @@ BROKER=""
 PORT=1883
 WORLD=office
 ROBOTS=3
+VDA_ROBOTS=0
 GATEWAYS=1
 PLANNERS=1
 MODE=explore
@@ -35,6 +36,8 @@ usage: scripts/run.sh [options]      (or BIN=build/bin compose/launch.sh [option
                        (also the default when \$DISPLAY is not set)
   --world NAME|FILE    simulated world (built-in: ${BUILT_IN_WORLDS// /, }; or a world file) [$WORLD]
   --robots N           simulated robots (0..5000)                                   [$ROBOTS]
+  --vda-robots N       of them, the first N speak VDA 5050 (docs/protocol.md); one
+                       gateway, not with --secure                                   [$VDA_ROBOTS]
   --gateways N         gateways sharing the robots (1..8)                           [$GATEWAYS]
   --planners N         planners sharing the goals and path requests (1..8), each
                        with its own goal file in --data                             [$PLANNERS]
@@ -77,11 +80,12 @@ while (($#)); do
     --no-bridge) BRIDGE=0 ;;
     --fresh) FRESH=1 ;;
     --secure) SECURE=1 ;;
-    --world | --robots | --gateways | --planners | --mode | --domain | --broker | --port | --data | --logs | --snapshots | --snapshot-period | --bridge-bind)
+    --world | --robots | --vda-robots | --gateways | --planners | --mode | --domain | --broker | --port | --data | --logs | --snapshots | --snapshot-period | --bridge-bind)
       need_value "$1" $#
       case "$1" in
         --world) WORLD=$2 ;;
         --robots) ROBOTS=$2 ;;
+        --vda-robots) VDA_ROBOTS=$2 ;;
         --gateways) GATEWAYS=$2 ;;
         --planners) PLANNERS=$2 ;;
         --mode) MODE=$2 ;;
@@ -103,10 +107,13 @@ done
 
 case "$MODE" in explore | idle) ;; *) fail "--mode must be explore or idle, got '$MODE'" ;; esac
 is_uint "$ROBOTS" && ((10#$ROBOTS <= 5000)) || fail "--robots must be 0..5000, got '$ROBOTS'"
+is_uint "$VDA_ROBOTS" && ((10#$VDA_ROBOTS <= 10#$ROBOTS)) || fail "--vda-robots must be 0..--robots, got '$VDA_ROBOTS'"
 is_uint "$GATEWAYS" && ((10#$GATEWAYS >= 1 && 10#$GATEWAYS <= 8)) || fail "--gateways must be 1..8, got '$GATEWAYS'"
 is_uint "$PLANNERS" && ((10#$PLANNERS >= 1 && 10#$PLANNERS <= 8)) || fail "--planners must be 1..8, got '$PLANNERS'"
 is_uint "$DOMAIN" && ((10#$DOMAIN <= 232)) || fail "--domain must be 0..232, got '$DOMAIN'"
 is_uint "$PORT" && ((10#$PORT >= 1 && 10#$PORT <= 65535)) || fail "--port must be 1..65535, got '$PORT'"
+# VDA robots' orders need the gateway that heard them, and the secure broker's ACL knows the v1/v2 trees only.
+((10#$VDA_ROBOTS == 0 || (10#$GATEWAYS == 1 && !SECURE))) || fail "--vda-robots needs one gateway and no --secure"
 [[ $SNAP_PERIOD =~ ^[0-9]+([.][0-9]+)?$ ]] || fail "--snapshot-period must be a number of seconds, got '$SNAP_PERIOD'"
 if ((SIM)) && [[ " $BUILT_IN_WORLDS " != *" $WORLD "* ]] && [ ! -r "$WORLD" ]; then
   fail "--world '$WORLD' is neither a built-in world (${BUILT_IN_WORLDS// /, }) nor a readable file"
@@ -257,7 +264,7 @@ if ((BRIDGE)); then
   [ -n "${PIDS[bridge]:-}" ] && echo "run: Foxglove / Lichtblick: connect to ws://$BRIDGE_BIND (docs/ecosystem.md)"
 fi
 if ((SIM)); then
-  start simulator "$BIN/slam-simulator" --domain "$SIM_DOMAIN" --broker "$BROKER" "${sim_mqtt[@]}" --world "$WORLD" --robots "$ROBOTS"
+  start simulator "$BIN/slam-simulator" --domain "$SIM_DOMAIN" --broker "$BROKER" "${sim_mqtt[@]}" --world "$WORLD" --robots "$ROBOTS" --vda-robots "$VDA_ROBOTS"
 fi
 if [ ! -x "$BIN/slam-viewer" ]; then
   echo "run: viewer not started ($BIN/slam-viewer is not built)"

@@ -144,15 +144,18 @@ TEST_F(Vda5050Test, ARobotWhoseConnectionBreaksIsOffline) {
       << group_.log("gateway");
 }
 
-// The simulator's own VDA robots (--protocol vda5050): the fleet's order, node by node, to a goal.
-TEST_F(Vda5050Test, SimulatedVdaRobotReachesASquareGoal) {
+// The simulator's own VDA robots (--vda-robots: sim-1 speaks VDA 5050 beside a v1 robot in the same
+// world): the fleet's order, node by node, to a goal.
+TEST_F(Vda5050Test, SimulatedVdaRobotInAMixedFleetReachesASquareGoal) {
   group_.start("planner", {testkit::bin_path("slam-planner"), "--domain", domain(), "--no-share",
                            "--goal-store", group_.dir() + "/goals.json"});
   group_.start("simulator", {testkit::bin_path("slam-simulator"), "--domain", domain(), "--broker", broker_,
-                             "--world", "empty", "--robots", "1", "--protocol", "vda5050", "--seed", "7"});
+                             "--world", "empty", "--robots", "2", "--vda-robots", "1", "--seed", "7"});
   const std::string robot = "slamfleet-sim:sim-1";
   ASSERT_TRUE(states_.wait_for([&](const RobotState& s) { return s.robot_id() == robot; }, 60s))
       << group_.log("simulator") << group_.log("gateway");
+  ASSERT_TRUE(states_.wait_for([&](const RobotState& s) { return s.robot_id() == "sim-2"; }, 60s))
+      << "the v1 robot beside it";
 
   auto goals = dds::make_writer(*participant_, dds::kNavGoal);
   ASSERT_TRUE(goals) << goals.message();

@@ -23,6 +23,11 @@ void add_sim_options(CLI::App& app, SimOptions& o) {
   app.add_option("--robots", o.robots, "robots spawned at random free poses at start")
       ->check(CLI::Range(0, static_cast<int>(kMaxFleet)))
       ->capture_default_str();
+  app.add_option("--vda-robots", o.vda_robots,
+                 "of the robots spawned at start, the first N speak VDA 5050, the others --protocol "
+                 "(a mixed fleet in one world)")
+      ->check(CLI::Range(0, static_cast<int>(kMaxFleet)))
+      ->capture_default_str();
   app.add_option("--protocol", o.protocol,
                  "robot protocol: v1 (binary), v2 (JSON) or vda5050 (VDA 5050 2.0: poses only, orders driven "
                  "node by node)")
@@ -106,6 +111,8 @@ Status validate(const SimOptions& o) {
   const bool tls = o.broker.starts_with("ssl://") || o.broker.starts_with("mqtts://");
   if (!tls && !o.broker.starts_with("tcp://") && !o.broker.starts_with("mqtt://"))
     return Error{fmt::format("--broker: '{}' is not tcp://, mqtt://, ssl:// or mqtts://HOST:PORT", o.broker)};
+  if (o.vda_robots > o.robots)
+    return Error{fmt::format("--vda-robots {} is more than --robots {}", o.vda_robots, o.robots)};
   if (!o.tls_ca_file.empty() && !tls)
     return Error{fmt::format("--tls-ca-file is set but --broker '{}' is not ssl:// or mqtts://", o.broker)};
   if (!o.mqtt_password.empty() && o.mqtt_multiplex)

@@ -19,8 +19,10 @@ enum class RobotProtocol : uint8_t { V1, V2, Vda5050 };
 
 struct SimOptions {
   ServiceOptions service;
-  std::string world = "office";                              // built-in name or file (see load_world)
-  int robots = 3;                                            // spawned at random free poses at start
+  std::string world = "office";  // built-in name or file (see load_world)
+  int robots = 3;                // spawned at random free poses at start
+  int vda_robots =
+      0;  // of those, the first this many speak VDA 5050 whatever `protocol` says (a mixed fleet)
   std::string protocol = "v1";                               // "v1", "v2" or "vda5050"
   double rate_hz = 10.0;                                     // reports per robot per second
   double noise = 0.01;                                       // range noise standard deviation, m

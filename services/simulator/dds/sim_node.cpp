@@ -56,7 +56,8 @@ Result<std::unique_ptr<SimNode>> SimNode::create(const SimOptions& options, Worl
   node->heartbeat_ = std::move(*heartbeat);
 
   RobotLinks::Settings link_settings{options.broker,        options.robot_protocol(), options.mqtt_multiplex,
-                                     codec_limits(options), options.mqtt_password,    options.tls_ca_file};
+                                     codec_limits(options), options.mqtt_password,    options.tls_ca_file,
+                                     options.vda_robots > 0};
   auto links = RobotLinks::create(std::move(link_settings), counters);
   if (!links) return Error{"MQTT: " + links.message()};
   node->links_ = std::move(*links);
@@ -69,7 +70,7 @@ Result<std::unique_ptr<SimNode>> SimNode::create(const SimOptions& options, Worl
 
   auto ids = node->sim_.spawn_random(static_cast<size_t>(options.robots));
   if (!ids) return Error{"--robots: " + ids.message()};
-  node->add_robots(*ids);
+  node->add_robots(*ids, static_cast<size_t>(options.vda_robots));
   SLAM_TRY(node->dds_->publish_world(node->sim_.world()));
   return node;
 }
@@ -78,9 +79,11 @@ void SimNode::warn(const std::string& key, const std::string& text) {
   warnings_.warn(key, "{}", text);
 }
 
-void SimNode::add_robots(const std::vector<std::string>& ids) {
-  for (const std::string& id : ids) {
-    if (auto s = links_->add(id); !s) {
+void SimNode::add_robots(const std::vector<std::string>& ids, size_t vda_robots) {
+  for (size_t i = 0; i < ids.size(); ++i) {
+    const std::string& id = ids[i];
+    const auto speaks = i < vda_robots ? std::optional(RobotProtocol::Vda5050) : std::nullopt;
+    if (auto s = links_->add(id, speaks); !s) {
       // A robot that cannot speak MQTT would drive unseen: take it out again.
       warn("link", fmt::format("robot '{}' removed: {}", protocol::escape_for_log(id), s.message()));
       sim_.remove(id);

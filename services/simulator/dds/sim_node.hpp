@@ -34,7 +34,8 @@ class SimNode {
 
  private:
   SimNode(const SimOptions& options, Simulation sim, Counters& counters);
-  void add_robots(const std::vector<std::string>& ids);
+  // The first `vda_robots` of `ids` speak VDA 5050, the others --protocol.
+  void add_robots(const std::vector<std::string>& ids, size_t vda_robots = 0);
   void apply_controls();
   void reply(uint64_t command_id, const Status& result);
   void apply_orders();

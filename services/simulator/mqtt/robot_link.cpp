@@ -53,12 +53,13 @@ Result<std::unique_ptr<RobotLinks>> RobotLinks::create(Settings settings, Counte
     std::vector<std::string> filters;
     if (links->settings_.protocol == RobotProtocol::V1) {
       filters.emplace_back(protocol::kV1CommandFilter);
-    } else if (links->settings_.protocol == RobotProtocol::Vda5050) {
-      for (const auto topic : {protocol::VdaTopic::Order, protocol::VdaTopic::InstantActions})
-        filters.push_back(protocol::vda_command_filter(links->vda_tree_, kVdaManufacturer, topic));
-    } else {
+    } else if (links->settings_.protocol == RobotProtocol::V2) {
       filters.emplace_back(protocol::kV2WaypointFilter);
       filters.emplace_back(protocol::kV2PathFilter);
+    }
+    if (links->settings_.protocol == RobotProtocol::Vda5050 || links->settings_.vda_robots) {
+      for (const auto topic : {protocol::VdaTopic::Order, protocol::VdaTopic::InstantActions})
+        filters.push_back(protocol::vda_command_filter(links->vda_tree_, kVdaManufacturer, topic));
     }
     auto link = links->open(fmt::format("slam-simulator-{}", getpid()), std::move(filters), std::nullopt);
     if (!link) return link.error();
@@ -68,11 +69,11 @@ Result<std::unique_ptr<RobotLinks>> RobotLinks::create(Settings settings, Counte
 }
 
 RobotLinks::~RobotLinks() {
-  if (settings_.protocol == RobotProtocol::V2)
-    for (auto& [id, e] : endpoints_)
+  for (auto& [id, e] : endpoints_) {
+    if (e.protocol == RobotProtocol::V2)
       send(e, e.status_topic, as_bytes(std::string(protocol::kV2OfflineStatus)));
-  if (settings_.protocol == RobotProtocol::Vda5050)
-    for (auto& [id, e] : endpoints_) send_connection(e, id, protocol::VdaConnection::Offline);
+    if (e.protocol == RobotProtocol::Vda5050) send_connection(e, id, protocol::VdaConnection::Offline);
+  }
   // Start every disconnect before waiting on any, so a large fleet closes in one round trip.
   for (auto& [id, e] : endpoints_)
     if (e.own_link) e.own_link->begin_disconnect();
@@ -111,11 +112,14 @@ Result<std::unique_ptr<mqtt::Connection>> RobotLinks::open(const std::string& cl
   return mqtt::Connection::create(std::move(options), std::move(callbacks));
 }
 
-Status RobotLinks::add(const std::string& robot_id) {
+Status RobotLinks::add(const std::string& robot_id, std::optional<RobotProtocol> speaks) {
   if (endpoints_.contains(robot_id))
     return Error{fmt::format("robot '{}' already has a connection", robot_id)};
   Endpoint e;
-  if (settings_.protocol == RobotProtocol::Vda5050) {
+  e.protocol = speaks.value_or(settings_.protocol);
+  if (e.protocol == RobotProtocol::Vda5050) {
+    if (settings_.multiplex && settings_.protocol != RobotProtocol::Vda5050 && !settings_.vda_robots)
+      return Error{"the shared MQTT connection was opened without the VDA 5050 subscriptions"};
     std::vector<std::string> subscriptions;
     std::optional<mqtt::Will> will;
     if (auto s = add_vda(robot_id, e, subscriptions, will); !s) return s;
@@ -130,7 +134,9 @@ Status RobotLinks::add(const std::string& robot_id) {
     endpoints_.emplace(robot_id, std::move(e));
     return {};
   }
-  const bool v1 = settings_.protocol == RobotProtocol::V1;
+  if (settings_.multiplex && e.protocol != settings_.protocol)
+    return Error{"the shared MQTT connection subscribes the --protocol robots' commands only"};
+  const bool v1 = e.protocol == RobotProtocol::V1;
   auto s = v1 ? protocol::v1_adv_topic(robot_id, e.report_topic)
               : protocol::v2_scan_topic(robot_id, e.report_topic);
   if (s) s = protocol::v2_status_topic(robot_id, e.status_topic);
@@ -160,9 +166,9 @@ Status RobotLinks::add(const std::string& robot_id) {
 void RobotLinks::remove(const std::string& robot_id) {
   const auto it = endpoints_.find(robot_id);
   if (it == endpoints_.end()) return;
-  if (settings_.protocol == RobotProtocol::V2)
+  if (it->second.protocol == RobotProtocol::V2)
     send(it->second, it->second.status_topic, as_bytes(std::string(protocol::kV2OfflineStatus)));
-  if (settings_.protocol == RobotProtocol::Vda5050)
+  if (it->second.protocol == RobotProtocol::Vda5050)
     send_connection(it->second, robot_id, protocol::VdaConnection::Offline);
   endpoints_.erase(it);
 }
@@ -190,12 +196,12 @@ void RobotLinks::publish(const RobotReport& report, bool driving) {
     return;
   }
   Endpoint& e = it->second;
-  if (settings_.protocol == RobotProtocol::Vda5050) {
+  if (e.protocol == RobotProtocol::Vda5050) {
     publish_vda(e, it->first, report, driving);
     return;
   }
   protocol::CodecStatus status;
-  if (settings_.protocol == RobotProtocol::V1) {
+  if (e.protocol == RobotProtocol::V1) {
     hits_.resize(report.hits.size());
     for (size_t i = 0; i < report.hits.size(); ++i) hits_[i] = {report.hits[i].x, report.hits[i].y};
     status = protocol::encode_v1_adv({report.reported_pose.x, report.reported_pose.y}, hits_,
@@ -259,7 +265,7 @@ void RobotLinks::reject(std::string_view robot_id, const std::string& reason, co
 }
 
 void RobotLinks::on_message(std::string_view topic, std::span<const uint8_t> payload) {
-  if (settings_.protocol == RobotProtocol::Vda5050) {
+  if (topic.starts_with(vda_tree_.interface_name + "/")) {
     on_vda_message(topic, payload);
     return;
   }

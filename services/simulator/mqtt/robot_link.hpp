@@ -45,6 +45,7 @@ class RobotLinks {
     // with a password file and an ACL keyed by user name, like compose/mosquitto).
     std::string password;
     std::string tls_ca_file;  // trusted for an ssl:// broker (empty: the system's CAs)
+    bool vda_robots = false;  // some robots speak VDA 5050 whatever `protocol` says (add())
   };
 
   // Registers the counters it keeps (reports_sent, waypoints_received, mqtt_reconnects, ...) and,
@@ -55,8 +56,9 @@ class RobotLinks {
   RobotLinks(const RobotLinks&) = delete;
   RobotLinks& operator=(const RobotLinks&) = delete;
 
-  // Starts speaking for `robot_id` (its own connection unless multiplexed).
-  Status add(const std::string& robot_id);
+  // Starts speaking for `robot_id` (its own connection unless multiplexed) in `speaks`, by default
+  // settings.protocol.
+  Status add(const std::string& robot_id, std::optional<RobotProtocol> speaks = std::nullopt);
   // Stops speaking for it; a v2 robot says "offline" first.
   void remove(const std::string& robot_id);
 
@@ -103,6 +105,7 @@ class RobotLinks {
     uint64_t status_connects = 0;   // link->connects() when the last status went out
     double status_time_s = -1e300;  // simulated time of the last status
     bool driving = false;
+    RobotProtocol protocol = RobotProtocol::V1;
     VdaRobot vda;
   };
 

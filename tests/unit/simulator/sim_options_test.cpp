@@ -55,6 +55,12 @@ TEST(SimOptions, FlagsReachTheConfiguration) {
   SimOptions vda;
   ASSERT_EQ(parse(vda, {"--protocol", "vda5050"}), "");
   EXPECT_EQ(vda.robot_protocol(), RobotProtocol::Vda5050);
+  SimOptions mixed;
+  ASSERT_EQ(parse(mixed, {"--robots", "3", "--vda-robots", "1"}), "");
+  EXPECT_EQ(mixed.vda_robots, 1);
+  EXPECT_TRUE(validate(mixed));
+  mixed.vda_robots = 4;
+  EXPECT_FALSE(validate(mixed));
   auto c = simulation_config(o);
   ASSERT_TRUE(c) << c.message();
   EXPECT_DOUBLE_EQ(c->report_period, 0.02);
