@@ -52,7 +52,17 @@ struct MatchJob {
   size_t neighbours = 0;
   GridGeometry tie_geometry;
   std::vector<uint8_t> tie_cells;
-  std::vector<Vec2> tie_points;    // the old keyframes' points that tie_cells were drawn from
+  std::vector<Vec2> tie_points;  // the old keyframes' points that tie_cells were drawn from
+  // A sparse robot whose chain is loose is searched for among the old keyframes around it
+  // (CorrectorOptions::relocalise_sigma_m): its recent trail (keyframe frame) over `relocalise_region`
+  // on a grid drawn from them.
+  bool relocalise = false;
+  bool relocalise_confirming = false;  // around the hypothesis: the runner-up is not asked about
+  uint32_t relocalise_anchor = 0;      // slot of the old keyframe nearest the region's centre
+  SearchRegion relocalise_region;
+  GridGeometry relocalise_geometry;
+  std::vector<uint8_t> relocalise_cells;
+  std::vector<Vec2> relocalise_points;
   std::optional<double> map_axis;  // the map's wall axes (MapWallAxes), when known
   // Of the robot's heading in the map: its previous keyframe's, then (by the matching) with this
   // keyframe's motion added and the walls' heading taken.
@@ -73,6 +83,7 @@ struct MatchJob {
   bool wide = false;          // the tie searched the wide window
   bool wide_skipped = false;  // a wide search was needed but not permitted
   std::optional<MatchResult> tie_match;
+  std::optional<MatchResult> relocalised;  // the trail's match, refined on the lattice's best
 };
 
 // One thread running jobs in submission order with its own ScanMatcher.

@@ -112,6 +112,16 @@ struct CorrectorOptions {
   size_t refine_max_keyframes = 60;
   double window_margin_m = 0.3;  // beyond a keyframe's farthest point: the matcher's field blur
   double tied_sigma_m = 0.05;    // chain uncertainty above which a tie searches the wide window
+  // After a long loop a sparse robot can be metres off, beyond closure_window, where one keyframe's
+  // few dozen points fit many places. While its chain's sigma exceeds relocalise_sigma_m, the points
+  // of its last placement_trail_m of keyframes are searched by branch and bound within 3 sigma (at
+  // most relocalise_max_m, relocalise_max_rad) among the old keyframes there, and a match as
+  // distinct as a placement's is taken as a loop closure once relocalise_confirmations keyframes in
+  // a row agree on it (as global localisation confirms a placement).
+  double relocalise_sigma_m = 0.5;
+  double relocalise_max_m = 8.0;
+  double relocalise_max_rad = 0.6;
+  int relocalise_confirmations = 3;
   // A keyframe whose robot moved less than this since its previous one, and within it, was taken
   // standing still: it sees what its previous keyframe saw, and matching it again adds nothing but
   // the chance to be dragged by other robots' fresh keyframes (placed by odometry instead).
@@ -316,9 +326,14 @@ class PoseCorrector {
     OdometryTrust odometry_trust;              // scales its odometry covariance
     OdometryCalibration odometry_calibration;  // its odometry's systematic heading error
     std::optional<uint32_t> last_node;         // slot of its previous keyframe
-    std::optional<uint32_t> last_tied;         // slot of its last keyframe tied to the map
-    std::optional<Pose> operator_pose;         // correction set by an operator, for its next keyframe
-    bool has_heading = false;                  // of its latest observation
+    std::vector<uint32_t> recent_nodes;        // slots of its latest keyframes, oldest first (its trail)
+    // While its chain is loose: where its odometry frame lies by the trail's search, and how many
+    // keyframes in a row agreed.
+    std::optional<Pose> relocalise_hypothesis;
+    int relocalise_agreed = 0;
+    std::optional<uint32_t> last_tied;  // slot of its last keyframe tied to the map
+    std::optional<Pose> operator_pose;  // correction set by an operator, for its next keyframe
+    bool has_heading = false;           // of its latest observation
     bool changed = false;
     CorrectionSchedule::RobotState schedule;
     uint32_t generation = 0;  // bumped by a reset: its keyframes in matching are dropped
@@ -348,6 +363,12 @@ class PoseCorrector {
   static constexpr int kAnchoringKeyframes = 3;
   // A correction moving a robot this far (by a keyframe or an optimisation) is logged as a warning.
   static constexpr double kJumpWarning_m = 0.3;
+  // A robot's latest keyframes kept for its trail: 4 m at a sparse robot's 0.4 m keyframes, with
+  // room for turns on the spot.
+  static constexpr size_t kRecentNodes = 32;
+  // The old keyframes' grid a loose robot is searched on: coarser than the map, since it spans metres
+  // of uncertainty and only has to find the place for the tracking matcher to refine.
+  static constexpr double kRelocaliseResolution_m = 0.1;
   // The observations' stamps or process()'s clock going back further than this were set back: the
   // step is taken out (ClockSteps).
   static constexpr int64_t kClockStepBack_ns = 10'000'000'000;
@@ -390,6 +411,9 @@ class PoseCorrector {
   CorrectionSource learn_from_tracking(const MatchJob& job, Robot& rb);
   // Whether the tie match is taken, and as a loop closure (counted and logged).
   TieDecision decide_tie(const MatchJob& job, const Robot& rb, bool operator_set);
+  // The trail's match (relocalise_sigma_m), once relocalise_confirmations keyframes in a row agree
+  // on it, becomes `tie`: a loop closure.
+  void confirm_relocalisation(const MatchJob& job, Robot& rb, TieDecision& tie);
   // Moves `estimate` by the tie (fused) or closure (taken, the chain bent), and the robot's
   // uncertainty with it. Returns the new estimate.
   Pose apply_tie(const Keyframe& keyframe, Robot& rb, const TieDecision& tie, const Pose& estimate);
@@ -409,7 +433,16 @@ class PoseCorrector {
   std::unique_ptr<MatchJob> take_job();
   void recycle(std::unique_ptr<MatchJob> job);
   // Old keyframes (another robot's, or older than old_age_s) near `centre`, nearest first.
-  void old_neighbours(uint32_t robot, int64_t stamp_ns, Vec2 centre, std::vector<uint32_t>& out);
+  void old_neighbours(uint32_t robot, int64_t stamp_ns, Vec2 centre, double radius,
+                      std::vector<uint32_t>& out);
+  // A loose sparse robot's search among the old keyframes around it (relocalise_sigma_m), planned.
+  void prepare_relocalisation(const Robot& rb, const Keyframe& keyframe, MatchJob& job);
+  // The points of the robot's keyframes over placement_trail_m before `keyframe` (same segment) and
+  // its own, in the frame of `keyframe` placed at `pose`, evenly thinned to placement_max_points.
+  void gather_recent_trail(const Robot& rb, const Keyframe& keyframe, const Pose& pose,
+                           std::vector<Vec2>& out);
+  // The search itself (on the worker): the trail over the region, refined by the tracking matcher.
+  void search_relocalisation(ScanMatcher& matcher, MatchJob& job) const;
   // The points (map frame) within the square of half_extent around `centre` of the keyframes within
   // `reach` of it (the nearest ones): what a match there is refined against.
   void window_points(Vec2 centre, double reach, double half_extent, std::vector<Vec2>& out);

@@ -41,7 +41,8 @@ void PoseCorrector::apply(MatchJob& job, std::vector<KeyframeCorrection>& out) {
       job.previous ? nodes_[*job.previous].estimate.inverse().compose(job.tracked) : Pose{};
   CorrectionSource source = learn_from_tracking(job, rb);
   const bool operator_set = rb.operator_pose.has_value();
-  const TieDecision tie = decide_tie(job, rb, operator_set);
+  TieDecision tie = decide_tie(job, rb, operator_set);
+  if (!operator_set && !tie.closure) confirm_relocalisation(job, rb, tie);
   Pose estimate = job.estimate;
   if (tie.anchor) {
     estimate = apply_tie(job.keyframe, rb, tie, estimate);
@@ -55,6 +56,8 @@ void PoseCorrector::apply(MatchJob& job, std::vector<KeyframeCorrection>& out) {
   learn_wall_axes(job, rb, estimate);
   rb.operator_pose.reset();
   rb.last_node = slot;
+  if (rb.recent_nodes.size() == kRecentNodes) rb.recent_nodes.erase(rb.recent_nodes.begin());
+  rb.recent_nodes.push_back(slot);
   if (tie.anchor || operator_set || !job.previous) rb.last_tied = slot;
   if (keyframe_observer_) {
     const Node& node = nodes_[slot];
@@ -79,6 +82,7 @@ void PoseCorrector::carry_into_correction(MatchJob& job, const Pose& correction)
   if (job.wall_heading) *job.wall_heading = wrap_angle(*job.wall_heading + moved.theta);
   if (job.narrow) carry(job.narrow->pose);
   if (job.tie_match) carry(job.tie_match->pose);
+  if (job.relocalised) carry(job.relocalised->pose);
 }
 
 CorrectionSource PoseCorrector::learn_from_tracking(const MatchJob& job, Robot& rb) {
@@ -137,6 +141,39 @@ PoseCorrector::TieDecision PoseCorrector::decide_tie(const MatchJob& job, const 
         describe(*tie, keyframe.points.size(), rb.chain_cov));
   }
   return decision;
+}
+
+void PoseCorrector::confirm_relocalisation(const MatchJob& job, Robot& rb, TieDecision& tie) {
+  const auto& found = job.relocalised;
+  if (!job.relocalise || !found || nodes_[job.relocalise_anchor].removed) {
+    rb.relocalise_hypothesis.reset();  // tight again, or a keyframe that did not find it
+    rb.relocalise_agreed = 0;
+    return;
+  }
+  const Keyframe& keyframe = job.keyframe;
+  const bool agrees =
+      rb.relocalise_hypothesis &&
+      distance(rb.relocalise_hypothesis->compose(keyframe.odom).position(), found->pose.position()) <=
+          options_.placement_agree_m &&
+      std::abs(wrap_angle(rb.relocalise_hypothesis->compose(keyframe.odom).theta - found->pose.theta)) <=
+          options_.placement_agree_rad;
+  rb.relocalise_agreed = agrees ? rb.relocalise_agreed + 1 : 1;
+  rb.relocalise_hypothesis = found->pose.compose(keyframe.odom.inverse());
+  if (rb.relocalise_agreed < options_.relocalise_confirmations) return;
+  rb.relocalise_hypothesis.reset();
+  rb.relocalise_agreed = 0;
+  tie.anchor = job.relocalise_anchor;
+  tie.estimate = found->pose;
+  tie.cov = with_floor(found->covariance, 0.02, 0.01);
+  tie.closure = true;
+  ++stats_.closures_tried;
+  ++stats_.closures_accepted;
+  spdlog::info(
+      "loop closure by the trail: robot {} keyframe {} moved {:.2f} m, {:.1f} deg ({} points, score {:.2f}, "
+      "chain sigma {:.2f} m)",
+      rb.name, keyframe.id, distance(found->pose.position(), job.estimate.position()),
+      to_degrees(wrap_angle(found->pose.theta - job.estimate.theta)), job.relocalise_points.size(),
+      found->score, std::sqrt(std::max(rb.chain_cov(0, 0), rb.chain_cov(1, 1))));
 }
 
 Pose PoseCorrector::apply_tie(const Keyframe& keyframe, Robot& rb, const TieDecision& tie,

@@ -17,20 +17,82 @@ constexpr double kLocalReachMargin_m = 0.5;
 
 }  // namespace
 
-void PoseCorrector::old_neighbours(uint32_t robot, int64_t stamp_ns, Vec2 centre,
+void PoseCorrector::old_neighbours(uint32_t robot, int64_t stamp_ns, Vec2 centre, double radius,
                                    std::vector<uint32_t>& out) {
   out.clear();
-  index_.near(centre, options_.closure_radius_m, out);
+  index_.near(centre, radius, out);
   const auto min_age_ns = static_cast<int64_t>(options_.old_age_s * 1e9);
   std::erase_if(out, [&](uint32_t slot) {
     const Node& n = nodes_[slot];
     const bool old = n.robot != robot || stamp_ns - n.stamp_ns >= min_age_ns;
-    return !old || n.points.empty() || distance(n.estimate.position(), centre) > options_.closure_radius_m;
+    return !old || n.points.empty() || distance(n.estimate.position(), centre) > radius;
   });
   std::sort(out.begin(), out.end(), [&](uint32_t a, uint32_t b) {
     return distance(nodes_[a].estimate.position(), centre) < distance(nodes_[b].estimate.position(), centre);
   });
   if (out.size() > options_.tie_max_keyframes) out.resize(options_.tie_max_keyframes);
+}
+
+void PoseCorrector::gather_recent_trail(const Robot& rb, const Keyframe& keyframe, const Pose& pose,
+                                        std::vector<Vec2>& out) {
+  out.assign(keyframe.points.begin(), keyframe.points.end());
+  const Pose keyframe_from_map = pose.inverse();
+  Vec2 later_odom = keyframe.odom.position();
+  double travel = 0.0;
+  for (auto it = rb.recent_nodes.rbegin(); it != rb.recent_nodes.rend(); ++it) {
+    const Node& n = nodes_[*it];
+    if (n.removed || n.segment != keyframe.segment) break;
+    travel += distance(n.odom.position(), later_odom);
+    if (travel > options_.placement_trail_m) break;
+    later_odom = n.odom.position();
+    const Pose keyframe_from_node = keyframe_from_map.compose(n.estimate);
+    for (const Vec2& p : n.points) out.push_back(keyframe_from_node.transform(p));
+  }
+  const size_t keep = options_.placement_max_points;
+  if (keep == 0 || out.size() <= keep) return;
+  const size_t size = out.size();  // evenly thinned in place: the i-th kept is the (i * size / keep)-th
+  for (size_t i = 0; i < keep; ++i) out[i] = out[i * size / keep];
+  out.resize(keep);
+}
+
+void PoseCorrector::prepare_relocalisation(const Robot& rb, const Keyframe& keyframe, MatchJob& job) {
+  Pose centre = job.predicted;
+  double linear =
+      std::min(3.0 * std::sqrt(std::max(rb.chain_cov(0, 0), rb.chain_cov(1, 1))), options_.relocalise_max_m);
+  double angular = std::min(3.0 * std::sqrt(rb.chain_cov(2, 2)), options_.relocalise_max_rad);
+  job.relocalise_confirming = rb.relocalise_hypothesis.has_value();
+  if (job.relocalise_confirming) {
+    centre = rb.relocalise_hypothesis->compose(keyframe.odom);
+    linear = options_.placement_agree_m;
+    angular = options_.placement_agree_rad;
+  }
+  old_neighbours(keyframe.robot, keyframe.first_stamp_ns, centre.position(),
+                 linear + options_.closure_radius_m, neighbours_);
+  if (static_cast<int>(neighbours_.size()) < options_.closure_min_keyframes) return;
+  // The trail is drawn about the prediction, where the robot's own recent keyframes hold it.
+  gather_recent_trail(rb, keyframe, job.predicted, job.relocalise_points);
+  double reach = 0.0;
+  for (const Vec2& p : job.relocalise_points) reach = std::max(reach, norm(p));
+  reach = std::min(reach, job.recovery_search.options().max_point_range_m);
+  const double half = linear + reach + options_.window_margin_m;
+  job.relocalise_geometry =
+      draw_local_grid(neighbours_, centre.position(), half, kRelocaliseResolution_m, job.relocalise_cells);
+  job.relocalise_region = {centre, linear, angular};
+  job.relocalise_anchor = neighbours_.front();
+  job.relocalise = true;
+}
+
+void PoseCorrector::search_relocalisation(ScanMatcher& matcher, MatchJob& job) const {
+  const GridView view{job.relocalise_geometry, job.relocalise_cells};
+  if (!job.recovery_search.set_map(view)) return;
+  const auto found = job.recovery_search.search(job.relocalise_points, job.relocalise_region);
+  if (!found || found->score < options_.placement_min_score ||
+      (!job.relocalise_confirming && found->ambiguity() > options_.placement_max_ambiguity))
+    return;
+  // The lattice's best is whole cells and heading steps: refined by the tracking search around it.
+  if (auto refined = matcher.match(view, job.relocalise_points, found->pose, options_.track_window,
+                                   options_.scan_independent_points))
+    job.relocalised = *refined;
 }
 
 GridGeometry PoseCorrector::draw_local_grid(std::span<const uint32_t> slots, Vec2 centre, double half_extent,
@@ -150,6 +212,7 @@ void PoseCorrector::prepare(Keyframe&& keyframe, const GridView& grid, bool matc
   if (job.standing) match = false;
   job.track = match;
   job.tie = false;
+  job.relocalise = false;
   job.wide_needed = job.wide_permitted = false;
   if (match) {
     // The window the tracking match can read: the farthest point, the search window and the
@@ -168,7 +231,8 @@ void PoseCorrector::prepare(Keyframe&& keyframe, const GridView& grid, bool matc
 
     // The tie to the old map, planned here where the pose graph lives (around the prediction: the
     // narrow match moves the keyframe by at most the tracking window, which the grid covers).
-    old_neighbours(keyframe.robot, keyframe.first_stamp_ns, job.predicted.position(), neighbours_);
+    old_neighbours(keyframe.robot, keyframe.first_stamp_ns, job.predicted.position(),
+                   options_.closure_radius_m, neighbours_);
     if (!rb.operator_pose && static_cast<int>(neighbours_.size()) >= options_.closure_min_keyframes) {
       if (schedule_.allow_tie(rb.schedule)) {
         const double chain_sigma = std::sqrt(std::max(rb.chain_cov(0, 0), rb.chain_cov(1, 1)));
@@ -196,6 +260,10 @@ void PoseCorrector::prepare(Keyframe&& keyframe, const GridView& grid, bool matc
         ++stats_.ties_skipped;
       }
     }
+    const double chain_sigma = std::sqrt(std::max(rb.chain_cov(0, 0), rb.chain_cov(1, 1)));
+    if (!keyframe.scans && !rb.operator_pose && chain_sigma > options_.relocalise_sigma_m &&
+        schedule_.load() == Load::Normal)
+      prepare_relocalisation(rb, keyframe, job);
   }
   job.keyframe = std::move(keyframe);
 }
@@ -225,6 +293,7 @@ void PoseCorrector::match_keyframe(ScanMatcher& matcher, MatchJob& job) const {
   job.wide = job.wide_skipped = false;
   job.wall_reading.reset();
   job.wall_heading.reset();
+  job.relocalised.reset();
   job.estimate = job.predicted;
   job.cov = Eigen::Matrix3d::Zero();
   if (!job.track) {
@@ -280,6 +349,7 @@ void PoseCorrector::match_keyframe(ScanMatcher& matcher, MatchJob& job) const {
       job.estimate.theta = wrap_angle(job.estimate.theta + gain * correction);
     }
   }
+  if (job.relocalise) search_relocalisation(matcher, job);
   if (!job.tie) return;
   // 3. Tie to the old map: against old keyframes only; a wide search (a loop closure) when the
   // robot has not been tied for a while or tracking failed.

@@ -87,6 +87,9 @@ size_t PoseCorrector::reset_robot(std::string_view robot) {
   rb.builder.start_segment();
   ++rb.generation;  // its keyframe on the worker, if any, is dropped when it lands
   rb.last_node.reset();
+  rb.recent_nodes.clear();
+  rb.relocalise_hypothesis.reset();
+  rb.relocalise_agreed = 0;
   rb.last_tied.reset();
   rb.operator_pose.reset();
   rb.chain_cov = Eigen::Matrix3d::Zero();
