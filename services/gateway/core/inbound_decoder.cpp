@@ -119,8 +119,11 @@ InboundResult apply_inbound(RobotRegistry& registry, InboundMessage& message) {
   if (message.is_vda) {
     const protocol::VdaTopic topic = message.vda.topic;
     is_status = !message.message.observation.has_pose;
-    if (topic == protocol::VdaTopic::Factsheet || (topic == protocol::VdaTopic::Visualization && is_status)) {
-      // Nothing for the registry: no pose, no status (the robot's address is the loop's business).
+    // Nothing for the registry: no pose, no status (the robot's address is the loop's business). A
+    // connection only changes a known robot's presence: a robot first heard through it would have no
+    // pose, and its record at (0, 0) would be where the planner takes its home to be.
+    if (topic == protocol::VdaTopic::Factsheet || (topic == protocol::VdaTopic::Visualization && is_status) ||
+        (topic == protocol::VdaTopic::Connection && registry.find(message.robot_id) == nullptr)) {
       result.kind = InboundKind::Status;
       return result;
     }

@@ -84,8 +84,8 @@ struct InboundResult {
 // Loop: records a decoded message in `registry`, or counts its rejection against the robot. A v2
 // points message without a pose may still be rejected here (missing_field, set in message.status).
 // A VDA 5050 state or visualization with an initialised position is an observation (the pose), one
-// without a status; a connection is a status (CONNECTIONBROKEN and OFFLINE: offline); a factsheet
-// only counts.
+// without a status; a connection is a status of a known robot (CONNECTIONBROKEN and OFFLINE: offline);
+// a factsheet only counts.
 InboundResult apply_inbound(RobotRegistry& registry, InboundMessage& message);
 
 }  // namespace slam::gateway

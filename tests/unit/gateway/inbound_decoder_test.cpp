@@ -147,6 +147,10 @@ TEST_F(VdaInboundTest, AStateIsTheRobotsPoseBatteryAndOperatingMode) {
 }
 
 TEST_F(VdaInboundTest, ABrokenConnectionTurnsTheRobotOffline) {
+  // Heard first through its connection, a robot is not recorded yet: it has no pose to be at.
+  ASSERT_EQ(feed("uagv/v2/Acme/agv-1/connection", vda(R"(, "connectionState": "ONLINE")")),
+            InboundKind::Status);
+  EXPECT_EQ(registry.find("Acme:agv-1"), nullptr);
   ASSERT_EQ(feed("uagv/v2/Acme/agv-1/state", kVdaState), InboundKind::Observation);
   ASSERT_EQ(feed("uagv/v2/Acme/agv-1/connection", vda(R"(, "connectionState": "CONNECTIONBROKEN")")),
             InboundKind::Status);
