@@ -22,6 +22,7 @@
 
 #include "common/core/geometry.hpp"
 #include "pose_correction/branch_and_bound_search.hpp"
+#include "pose_correction/free_space_check.hpp"
 #include "pose_correction/keyframe_builder.hpp"
 #include "pose_correction/point_refiner.hpp"
 #include "pose_correction/scan_matcher.hpp"
@@ -62,8 +63,9 @@ struct MatchJob {
   SearchRegion relocalise_region;
   GridGeometry relocalise_geometry;
   std::vector<uint8_t> relocalise_cells;
-  std::vector<Vec2> relocalise_points;
-  std::optional<double> map_axis;  // the map's wall axes (MapWallAxes), when known
+  std::vector<Ray> relocalise_rays;
+  std::vector<Vec2> relocalise_points;  // ...their ends
+  std::optional<double> map_axis;       // the map's wall axes (MapWallAxes), when known
   // Of the robot's heading in the map: its previous keyframe's, then (by the matching) with this
   // keyframe's motion added and the walls' heading taken.
   double heading_variance = 0.0;

@@ -113,15 +113,20 @@ struct CorrectorOptions {
   double window_margin_m = 0.3;  // beyond a keyframe's farthest point: the matcher's field blur
   double tied_sigma_m = 0.05;    // chain uncertainty above which a tie searches the wide window
   // After a long loop a sparse robot can be metres off, beyond closure_window, where one keyframe's
-  // few dozen points fit many places. While its chain's sigma exceeds relocalise_sigma_m, the points
-  // of its last placement_trail_m of keyframes are searched by branch and bound within 3 sigma (at
-  // most relocalise_max_m, relocalise_max_rad) among the old keyframes there, and a match as
-  // distinct as a placement's is taken as a loop closure once relocalise_confirmations keyframes in
-  // a row agree on it (as global localisation confirms a placement).
+  // few dozen points fit many places. While its chain's sigma
+  // exceeds relocalise_sigma_m, the points of its last placement_trail_m of keyframes are searched by branch
+  // and bound within 3 sigma (at most relocalise_max_m, relocalise_max_rad) among the old keyframes there,
+  // and a match as distinct as a placement's is taken as a loop closure once relocalise_confirmations
+  // keyframes in a row agree on it (as global localisation confirms a placement).
   double relocalise_sigma_m = 0.5;
   double relocalise_max_m = 8.0;
   double relocalise_max_rad = 0.6;
   int relocalise_confirmations = 3;
+  // A trail whose rays run through more than this share of the old keyframes' walls is a look-alike
+  // place. The trail is drawn at its drifting estimates and a 16-beam keyframe's points were seen
+  // from along its half metre, so true matches on the benchmark logs cross far more than a
+  // placement's; the simulator's look-alike rooms were taken at 0.7 (0.3 refused most true ones).
+  double relocalise_max_crossed_walls = 0.7;
   // A keyframe whose robot moved less than this since its previous one, and within it, was taken
   // standing still: it sees what its previous keyframe saw, and matching it again adds nothing but
   // the chance to be dragged by other robots' fresh keyframes (placed by odometry instead).
@@ -366,6 +371,9 @@ class PoseCorrector {
   // A robot's latest keyframes kept for its trail: 4 m at a sparse robot's 0.4 m keyframes, with
   // room for turns on the spot.
   static constexpr size_t kRecentNodes = 32;
+  // A ray's last stretch may pass a wall seen a little off without counting as a crossing: the
+  // search's lattice (a cell, a heading step) and walls a cell or two thick.
+  static constexpr double kWallCrossingMargin_m = 0.3;
   // The old keyframes' grid a loose robot is searched on: coarser than the map, since it spans metres
   // of uncertainty and only has to find the place for the tracking matcher to refine.
   static constexpr double kRelocaliseResolution_m = 0.1;
@@ -437,10 +445,10 @@ class PoseCorrector {
                       std::vector<uint32_t>& out);
   // A loose sparse robot's search among the old keyframes around it (relocalise_sigma_m), planned.
   void prepare_relocalisation(const Robot& rb, const Keyframe& keyframe, MatchJob& job);
-  // The points of the robot's keyframes over placement_trail_m before `keyframe` (same segment) and
+  // The rays of the robot's keyframes over placement_trail_m before `keyframe` (same segment) and
   // its own, in the frame of `keyframe` placed at `pose`, evenly thinned to placement_max_points.
   void gather_recent_trail(const Robot& rb, const Keyframe& keyframe, const Pose& pose,
-                           std::vector<Vec2>& out);
+                           std::vector<Ray>& out);
   // The search itself (on the worker): the trail over the region, refined by the tracking matcher.
   void search_relocalisation(ScanMatcher& matcher, MatchJob& job) const;
   // The points (map frame) within the square of half_extent around `centre` of the keyframes within

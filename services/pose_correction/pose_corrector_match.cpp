@@ -34,8 +34,9 @@ void PoseCorrector::old_neighbours(uint32_t robot, int64_t stamp_ns, Vec2 centre
 }
 
 void PoseCorrector::gather_recent_trail(const Robot& rb, const Keyframe& keyframe, const Pose& pose,
-                                        std::vector<Vec2>& out) {
-  out.assign(keyframe.points.begin(), keyframe.points.end());
+                                        std::vector<Ray>& out) {
+  out.clear();
+  for (const Vec2& p : keyframe.points) out.push_back({{0.0, 0.0}, p});
   const Pose keyframe_from_map = pose.inverse();
   Vec2 later_odom = keyframe.odom.position();
   double travel = 0.0;
@@ -46,7 +47,8 @@ void PoseCorrector::gather_recent_trail(const Robot& rb, const Keyframe& keyfram
     if (travel > options_.placement_trail_m) break;
     later_odom = n.odom.position();
     const Pose keyframe_from_node = keyframe_from_map.compose(n.estimate);
-    for (const Vec2& p : n.points) out.push_back(keyframe_from_node.transform(p));
+    const Vec2 origin = keyframe_from_node.position();
+    for (const Vec2& p : n.points) out.push_back({origin, keyframe_from_node.transform(p)});
   }
   const size_t keep = options_.placement_max_points;
   if (keep == 0 || out.size() <= keep) return;
@@ -70,9 +72,13 @@ void PoseCorrector::prepare_relocalisation(const Robot& rb, const Keyframe& keyf
                  linear + options_.closure_radius_m, neighbours_);
   if (static_cast<int>(neighbours_.size()) < options_.closure_min_keyframes) return;
   // The trail is drawn about the prediction, where the robot's own recent keyframes hold it.
-  gather_recent_trail(rb, keyframe, job.predicted, job.relocalise_points);
+  gather_recent_trail(rb, keyframe, job.predicted, job.relocalise_rays);
+  job.relocalise_points.clear();
   double reach = 0.0;
-  for (const Vec2& p : job.relocalise_points) reach = std::max(reach, norm(p));
+  for (const Ray& r : job.relocalise_rays) {
+    job.relocalise_points.push_back(r.end);
+    reach = std::max(reach, norm(r.end));
+  }
   reach = std::min(reach, job.recovery_search.options().max_point_range_m);
   const double half = linear + reach + options_.window_margin_m;
   job.relocalise_geometry =
@@ -88,6 +94,10 @@ void PoseCorrector::search_relocalisation(ScanMatcher& matcher, MatchJob& job) c
   const auto found = job.recovery_search.search(job.relocalise_points, job.relocalise_region);
   if (!found || found->score < options_.placement_min_score ||
       (!job.relocalise_confirming && found->ambiguity() > options_.placement_max_ambiguity))
+    return;
+  // A look-alike place fits the points but its rays run through the old keyframes' walls.
+  if (crossed_wall_share(view, found->pose, job.relocalise_rays, kWallCrossingMargin_m) >
+      options_.relocalise_max_crossed_walls)
     return;
   // The lattice's best is whole cells and heading steps: refined by the tracking search around it.
   if (auto refined = matcher.match(view, job.relocalise_points, found->pose, options_.track_window,

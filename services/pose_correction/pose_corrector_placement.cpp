@@ -15,10 +15,6 @@
 namespace slam::correction {
 namespace {
 
-// The last stretch of a ray a wall may lie on at a true placement: the search's lattice (a cell, a
-// heading step) and the map's walls a cell or two thick.
-constexpr double kWallCrossingMargin_m = 0.3;
-
 // The occupied part of `grid` (cells of a wall or an obstruction), with a margin: what a keyframe
 // can be placed against. Empty when nothing is occupied.
 CellBox occupied_box(const GridView& grid, int32_t margin) {
