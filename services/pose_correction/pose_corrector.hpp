@@ -118,6 +118,9 @@ struct CorrectorOptions {
   // and bound within 3 sigma (at most relocalise_max_m, relocalise_max_rad) among the old keyframes there,
   // and a match as distinct as a placement's is taken as a loop closure once relocalise_confirmations
   // keyframes in a row agree on it (as global localisation confirms a placement).
+  // Off by default (the mapper's --slam-relocalise): a robot just switched on beside others' keyframes
+  // has a loose chain too, and in the simulator's two-room world such a search took the other room.
+  bool relocalise = false;
   double relocalise_sigma_m = 0.5;
   double relocalise_max_m = 8.0;
   double relocalise_max_rad = 0.6;

@@ -271,8 +271,8 @@ void PoseCorrector::prepare(Keyframe&& keyframe, const GridView& grid, bool matc
       }
     }
     const double chain_sigma = std::sqrt(std::max(rb.chain_cov(0, 0), rb.chain_cov(1, 1)));
-    if (!keyframe.scans && !rb.operator_pose && chain_sigma > options_.relocalise_sigma_m &&
-        schedule_.load() == Load::Normal)
+    if (options_.relocalise && !keyframe.scans && !rb.operator_pose &&
+        chain_sigma > options_.relocalise_sigma_m && schedule_.load() == Load::Normal)
       prepare_relocalisation(rb, keyframe, job);
   }
   job.keyframe = std::move(keyframe);

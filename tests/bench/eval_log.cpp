@@ -246,6 +246,7 @@ void add_slam_options(CLI::App& app, correction::CorrectorOptions& s) {
   add("--scan-recovery-window-rad", s.scan_recovery_window.angular_rad, "...and its heading (rad)");
   add("--scan-recovery-gain", s.scan_recovery_gain, "...and taken when it scores this much better");
   add("--closure-radius", s.closure_radius_m, "old keyframes this near are closure candidates (m)");
+  add("--relocalise", s.relocalise, "search a loose sparse robot by its trail (true/false)");
   add("--relocalise-sigma", s.relocalise_sigma_m,
       "a sparse robot whose chain is looser than this (m) is searched for by its trail");
   add("--relocalise-max-m", s.relocalise_max_m, "...at most this far (m)");

@@ -98,6 +98,14 @@ void add_mapper_options(CLI::App& app, MapperOptions& o) {
       ->check(CLI::IsMember({"on", "off"}))
       ->capture_default_str();
 
+  app.add_option(
+         "--slam-relocalise", o.slam_relocalise,
+         "search a sparse robot whose pose has grown loose (a long loop) by its last 4 m of keyframes "
+         "among the old keyframes within 3 sigma, closed once three keyframes agree (off: a robot "
+         "just switched on beside others' keyframes may be taken to a look-alike room)")
+      ->check(CLI::IsMember({"on", "off"}))
+      ->capture_default_str();
+
   app.add_option("--slam-point-refine", o.slam_point_refine,
                  "refine each match against the points of the keyframes around it, not only the grid's "
                  "cells (off: the grid alone, walls up to half a cell off)")

@@ -68,6 +68,7 @@ Status MapperNode::configure() {
   slam_options.global_localisation = options_.slam_global_localisation == "on";
   slam_options.point_refine = options_.slam_point_refine == "on";
   slam_options.odometry_calibration = options_.slam_odometry_calibration == "on";
+  slam_options.relocalise = options_.slam_relocalise == "on";
   slam_options.match_threads = 1;  // the map loop keeps integrating while keyframes are matched
   corrections_ = std::make_unique<CorrectionStage>(options_.slam_enabled(), slam_options);
   SLAM_TRY(corrections_->restore(*mapper_));

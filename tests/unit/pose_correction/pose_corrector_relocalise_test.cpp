@@ -77,6 +77,7 @@ CorrectorOptions loop_options() {
   o.old_age_s = 10.0;      // the start is old map when the robot comes back to it
   o.wall_heading = false;  // no walls' heading to lean on: the trail alone
   o.odometry_calibration = false;
+  o.relocalise = true;
   return o;
 }
 
@@ -92,7 +93,7 @@ TEST(PoseCorrectorRelocalise, ALoopBeyondTheClosureWindowIsClosedByTheTrail) {
 
 TEST(PoseCorrectorRelocalise, WithoutTheTrailSearchTheLoopStaysOpen) {
   CorrectorOptions o = loop_options();
-  o.relocalise_sigma_m = 1e9;
+  o.relocalise = false;
   PoseCorrector corrector(o);
   const LoopResult r = drive_loop(corrector, 0.0005);
   EXPECT_GT(r.corrected_error_m, 1.0);
