@@ -33,4 +33,12 @@ double crossed_wall_share(const GridView& map, const Pose& pose, std::span<const
   return static_cast<double>(crossed) / static_cast<double>(rays.size());
 }
 
+void thin_evenly(std::vector<Ray>& rays, size_t max_rays) {
+  if (max_rays == 0 || rays.size() <= max_rays) return;
+  const size_t stride = (rays.size() + max_rays - 1) / max_rays;
+  size_t kept = 0;
+  for (size_t i = 0; i < rays.size(); i += stride) rays[kept++] = rays[i];
+  rays.resize(kept);
+}
+
 }  // namespace slam::correction

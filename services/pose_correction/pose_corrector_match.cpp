@@ -50,11 +50,7 @@ void PoseCorrector::gather_recent_trail(const Robot& rb, const Keyframe& keyfram
     const Vec2 origin = keyframe_from_node.position();
     for (const Vec2& p : n.points) out.push_back({origin, keyframe_from_node.transform(p)});
   }
-  const size_t keep = options_.placement_max_points;
-  if (keep == 0 || out.size() <= keep) return;
-  const size_t size = out.size();  // evenly thinned in place: the i-th kept is the (i * size / keep)-th
-  for (size_t i = 0; i < keep; ++i) out[i] = out[i * size / keep];
-  out.resize(keep);
+  thin_evenly(out, options_.placement_max_points);
 }
 
 void PoseCorrector::prepare_relocalisation(const Robot& rb, const Keyframe& keyframe, MatchJob& job) {

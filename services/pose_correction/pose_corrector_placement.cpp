@@ -43,8 +43,7 @@ CellBox occupied_box(const GridView& grid, int32_t margin) {
 // evenly thinned to at most `max_rays`: one sparse keyframe (a v1 robot's 16 points a message)
 // fits many places of a building, a few metres of them fit one. Each ray starts at its keyframe's
 // origin (the robot moves a few decimetres within one).
-void gather_trail(std::span<const Keyframe> held, double trail_m, size_t max_rays, std::vector<Ray>& trail,
-                  std::vector<Ray>& out) {
+void gather_trail(std::span<const Keyframe> held, double trail_m, size_t max_rays, std::vector<Ray>& trail) {
   trail.clear();
   const Keyframe& newest = held.back();
   const Pose to_newest = newest.odom.inverse();
@@ -58,10 +57,7 @@ void gather_trail(std::span<const Keyframe> held, double trail_m, size_t max_ray
     const Vec2 origin = into_newest.position();
     for (const Vec2& p : k.points) trail.push_back({origin, into_newest.transform(p)});
   }
-  // Evenly thinned: the search's cost follows the points, and a few hundred pin a place.
-  out.clear();
-  const size_t stride = std::max<size_t>(1, (trail.size() + max_rays - 1) / max_rays);
-  for (size_t i = 0; i < trail.size(); i += stride) out.push_back(trail[i]);
+  thin_evenly(trail, max_rays);
 }
 
 // Map a correction found for `keyframe` (its origin at `pose`) gives its robot's odometry frame.
@@ -120,8 +116,7 @@ void PoseCorrector::search_placement(Robot& rb, const GridView& grid, int64_t no
     placement_map_ns_ = now_ns;
   }
   if (!placement_map_ready_) return;  // nothing on the map yet: it waits for the others' (or the wait's end)
-  gather_trail(rb.held, options_.placement_trail_m, options_.placement_max_points, placement_trail_,
-               placement_rays_);
+  gather_trail(rb.held, options_.placement_trail_m, options_.placement_max_points, placement_rays_);
   placement_points_.clear();
   for (const Ray& r : placement_rays_) placement_points_.push_back(r.end);
 

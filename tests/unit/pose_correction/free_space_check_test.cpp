@@ -54,3 +54,20 @@ TEST(CrossedWallShare, NothingToReadIsNoCrossing) {
 
 }  // namespace
 }  // namespace slam::correction
+
+namespace slam::correction {
+namespace {
+
+TEST(ThinEvenly, KeepsEveryStrideThRayAndAtMostTheLimit) {
+  std::vector<Ray> rays;
+  for (int i = 0; i < 10; ++i) rays.push_back({{0.0, 0.0}, {static_cast<double>(i), 0.0}});
+  std::vector<Ray> few = rays;
+  thin_evenly(few, 20);
+  EXPECT_EQ(few.size(), 10u);  // under the limit: all stay
+  thin_evenly(rays, 4);        // stride 3: rays 0, 3, 6, 9
+  ASSERT_EQ(rays.size(), 4u);
+  for (size_t k = 0; k < rays.size(); ++k) EXPECT_DOUBLE_EQ(rays[k].end.x, 3.0 * static_cast<double>(k));
+}
+
+}  // namespace
+}  // namespace slam::correction
