@@ -123,16 +123,7 @@ Status RobotLinks::add(const std::string& robot_id, std::optional<RobotProtocol>
     std::vector<std::string> subscriptions;
     std::optional<mqtt::Will> will;
     if (auto s = add_vda(robot_id, e, subscriptions, will); !s) return s;
-    if (settings_.multiplex) {
-      e.link = shared_link_.get();
-    } else {
-      auto link = open(robot_id, std::move(subscriptions), std::move(will));
-      if (!link) return link.error();
-      e.own_link = std::move(*link);
-      e.link = e.own_link.get();
-    }
-    endpoints_.emplace(robot_id, std::move(e));
-    return {};
+    return attach(robot_id, std::move(e), std::move(subscriptions), std::move(will));
   }
   if (settings_.multiplex && e.protocol != settings_.protocol)
     return Error{"the shared MQTT connection subscribes the --protocol robots' commands only"};
@@ -141,19 +132,24 @@ Status RobotLinks::add(const std::string& robot_id, std::optional<RobotProtocol>
               : protocol::v2_scan_topic(robot_id, e.report_topic);
   if (s) s = protocol::v2_status_topic(robot_id, e.status_topic);
   if (!s) return Error{s.detail()};
+  std::vector<std::string> subscriptions(v1 ? 1 : 2);
+  if (v1) {
+    s = protocol::v1_command_topic(robot_id, subscriptions[0]);
+  } else {
+    s = protocol::v2_waypoint_topic(robot_id, subscriptions[0]);
+    if (s) s = protocol::v2_path_topic(robot_id, subscriptions[1]);
+  }
+  if (!s) return Error{s.detail()};
+  std::optional<mqtt::Will> will;
+  if (!v1) will = mqtt::Will{e.status_topic, std::string(protocol::kV2OfflineStatus)};
+  return attach(robot_id, std::move(e), std::move(subscriptions), std::move(will));
+}
+
+Status RobotLinks::attach(const std::string& robot_id, Endpoint e, std::vector<std::string> subscriptions,
+                          std::optional<mqtt::Will> will) {
   if (settings_.multiplex) {
     e.link = shared_link_.get();
   } else {
-    std::vector<std::string> subscriptions(v1 ? 1 : 2);
-    if (v1) {
-      s = protocol::v1_command_topic(robot_id, subscriptions[0]);
-    } else {
-      s = protocol::v2_waypoint_topic(robot_id, subscriptions[0]);
-      if (s) s = protocol::v2_path_topic(robot_id, subscriptions[1]);
-    }
-    if (!s) return Error{s.detail()};
-    std::optional<mqtt::Will> will;
-    if (!v1) will = mqtt::Will{e.status_topic, std::string(protocol::kV2OfflineStatus)};
     auto link = open(robot_id, std::move(subscriptions), std::move(will));
     if (!link) return link.error();
     e.own_link = std::move(*link);

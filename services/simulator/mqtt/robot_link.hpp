@@ -110,6 +110,9 @@ class RobotLinks {
   };
 
   RobotLinks(Settings settings, Counters& counters);
+  // The endpoint on the shared connection, or on its own one subscribing `subscriptions` with `will`.
+  Status attach(const std::string& robot_id, Endpoint e, std::vector<std::string> subscriptions,
+                std::optional<mqtt::Will> will);
   Result<std::unique_ptr<mqtt::Connection>> open(const std::string& client_id,
                                                  std::vector<std::string> subscriptions,
                                                  std::optional<mqtt::Will> will);
