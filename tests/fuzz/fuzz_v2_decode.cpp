@@ -10,6 +10,7 @@
 #include <string>
 #include <string_view>
 
+#include "fuzz_topic_input.hpp"
 #include "protocol/message_decoder.hpp"
 #include "protocol/text_check.hpp"
 #include "protocol/topic.hpp"
@@ -46,12 +47,7 @@ void check_status(const DecodedStatus& out) {
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
-  const std::string_view input(reinterpret_cast<const char*>(data), size);
-  const std::size_t newline = input.find('\n');
-  const std::string_view topic = input.substr(0, newline);
-  const std::span<const std::uint8_t> payload = newline == std::string_view::npos
-                                                    ? std::span<const std::uint8_t>{}
-                                                    : std::span(data + newline + 1, size - newline - 1);
+  const auto [topic, payload] = slam::fuzz::split_topic_input(data, size);
 
   CodecLimits limits;
   limits.max_points = 64;  // small enough for the fuzzer to reach the limit
