@@ -111,6 +111,8 @@ struct CorrectorStats {
   int64_t robots_placed = 0;           // found on the map
   int64_t placements_given_up = 0;     // not found: placed by their odometry
   int64_t placement_contradicted = 0;  // a hypothesis a later keyframe disagreed with
+  // A loose sparse robot searched for by its trail (CorrectorOptions::relocalise).
+  int64_t trail_searches = 0;
 };
 
 // How one keyframe was placed, for diagnostics (eval_replay --trace-keyframes compares each pose

@@ -170,10 +170,10 @@ void PoseCorrector::confirm_relocalisation(const MatchJob& job, Robot& rb, TieDe
   ++stats_.closures_accepted;
   spdlog::info(
       "loop closure by the trail: robot {} keyframe {} moved {:.2f} m, {:.1f} deg ({} points, score {:.2f}, "
-      "chain sigma {:.2f} m)",
+      "pose sigma {:.2f} m)",
       rb.name, keyframe.id, distance(found->pose.position(), job.estimate.position()),
       to_degrees(wrap_angle(found->pose.theta - job.estimate.theta)), job.relocalise_points.size(),
-      found->score, std::sqrt(std::max(rb.chain_cov(0, 0), rb.chain_cov(1, 1))));
+      found->score, std::sqrt(std::max(rb.pose_cov(0, 0), rb.pose_cov(1, 1))));
 }
 
 Pose PoseCorrector::apply_tie(const Keyframe& keyframe, Robot& rb, const TieDecision& tie,

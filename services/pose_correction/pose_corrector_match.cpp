@@ -56,8 +56,8 @@ void PoseCorrector::gather_recent_trail(const Robot& rb, const Keyframe& keyfram
 void PoseCorrector::prepare_relocalisation(const Robot& rb, const Keyframe& keyframe, MatchJob& job) {
   Pose centre = job.predicted;
   double linear =
-      std::min(3.0 * std::sqrt(std::max(rb.chain_cov(0, 0), rb.chain_cov(1, 1))), options_.relocalise_max_m);
-  double angular = std::min(3.0 * std::sqrt(rb.chain_cov(2, 2)), options_.relocalise_max_rad);
+      std::min(3.0 * std::sqrt(std::max(rb.pose_cov(0, 0), rb.pose_cov(1, 1))), options_.relocalise_max_m);
+  double angular = std::min(3.0 * std::sqrt(rb.pose_cov(2, 2)), options_.relocalise_max_rad);
   job.relocalise_confirming = rb.relocalise_hypothesis.has_value();
   if (job.relocalise_confirming) {
     centre = rb.relocalise_hypothesis->compose(keyframe.odom);
@@ -82,6 +82,7 @@ void PoseCorrector::prepare_relocalisation(const Robot& rb, const Keyframe& keyf
   job.relocalise_region = {centre, linear, angular};
   job.relocalise_anchor = neighbours_.front();
   job.relocalise = true;
+  ++stats_.trail_searches;
 }
 
 void PoseCorrector::search_relocalisation(ScanMatcher& matcher, MatchJob& job) const {
@@ -266,9 +267,11 @@ void PoseCorrector::prepare(Keyframe&& keyframe, const GridView& grid, bool matc
         ++stats_.ties_skipped;
       }
     }
-    const double chain_sigma = std::sqrt(std::max(rb.chain_cov(0, 0), rb.chain_cov(1, 1)));
+    // The pose's own uncertainty in the map, not the chain's since its last tie: a robot just switched
+    // on at a trusted start has an untied chain but a known pose.
+    const double pose_sigma = std::sqrt(std::max(rb.pose_cov(0, 0), rb.pose_cov(1, 1)));
     if (options_.relocalise && !keyframe.scans && !rb.operator_pose &&
-        chain_sigma > options_.relocalise_sigma_m && schedule_.load() == Load::Normal)
+        pose_sigma > options_.relocalise_sigma_m && schedule_.load() == Load::Normal)
       prepare_relocalisation(rb, keyframe, job);
   }
   job.keyframe = std::move(keyframe);

@@ -101,8 +101,7 @@ void add_mapper_options(CLI::App& app, MapperOptions& o) {
   app.add_option(
          "--slam-relocalise", o.slam_relocalise,
          "search a sparse robot whose pose has grown loose (a long loop) by its last 4 m of keyframes "
-         "among the old keyframes within 3 sigma, closed once three keyframes agree (off: a robot "
-         "just switched on beside others' keyframes may be taken to a look-alike room)")
+         "among the old keyframes within 3 sigma, closed once three keyframes agree")
       ->check(CLI::IsMember({"on", "off"}))
       ->capture_default_str();
 

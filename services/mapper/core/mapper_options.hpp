@@ -37,7 +37,7 @@ struct MapperOptions {
   std::string slam_wall_heading = "on";          // keyframe headings held to the walls' directions
   std::string slam_point_refine = "on";          // matches refined against the keyframes' own points
   std::string slam_odometry_calibration = "on";  // each robot's systematic odometry heading error taken out
-  std::string slam_relocalise = "off";  // a loose sparse robot searched for by its trail among old keyframes
+  std::string slam_relocalise = "on";  // a loose sparse robot searched for by its trail among old keyframes
   // Offline commands (no DDS): rebuild from the store and write a ROS map, store a map as prior, or
   // write one robot's trajectory (to trajectory_out, as tum or carmen).
   std::string export_yaml;

@@ -284,6 +284,7 @@ void MapperNode::update_periodic_counters() {
   counters_.get("slam_placement_searches").store(st.placement_searches, std::memory_order_relaxed);
   counters_.get("slam_robots_placed").store(st.robots_placed, std::memory_order_relaxed);
   counters_.get("slam_placements_given_up").store(st.placements_given_up, std::memory_order_relaxed);
+  counters_.get("slam_trail_searches").store(st.trail_searches, std::memory_order_relaxed);
   counters_.get("slam_ties_tried").store(st.ties_tried, std::memory_order_relaxed);
   counters_.get("slam_ties_skipped").store(st.ties_skipped, std::memory_order_relaxed);
   counters_.get("slam_wide_skipped").store(st.wide_skipped, std::memory_order_relaxed);
