@@ -212,6 +212,8 @@ CodecStatus read_state(const Json& doc, const CodecLimits& limits, VdaMessage& o
   if (auto s = read_array(doc, "edgeStates", {"edgeStates"}, limits, states); !s) return s;
   out.edge_states = states->size();
   if (auto s = read_bool(doc, "driving", {"driving"}, out.driving); !s) return s;
+  if (json_fields::find_optional(doc, "paused") != nullptr)
+    if (auto s = read_bool(doc, "paused", {"paused"}, out.paused); !s) return s;
   // 32 bytes: it travels as the robot's status text (RobotState.status, string<32>).
   if (auto s = read_text(doc, "operatingMode", {"operatingMode"}, kMaxStateBytes, out.operating_mode); !s)
     return s;
@@ -327,7 +329,7 @@ void VdaMessage::clear() {
   map_id.clear();
   battery = -1.0f;
   operating_mode.clear();
-  driving = false;
+  driving = paused = false;
   order_id.clear();
   order_update_id = 0;
   last_node_id.clear();
@@ -527,6 +529,7 @@ void encode_vda_state(const VdaHeader& header, const VdaRobotReport& report, std
   doc["nodeStates"] = std::move(nodes);
   doc["edgeStates"] = Json::array();
   doc["driving"] = report.driving;
+  doc["paused"] = report.paused;
   doc["actionStates"] = Json::array();
   doc["batteryState"] = {{"batteryCharge", report.battery * 100.0}, {"charging", false}};
   doc["operatingMode"] = "AUTOMATIC";

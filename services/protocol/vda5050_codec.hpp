@@ -76,6 +76,7 @@ struct VdaMessage {
   float battery = -1.0f;       // batteryState.batteryCharge / 100, negative when absent
   std::string operating_mode;  // "AUTOMATIC", "MANUAL", ...
   bool driving = false;
+  bool paused = false;  // "paused" (optional): a startPause holds it
   std::string order_id;
   std::uint32_t order_update_id = 0;
   std::string last_node_id;
@@ -163,6 +164,7 @@ struct VdaRobotReport {
   std::uint32_t last_node_sequence_id = 0;
   std::span<const VdaNode> nodes_left;  // node states: the order's nodes not passed yet
   float battery = 1.0f;                 // 0..1
+  bool paused = false;                  // a startPause holds it
 };
 
 void encode_vda_state(const VdaHeader& header, const VdaRobotReport& report, std::string& out);

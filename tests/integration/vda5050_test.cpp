@@ -2,7 +2,9 @@
 // (Node, pinned in tests/node/package-lock.json; tests/node/vda5050_agv_test.mjs) joins a mixed fleet
 // (mosquitto, gateway, mapper, planner, one simulated v1 robot mapping the empty world), shows up as a
 // fleet robot, takes the planner's path for a goal as an order and its updates, and reaches the goal;
-// a robot whose connection breaks (the broker's last will) is marked offline.
+// a stop pauses it (startPause) and the same goal again resumes its order (stopPause), a goal elsewhere
+// cancels the held order for a new one; a robot whose connection breaks (the broker's last will) is
+// marked offline.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -20,6 +22,24 @@ namespace {
 using namespace std::chrono_literals;
 
 constexpr const char* kRobot = "SlamTest:agv-1";  // <manufacturer>:<serialNumber>
+
+NavGoal make_goal(const std::string& robot, std::uint64_t id, GoalMode mode, double x, double y) {
+  NavGoal goal;
+  goal.robot_id(robot);
+  goal.goal_id(id);
+  goal.mode(mode);
+  Point2 target;
+  target.x(x);
+  target.y(y);
+  goal.target(target);
+  return goal;
+}
+
+std::size_t count_of(const std::string& text, const std::string& what) {
+  std::size_t count = 0;
+  for (auto at = text.find(what); at != std::string::npos; at = text.find(what, at + what.size())) ++count;
+  return count;
+}
 
 bool node_ready() {
   return std::system("node --version > /dev/null 2>&1") == 0 &&
@@ -130,6 +150,61 @@ TEST_F(Vda5050Test, VirtualAgvReachesAPlannedGoalAndASquareThroughOrders) {
   ASSERT_TRUE(square) << group_.log("agv") << group_.log("gateway");
   const std::string agv = group_.log("agv");
   EXPECT_NE(agv.find(" update 4"), std::string::npos) << agv;
+  EXPECT_EQ(agv.find("error "), std::string::npos) << agv;
+}
+
+// Stop goals reach the gateway as the robot's own position, as for v1/v2 robots, and so do the traffic
+// rules' holds: the robot is paused with its order kept; the same goal again goes on to the same node,
+// so the pause ends and the order goes on; a goal elsewhere cancels the held order for a new one.
+TEST_F(Vda5050Test, AStopPausesTheVirtualAgvAndItsOrderResumesOrIsCancelled) {
+  group_.start("planner", {testkit::bin_path("slam-planner"), "--domain", domain(), "--no-share",
+                           "--goal-store", group_.dir() + "/goals.json"});
+  start_agv(1.0, 1.0);
+  ASSERT_TRUE(wait_state([](const RobotState& s) { return s.presence() == PRESENCE_ONLINE; }, 60s))
+      << group_.log("agv") << group_.log("gateway");
+  auto goals = dds::make_writer(*participant_, dds::kNavGoal);
+  ASSERT_TRUE(goals) << goals.message();
+  ASSERT_TRUE((*goals)->wait_for_readers(30s));
+
+  // Straight on to (1, 9); stopped on the way.
+  ASSERT_TRUE((*goals)->write(make_goal(kRobot, 1, GOAL_DIRECT, 1.0, 9.0)));
+  ASSERT_TRUE(wait_state([](const RobotState& s) { return s.pose().y() > 2.5; }, 30s)) << group_.log("agv");
+  ASSERT_TRUE((*goals)->write(make_goal(kRobot, 2, GOAL_STOP, 0.0, 0.0)));
+  ASSERT_TRUE(
+      testkit::wait_until([&] { return group_.log("agv").find("\npaused") != std::string::npos; }, 10s))
+      << group_.log("agv") << group_.log("gateway");
+
+  // The same goal again: the order it holds goes on, unpaused, to its node.
+  ASSERT_TRUE((*goals)->write(make_goal(kRobot, 3, GOAL_DIRECT, 1.0, 9.0)));
+  ASSERT_TRUE(paths_.wait_for(
+      [](const RobotPath& p) {
+        return p.robot_id() == kRobot && p.goal_id() == 3 && p.status() == GOAL_STATUS_REACHED;
+      },
+      60s))
+      << group_.log("agv") << group_.log("gateway");
+  std::string agv = group_.log("agv");
+  EXPECT_EQ(count_of(agv, "unpaused"), 1u) << agv;
+  EXPECT_EQ(count_of(agv, "order slam-"), 1u) << "one order, resumed: " << agv;
+
+  // Back towards (1, 1), stopped on the way, then a goal elsewhere: the held order is cancelled and a
+  // new one driven. (The planner may hold the robot where it reached goal 3, which pauses it too.)
+  states_.clear();  // from here on, states on the way back
+  ASSERT_TRUE((*goals)->write(make_goal(kRobot, 4, GOAL_DIRECT, 1.0, 1.0)));
+  ASSERT_TRUE(wait_state([](const RobotState& s) { return s.pose().y() < 7.5; }, 30s)) << group_.log("agv");
+  const std::size_t pauses = count_of(group_.log("agv"), "\npaused");
+  ASSERT_TRUE((*goals)->write(make_goal(kRobot, 5, GOAL_STOP, 0.0, 0.0)));
+  ASSERT_TRUE(testkit::wait_until([&] { return count_of(group_.log("agv"), "\npaused") > pauses; }, 10s))
+      << group_.log("agv") << group_.log("gateway");
+  const std::size_t orders = count_of(group_.log("agv"), " update 0");
+  ASSERT_TRUE((*goals)->write(make_goal(kRobot, 6, GOAL_DIRECT, 4.0, 6.0)));
+  ASSERT_TRUE(paths_.wait_for(
+      [](const RobotPath& p) {
+        return p.robot_id() == kRobot && p.goal_id() == 6 && p.status() == GOAL_STATUS_REACHED;
+      },
+      60s))
+      << group_.log("agv") << group_.log("gateway");
+  agv = group_.log("agv");
+  EXPECT_EQ(count_of(agv, " update 0"), orders + 1) << "a new order for the goal elsewhere: " << agv;
   EXPECT_EQ(agv.find("error "), std::string::npos) << agv;
 }
 

@@ -1,7 +1,7 @@
 // A VDA 5050 2.0 robot no one here wrote: vda-5050-lib's AgvController with its VirtualAgvAdapter
 // (pinned in package-lock.json), connected to the test's broker, driven by the gateway as its fleet
 // control. It runs until killed (the test kills it, also with SIGKILL to break its connection) and logs
-// one line per order update it takes and per node it passes, for the test to read.
+// one line per order update it takes, per node it passes and per pause and its end, for the test to read.
 //   node vda5050_agv_test.mjs BROKER_URL MANUFACTURER SERIAL_NUMBER X Y MAP_ID
 import { AgvController, VirtualAgvAdapter } from "vda-5050-lib";
 
@@ -18,6 +18,11 @@ class LoggedAgvController extends AgvController {
     }
     if (changes.lastNodeId !== undefined) {
       console.log(`node ${changes.lastNodeId} at ${this.currentOrder?.orderId}`);
+    }
+    // The state carries paused from the start; only its changes are logged.
+    if (changes.paused !== undefined && changes.paused !== (this.paused ?? false)) {
+      this.paused = changes.paused;
+      console.log(this.paused ? "paused" : "unpaused");
     }
     for (const e of changes.errors ?? []) console.log(`error ${e.errorType}: ${e.errorDescription}`);
   }

@@ -2,8 +2,8 @@
 // A waypoint command from the planner (map frame), turned into what the robot understands: first
 // into the robot's odometry frame with its correction, then into the protocol it spoke last: v1
 // gets exactly one 4-byte int16 pair on v1/server/<id>/cmd (never wrapped: out of range is an
-// error), v2 gets the waypoint JSON and the whole remaining path JSON, a VDA 5050 robot an order (or a
-// cancelOrder) from VdaOrders.
+// error), v2 gets the waypoint JSON and the whole remaining path JSON, a VDA 5050 robot an order or
+// instant actions (startPause, stopPause, cancelOrder) from VdaOrders.
 #include <array>
 #include <cstddef>
 #include <cstdint>

@@ -1,5 +1,6 @@
 // VdaOrders: base up to the planner's waypoint, horizon beyond, updates stitched at the last base node,
-// halts as cancelOrder, and what the robot's state says of each.
+// halts as startPause (resumed by stopPause, or dropped by cancelOrder), and what the robot's state says
+// of each.
 #include "gateway/core/vda_orders.hpp"
 
 #include <fmt/format.h>
@@ -50,8 +51,11 @@ void VdaOrders::take_state(Robot& robot, const protocol::VdaMessage& state,
   robot.driving = state.driving;
   robot.robot_order_id = state.order_id;
   if (robot.cancelling && (!robot.busy || state.order_id != robot.order.order_id)) {
-    // Cancelled (or the robot dropped it): the next path starts a new order from where it stands.
+    // Cancelled (or the robot dropped it): the next path starts a new order from where it stands. A
+    // robot may end its pause with the order (vda-5050-lib's does) or stay paused; stopPause is sent
+    // with the next order only in the second case (the first refuses it: not paused).
     robot.cancelling = false;
+    robot.holding = robot.holding && state.paused;
     robot.order = {};
   }
   if (robot.order.order_id.empty()) return;
@@ -86,27 +90,52 @@ protocol::CodecStatus VdaOrders::command(std::string_view id, std::optional<Poin
 
   const bool ours =
       !robot.order.order_id.empty() && (!robot.has_state || robot.robot_order_id == robot.order.order_id);
-  const bool halt = path.size() == 1 && position && robot.driving && is_halt(robot, *position, path[0]);
-  if (halt || (robot.busy && !ours)) {
-    // A halt cancels what is under way; so does an order of someone else's (a restarted gateway's),
-    // which a new order could only extend. Nothing to cancel: the robot stands already.
-    if (robot.busy || (ours && !robot.has_state)) {
-      cancel(robot, wall_ns, out.messages[0]);
+  if (robot.busy && !ours) {
+    // An order of someone else's (a restarted gateway's), which a new order could only extend.
+    cancel(robot, wall_ns, out.messages[0]);
+    out.count = 1;
+    return protocol::CodecStatus::ok();
+  }
+  const bool halt =
+      path.size() == 1 && position && (robot.driving || robot.holding) && is_halt(robot, *position, path[0]);
+  if (halt) {
+    // Held where it is, its order kept for when the hold is over. Nothing under way: it stands already.
+    if (!robot.holding && ours && (robot.busy || !robot.has_state)) {
+      robot.holding = true;
+      send_action(robot, "startPause", wall_ns, out.messages[0]);
       out.count = 1;
     }
+    return protocol::CodecStatus::ok();
+  }
+  const bool resume = robot.holding;
+  if (resume && robot.busy && !goes_on_to_base_end(robot, path[0])) {
+    // Somewhere else now (a new goal after a stop): the held order is dropped, not driven on.
+    cancel(robot, wall_ns, out.messages[0]);
+    out.count = 1;
     return protocol::CodecStatus::ok();
   }
 
   if (robot.order.order_id.empty()) {
     start_order(robot, position, path, wall_ns);
-  } else if (distance(path[0], robot.order.nodes[robot.base_end].position) > config_.same_node_m) {
+  } else if (!goes_on_to_base_end(robot, path[0])) {
     extend_order(robot, path);
   }
   // Otherwise the order stands as sent: sent again (QoS 0 may have lost it; the robot ignores an
   // orderUpdateId it has already).
   if (auto s = send_order(robot, wall_ns, out.messages[0]); !s) return s;
   out.count = 1;
+  if (resume) {
+    // The hold is over: on along the order, as it stands or extended.
+    robot.holding = false;
+    send_action(robot, "stopPause", wall_ns, out.messages[1]);
+    out.count = 2;
+  }
   return protocol::CodecStatus::ok();
+}
+
+bool VdaOrders::goes_on_to_base_end(const Robot& robot, Point waypoint) const {
+  return !robot.order.order_id.empty() &&
+         distance(waypoint, robot.order.nodes[robot.base_end].position) <= config_.same_node_m;
 }
 
 bool VdaOrders::is_halt(const Robot& robot, Point position, Point point) const {
@@ -117,15 +146,20 @@ bool VdaOrders::is_halt(const Robot& robot, Point position, Point point) const {
          to_point < distance(robot.order.nodes[robot.base_end].position, position);
 }
 
-void VdaOrders::cancel(Robot& robot, std::int64_t wall_ns, OutboundMessage& out) {
-  robot.cancelling = true;
-  const protocol::VdaInstantAction action{fmt::format("cancel-{}-{}", wall_ns / 1'000'000, ++robot.actions),
-                                          "cancelOrder"};
+void VdaOrders::send_action(Robot& robot, std::string_view action_type, std::int64_t wall_ns,
+                            OutboundMessage& out) {
+  const protocol::VdaInstantAction action{
+      fmt::format("{}-{}-{}", action_type, wall_ns / 1'000'000, ++robot.actions), std::string(action_type)};
   protocol::vda_topic(tree_, robot.manufacturer, robot.serial_number, protocol::VdaTopic::InstantActions,
                       out.topic);
   protocol::encode_vda_instant_actions(
       {robot.action_headers++, wall_ns, robot.manufacturer, robot.serial_number}, std::span(&action, 1),
       out.payload);
+}
+
+void VdaOrders::cancel(Robot& robot, std::int64_t wall_ns, OutboundMessage& out) {
+  robot.cancelling = true;
+  send_action(robot, "cancelOrder", wall_ns, out);
 }
 
 protocol::CodecStatus VdaOrders::send_order(Robot& robot, std::int64_t wall_ns, OutboundMessage& out) {

@@ -4,10 +4,12 @@
 // and the rest of the path, as for v1/v2 robots; here that becomes an order whose base (released
 // nodes) ends at the waypoint and whose horizon is the rest, so the robot drives only as far as the
 // planner (and its traffic rules) released. When the planner moves the waypoint on, the order is
-// extended by an update stitched at the last base node; a halt (stop, or a traffic hold: a one-point
-// path where the robot is, while it drives towards a node further away) cancels it with the instant
-// action cancelOrder, and the robot's state says when that is done. Plain and single-threaded: the gateway's
-// loop owns it.
+// extended by an update stitched at the last base node. A halt (a stop goal or a traffic hold: a
+// one-point path where the robot is, while it drives towards a node further away; the planner sends
+// both alike) pauses the robot with the instant action startPause and keeps the order; the next path
+// resumes it with stopPause when it goes on to the same node (the hold is over), else cancels the
+// order with cancelOrder, and a new order (with stopPause if the robot is still paused) follows once
+// the robot's state shows the cancel done. Plain and single-threaded: the gateway's loop owns it.
 #include <cstddef>
 #include <cstdint>
 #include <optional>
@@ -49,8 +51,9 @@ class VdaOrders {
 
   // The messages that put the robot, standing at `position`, onto `path` (path[0] the waypoint to
   // drive to now, the rest of the route after it; everything in the robot's map). Nothing to send
-  // (out.count 0) while a cancel is under way or for an empty path. UnknownRobot when no message from
-  // the robot was seen; codec errors for a node that cannot be encoded.
+  // (out.count 0) while a cancel is under way, to a robot held already or for an empty path; two
+  // messages (the order, then stopPause) when a hold ends. UnknownRobot when no message from the
+  // robot was seen; codec errors for a node that cannot be encoded.
   protocol::CodecStatus command(std::string_view id, std::optional<protocol::Point> position,
                                 std::span<const protocol::Point> path, std::int64_t wall_ns,
                                 CommandMessages& out);
@@ -66,6 +69,7 @@ class VdaOrders {
     protocol::VdaOrder order;          // the one sent last; order_id empty: none
     std::size_t base_end = 0;          // its last released node
     bool cancelling = false;           // cancelOrder sent, the robot's state has not shown it done
+    bool holding = false;              // startPause sent, no stopPause since: the robot is held
     // From its latest state.
     bool has_state = false;
     bool busy = false;  // node or edge states left: an order (ours or not) is under way
@@ -79,8 +83,13 @@ class VdaOrders {
   };
 
   void take_state(Robot& robot, const protocol::VdaMessage& state, std::optional<std::string>& rejection);
+  // Is `waypoint` the last released node of the robot's order (the planner's waypoint unchanged)?
+  bool goes_on_to_base_end(const Robot& robot, protocol::Point waypoint) const;
   // A one-point path to `point`, for a robot driving at `position`: a halt (see VdaOrdersConfig)?
   bool is_halt(const Robot& robot, protocol::Point position, protocol::Point point) const;
+  // One instantActions message with the action `action_type`, under an id of its own.
+  void send_action(Robot& robot, std::string_view action_type, std::int64_t wall_ns, OutboundMessage& out);
+  // cancelOrder: nothing more is sent until the state shows it done.
   void cancel(Robot& robot, std::int64_t wall_ns, OutboundMessage& out);
   // Encodes robot.order as it stands into `out`.
   protocol::CodecStatus send_order(Robot& robot, std::int64_t wall_ns, OutboundMessage& out);

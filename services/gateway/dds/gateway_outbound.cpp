@@ -86,7 +86,7 @@ void GatewayNode::send_waypoint(const WaypointInput& command, const Tick& now) {
                                  ") not sent: " + encoded.message());
     return;
   }
-  if (commands_.count == 0) return;  // a VDA robot's cancel under way, or nothing to cancel
+  if (commands_.count == 0) return;  // a VDA robot's cancel under way, held already, or nothing to hold
   for (const OutboundMessage& m : commands_.view()) {
     if (auto s = publish_mqtt(m.topic, bytes(m.payload), options_.mqtt.qos, false); !s) {
       warn("publish", "waypoint for robot '" + shown + "' not sent: " + s.message());

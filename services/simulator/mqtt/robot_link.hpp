@@ -87,6 +87,7 @@ class RobotLinks {
     std::vector<protocol::VdaNode> nodes_left;  // not passed yet, base then horizon
     protocol::VdaNode last_node;                // passed last (id and sequence id)
     std::optional<std::uint32_t> steering_to;   // sequence id of the node the simulation drives to
+    bool paused = false;                        // startPause: it stands until stopPause
     bool state_due = true;
     double state_time_s = -1e300;
   };
@@ -95,6 +96,7 @@ class RobotLinks {
     std::string robot_id;
     protocol::VdaOrder order;  // empty order_id: instant actions
     bool cancel = false;
+    std::optional<bool> pause;  // startPause (true) or stopPause (false), the last of them
   };
 
   struct Endpoint {
@@ -127,7 +129,8 @@ class RobotLinks {
   void send_connection(Endpoint& e, const std::string& robot_id, protocol::VdaConnection connection);
   bool on_vda_message(std::string_view topic, std::span<const uint8_t> payload);
   void take_vda(const VdaCommand& command, std::vector<WaypointOrder>& out);
-  // The waypoint for the robot's next released node, or a stop, when it differs from what was sent.
+  // The waypoint for the robot's next released node, or a stop (none, or paused), when it differs from
+  // what was sent.
   void steer(Endpoint& e, const std::string& robot_id, std::vector<WaypointOrder>& out);
 
   Settings settings_;

@@ -2,7 +2,8 @@
 // visualization; the standard carries no scans), keeps its connection topic (ONLINE, OFFLINE when
 // it leaves, CONNECTIONBROKEN as its last will) and drives the fleet control's order node by node:
 // a new order replaces an idle robot's, an update must start at the last released node, the horizon
-// waits, cancelOrder stops it. Orders arrive on paho threads and are applied by the loop.
+// waits, cancelOrder stops it, startPause holds it where it is until stopPause. Orders arrive on paho
+// threads and are applied by the loop.
 #include <fmt/format.h>
 
 #include <cmath>
@@ -77,16 +78,17 @@ void RobotLinks::publish_vda(Endpoint& e, const std::string& robot_id, const Rob
     v.state_due = true;
     steer(e, robot_id, steering_);
   }
-  const protocol::VdaRobotReport r{at.x,
-                                   at.y,
-                                   report.reported_pose.theta,
-                                   v.order.map_id.empty() ? std::string_view("map") : v.order.map_id,
-                                   driving,
-                                   v.order.order_id,
-                                   v.order.order_update_id,
-                                   v.last_node.node_id,
-                                   v.last_node.sequence_id,
-                                   v.nodes_left};
+  protocol::VdaRobotReport r{at.x,
+                             at.y,
+                             report.reported_pose.theta,
+                             v.order.map_id.empty() ? std::string_view("map") : v.order.map_id,
+                             driving,
+                             v.order.order_id,
+                             v.order.order_update_id,
+                             v.last_node.node_id,
+                             v.last_node.sequence_id,
+                             v.nodes_left};
+  r.paused = v.paused;
   const protocol::VdaHeader header{v.visualization_headers++, wall_ns(), kVdaManufacturer, robot_id};
   protocol::encode_vda_visualization(header, r, text_);
   send(e, v.visualization_topic, as_bytes(text_));
@@ -106,7 +108,7 @@ bool RobotLinks::on_vda_message(std::string_view topic, std::span<const uint8_t>
            s ? "another manufacturer's topic" : s.detail());
     return false;
   }
-  VdaCommand command{std::string(address.serial_number), {}, false};
+  VdaCommand command{std::string(address.serial_number), {}, false, std::nullopt};
   protocol::CodecStatus s;
   if (address.topic == protocol::VdaTopic::Order) {
     s = protocol::decode_vda_order(payload, settings_.limits, command.order);
@@ -114,8 +116,12 @@ bool RobotLinks::on_vda_message(std::string_view topic, std::span<const uint8_t>
   } else {
     std::vector<protocol::VdaInstantAction> actions;
     s = protocol::decode_vda_instant_actions(payload, settings_.limits, actions);
-    for (const auto& a : actions) command.cancel = command.cancel || a.action_type == "cancelOrder";
-    if (s && !command.cancel) return true;  // nothing else is acted on
+    for (const auto& a : actions) {
+      command.cancel = command.cancel || a.action_type == "cancelOrder";
+      if (a.action_type == "startPause" || a.action_type == "stopPause")
+        command.pause = a.action_type == "startPause";
+    }
+    if (s && !command.cancel && !command.pause) return true;  // nothing else is acted on
   }
   if (!s) {
     reject(command.robot_id, std::string(protocol::reason_name(s.reason())), s.detail());
@@ -136,8 +142,9 @@ void RobotLinks::take_vda(const VdaCommand& command, std::vector<WaypointOrder>&
   if (it == endpoints_.end()) return;
   VdaRobot& v = it->second.vda;
   v.state_due = true;
-  if (command.cancel) {
-    v.nodes_left.clear();
+  if (command.cancel || command.pause) {
+    if (command.cancel) v.nodes_left.clear();
+    if (command.pause) v.paused = *command.pause;
     steer(it->second, command.robot_id, out);
     return;
   }
@@ -174,7 +181,8 @@ void RobotLinks::take_vda(const VdaCommand& command, std::vector<WaypointOrder>&
 void RobotLinks::steer(Endpoint& e, const std::string& robot_id, std::vector<WaypointOrder>& out) {
   VdaRobot& v = e.vda;
   std::optional<std::uint32_t> next;
-  if (!v.nodes_left.empty() && v.nodes_left.front().released) next = v.nodes_left.front().sequence_id;
+  if (!v.paused && !v.nodes_left.empty() && v.nodes_left.front().released)
+    next = v.nodes_left.front().sequence_id;
   if (next == v.steering_to && next) return;
   v.steering_to = next;
   WaypointOrder order{robot_id, std::nullopt};

@@ -1,5 +1,6 @@
 // VdaOrders: the planner's path as an order released up to its waypoint, updates stitched at the last
-// base node, halts as cancelOrder, and the robot's state deciding what comes next.
+// base node, halts as startPause (resumed by stopPause or dropped by cancelOrder), and the robot's state
+// deciding what comes next.
 #include "gateway/core/vda_orders.hpp"
 
 #include <gtest/gtest.h>
@@ -21,9 +22,9 @@ class VdaOrdersTest : public ::testing::Test {
  protected:
   VdaOrdersTest() { hear(state()); }
 
-  // A state: the order it drives (empty: none), nodes left and whether it drives.
+  // A state: the order it drives (empty: none), nodes left, whether it drives and is paused.
   static protocol::VdaMessage state(std::string order_id = "", std::size_t nodes_left = 0,
-                                    bool driving = false) {
+                                    bool driving = false, bool paused = false) {
     protocol::VdaMessage m;
     m.topic = protocol::VdaTopic::State;
     m.has_position = m.position_initialized = true;
@@ -31,6 +32,7 @@ class VdaOrdersTest : public ::testing::Test {
     m.order_id = std::move(order_id);
     m.node_states = nodes_left;
     m.driving = driving;
+    m.paused = paused;
     return m;
   }
   std::optional<std::string> hear(const protocol::VdaMessage& m) {
@@ -39,14 +41,27 @@ class VdaOrdersTest : public ::testing::Test {
     EXPECT_TRUE(known);
     return rejection;
   }
-  // The one message the command produced, parsed; null when there was none.
-  Json command(Point position, std::vector<Point> path) {
+  // Every message the command produced, parsed, by topic's last level ("order", "instantActions").
+  std::vector<std::pair<std::string, Json>> commands(Point position, std::vector<Point> path) {
     const auto s = orders.command("Acme:agv-1", position, path, kNow, out);
     EXPECT_TRUE(s) << s.message();
-    if (out.count == 0) return nullptr;
-    EXPECT_EQ(out.count, 1u);
+    std::vector<std::pair<std::string, Json>> sent;
+    for (const OutboundMessage& m : out.view())
+      sent.emplace_back(m.topic.substr(m.topic.rfind('/') + 1), Json::parse(m.payload));
+    return sent;
+  }
+  // The one message the command produced, parsed; null when there was none.
+  Json command(Point position, std::vector<Point> path) {
+    const auto sent = commands(position, std::move(path));
+    if (sent.empty()) return nullptr;
+    EXPECT_EQ(sent.size(), 1u);
     topic = out.messages[0].topic;
-    return Json::parse(out.messages[0].payload);
+    return sent[0].second;
+  }
+  static std::vector<std::string> action_types(const Json& instant_actions) {
+    std::vector<std::string> types;
+    for (const Json& a : instant_actions["instantActions"]) types.push_back(a["actionType"]);
+    return types;
   }
 
   VdaOrders orders{protocol::VdaTree{}, protocol::CodecLimits{}};
@@ -101,19 +116,64 @@ TEST_F(VdaOrdersTest, TheNextWaypointExtendsTheOrderFromItsLastBaseNode) {
   EXPECT_EQ(update["nodes"][2]["released"], false);
 }
 
-TEST_F(VdaOrdersTest, AHaltCancelsTheOrderAndTheNextPathWaitsUntilTheStateShowsItDone) {
+TEST_F(VdaOrdersTest, AHoldPausesTheRobotAndItsReleaseResumesTheSameOrder) {
   const Json first = command({0, 0}, {{4, 0}, {4, 3}});
   hear(state(first["orderId"], 2, true));
-  const Json cancel = command({1, 0}, {{1.1, 0}});
+  const Json pause = command({1, 0}, {{1.1, 0}});
   EXPECT_EQ(topic, "uagv/v2/Acme/agv-1/instantActions");
-  EXPECT_EQ(cancel["instantActions"][0]["actionType"], "cancelOrder");
-  EXPECT_EQ(cancel["headerId"], 0);
-  EXPECT_TRUE(command({1.2, 0}, {{4, 0}, {4, 3}}).is_null()) << "the cancel is still under way";
-  hear(state(first["orderId"], 0, false));
-  const Json fresh = command({1.2, 0}, {{4, 0}, {4, 3}});
+  EXPECT_EQ(action_types(pause), std::vector<std::string>{"startPause"});
+  EXPECT_EQ(pause["headerId"], 0);
+  hear(state(first["orderId"], 2, false));
+  EXPECT_TRUE(command({1, 0}, {{1.1, 0}}).is_null()) << "held already: the hold again sends nothing";
+  // Released: the planner's waypoint again, so the order goes on as sent, then the pause ends.
+  const auto resumed = commands({1, 0}, {{4, 0}, {4, 3}});
+  ASSERT_EQ(resumed.size(), 2u);
+  EXPECT_EQ(resumed[0].first, "order");
+  EXPECT_EQ(resumed[0].second["orderId"], first["orderId"]);
+  EXPECT_EQ(resumed[0].second["orderUpdateId"], 0);
+  EXPECT_EQ(resumed[1].first, "instantActions");
+  EXPECT_EQ(action_types(resumed[1].second), std::vector<std::string>{"stopPause"});
+  EXPECT_EQ(resumed[1].second["headerId"], 1);
+  hear(state(first["orderId"], 2, true));
+  EXPECT_EQ(commands({1.5, 0}, {{4, 0}, {4, 3}}).size(), 1u) << "the order alone: the pause is over";
+}
+
+TEST_F(VdaOrdersTest, AStopThenAGoalElsewhereCancelsTheHeldOrderAndStartsANewOneOnceItIsDone) {
+  const Json first = command({0, 0}, {{4, 0}, {4, 3}});
+  hear(state(first["orderId"], 2, true));
+  EXPECT_EQ(action_types(command({1, 0}, {{1.1, 0}})), std::vector<std::string>{"startPause"});
+  hear(state(first["orderId"], 2, false, true));
+  // A new goal: the held order is not driven on.
+  const Json cancel = command({1, 0}, {{0, 2}, {0, 5}});
+  EXPECT_EQ(topic, "uagv/v2/Acme/agv-1/instantActions");
+  EXPECT_EQ(action_types(cancel), std::vector<std::string>{"cancelOrder"});
+  EXPECT_TRUE(command({1, 0}, {{0, 2}, {0, 5}}).is_null()) << "the cancel is still under way";
+  // Done, and its pause ended with the order.
+  hear(state(first["orderId"], 0, false, false));
+  const Json fresh = command({1, 0}, {{0, 2}, {0, 5}});
+  EXPECT_EQ(topic, "uagv/v2/Acme/agv-1/order");
   EXPECT_NE(fresh["orderId"], first["orderId"]);
   EXPECT_EQ(fresh["orderUpdateId"], 0);
-  EXPECT_EQ(fresh["nodes"][0]["nodePosition"]["x"], 1.2);
+  EXPECT_EQ(fresh["nodes"][0]["nodePosition"]["x"], 1.0);
+}
+
+TEST_F(VdaOrdersTest, ARobotStillPausedAfterTheCancelGetsStopPauseWithTheNewOrder) {
+  const Json first = command({0, 0}, {{4, 0}, {4, 3}});
+  hear(state(first["orderId"], 2, true));
+  command({1, 0}, {{1.1, 0}});
+  hear(state(first["orderId"], 2, false, true));
+  EXPECT_EQ(action_types(command({1, 0}, {{0, 2}})), std::vector<std::string>{"cancelOrder"});
+  hear(state(first["orderId"], 0, false, true));
+  const auto sent = commands({1, 0}, {{0, 2}});
+  ASSERT_EQ(sent.size(), 2u);
+  EXPECT_EQ(sent[0].first, "order");
+  EXPECT_NE(sent[0].second["orderId"], first["orderId"]);
+  EXPECT_EQ(action_types(sent[1].second), std::vector<std::string>{"stopPause"});
+}
+
+TEST_F(VdaOrdersTest, AHaltOfARobotWithoutAnOrderSendsNothing) {
+  hear(state("", 0, true));
+  EXPECT_TRUE(command({1, 0}, {{1.1, 0}}).is_null());
 }
 
 TEST_F(VdaOrdersTest, AStandingRobotIsSentThereNotCancelled) {

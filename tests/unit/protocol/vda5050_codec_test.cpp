@@ -104,6 +104,18 @@ TEST(Vda5050Codec, StateCarriesPoseBatteryOrderProgressAndErrors) {
   EXPECT_EQ(m.errors[0].order_id, "o1");
   EXPECT_EQ(m.errors[0].order_update_id, "3");
   EXPECT_EQ(m.errors[0].description, "no stitching");
+  EXPECT_FALSE(m.paused) << "paused is optional: absent, the robot is not paused";
+}
+
+TEST(Vda5050Codec, StateSaysWhetherTheRobotIsPaused) {
+  VdaMessage m;
+  std::string paused = state_json();
+  paused.insert(paused.find("\"driving\""), R"("paused": true, )");
+  ASSERT_TRUE(decode(VdaTopic::State, paused, m));
+  EXPECT_TRUE(m.paused);
+  std::string typo = state_json();
+  typo.insert(typo.find("\"driving\""), R"("paused": "yes", )");
+  EXPECT_EQ(decode(VdaTopic::State, typo, m).reason(), RejectReason::JsonType);
 }
 
 TEST(Vda5050Codec, ConnectionStatesAndTheirTypos) {
@@ -243,7 +255,7 @@ TEST(Vda5050Codec, TheRobotsSideReadsTheOrdersTheFleetControlWrites) {
 
 TEST(Vda5050Codec, WhatTheRobotsSideWritesTheFleetControlReads) {
   const std::vector<VdaNode> left{{"n6", 6, false, {3, 2}}};
-  const VdaRobotReport report{1.5, -2, 0.25, "hall", true, "o1", 2, "n4", 4, left, 0.5f};
+  const VdaRobotReport report{1.5, -2, 0.25, "hall", true, "o1", 2, "n4", 4, left, 0.5f, true};
   std::string text;
   encode_vda_state({5, 0, "Acme", "agv-1"}, report, text);
   VdaMessage m;
@@ -254,6 +266,7 @@ TEST(Vda5050Codec, WhatTheRobotsSideWritesTheFleetControlReads) {
   EXPECT_EQ(m.last_node_id, "n4");
   EXPECT_EQ(m.node_states, 1u);
   EXPECT_TRUE(m.driving);
+  EXPECT_TRUE(m.paused);
   EXPECT_FLOAT_EQ(m.battery, 0.5f);
   encode_vda_visualization({6, 0, "Acme", "agv-1"}, report, text);
   ASSERT_TRUE(decode(VdaTopic::Visualization, text, m));
