@@ -59,18 +59,39 @@ void VdaOrders::take_state(Robot& robot, const protocol::VdaMessage& state,
     robot.order = {};
   }
   if (robot.order.order_id.empty()) return;
+  if (state.order_id == robot.order.order_id && state.order_update_id == robot.order.order_update_id)
+    robot.rejections = 0;  // taken
   const std::string update = std::to_string(robot.order.order_update_id);
   for (const protocol::VdaError& e : state.errors) {
     if (e.order_id != robot.order.order_id || e.order_update_id != update) continue;
     const std::string key = robot.order.order_id + "/" + update;
     if (robot.rejection_reported == key) return;
     robot.rejection_reported = key;
-    rejection = fmt::format("order {} update {} rejected: {} ({}): {}", robot.order.order_id, update, e.type,
-                            e.level, e.description);
+    rejection = reject(robot, e);
     // What it holds is the robot's business now: the next path starts afresh from the robot's state.
     robot.order = {};
     return;
   }
+}
+
+std::string VdaOrders::reject(Robot& robot, const protocol::VdaError& error) {
+  const Point destination = robot.order.nodes.back().position;
+  const bool again = distance(destination, robot.rejected_destination) <= config_.same_node_m;
+  robot.rejections = again ? robot.rejections + 1 : 1;
+  robot.rejected_destination = destination;
+  std::string text = fmt::format("order {} update {} rejected: {} ({}): {}", robot.order.order_id,
+                                 robot.order.order_update_id, error.type, error.level, error.description);
+  if (robot.rejections == config_.max_rejections)
+    text += fmt::format(
+        "; {} orders to ({:.2f}, {:.2f}) rejected in a row, none is sent there again until "
+        "the goal changes",
+        robot.rejections, destination.x, destination.y);
+  return text;
+}
+
+bool VdaOrders::gave_up_on(const Robot& robot, Point destination) const {
+  return robot.rejections >= config_.max_rejections &&
+         distance(destination, robot.rejected_destination) <= config_.same_node_m;
 }
 
 void VdaOrders::forget(std::string_view id) {
@@ -116,6 +137,7 @@ protocol::CodecStatus VdaOrders::command(std::string_view id, std::optional<Poin
   }
 
   if (robot.order.order_id.empty()) {
+    if (gave_up_on(robot, path.back())) return protocol::CodecStatus::ok();
     start_order(robot, position, path, wall_ns);
   } else if (!goes_on_to_base_end(robot, path[0])) {
     extend_order(robot, path);

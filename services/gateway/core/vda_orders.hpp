@@ -33,6 +33,9 @@ struct VdaOrdersConfig {
   // not a destination: the planner's stop and traffic holds are the robot's own position as it last
   // saw it. The standard's default deviation is 0.5 m.
   double halt_radius_m = 0.5;
+  // Orders rejected in a row for one destination before none is sent there any more (until the
+  // planner's path ends elsewhere): a robot that cannot take it would be sent it every second.
+  std::size_t max_rejections = 3;
   std::size_t max_robots = 10'000;
 };
 
@@ -51,7 +54,8 @@ class VdaOrders {
 
   // The messages that put the robot, standing at `position`, onto `path` (path[0] the waypoint to
   // drive to now, the rest of the route after it; everything in the robot's map). Nothing to send
-  // (out.count 0) while a cancel is under way, to a robot held already or for an empty path; two
+  // (out.count 0) while a cancel is under way, to a robot held already, for an empty path or to a
+  // destination the robot rejected max_rejections orders to in a row; two
   // messages (the order, then stopPause) when a hold ends. UnknownRobot when no message from the
   // robot was seen; codec errors for a node that cannot be encoded.
   protocol::CodecStatus command(std::string_view id, std::optional<protocol::Point> position,
@@ -76,6 +80,8 @@ class VdaOrders {
     bool driving = false;
     std::string robot_order_id;
     std::string rejection_reported;  // "<orderId>/<orderUpdateId>" whose rejection was reported
+    std::size_t rejections = 0;      // orders rejected in a row, all to rejected_destination
+    protocol::Point rejected_destination;
   };
   struct Hash {
     using is_transparent = void;
@@ -83,6 +89,11 @@ class VdaOrders {
   };
 
   void take_state(Robot& robot, const protocol::VdaMessage& state, std::optional<std::string>& rejection);
+  // Counts a rejection of the robot's order (in a row when to the same destination as the last one)
+  // and says it, with the robot's error.
+  std::string reject(Robot& robot, const protocol::VdaError& error);
+  // Has the robot rejected max_rejections orders to `destination` in a row (then no new one is sent)?
+  bool gave_up_on(const Robot& robot, protocol::Point destination) const;
   // Is `waypoint` the last released node of the robot's order (the planner's waypoint unchanged)?
   bool goes_on_to_base_end(const Robot& robot, protocol::Point waypoint) const;
   // A one-point path to `point`, for a robot driving at `position`: a halt (see VdaOrdersConfig)?

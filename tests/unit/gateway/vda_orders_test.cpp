@@ -204,6 +204,41 @@ TEST_F(VdaOrdersTest, ARejectionIsReportedOnceAndTheNextPathStartsAnOrderAfresh)
   EXPECT_NE(fresh["orderId"], first["orderId"]);
 }
 
+TEST_F(VdaOrdersTest, ADestinationRejectedThreeTimesInARowIsNotSentAgainUntilThePathEndsElsewhere) {
+  std::optional<std::string> reason;
+  for (int i = 0; i < 3; ++i) {
+    const Json order = command({0, 0}, {{2, 0}});
+    ASSERT_FALSE(order.is_null()) << "order " << i;
+    protocol::VdaMessage rejected = state();
+    rejected.errors.push_back({"noRouteError", "WARNING", "no way there", order["orderId"], "0"});
+    reason = hear(rejected);
+    ASSERT_TRUE(reason);
+    EXPECT_EQ(reason->find("rejected in a row") != std::string::npos, i == 2) << *reason;
+  }
+  EXPECT_NE(reason->find("3 orders to (2.00, 0.00) rejected in a row"), std::string::npos) << *reason;
+  EXPECT_TRUE(command({0, 0}, {{2, 0}}).is_null()) << "given up on";
+  EXPECT_EQ(command({0, 0}, {{0, 2}})["orderUpdateId"], 0) << "a new destination is tried";
+}
+
+TEST_F(VdaOrdersTest, AnOrderTakenEndsTheRejectionsInARow) {
+  for (int i = 0; i < 2; ++i) {
+    const Json order = command({0, 0}, {{2, 0}});
+    protocol::VdaMessage rejected = state();
+    rejected.errors.push_back({"orderError", "WARNING", "busy", order["orderId"], "0"});
+    ASSERT_TRUE(hear(rejected));
+  }
+  const Json taken = command({0, 0}, {{2, 0}});
+  hear(state(taken["orderId"], 1, true));
+  // An update ending at the same place, rejected: the third rejection there, but not in a row.
+  command({1.9, 0}, {{5, 0}, {2, 0}});
+  protocol::VdaMessage rejected = state(taken["orderId"], 1, true);
+  rejected.errors.push_back({"orderUpdateError", "WARNING", "no stitching", taken["orderId"], "1"});
+  const auto reason = hear(rejected);
+  ASSERT_TRUE(reason);
+  EXPECT_EQ(reason->find("in a row"), std::string::npos) << *reason;
+  EXPECT_FALSE(command({1.9, 0}, {{2, 0}}).is_null());
+}
+
 TEST_F(VdaOrdersTest, AnOrderOfSomeoneElsesIsCancelledFirst) {
   hear(state("theirs", 2, true));
   const Json cancel = command({0, 0}, {{2, 0}});
