@@ -199,6 +199,23 @@ CodecStatus read_errors(const Json& doc, const CodecLimits& limits, VdaMessage& 
   return CodecStatus::ok();
 }
 
+CodecStatus read_action_states(const Json& doc, const CodecLimits& limits, VdaMessage& out) {
+  const Json* states = nullptr;
+  if (auto s = read_array(doc, "actionStates", {"actionStates"}, limits, states); !s) return s;
+  out.action_states.resize(states->size());
+  for (std::size_t i = 0; i < states->size(); ++i) {
+    const Json& a = (*states)[i];
+    VdaActionState& state = out.action_states[i];
+    if (auto s = json_fields::expect_object(a, {"actionStates", i}); !s) return s;
+    if (auto s = read_text(a, "actionId", {"actionStates", i, "actionId"}, kMaxVdaTextBytes, state.action_id);
+        !s)
+      return s;
+    if (auto s = read_text(a, "actionStatus", {"actionStates", i, "actionStatus"}, 32, state.status); !s)
+      return s;
+  }
+  return CodecStatus::ok();
+}
+
 CodecStatus read_state(const Json& doc, const CodecLimits& limits, VdaMessage& out) {
   if (auto s = read_position(doc, limits, out); !s) return s;
   if (auto s = read_text(doc, "orderId", {"orderId"}, kMaxVdaTextBytes, out.order_id); !s) return s;
@@ -229,6 +246,7 @@ CodecStatus read_state(const Json& doc, const CodecLimits& limits, VdaMessage& o
   if (charge < 0.0)
     return {RejectReason::OutOfRange, fmt::format("batteryState.batteryCharge is {}, must be >= 0", charge)};
   out.battery = static_cast<float>(charge / 100.0);
+  if (auto s = read_action_states(doc, limits, out); !s) return s;
   return read_errors(doc, limits, out);
 }
 
@@ -336,6 +354,7 @@ void VdaMessage::clear() {
   last_node_sequence_id = 0;
   node_states = edge_states = 0;
   errors.clear();
+  action_states.clear();
 }
 
 CodecStatus decode_vda_message(VdaTopic topic, const VdaAddress& address,
@@ -530,7 +549,10 @@ void encode_vda_state(const VdaHeader& header, const VdaRobotReport& report, std
   doc["edgeStates"] = Json::array();
   doc["driving"] = report.driving;
   doc["paused"] = report.paused;
-  doc["actionStates"] = Json::array();
+  Json actions = Json::array();
+  for (const VdaActionState& a : report.action_states)
+    actions.push_back({{"actionId", a.action_id}, {"actionStatus", a.status}});
+  doc["actionStates"] = std::move(actions);
   doc["batteryState"] = {{"batteryCharge", report.battery * 100.0}, {"charging", false}};
   doc["operatingMode"] = "AUTOMATIC";
   doc["errors"] = Json::array();

@@ -60,6 +60,13 @@ struct VdaError {
   std::string order_update_id;  // reference "orderUpdateId", as the robot wrote it
 };
 
+// One entry of a state's "actionStates": an action the robot has taken, and how far it is with it
+// (WAITING, INITIALIZING, RUNNING, PAUSED, FINISHED, FAILED).
+struct VdaActionState {
+  std::string action_id;
+  std::string status;
+};
+
 // A robot message as the gateway reads it. Members a topic does not carry stay cleared.
 struct VdaMessage {
   VdaTopic topic = VdaTopic::State;
@@ -84,6 +91,7 @@ struct VdaMessage {
   std::size_t node_states = 0;  // nodes of the order still to pass (base and horizon)
   std::size_t edge_states = 0;
   std::vector<VdaError> errors;
+  std::vector<VdaActionState> action_states;
 
   void clear();
 };
@@ -162,9 +170,10 @@ struct VdaRobotReport {
   std::uint32_t order_update_id = 0;
   std::string_view last_node_id;
   std::uint32_t last_node_sequence_id = 0;
-  std::span<const VdaNode> nodes_left;  // node states: the order's nodes not passed yet
-  float battery = 1.0f;                 // 0..1
-  bool paused = false;                  // a startPause holds it
+  std::span<const VdaNode> nodes_left;              // node states: the order's nodes not passed yet
+  float battery = 1.0f;                             // 0..1
+  bool paused = false;                              // a startPause holds it
+  std::span<const VdaActionState> action_states{};  // the instant actions it took
 };
 
 void encode_vda_state(const VdaHeader& header, const VdaRobotReport& report, std::string& out);

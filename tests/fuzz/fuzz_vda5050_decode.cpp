@@ -35,6 +35,9 @@ void check_message(const VdaMessage& m, const CodecLimits& limits) {
   check(m.node_states <= limits.max_points && m.edge_states <= limits.max_points);
   check(m.errors.size() <= limits.max_points);
   for (const VdaError& e : m.errors) check(!find_text_problem(e.type) && !find_text_problem(e.description));
+  check(m.action_states.size() <= limits.max_points);
+  for (const VdaActionState& a : m.action_states)
+    check(!find_text_problem(a.action_id) && !find_text_problem(a.status));
 }
 
 }  // namespace

@@ -26,9 +26,9 @@ protocol::CodecStatus CommandEncoder::encode_vda(VdaOrders& orders, std::string_
                                                  const Pose& map_from_odom, protocol::Point waypoint,
                                                  std::span<const protocol::Point> remaining,
                                                  std::optional<protocol::Point> odom_position,
-                                                 std::int64_t wall_ns, CommandMessages& out) {
+                                                 const Instant& now, CommandMessages& out) {
   robot_path(map_from_odom, waypoint, remaining, true);
-  return orders.command(robot_id, odom_position, path_, wall_ns, out);
+  return orders.command(robot_id, odom_position, path_, now, out);
 }
 
 protocol::CodecStatus CommandEncoder::encode(std::string_view robot_id, Protocol protocol, std::uint64_t seq,

@@ -49,7 +49,7 @@ class CommandEncoder {
   // converted alike, goes to `orders`, which keeps each robot's order.
   protocol::CodecStatus encode_vda(VdaOrders& orders, std::string_view robot_id, const Pose& map_from_odom,
                                    protocol::Point waypoint, std::span<const protocol::Point> remaining,
-                                   std::optional<protocol::Point> odom_position, std::int64_t wall_ns,
+                                   std::optional<protocol::Point> odom_position, const Instant& now,
                                    CommandMessages& out);
 
  private:

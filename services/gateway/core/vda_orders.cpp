@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <utility>
 
@@ -50,6 +51,11 @@ void VdaOrders::take_state(Robot& robot, const protocol::VdaMessage& state,
   robot.busy = state.node_states + state.edge_states > 0;
   robot.driving = state.driving;
   robot.robot_order_id = state.order_id;
+  if (robot.unconfirmed && std::any_of(state.action_states.begin(), state.action_states.end(),
+                                       [&](const protocol::VdaActionState& a) {
+                                         return a.action_id == robot.unconfirmed->action.action_id;
+                                       }))
+    robot.unconfirmed.reset();  // taken, whatever became of it
   if (robot.cancelling && (!robot.busy || state.order_id != robot.order.order_id)) {
     // Cancelled (or the robot dropped it): the next path starts a new order from where it stands. A
     // robot may end its pause with the order (vda-5050-lib's does) or stay paused; stopPause is sent
@@ -99,7 +105,7 @@ void VdaOrders::forget(std::string_view id) {
 }
 
 protocol::CodecStatus VdaOrders::command(std::string_view id, std::optional<Point> position,
-                                         std::span<const Point> path, std::int64_t wall_ns,
+                                         std::span<const Point> path, const Instant& now,
                                          CommandMessages& out) {
   out.count = 0;
   const auto it = robots_.find(id);
@@ -113,7 +119,7 @@ protocol::CodecStatus VdaOrders::command(std::string_view id, std::optional<Poin
       !robot.order.order_id.empty() && (!robot.has_state || robot.robot_order_id == robot.order.order_id);
   if (robot.busy && !ours) {
     // An order of someone else's (a restarted gateway's), which a new order could only extend.
-    cancel(robot, wall_ns, out.messages[0]);
+    cancel(robot, now, out.messages[0]);
     out.count = 1;
     return protocol::CodecStatus::ok();
   }
@@ -123,7 +129,7 @@ protocol::CodecStatus VdaOrders::command(std::string_view id, std::optional<Poin
     // Held where it is, its order kept for when the hold is over. Nothing under way: it stands already.
     if (!robot.holding && ours && (robot.busy || !robot.has_state)) {
       robot.holding = true;
-      send_action(robot, "startPause", wall_ns, out.messages[0]);
+      send_action(robot, "startPause", now, out.messages[0]);
       out.count = 1;
     }
     return protocol::CodecStatus::ok();
@@ -131,25 +137,25 @@ protocol::CodecStatus VdaOrders::command(std::string_view id, std::optional<Poin
   const bool resume = robot.holding;
   if (resume && robot.busy && !goes_on_to_base_end(robot, path[0])) {
     // Somewhere else now (a new goal after a stop): the held order is dropped, not driven on.
-    cancel(robot, wall_ns, out.messages[0]);
+    cancel(robot, now, out.messages[0]);
     out.count = 1;
     return protocol::CodecStatus::ok();
   }
 
   if (robot.order.order_id.empty()) {
     if (gave_up_on(robot, path.back())) return protocol::CodecStatus::ok();
-    start_order(robot, position, path, wall_ns);
+    start_order(robot, position, path, now.wall_ns);
   } else if (!goes_on_to_base_end(robot, path[0])) {
     extend_order(robot, path);
   }
   // Otherwise the order stands as sent: sent again (QoS 0 may have lost it; the robot ignores an
   // orderUpdateId it has already).
-  if (auto s = send_order(robot, wall_ns, out.messages[0]); !s) return s;
+  if (auto s = send_order(robot, now.wall_ns, out.messages[0]); !s) return s;
   out.count = 1;
   if (resume) {
     // The hold is over: on along the order, as it stands or extended.
     robot.holding = false;
-    send_action(robot, "stopPause", wall_ns, out.messages[1]);
+    send_action(robot, "stopPause", now, out.messages[1]);
     out.count = 2;
   }
   return protocol::CodecStatus::ok();
@@ -168,10 +174,18 @@ bool VdaOrders::is_halt(const Robot& robot, Point position, Point point) const {
          to_point < distance(robot.order.nodes[robot.base_end].position, position);
 }
 
-void VdaOrders::send_action(Robot& robot, std::string_view action_type, std::int64_t wall_ns,
+void VdaOrders::send_action(Robot& robot, std::string_view action_type, const Instant& now,
                             OutboundMessage& out) {
-  const protocol::VdaInstantAction action{
-      fmt::format("{}-{}-{}", action_type, wall_ns / 1'000'000, ++robot.actions), std::string(action_type)};
+  robot.unconfirmed = Robot::UnconfirmedAction{
+      {fmt::format("{}-{}-{}", action_type, now.wall_ns / 1'000'000, ++robot.actions),
+       std::string(action_type)},
+      1,
+      now.mono_ns + static_cast<std::int64_t>(config_.action_resend_s * 1e9)};
+  encode_action(robot, robot.unconfirmed->action, now.wall_ns, out);
+}
+
+void VdaOrders::encode_action(Robot& robot, const protocol::VdaInstantAction& action, std::int64_t wall_ns,
+                              OutboundMessage& out) {
   protocol::vda_topic(tree_, robot.manufacturer, robot.serial_number, protocol::VdaTopic::InstantActions,
                       out.topic);
   protocol::encode_vda_instant_actions(
@@ -179,9 +193,30 @@ void VdaOrders::send_action(Robot& robot, std::string_view action_type, std::int
       out.payload);
 }
 
-void VdaOrders::cancel(Robot& robot, std::int64_t wall_ns, OutboundMessage& out) {
+void VdaOrders::resend_actions(const Instant& now, std::vector<OutboundMessage>& out,
+                               std::vector<std::string>& given_up) {
+  out.clear();
+  given_up.clear();
+  for (auto& [id, robot] : robots_) {
+    if (!robot.unconfirmed || now.mono_ns < robot.unconfirmed->due_ns) continue;
+    Robot::UnconfirmedAction& a = *robot.unconfirmed;
+    if (a.sends >= config_.max_action_sends) {
+      given_up.push_back(
+          fmt::format("robot '{}': instant action {} ({}) not in its state after {} sends, given up", id,
+                      a.action.action_type, a.action.action_id, a.sends));
+      robot.unconfirmed.reset();
+      continue;
+    }
+    encode_action(robot, a.action, now.wall_ns, out.emplace_back());
+    // Backoff: the wait doubles with each send.
+    a.due_ns = now.mono_ns + (static_cast<std::int64_t>(config_.action_resend_s * 1e9) << a.sends);
+    ++a.sends;
+  }
+}
+
+void VdaOrders::cancel(Robot& robot, const Instant& now, OutboundMessage& out) {
   robot.cancelling = true;
-  send_action(robot, "cancelOrder", wall_ns, out);
+  send_action(robot, "cancelOrder", now, out);
 }
 
 protocol::CodecStatus VdaOrders::send_order(Robot& robot, std::int64_t wall_ns, OutboundMessage& out) {

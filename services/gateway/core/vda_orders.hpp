@@ -17,6 +17,7 @@
 #include <string>
 #include <string_view>
 #include <unordered_map>
+#include <vector>
 
 #include "gateway/core/command_encoder.hpp"
 #include "protocol/codec_types.hpp"
@@ -33,6 +34,10 @@ struct VdaOrdersConfig {
   // not a destination: the planner's stop and traffic holds are the robot's own position as it last
   // saw it. The standard's default deviation is 0.5 m.
   double halt_radius_m = 0.5;
+  // An instant action is sent again until the robot's state lists it (QoS 0 may lose it): after this
+  // long, then twice as long each time, max_action_sends times in all; then it is given up.
+  double action_resend_s = 1.0;
+  std::size_t max_action_sends = 4;
   // Orders rejected in a row for one destination before none is sent there any more (until the
   // planner's path ends elsewhere): a robot that cannot take it would be sent it every second.
   std::size_t max_rejections = 3;
@@ -52,6 +57,11 @@ class VdaOrders {
   bool knows(std::string_view id) const { return robots_.contains(id); }
   void forget(std::string_view id);
 
+  // The instant actions due to be sent again at `now` into `out` (cleared first), and a line for each
+  // one given up (its robot, the action, how often it was sent) into `given_up` (cleared first).
+  void resend_actions(const Instant& now, std::vector<OutboundMessage>& out,
+                      std::vector<std::string>& given_up);
+
   // The messages that put the robot, standing at `position`, onto `path` (path[0] the waypoint to
   // drive to now, the rest of the route after it; everything in the robot's map). Nothing to send
   // (out.count 0) while a cancel is under way, to a robot held already, for an empty path or to a
@@ -59,7 +69,7 @@ class VdaOrders {
   // messages (the order, then stopPause) when a hold ends. UnknownRobot when no message from the
   // robot was seen; codec errors for a node that cannot be encoded.
   protocol::CodecStatus command(std::string_view id, std::optional<protocol::Point> position,
-                                std::span<const protocol::Point> path, std::int64_t wall_ns,
+                                std::span<const protocol::Point> path, const Instant& now,
                                 CommandMessages& out);
 
  private:
@@ -74,6 +84,13 @@ class VdaOrders {
     std::size_t base_end = 0;          // its last released node
     bool cancelling = false;           // cancelOrder sent, the robot's state has not shown it done
     bool holding = false;              // startPause sent, no stopPause since: the robot is held
+    // The instant action sent last, until the robot's state lists it (a newer one replaces it).
+    struct UnconfirmedAction {
+      protocol::VdaInstantAction action;
+      std::size_t sends = 1;
+      std::int64_t due_ns = 0;  // monotonic: when it is sent again
+    };
+    std::optional<UnconfirmedAction> unconfirmed;
     // From its latest state.
     bool has_state = false;
     bool busy = false;  // node or edge states left: an order (ours or not) is under way
@@ -99,9 +116,11 @@ class VdaOrders {
   // A one-point path to `point`, for a robot driving at `position`: a halt (see VdaOrdersConfig)?
   bool is_halt(const Robot& robot, protocol::Point position, protocol::Point point) const;
   // One instantActions message with the action `action_type`, under an id of its own.
-  void send_action(Robot& robot, std::string_view action_type, std::int64_t wall_ns, OutboundMessage& out);
+  void send_action(Robot& robot, std::string_view action_type, const Instant& now, OutboundMessage& out);
+  void encode_action(Robot& robot, const protocol::VdaInstantAction& action, std::int64_t wall_ns,
+                     OutboundMessage& out);
   // cancelOrder: nothing more is sent until the state shows it done.
-  void cancel(Robot& robot, std::int64_t wall_ns, OutboundMessage& out);
+  void cancel(Robot& robot, const Instant& now, OutboundMessage& out);
   // Encodes robot.order as it stands into `out`.
   protocol::CodecStatus send_order(Robot& robot, std::int64_t wall_ns, OutboundMessage& out);
   // A new order: from where the robot stands (when known and not at path[0]) along the path.

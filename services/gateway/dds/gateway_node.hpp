@@ -108,8 +108,10 @@ class GatewayNode {
     std::atomic<int64_t>& robots_forgotten;
     std::atomic<int64_t>& fleet_digests;
     std::atomic<int64_t>& observation_batches;
-    std::atomic<int64_t>& scan_error_beams;     // v2 scan beams with range 0 (an error reading), left out
-    std::atomic<int64_t>& vda_orders_rejected;  // VDA 5050 orders (updates) a robot's state rejected
+    std::atomic<int64_t>& scan_error_beams;      // v2 scan beams with range 0 (an error reading), left out
+    std::atomic<int64_t>& vda_orders_rejected;   // VDA 5050 orders (updates) a robot's state rejected
+    std::atomic<int64_t>& vda_actions_resent;    // VDA 5050 instant actions sent again, not in the state yet
+    std::atomic<int64_t>& vda_actions_given_up;  // ... and not in it after every send
   };
 
   GatewayNode(const GatewayOptions& options, Counters& counters);
@@ -151,6 +153,8 @@ class GatewayNode {
 
   // Loop, DDS -> MQTT (gateway_outbound.cpp).
   void send_waypoint(const WaypointInput& command, const Tick& now);
+  // VDA 5050 instant actions the robots' states have not listed yet, sent again when due.
+  void resend_vda_actions(const Tick& now);
   void answer_request(const MqttRequestInput& request, const Tick& now);
   // The protocol to answer robot `id` in: the fresher of this gateway's registry and the RobotStates.
   std::optional<Protocol> protocol_of(std::string_view id) const;
@@ -185,6 +189,8 @@ class GatewayNode {
   CommandEncoder encoder_;
   VdaOrders vda_orders_;
   CommandMessages commands_;
+  std::vector<OutboundMessage> vda_resends_;
+  std::vector<std::string> vda_given_up_;
   std::vector<protocol::Point> remaining_;
   bool presence_changed_ = false;                        // in this pass: a robot's state goes out at once
   std::uint64_t ownership_version_ = ~std::uint64_t{0};  // none logged yet

@@ -74,7 +74,7 @@ void GatewayNode::send_waypoint(const WaypointInput& command, const Tick& now) {
   const protocol::CodecStatus encoded =
       *protocol == Protocol::Vda5050
           ? encoder_.encode_vda(vda_orders_, id, correction.map_from_odom, waypoint, remaining_, position,
-                                now.instant.wall_ns, commands_)
+                                now.instant, commands_)
           : encoder_.encode(id, *protocol, command.seq, correction.map_from_odom, waypoint, remaining_,
                             commands_);
   if (!encoded) {
@@ -94,6 +94,20 @@ void GatewayNode::send_waypoint(const WaypointInput& command, const Tick& now) {
     }
   }
   bump(metrics_.commands_sent);
+}
+
+void GatewayNode::resend_vda_actions(const Tick& now) {
+  vda_orders_.resend_actions(now.instant, vda_resends_, vda_given_up_);
+  for (const OutboundMessage& m : vda_resends_) {
+    bump(metrics_.vda_actions_resent);
+    if (auto s = publish_mqtt(m.topic, bytes(m.payload), options_.mqtt.qos, false); !s)
+      warn("publish",
+           "instant action to '" + protocol::escape_for_log(m.topic) + "' not sent again: " + s.message());
+  }
+  for (const std::string& line : vda_given_up_) {
+    bump(metrics_.vda_actions_given_up);
+    spdlog::warn("{}", line);
+  }
 }
 
 std::optional<Protocol> GatewayNode::protocol_of(std::string_view id) const {

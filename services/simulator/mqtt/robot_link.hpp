@@ -35,6 +35,8 @@ class RobotLinks {
   static constexpr double kVdaStatePeriodS = 1.0;  // simulated seconds between VDA 5050 states at most
   // A VDA robot's manufacturer; its serialNumber is its robot id.
   static constexpr std::string_view kVdaManufacturer = "slamfleet-sim";
+  // How many of its latest instant actions a VDA robot lists in its state.
+  static constexpr std::size_t kVdaActionsListed = 8;
 
   struct Settings {
     std::string broker;
@@ -83,11 +85,12 @@ class RobotLinks {
     std::uint32_t state_headers = 0;
     std::uint32_t visualization_headers = 0;
     std::uint32_t connection_headers = 0;
-    protocol::VdaOrder order;                   // ids and map of the order taken last
-    std::vector<protocol::VdaNode> nodes_left;  // not passed yet, base then horizon
-    protocol::VdaNode last_node;                // passed last (id and sequence id)
-    std::optional<std::uint32_t> steering_to;   // sequence id of the node the simulation drives to
-    bool paused = false;                        // startPause: it stands until stopPause
+    protocol::VdaOrder order;                             // ids and map of the order taken last
+    std::vector<protocol::VdaNode> nodes_left;            // not passed yet, base then horizon
+    protocol::VdaNode last_node;                          // passed last (id and sequence id)
+    std::optional<std::uint32_t> steering_to;             // sequence id of the node the simulation drives to
+    bool paused = false;                                  // startPause: it stands until stopPause
+    std::vector<protocol::VdaActionState> actions_taken;  // its latest instant actions, all finished
     bool state_due = true;
     double state_time_s = -1e300;
   };
@@ -96,7 +99,8 @@ class RobotLinks {
     std::string robot_id;
     protocol::VdaOrder order;  // empty order_id: instant actions
     bool cancel = false;
-    std::optional<bool> pause;  // startPause (true) or stopPause (false), the last of them
+    std::optional<bool> pause;            // startPause (true) or stopPause (false), the last of them
+    std::vector<std::string> action_ids;  // of the instant actions, for the state's actionStates
   };
 
   struct Endpoint {

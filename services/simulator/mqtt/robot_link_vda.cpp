@@ -2,8 +2,8 @@
 // visualization; the standard carries no scans), keeps its connection topic (ONLINE, OFFLINE when
 // it leaves, CONNECTIONBROKEN as its last will) and drives the fleet control's order node by node:
 // a new order replaces an idle robot's, an update must start at the last released node, the horizon
-// waits, cancelOrder stops it, startPause holds it where it is until stopPause. Orders arrive on paho
-// threads and are applied by the loop.
+// waits, cancelOrder stops it, startPause holds it where it is until stopPause; its state lists the
+// instant actions it took. Orders arrive on paho threads and are applied by the loop.
 #include <fmt/format.h>
 
 #include <cmath>
@@ -89,6 +89,7 @@ void RobotLinks::publish_vda(Endpoint& e, const std::string& robot_id, const Rob
                              v.last_node.sequence_id,
                              v.nodes_left};
   r.paused = v.paused;
+  r.action_states = v.actions_taken;
   const protocol::VdaHeader header{v.visualization_headers++, wall_ns(), kVdaManufacturer, robot_id};
   protocol::encode_vda_visualization(header, r, text_);
   send(e, v.visualization_topic, as_bytes(text_));
@@ -108,7 +109,7 @@ bool RobotLinks::on_vda_message(std::string_view topic, std::span<const uint8_t>
            s ? "another manufacturer's topic" : s.detail());
     return false;
   }
-  VdaCommand command{std::string(address.serial_number), {}, false, std::nullopt};
+  VdaCommand command{std::string(address.serial_number), {}, false, std::nullopt, {}};
   protocol::CodecStatus s;
   if (address.topic == protocol::VdaTopic::Order) {
     s = protocol::decode_vda_order(payload, settings_.limits, command.order);
@@ -117,6 +118,7 @@ bool RobotLinks::on_vda_message(std::string_view topic, std::span<const uint8_t>
     std::vector<protocol::VdaInstantAction> actions;
     s = protocol::decode_vda_instant_actions(payload, settings_.limits, actions);
     for (const auto& a : actions) {
+      command.action_ids.push_back(a.action_id);
       command.cancel = command.cancel || a.action_type == "cancelOrder";
       if (a.action_type == "startPause" || a.action_type == "stopPause")
         command.pause = a.action_type == "startPause";
@@ -142,6 +144,9 @@ void RobotLinks::take_vda(const VdaCommand& command, std::vector<WaypointOrder>&
   if (it == endpoints_.end()) return;
   VdaRobot& v = it->second.vda;
   v.state_due = true;
+  for (const std::string& id : command.action_ids) v.actions_taken.push_back({id, "FINISHED"});
+  if (v.actions_taken.size() > kVdaActionsListed)
+    v.actions_taken.erase(v.actions_taken.begin(), v.actions_taken.end() - kVdaActionsListed);
   if (command.cancel || command.pause) {
     if (command.cancel) v.nodes_left.clear();
     if (command.pause) v.paused = *command.pause;

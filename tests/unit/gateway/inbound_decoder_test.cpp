@@ -122,6 +122,7 @@ std::string vda(std::string_view members) {
 const std::string kVdaState =
     vda(R"(, "orderId": "", "orderUpdateId": 0, "lastNodeId": "", "lastNodeSequenceId": 0,
     "nodeStates": [], "edgeStates": [], "driving": false, "operatingMode": "AUTOMATIC", "errors": [],
+    "actionStates": [],
     "batteryState": {"batteryCharge": 40}, "agvPosition": {"x": 2, "y": 3, "theta": 0.5, "mapId": "hall",
     "positionInitialized": true})");
 

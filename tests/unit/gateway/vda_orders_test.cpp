@@ -15,7 +15,7 @@ namespace {
 using protocol::Point;
 using Json = nlohmann::json;
 
-constexpr std::int64_t kNow = 1'764'327'042'000'000'000;
+constexpr Instant kStart{1'764'327'042'000'000'000, 5'000'000'000};
 const protocol::VdaAddress kAddress{protocol::VdaTopic::State, "Acme", "agv-1"};
 
 class VdaOrdersTest : public ::testing::Test {
@@ -43,7 +43,7 @@ class VdaOrdersTest : public ::testing::Test {
   }
   // Every message the command produced, parsed, by topic's last level ("order", "instantActions").
   std::vector<std::pair<std::string, Json>> commands(Point position, std::vector<Point> path) {
-    const auto s = orders.command("Acme:agv-1", position, path, kNow, out);
+    const auto s = orders.command("Acme:agv-1", position, path, now, out);
     EXPECT_TRUE(s) << s.message();
     std::vector<std::pair<std::string, Json>> sent;
     for (const OutboundMessage& m : out.view())
@@ -64,14 +64,28 @@ class VdaOrdersTest : public ::testing::Test {
     return types;
   }
 
+  // The instant actions sent again at `now` plus `seconds` (by the last level of their topics' type),
+  // and the lines of those given up.
+  std::vector<Json> resent_after(double seconds) {
+    now.mono_ns += static_cast<std::int64_t>(seconds * 1e9);
+    now.wall_ns += static_cast<std::int64_t>(seconds * 1e9);
+    orders.resend_actions(now, resent, given_up);
+    std::vector<Json> sent;
+    for (const OutboundMessage& m : resent) sent.push_back(Json::parse(m.payload));
+    return sent;
+  }
+
   VdaOrders orders{protocol::VdaTree{}, protocol::CodecLimits{}};
+  Instant now = kStart;
   CommandMessages out;
+  std::vector<OutboundMessage> resent;
+  std::vector<std::string> given_up;
   std::string topic;
 };
 
 TEST_F(VdaOrdersTest, ARobotNeverHeardGetsNothing) {
   const std::vector<Point> path{{1, 1}};
-  const auto s = orders.command("Acme:agv-9", Point{0, 0}, path, kNow, out);
+  const auto s = orders.command("Acme:agv-9", Point{0, 0}, path, now, out);
   ASSERT_FALSE(s);
   EXPECT_EQ(s.reason(), protocol::RejectReason::UnknownRobot);
   EXPECT_EQ(out.count, 0u);
@@ -169,6 +183,38 @@ TEST_F(VdaOrdersTest, ARobotStillPausedAfterTheCancelGetsStopPauseWithTheNewOrde
   EXPECT_EQ(sent[0].first, "order");
   EXPECT_NE(sent[0].second["orderId"], first["orderId"]);
   EXPECT_EQ(action_types(sent[1].second), std::vector<std::string>{"stopPause"});
+}
+
+TEST_F(VdaOrdersTest, AnInstantActionIsSentAgainWithBackoffUntilTheStateListsIt) {
+  const Json first = command({0, 0}, {{4, 0}, {4, 3}});
+  hear(state(first["orderId"], 2, true));
+  const Json pause = command({1, 0}, {{1.1, 0}});
+  const Json action = pause["instantActions"][0];
+  EXPECT_TRUE(resent_after(0.9).empty()) << "not due yet";
+  auto again = resent_after(0.1);
+  ASSERT_EQ(again.size(), 1u);
+  EXPECT_EQ(again[0]["instantActions"][0], action) << "the same action, under its id";
+  EXPECT_EQ(again[0]["headerId"], pause["headerId"].get<int>() + 1);
+  EXPECT_TRUE(resent_after(1.9).empty()) << "the wait doubles: 2 s after the second send";
+  EXPECT_EQ(resent_after(0.1).size(), 1u);
+  protocol::VdaMessage taken = state(first["orderId"], 2, false, true);
+  taken.action_states.push_back({action["actionId"], "FINISHED"});
+  hear(taken);
+  EXPECT_TRUE(resent_after(100).empty()) << "listed: taken";
+  EXPECT_TRUE(given_up.empty());
+}
+
+TEST_F(VdaOrdersTest, AnInstantActionNeverListedIsGivenUpAfterItsSends) {
+  const Json first = command({0, 0}, {{4, 0}, {4, 3}});
+  hear(state(first["orderId"], 2, true));
+  command({1, 0}, {{1.1, 0}});
+  std::size_t sends = 1;
+  for (int i = 0; i < 10 && given_up.empty(); ++i) sends += resent_after(10).size();
+  EXPECT_EQ(sends, 4u);
+  ASSERT_EQ(given_up.size(), 1u);
+  EXPECT_NE(given_up[0].find("startPause"), std::string::npos) << given_up[0];
+  EXPECT_NE(given_up[0].find("Acme:agv-1"), std::string::npos) << given_up[0];
+  EXPECT_TRUE(resent_after(100).empty());
 }
 
 TEST_F(VdaOrdersTest, AHaltOfARobotWithoutAnOrderSendsNothing) {

@@ -33,7 +33,8 @@ std::string object(std::string_view members = "", std::string_view version = "2.
 std::string state_json() {
   return object(R"(, "orderId": "o1", "orderUpdateId": 2, "lastNodeId": "n2", "lastNodeSequenceId": 2,
     "nodeStates": [{"nodeId": "n4", "sequenceId": 4, "released": false}], "edgeStates": [],
-    "driving": true, "operatingMode": "AUTOMATIC", "actionStates": [],
+    "driving": true, "operatingMode": "AUTOMATIC",
+    "actionStates": [{"actionId": "a1", "actionType": "startPause", "actionStatus": "FINISHED"}],
     "batteryState": {"batteryCharge": 80, "charging": false},
     "safetyState": {"eStop": "NONE", "fieldViolation": false},
     "agvPosition": {"x": 1.5, "y": -2, "theta": 0.5, "mapId": "hall", "positionInitialized": true},
@@ -105,6 +106,9 @@ TEST(Vda5050Codec, StateCarriesPoseBatteryOrderProgressAndErrors) {
   EXPECT_EQ(m.errors[0].order_update_id, "3");
   EXPECT_EQ(m.errors[0].description, "no stitching");
   EXPECT_FALSE(m.paused) << "paused is optional: absent, the robot is not paused";
+  ASSERT_EQ(m.action_states.size(), 1u);
+  EXPECT_EQ(m.action_states[0].action_id, "a1");
+  EXPECT_EQ(m.action_states[0].status, "FINISHED");
 }
 
 TEST(Vda5050Codec, StateSaysWhetherTheRobotIsPaused) {
@@ -151,6 +155,9 @@ TEST(Vda5050Codec, MalformedMessagesNameWhatIsWrong) {
   EXPECT_EQ(other_robot.reason(), RejectReason::BadRobotId);
   const CodecStatus no_nodes = decode(VdaTopic::State, object(R"(, "orderId": "o1")"), m);
   EXPECT_EQ(no_nodes.reason(), RejectReason::MissingField);
+  std::string no_status = state_json();
+  no_status.replace(no_status.find("\"actionStatus\""), 14, "\"status\"");
+  EXPECT_EQ(decode(VdaTopic::State, no_status, m).reason(), RejectReason::MissingField);
   std::string far = state_json();
   far.replace(far.find("\"x\": 1.5"), 8, "\"x\": 1e9");
   EXPECT_EQ(decode(VdaTopic::State, far, m).reason(), RejectReason::OutOfRange);
@@ -255,7 +262,8 @@ TEST(Vda5050Codec, TheRobotsSideReadsTheOrdersTheFleetControlWrites) {
 
 TEST(Vda5050Codec, WhatTheRobotsSideWritesTheFleetControlReads) {
   const std::vector<VdaNode> left{{"n6", 6, false, {3, 2}}};
-  const VdaRobotReport report{1.5, -2, 0.25, "hall", true, "o1", 2, "n4", 4, left, 0.5f, true};
+  const std::vector<VdaActionState> taken{{"a1", "FINISHED"}};
+  const VdaRobotReport report{1.5, -2, 0.25, "hall", true, "o1", 2, "n4", 4, left, 0.5f, true, taken};
   std::string text;
   encode_vda_state({5, 0, "Acme", "agv-1"}, report, text);
   VdaMessage m;
@@ -267,6 +275,8 @@ TEST(Vda5050Codec, WhatTheRobotsSideWritesTheFleetControlReads) {
   EXPECT_EQ(m.node_states, 1u);
   EXPECT_TRUE(m.driving);
   EXPECT_TRUE(m.paused);
+  ASSERT_EQ(m.action_states.size(), 1u);
+  EXPECT_EQ(m.action_states[0].action_id, "a1");
   EXPECT_FLOAT_EQ(m.battery, 0.5f);
   encode_vda_visualization({6, 0, "Acme", "agv-1"}, report, text);
   ASSERT_TRUE(decode(VdaTopic::Visualization, text, m));
