@@ -3,14 +3,15 @@
 // (mosquitto, gateway, mapper, planner, one simulated v1 robot mapping the empty world), shows up as a
 // fleet robot, takes the planner's path for a goal as an order and its updates, and reaches the goal;
 // a stop pauses it (startPause) and the same goal again resumes its order (stopPause), a goal elsewhere
-// cancels the held order for a new one; a robot whose connection breaks (the broker's last will) is
-// marked offline.
+// cancels the held order for a new one; orders a robot rejects are reported with its reason, and not
+// sent forever; a robot whose connection breaks (the broker's last will) is marked offline.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "common/fastdds/fast_topics.hpp"
 #include "fastdds_inbox.hpp"
@@ -64,11 +65,20 @@ class Vda5050Test : public ::testing::Test {
 
   std::string domain() const { return std::to_string(lease_.id()); }
 
-  // The virtual AGV on map "office" at (x, y).
-  void start_agv(double x, double y) {
+  // The virtual AGV on map "office" at (x, y), switched to `operating_mode` once started (none: the
+  // library's AUTOMATIC).
+  void start_agv(double x, double y, const std::string& operating_mode = "") {
     const std::string url = "mqtt://" + broker_.substr(std::string("tcp://").size());
-    group_.start("agv", {"node", std::string(SLAM_NODE_TESTS_DIR) + "/vda5050_agv_test.mjs", url, "SlamTest",
-                         "agv-1", std::to_string(x), std::to_string(y), "office"});
+    std::vector<std::string> command{"node",
+                                     std::string(SLAM_NODE_TESTS_DIR) + "/vda5050_agv_test.mjs",
+                                     url,
+                                     "SlamTest",
+                                     "agv-1",
+                                     std::to_string(x),
+                                     std::to_string(y),
+                                     "office"};
+    if (!operating_mode.empty()) command.push_back(operating_mode);
+    group_.start("agv", command);
   }
 
   std::optional<RobotState> wait_state(const std::function<bool(const RobotState&)>& pred,
@@ -206,6 +216,27 @@ TEST_F(Vda5050Test, AStopPausesTheVirtualAgvAndItsOrderResumesOrIsCancelled) {
   agv = group_.log("agv");
   EXPECT_EQ(count_of(agv, " update 0"), orders + 1) << "a new order for the goal elsewhere: " << agv;
   EXPECT_EQ(agv.find("error "), std::string::npos) << agv;
+}
+
+// A robot that cannot take orders (switched to MANUAL by its operator) rejects each with its reason;
+// the gateway reports them, and after three to one destination sends it no more.
+TEST_F(Vda5050Test, OrdersTheRobotRejectsAreReportedWithItsReasonUntilTheGatewayGivesUp) {
+  group_.start("planner", {testkit::bin_path("slam-planner"), "--domain", domain(), "--no-share",
+                           "--goal-store", group_.dir() + "/goals.json"});
+  start_agv(1.0, 1.0, "MANUAL");
+  ASSERT_TRUE(wait_state([](const RobotState& s) { return s.status().to_string() == "MANUAL"; }, 60s))
+      << group_.log("agv") << group_.log("gateway");
+  auto goals = dds::make_writer(*participant_, dds::kNavGoal);
+  ASSERT_TRUE(goals) << goals.message();
+  ASSERT_TRUE((*goals)->wait_for_readers(30s));
+  ASSERT_TRUE((*goals)->write(make_goal(kRobot, 1, GOAL_DIRECT, 1.0, 5.0)));
+  ASSERT_TRUE(testkit::wait_until(
+      [&] { return group_.log("gateway").find("rejected in a row") != std::string::npos; }, 30s))
+      << group_.log("agv") << group_.log("gateway");
+  const std::string gateway = group_.log("gateway");
+  EXPECT_NE(gateway.find("robot 'SlamTest:agv-1' order slam-"), std::string::npos) << gateway;
+  EXPECT_NE(gateway.find("order is not executable due to operating mode"), std::string::npos) << gateway;
+  EXPECT_NE(gateway.find("3 orders to (1.00, 5.00) rejected in a row"), std::string::npos) << gateway;
 }
 
 TEST_F(Vda5050Test, ARobotWhoseConnectionBreaksIsOffline) {

@@ -2,12 +2,13 @@
 // (pinned in package-lock.json), connected to the test's broker, driven by the gateway as its fleet
 // control. It runs until killed (the test kills it, also with SIGKILL to break its connection) and logs
 // one line per order update it takes, per node it passes and per pause and its end, for the test to read.
-//   node vda5050_agv_test.mjs BROKER_URL MANUFACTURER SERIAL_NUMBER X Y MAP_ID
+// OPERATING_MODE (optional, e.g. MANUAL) is switched to once started: a robot that rejects orders.
+//   node vda5050_agv_test.mjs BROKER_URL MANUFACTURER SERIAL_NUMBER X Y MAP_ID [OPERATING_MODE]
 import { AgvController, VirtualAgvAdapter } from "vda-5050-lib";
 
-const [brokerUrl, manufacturer, serialNumber, x, y, mapId] = process.argv.slice(2);
+const [brokerUrl, manufacturer, serialNumber, x, y, mapId, operatingMode] = process.argv.slice(2);
 if (!mapId) {
-  console.error("usage: vda5050_agv_test.mjs BROKER_URL MANUFACTURER SERIAL_NUMBER X Y MAP_ID");
+  console.error("usage: vda5050_agv_test.mjs BROKER_URL MANUFACTURER SERIAL_NUMBER X Y MAP_ID [OPERATING_MODE]");
   process.exit(2);
 }
 
@@ -41,6 +42,7 @@ const controller = new LoggedAgvController(
 );
 
 await controller.start();
+if (operatingMode) controller.updateOperatingMode(operatingMode);
 console.log(`started ${manufacturer}/${serialNumber} at (${x}, ${y}) on map ${mapId}`);
 for (const signal of ["SIGTERM", "SIGINT"]) {
   process.on(signal, async () => {

@@ -27,9 +27,9 @@ std::string node_id(std::uint32_t sequence_id) {
 VdaOrders::VdaOrders(protocol::VdaTree tree, protocol::CodecLimits limits, VdaOrdersConfig config)
     : tree_(std::move(tree)), limits_(limits), config_(config) {}
 
-std::optional<std::string> VdaOrders::take_message(std::string_view id, const protocol::VdaAddress& address,
-                                                   const protocol::VdaMessage& message, bool& known) {
-  std::optional<std::string> rejection;
+std::optional<VdaRejection> VdaOrders::take_message(std::string_view id, const protocol::VdaAddress& address,
+                                                    const protocol::VdaMessage& message, bool& known) {
+  std::optional<VdaRejection> rejection;
   auto it = robots_.find(id);
   if (it == robots_.end()) {
     known = robots_.size() < config_.max_robots;
@@ -46,7 +46,7 @@ std::optional<std::string> VdaOrders::take_message(std::string_view id, const pr
 }
 
 void VdaOrders::take_state(Robot& robot, const protocol::VdaMessage& state,
-                           std::optional<std::string>& rejection) {
+                           std::optional<VdaRejection>& rejection) {
   robot.has_state = true;
   robot.busy = state.node_states + state.edge_states > 0;
   robot.driving = state.driving;
@@ -80,19 +80,20 @@ void VdaOrders::take_state(Robot& robot, const protocol::VdaMessage& state,
   }
 }
 
-std::string VdaOrders::reject(Robot& robot, const protocol::VdaError& error) {
+VdaRejection VdaOrders::reject(Robot& robot, const protocol::VdaError& error) {
   const Point destination = robot.order.nodes.back().position;
   const bool again = distance(destination, robot.rejected_destination) <= config_.same_node_m;
   robot.rejections = again ? robot.rejections + 1 : 1;
   robot.rejected_destination = destination;
-  std::string text = fmt::format("order {} update {} rejected: {} ({}): {}", robot.order.order_id,
-                                 robot.order.order_update_id, error.type, error.level, error.description);
-  if (robot.rejections == config_.max_rejections)
-    text += fmt::format(
-        "; {} orders to ({:.2f}, {:.2f}) rejected in a row, none is sent there again until "
-        "the goal changes",
+  VdaRejection rejection{fmt::format("order {} update {} rejected: {} ({}): {}", robot.order.order_id,
+                                     robot.order.order_update_id, error.type, error.level, error.description),
+                         robot.rejections == config_.max_rejections};
+  if (rejection.gave_up)
+    rejection.text += fmt::format(
+        "; {} orders to ({:.2f}, {:.2f}) rejected in a row, none is sent there again "
+        "until the goal changes",
         robot.rejections, destination.x, destination.y);
-  return text;
+  return rejection;
 }
 
 bool VdaOrders::gave_up_on(const Robot& robot, Point destination) const {

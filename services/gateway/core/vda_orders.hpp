@@ -44,6 +44,13 @@ struct VdaOrdersConfig {
   std::size_t max_robots = 10'000;
 };
 
+// An order (update) the robot rejected: the line saying so, with the robot's error, and whether no
+// order goes to its destination any more (VdaOrdersConfig::max_rejections).
+struct VdaRejection {
+  std::string text;
+  bool gave_up = false;
+};
+
 class VdaOrders {
  public:
   VdaOrders(protocol::VdaTree tree, protocol::CodecLimits limits, VdaOrdersConfig config = {});
@@ -52,8 +59,8 @@ class VdaOrders {
   // what became of the order sent last. Returns the robot's reason when that order (its current
   // update) was rejected, once per update. False in `known` when the robot is new and max_robots
   // are known already.
-  std::optional<std::string> take_message(std::string_view id, const protocol::VdaAddress& address,
-                                          const protocol::VdaMessage& message, bool& known);
+  std::optional<VdaRejection> take_message(std::string_view id, const protocol::VdaAddress& address,
+                                           const protocol::VdaMessage& message, bool& known);
   bool knows(std::string_view id) const { return robots_.contains(id); }
   void forget(std::string_view id);
 
@@ -105,10 +112,10 @@ class VdaOrders {
     std::size_t operator()(std::string_view s) const { return std::hash<std::string_view>{}(s); }
   };
 
-  void take_state(Robot& robot, const protocol::VdaMessage& state, std::optional<std::string>& rejection);
+  void take_state(Robot& robot, const protocol::VdaMessage& state, std::optional<VdaRejection>& rejection);
   // Counts a rejection of the robot's order (in a row when to the same destination as the last one)
   // and says it, with the robot's error.
-  std::string reject(Robot& robot, const protocol::VdaError& error);
+  VdaRejection reject(Robot& robot, const protocol::VdaError& error);
   // Has the robot rejected max_rejections orders to `destination` in a row (then no new one is sent)?
   bool gave_up_on(const Robot& robot, protocol::Point destination) const;
   // Is `waypoint` the last released node of the robot's order (the planner's waypoint unchanged)?

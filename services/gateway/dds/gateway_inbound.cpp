@@ -115,14 +115,18 @@ void GatewayNode::log_presence(const InboundMessage& message, const AcceptResult
 
 void GatewayNode::take_vda(const InboundMessage& message) {
   bool known = true;
-  const std::optional<std::string> rejection =
+  const std::optional<VdaRejection> rejection =
       vda_orders_.take_message(message.robot_id, message.vda_address(), message.vda, known);
   if (!known) bump(metrics_.robots_refused);
   if (!rejection) return;
-  // Reported once per order update; the planner's next waypoint starts a new order.
+  // Reported once per order update; the planner's next waypoint starts a new order, until the robot
+  // has rejected too many: that line, once per destination, is never suppressed.
   bump(metrics_.vda_orders_rejected);
   const std::string shown = protocol::escape_for_log(message.robot_id);
-  warn("vda-order:" + shown, "robot '" + shown + "' " + *rejection);
+  if (rejection->gave_up)
+    spdlog::warn("robot '{}' {}", shown, rejection->text);
+  else
+    warn("vda-order:" + shown, "robot '" + shown + "' " + rejection->text);
 }
 
 }  // namespace slam::gateway
