@@ -54,6 +54,9 @@ struct CorrectorOptions {
   // Each robot's systematic odometry heading error (odometry_calibration.hpp) learned from its
   // matches and taken out of its odometry; off for robots whose odometry is calibrated already.
   bool odometry_calibration = true;
+  // Odometry that counts backward driving as forward (odometry_direction.hpp) turned round while the
+  // matches show the robot reversing.
+  bool odometry_direction = true;
   WallAxisOptions wall_axis;
   double wall_heading_floor_rad = 0.005;  // added to a reading's spread: no building is exactly square
   double wall_heading_gate_rad = 0.08;    // a larger correction is not taken: a wall at another angle

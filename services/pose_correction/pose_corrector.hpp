@@ -44,6 +44,7 @@
 #include "pose_correction/keyframe_index.hpp"
 #include "pose_correction/match_worker.hpp"
 #include "pose_correction/odometry_calibration.hpp"
+#include "pose_correction/odometry_direction.hpp"
 #include "pose_correction/odometry_trust.hpp"
 #include "pose_correction/pose_graph.hpp"
 #include "pose_correction/scan_matcher.hpp"
@@ -214,6 +215,7 @@ class PoseCorrector {
     int anchors_walls = 0;
     OdometryTrust odometry_trust;              // scales its odometry covariance
     OdometryCalibration odometry_calibration;  // its odometry's systematic heading error
+    OdometryDirection odometry_direction;      // its odometry counting backward driving as forward
     std::optional<uint32_t> last_node;         // slot of its previous keyframe
     std::vector<uint32_t> recent_nodes;        // slots of its latest keyframes, oldest first (its trail)
     // While its chain is loose: where its odometry frame lies by the trail's search, and how many

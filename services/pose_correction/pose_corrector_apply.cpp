@@ -100,6 +100,10 @@ CorrectionSource PoseCorrector::learn_from_tracking(const MatchJob& job, Robot& 
     const Eigen::Matrix3d nominal = odometry_covariance(job.odom_relative);
     rb.odometry_trust.learn(innovation, job.cov, nominal);
     rb.odometry_calibration.learn(job.odom_motion, innovation.z(), job.cov(2, 2), nominal(2, 2));
+    // A robot without a heading (v1) has its heading from its motion: it never drives backwards.
+    if (job.keyframe.has_heading)
+      rb.odometry_direction.learn(job.odom_motion,
+                                  nodes_[*job.previous].estimate.inverse().compose(narrow->pose));
   }
   return CorrectionSource::Match;
 }

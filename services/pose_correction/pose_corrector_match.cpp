@@ -192,8 +192,9 @@ void PoseCorrector::prepare(Keyframe&& keyframe, const GridView& grid, bool matc
   if (job.previous) {
     const Pose& previous_odom = nodes_[*job.previous].odom;
     job.odom_motion = previous_odom.inverse().compose(keyframe.odom);
-    job.odom_relative =
-        options_.odometry_calibration ? rb.odometry_calibration.corrected(job.odom_motion) : job.odom_motion;
+    const Pose driven =
+        options_.odometry_direction ? rb.odometry_direction.applied(job.odom_motion) : job.odom_motion;
+    job.odom_relative = options_.odometry_calibration ? rb.odometry_calibration.corrected(driven) : driven;
     job.predicted = rb.state.map_from_odom.compose(previous_odom).compose(job.odom_relative);
     job.standing = keyframe.travel_m < options_.standing_travel_m &&
                    keyframe.turn_rad < options_.standing_turn_rad &&

@@ -258,6 +258,8 @@ void add_slam_options(CLI::App& app, correction::CorrectorOptions& s) {
   add("--point-refine", s.point_refine, "refine matches against the points (true/false)");
   add("--odometry-calibration", s.odometry_calibration,
       "learn each robot's odometry heading error and take it out (true/false)");
+  add("--odometry-direction", s.odometry_direction,
+      "turn odometry that counts backward driving as forward round while matches show it (true/false)");
   add("--placement-trail", s.placement_trail_m,
       "travel (m) of keyframes searched together for an unplaced robot");
   add("--placement-max-crossed-walls", s.placement_max_crossed_walls,
