@@ -65,29 +65,31 @@ void VdaOrders::take_state(Robot& robot, const protocol::VdaMessage& state,
     robot.order = {};
   }
   if (robot.order.order_id.empty()) return;
-  if (state.order_id == robot.order.order_id && state.order_update_id == robot.order.order_update_id)
-    robot.rejections = 0;  // taken
+  if (state.order_id == robot.order.order_id && state.order_update_id == robot.order.order_update_id) {
+    robot.order_taken = true;
+    robot.rejections = 0;
+  }
   const std::string update = std::to_string(robot.order.order_update_id);
   for (const protocol::VdaError& e : state.errors) {
     if (e.order_id != robot.order.order_id || e.order_update_id != update) continue;
     const std::string key = robot.order.order_id + "/" + update;
     if (robot.rejection_reported == key) return;
     robot.rejection_reported = key;
-    rejection = reject(robot, e);
+    rejection = reject(robot, fmt::format("rejected: {} ({}): {}", e.type, e.level, e.description));
     // What it holds is the robot's business now: the next path starts afresh from the robot's state.
     robot.order = {};
     return;
   }
 }
 
-VdaRejection VdaOrders::reject(Robot& robot, const protocol::VdaError& error) {
+VdaRejection VdaOrders::reject(Robot& robot, const std::string& reason) {
   const Point destination = robot.order.nodes.back().position;
   const bool again = distance(destination, robot.rejected_destination) <= config_.same_node_m;
   robot.rejections = again ? robot.rejections + 1 : 1;
   robot.rejected_destination = destination;
-  VdaRejection rejection{fmt::format("order {} update {} rejected: {} ({}): {}", robot.order.order_id,
-                                     robot.order.order_update_id, error.type, error.level, error.description),
-                         robot.rejections == config_.max_rejections};
+  VdaRejection rejection{
+      fmt::format("order {} update {} {}", robot.order.order_id, robot.order.order_update_id, reason),
+      robot.rejections == config_.max_rejections};
   if (rejection.gave_up)
     rejection.text += fmt::format(
         "; {} orders to ({:.2f}, {:.2f}) rejected in a row, none is sent there again "
@@ -143,21 +145,23 @@ protocol::CodecStatus VdaOrders::command(std::string_view id, std::optional<Poin
     return protocol::CodecStatus::ok();
   }
 
+  bool changed = true;
   if (robot.order.order_id.empty()) {
     if (gave_up_on(robot, path.back())) return protocol::CodecStatus::ok();
     start_order(robot, position, path, now.wall_ns);
   } else if (!goes_on_to_base_end(robot, path[0])) {
     extend_order(robot, path);
+  } else {
+    changed = false;  // the order stands as sent; resend() sends it again until the robot takes it
   }
-  // Otherwise the order stands as sent: sent again (QoS 0 may have lost it; the robot ignores an
-  // orderUpdateId it has already).
-  if (auto s = send_order(robot, now.wall_ns, out.messages[0]); !s) return s;
-  out.count = 1;
+  if (changed) {
+    if (auto s = send_order(robot, now, false, out.messages[0]); !s) return s;
+    out.count = 1;
+  }
   if (resume) {
     // The hold is over: on along the order, as it stands or extended.
     robot.holding = false;
-    send_action(robot, "stopPause", now, out.messages[1]);
-    out.count = 2;
+    send_action(robot, "stopPause", now, out.messages[out.count++]);
   }
   return protocol::CodecStatus::ok();
 }
@@ -169,7 +173,9 @@ bool VdaOrders::goes_on_to_base_end(const Robot& robot, Point waypoint) const {
 
 bool VdaOrders::is_halt(const Robot& robot, Point position, Point point) const {
   const double to_point = distance(point, position);
-  if (to_point > config_.halt_radius_m) return false;
+  // The node it drives to is its destination, however a correction moved it by millimetres (the
+  // last leg is a one-point path too; held there, it would be held for good).
+  if (to_point > config_.halt_radius_m || goes_on_to_base_end(robot, point)) return false;
   // The next waypoint once the robot is (nearly) at its node is a destination, not a halt.
   return robot.order.order_id.empty() ||
          to_point < distance(robot.order.nodes[robot.base_end].position, position);
@@ -181,8 +187,12 @@ void VdaOrders::send_action(Robot& robot, std::string_view action_type, const In
       {fmt::format("{}-{}-{}", action_type, now.wall_ns / 1'000'000, ++robot.actions),
        std::string(action_type)},
       1,
-      now.mono_ns + static_cast<std::int64_t>(config_.action_resend_s * 1e9)};
+      due_after(now, 1)};
   encode_action(robot, robot.unconfirmed->action, now.wall_ns, out);
+}
+
+std::int64_t VdaOrders::due_after(const Instant& now, std::size_t sends) const {
+  return now.mono_ns + (static_cast<std::int64_t>(config_.resend_s * 1e9) << (sends - 1));
 }
 
 void VdaOrders::encode_action(Robot& robot, const protocol::VdaInstantAction& action, std::int64_t wall_ns,
@@ -194,25 +204,44 @@ void VdaOrders::encode_action(Robot& robot, const protocol::VdaInstantAction& ac
       out.payload);
 }
 
-void VdaOrders::resend_actions(const Instant& now, std::vector<OutboundMessage>& out,
-                               std::vector<std::string>& given_up) {
+void VdaOrders::resend(const Instant& now, std::vector<OutboundMessage>& out,
+                       std::vector<std::string>& given_up) {
   out.clear();
   given_up.clear();
   for (auto& [id, robot] : robots_) {
-    if (!robot.unconfirmed || now.mono_ns < robot.unconfirmed->due_ns) continue;
-    Robot::UnconfirmedAction& a = *robot.unconfirmed;
-    if (a.sends >= config_.max_action_sends) {
-      given_up.push_back(
-          fmt::format("robot '{}': instant action {} ({}) not in its state after {} sends, given up", id,
-                      a.action.action_type, a.action.action_id, a.sends));
-      robot.unconfirmed.reset();
-      continue;
-    }
-    encode_action(robot, a.action, now.wall_ns, out.emplace_back());
-    // Backoff: the wait doubles with each send.
-    a.due_ns = now.mono_ns + (static_cast<std::int64_t>(config_.action_resend_s * 1e9) << a.sends);
-    ++a.sends;
+    resend_action(id, robot, now, out, given_up);
+    resend_order(id, robot, now, out, given_up);
   }
+}
+
+void VdaOrders::resend_action(std::string_view id, Robot& robot, const Instant& now,
+                              std::vector<OutboundMessage>& out, std::vector<std::string>& given_up) {
+  if (!robot.unconfirmed || now.mono_ns < robot.unconfirmed->due_ns) return;
+  Robot::UnconfirmedAction& a = *robot.unconfirmed;
+  if (a.sends >= config_.max_sends) {
+    given_up.push_back(
+        fmt::format("robot '{}': instant action {} ({}) not in its state after {} sends, given up", id,
+                    a.action.action_type, a.action.action_id, a.sends));
+    robot.unconfirmed.reset();
+    return;
+  }
+  encode_action(robot, a.action, now.wall_ns, out.emplace_back());
+  a.due_ns = due_after(now, ++a.sends);
+}
+
+void VdaOrders::resend_order(std::string_view id, Robot& robot, const Instant& now,
+                             std::vector<OutboundMessage>& out, std::vector<std::string>& given_up) {
+  if (robot.order.order_id.empty() || robot.order_taken || robot.cancelling ||
+      now.mono_ns < robot.order_due_ns)
+    return;
+  if (robot.order_sends >= config_.max_sends) {
+    const VdaRejection r =
+        reject(robot, fmt::format("not taken after {} sends, given up", robot.order_sends));
+    given_up.push_back(fmt::format("robot '{}' {}", id, r.text));
+    robot.order = {};  // the next path starts a new order, unless gave_up_on its destination
+    return;
+  }
+  if (!send_order(robot, now, true, out.emplace_back())) out.pop_back();
 }
 
 void VdaOrders::cancel(Robot& robot, const Instant& now, OutboundMessage& out) {
@@ -220,16 +249,20 @@ void VdaOrders::cancel(Robot& robot, const Instant& now, OutboundMessage& out) {
   send_action(robot, "cancelOrder", now, out);
 }
 
-protocol::CodecStatus VdaOrders::send_order(Robot& robot, std::int64_t wall_ns, OutboundMessage& out) {
+protocol::CodecStatus VdaOrders::send_order(Robot& robot, const Instant& now, bool again,
+                                            OutboundMessage& out) {
   protocol::vda_topic(tree_, robot.manufacturer, robot.serial_number, protocol::VdaTopic::Order, out.topic);
-  if (auto s =
-          protocol::encode_vda_order({robot.order_headers, wall_ns, robot.manufacturer, robot.serial_number},
-                                     robot.order, limits_, out.payload);
+  if (auto s = protocol::encode_vda_order(
+          {robot.order_headers, now.wall_ns, robot.manufacturer, robot.serial_number}, robot.order, limits_,
+          out.payload);
       !s) {
     robot.order = {};
     return s;
   }
   ++robot.order_headers;
+  robot.order_taken = false;
+  robot.order_sends = again ? robot.order_sends + 1 : 1;
+  robot.order_due_ns = due_after(now, robot.order_sends);
   return protocol::CodecStatus::ok();
 }
 

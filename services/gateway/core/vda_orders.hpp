@@ -34,10 +34,11 @@ struct VdaOrdersConfig {
   // not a destination: the planner's stop and traffic holds are the robot's own position as it last
   // saw it. The standard's default deviation is 0.5 m.
   double halt_radius_m = 0.5;
-  // An instant action is sent again until the robot's state lists it (QoS 0 may lose it): after this
-  // long, then twice as long each time, max_action_sends times in all; then it is given up.
-  double action_resend_s = 1.0;
-  std::size_t max_action_sends = 4;
+  // An order (update) or instant action is sent again until the robot's state shows it taken (QoS 0
+  // may lose it): after this long, then twice as long each time, max_sends times in all; then it is
+  // given up (an order as if rejected).
+  double resend_s = 1.0;
+  std::size_t max_sends = 4;
   // Orders rejected in a row for one destination before none is sent there any more (until the
   // planner's path ends elsewhere): a robot that cannot take it would be sent it every second.
   std::size_t max_rejections = 3;
@@ -64,10 +65,9 @@ class VdaOrders {
   bool knows(std::string_view id) const { return robots_.contains(id); }
   void forget(std::string_view id);
 
-  // The instant actions due to be sent again at `now` into `out` (cleared first), and a line for each
-  // one given up (its robot, the action, how often it was sent) into `given_up` (cleared first).
-  void resend_actions(const Instant& now, std::vector<OutboundMessage>& out,
-                      std::vector<std::string>& given_up);
+  // The orders and instant actions due to be sent again at `now` into `out` (cleared first), and a
+  // line for each one given up (its robot, what, how often it was sent) into `given_up` (cleared first).
+  void resend(const Instant& now, std::vector<OutboundMessage>& out, std::vector<std::string>& given_up);
 
   // The messages that put the robot, standing at `position`, onto `path` (path[0] the waypoint to
   // drive to now, the rest of the route after it; everything in the robot's map). Nothing to send
@@ -89,6 +89,9 @@ class VdaOrders {
     std::uint64_t actions = 0;         // instant actions sent: their ids
     protocol::VdaOrder order;          // the one sent last; order_id empty: none
     std::size_t base_end = 0;          // its last released node
+    bool order_taken = false;          // a state has shown its orderId and orderUpdateId
+    std::size_t order_sends = 0;       // of its current update
+    std::int64_t order_due_ns = 0;     // monotonic: when it is sent again, unless taken
     bool cancelling = false;           // cancelOrder sent, the robot's state has not shown it done
     bool holding = false;              // startPause sent, no stopPause since: the robot is held
     // The instant action sent last, until the robot's state lists it (a newer one replaces it).
@@ -114,8 +117,8 @@ class VdaOrders {
 
   void take_state(Robot& robot, const protocol::VdaMessage& state, std::optional<VdaRejection>& rejection);
   // Counts a rejection of the robot's order (in a row when to the same destination as the last one)
-  // and says it, with the robot's error.
-  VdaRejection reject(Robot& robot, const protocol::VdaError& error);
+  // and says it, with `reason`.
+  VdaRejection reject(Robot& robot, const std::string& reason);
   // Has the robot rejected max_rejections orders to `destination` in a row (then no new one is sent)?
   bool gave_up_on(const Robot& robot, protocol::Point destination) const;
   // Is `waypoint` the last released node of the robot's order (the planner's waypoint unchanged)?
@@ -128,8 +131,15 @@ class VdaOrders {
                      OutboundMessage& out);
   // cancelOrder: nothing more is sent until the state shows it done.
   void cancel(Robot& robot, const Instant& now, OutboundMessage& out);
-  // Encodes robot.order as it stands into `out`.
-  protocol::CodecStatus send_order(Robot& robot, std::int64_t wall_ns, OutboundMessage& out);
+  // Encodes robot.order as it stands into `out`, a new update (first send) or `again`.
+  protocol::CodecStatus send_order(Robot& robot, const Instant& now, bool again, OutboundMessage& out);
+  // resend() of one robot's unconfirmed instant action, and of its order not taken yet.
+  void resend_action(std::string_view id, Robot& robot, const Instant& now, std::vector<OutboundMessage>& out,
+                     std::vector<std::string>& given_up);
+  void resend_order(std::string_view id, Robot& robot, const Instant& now, std::vector<OutboundMessage>& out,
+                    std::vector<std::string>& given_up);
+  // When what was sent `sends` times at `now` is due again: the wait doubles with each send.
+  std::int64_t due_after(const Instant& now, std::size_t sends) const;
   // A new order: from where the robot stands (when known and not at path[0]) along the path.
   void start_order(Robot& robot, std::optional<protocol::Point> position,
                    std::span<const protocol::Point> path, std::int64_t wall_ns);

@@ -75,8 +75,8 @@ GatewayNode::Metrics::Metrics(Counters& c)
       observation_batches(c.get("observation_batches")),
       scan_error_beams(c.get("scan_error_beams")),
       vda_orders_rejected(c.get("vda_orders_rejected")),
-      vda_actions_resent(c.get("vda_actions_resent")),
-      vda_actions_given_up(c.get("vda_actions_given_up")) {
+      vda_resent(c.get("vda_resent")),
+      vda_given_up(c.get("vda_given_up")) {
   for (protocol::RejectReason r : protocol::kAllRejectReasons) {
     rejected[static_cast<size_t>(r)] = &c.get(std::string(protocol::reason_counter(r)));
   }
@@ -237,7 +237,7 @@ void GatewayNode::run_once() {
   const Tick now = Tick::now();
   presence_changed_ = false;
   take_inputs(now);
-  resend_vda_actions(now);
+  resend_vda(now);
   if (batch_policy_.due(now.instant.mono_ns)) write_batch();
   collect_changed_robots(now);
   mqtt_->poll(now.at);

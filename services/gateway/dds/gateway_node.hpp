@@ -108,10 +108,10 @@ class GatewayNode {
     std::atomic<int64_t>& robots_forgotten;
     std::atomic<int64_t>& fleet_digests;
     std::atomic<int64_t>& observation_batches;
-    std::atomic<int64_t>& scan_error_beams;      // v2 scan beams with range 0 (an error reading), left out
-    std::atomic<int64_t>& vda_orders_rejected;   // VDA 5050 orders (updates) a robot's state rejected
-    std::atomic<int64_t>& vda_actions_resent;    // VDA 5050 instant actions sent again, not in the state yet
-    std::atomic<int64_t>& vda_actions_given_up;  // ... and not in it after every send
+    std::atomic<int64_t>& scan_error_beams;     // v2 scan beams with range 0 (an error reading), left out
+    std::atomic<int64_t>& vda_orders_rejected;  // VDA 5050 orders (updates) a robot's state rejected
+    std::atomic<int64_t>& vda_resent;    // VDA 5050 orders and instant actions sent again, not taken yet
+    std::atomic<int64_t>& vda_given_up;  // ... and not taken after every send
   };
 
   GatewayNode(const GatewayOptions& options, Counters& counters);
@@ -153,8 +153,8 @@ class GatewayNode {
 
   // Loop, DDS -> MQTT (gateway_outbound.cpp).
   void send_waypoint(const WaypointInput& command, const Tick& now);
-  // VDA 5050 instant actions the robots' states have not listed yet, sent again when due.
-  void resend_vda_actions(const Tick& now);
+  // VDA 5050 orders and instant actions the robots' states have not shown taken, sent again when due.
+  void resend_vda(const Tick& now);
   void answer_request(const MqttRequestInput& request, const Tick& now);
   // The protocol to answer robot `id` in: the fresher of this gateway's registry and the RobotStates.
   std::optional<Protocol> protocol_of(std::string_view id) const;

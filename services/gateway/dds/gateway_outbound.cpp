@@ -96,16 +96,15 @@ void GatewayNode::send_waypoint(const WaypointInput& command, const Tick& now) {
   bump(metrics_.commands_sent);
 }
 
-void GatewayNode::resend_vda_actions(const Tick& now) {
-  vda_orders_.resend_actions(now.instant, vda_resends_, vda_given_up_);
+void GatewayNode::resend_vda(const Tick& now) {
+  vda_orders_.resend(now.instant, vda_resends_, vda_given_up_);
   for (const OutboundMessage& m : vda_resends_) {
-    bump(metrics_.vda_actions_resent);
+    bump(metrics_.vda_resent);
     if (auto s = publish_mqtt(m.topic, bytes(m.payload), options_.mqtt.qos, false); !s)
-      warn("publish",
-           "instant action to '" + protocol::escape_for_log(m.topic) + "' not sent again: " + s.message());
+      warn("publish", "'" + protocol::escape_for_log(m.topic) + "' not sent again: " + s.message());
   }
   for (const std::string& line : vda_given_up_) {
-    bump(metrics_.vda_actions_given_up);
+    bump(metrics_.vda_given_up);
     spdlog::warn("{}", line);
   }
 }

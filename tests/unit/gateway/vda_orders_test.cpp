@@ -69,7 +69,7 @@ class VdaOrdersTest : public ::testing::Test {
   std::vector<Json> resent_after(double seconds) {
     now.mono_ns += static_cast<std::int64_t>(seconds * 1e9);
     now.wall_ns += static_cast<std::int64_t>(seconds * 1e9);
-    orders.resend_actions(now, resent, given_up);
+    orders.resend(now, resent, given_up);
     std::vector<Json> sent;
     for (const OutboundMessage& m : resent) sent.push_back(Json::parse(m.payload));
     return sent;
@@ -106,13 +106,32 @@ TEST_F(VdaOrdersTest, FirstPathStartsWhereTheRobotStandsReleasedUpToTheWaypoint)
   EXPECT_EQ(order["edges"].size(), 3u);
 }
 
-TEST_F(VdaOrdersTest, TheSameWaypointAgainResendsTheSameUpdateUnderTheNextHeaderId) {
+TEST_F(VdaOrdersTest, AnOrderIsSentAgainWithBackoffUnderTheNextHeaderIdUntilTheStateShowsItTaken) {
   const Json first = command({0, 0}, {{2, 0}, {2, 3}});
-  const Json again = command({0.5, 0}, {{2.001, 0}, {2, 3}});
-  EXPECT_EQ(again["headerId"], 1);
-  EXPECT_EQ(again["orderId"], first["orderId"]);
-  EXPECT_EQ(again["orderUpdateId"], 0);
-  EXPECT_EQ(again["nodes"], first["nodes"]);
+  EXPECT_TRUE(command({0.5, 0}, {{2.001, 0}, {2, 3}}).is_null()) << "the same waypoint: the order stands";
+  EXPECT_TRUE(resent_after(0.9).empty()) << "not due yet";
+  const auto again = resent_after(0.1);
+  ASSERT_EQ(again.size(), 1u);
+  EXPECT_EQ(again[0]["headerId"], 1);
+  EXPECT_EQ(again[0]["orderId"], first["orderId"]);
+  EXPECT_EQ(again[0]["orderUpdateId"], 0);
+  EXPECT_EQ(again[0]["nodes"], first["nodes"]);
+  EXPECT_TRUE(resent_after(1.9).empty()) << "the wait doubles: 2 s after the second send";
+  EXPECT_EQ(resent_after(0.1).size(), 1u);
+  hear(state(first["orderId"], 2, true));
+  EXPECT_TRUE(resent_after(100).empty()) << "taken";
+  EXPECT_TRUE(given_up.empty());
+}
+
+TEST_F(VdaOrdersTest, AnOrderNeverTakenIsGivenUpAfterItsSendsAsIfRejected) {
+  command({0, 0}, {{2, 0}});
+  std::size_t sends = 1;
+  for (int i = 0; i < 10 && given_up.empty(); ++i) sends += resent_after(10).size();
+  EXPECT_EQ(sends, 4u);
+  ASSERT_EQ(given_up.size(), 1u);
+  EXPECT_NE(given_up[0].find("not taken after 4 sends"), std::string::npos) << given_up[0];
+  const Json fresh = command({0, 0}, {{2, 0}});
+  EXPECT_EQ(fresh["orderUpdateId"], 0) << "the next path starts a new order";
 }
 
 TEST_F(VdaOrdersTest, TheNextWaypointExtendsTheOrderFromItsLastBaseNode) {
@@ -139,17 +158,13 @@ TEST_F(VdaOrdersTest, AHoldPausesTheRobotAndItsReleaseResumesTheSameOrder) {
   EXPECT_EQ(pause["headerId"], 0);
   hear(state(first["orderId"], 2, false));
   EXPECT_TRUE(command({1, 0}, {{1.1, 0}}).is_null()) << "held already: the hold again sends nothing";
-  // Released: the planner's waypoint again, so the order goes on as sent, then the pause ends.
-  const auto resumed = commands({1, 0}, {{4, 0}, {4, 3}});
-  ASSERT_EQ(resumed.size(), 2u);
-  EXPECT_EQ(resumed[0].first, "order");
-  EXPECT_EQ(resumed[0].second["orderId"], first["orderId"]);
-  EXPECT_EQ(resumed[0].second["orderUpdateId"], 0);
-  EXPECT_EQ(resumed[1].first, "instantActions");
-  EXPECT_EQ(action_types(resumed[1].second), std::vector<std::string>{"stopPause"});
-  EXPECT_EQ(resumed[1].second["headerId"], 1);
+  // Released: the planner's waypoint again, so the order it took goes on as sent: the pause ends.
+  const Json resumed = command({1, 0}, {{4, 0}, {4, 3}});
+  EXPECT_EQ(topic, "uagv/v2/Acme/agv-1/instantActions");
+  EXPECT_EQ(action_types(resumed), std::vector<std::string>{"stopPause"});
+  EXPECT_EQ(resumed["headerId"], 1);
   hear(state(first["orderId"], 2, true));
-  EXPECT_EQ(commands({1.5, 0}, {{4, 0}, {4, 3}}).size(), 1u) << "the order alone: the pause is over";
+  EXPECT_TRUE(command({1.5, 0}, {{4, 0}, {4, 3}}).is_null()) << "the pause is over, the order taken";
 }
 
 TEST_F(VdaOrdersTest, AStopThenAGoalElsewhereCancelsTheHeldOrderAndStartsANewOneOnceItIsDone) {
@@ -225,6 +240,13 @@ TEST_F(VdaOrdersTest, AHaltOfARobotWithoutAnOrderSendsNothing) {
 TEST_F(VdaOrdersTest, AStandingRobotIsSentThereNotCancelled) {
   command({1, 1}, {{1.05, 1.1}});
   EXPECT_EQ(topic, "uagv/v2/Acme/agv-1/order");
+}
+
+TEST_F(VdaOrdersTest, TheNodeItDrivesToMovedByACorrectionIsNoHalt) {
+  const Json order = command({0, 0}, {{2, 0}});
+  hear(state(order["orderId"], 1, true));
+  // The last leg: the waypoint alone, a millimetre nearer than the node, 0.2 m ahead.
+  EXPECT_TRUE(command({1.8, 0}, {{1.999, 0}}).is_null()) << "the order stands: no startPause";
 }
 
 TEST_F(VdaOrdersTest, AShortLastLegIsADestinationNotAHalt) {
