@@ -237,6 +237,52 @@ TEST(PoseCorrector, ALaserRobotBackingUpWhileItsOdometrySaysForwardIsFollowed) {
   EXPECT_GT(backing_up_error(without), 1.0);
 }
 
+// The same robot backs out of a room into a corridor longer than its laser's reach, its odometry
+// still counting forward. Along the corridor no match can tell where it is: the prediction decides,
+// and only odometry turned round (OdometryDirection, learned where the room's walls pinned the
+// reversal) keeps it with the truth.
+double backing_into_corridor_error(const CorrectorOptions& options) {
+  // A 4 x 4 m room with a pillar, its east wall open at y 1.5..2.5 into a corridor 1 m wide.
+  const std::vector<Wall> walls{{{0, 0}, {4, 0}},       {{0, 4}, {4, 4}},      {{0, 0}, {0, 4}},
+                                {{4, 0}, {4, 1.5}},     {{4, 2.5}, {4, 4}},    {{1, 1}, {1.5, 1}},
+                                {{1.5, 1}, {1.5, 1.4}}, {{4, 1.5}, {30, 1.5}}, {{4, 2.5}, {30, 2.5}}};
+  const TrueMap map(walls, GridGeometry{{-0.525, -0.525}, 0.05, 640, 100});
+  PoseCorrector corrector(options);
+  std::vector<KeyframeCorrection> finalised;
+  Pose truth{3.5, 2.0, std::numbers::pi}, belief = truth;  // facing the room, the corridor behind
+  int64_t stamp = 0;
+  const auto step = [&](double truth_dx) {
+    truth = truth.compose({truth_dx, 0.0, 0.0});
+    belief = belief.compose({std::abs(truth_dx), 0.0, 0.0});
+    std::vector<Vec2> hits;
+    for (int i = 0; i < 180; ++i) {
+      const double a = truth.theta + 2.0 * std::numbers::pi * i / 180.0;
+      const Vec2 dir{std::cos(a), std::sin(a)};
+      if (auto t = cast(walls, truth.position(), dir, 8.0))
+        hits.push_back(belief.compose(truth.inverse()).transform(truth.position() + dir * *t));
+    }
+    stamp += 100'000'000;
+    EXPECT_TRUE(corrector.add("r1", stamp, belief, true, hits));
+    corrector.process(map.view(), stamp, finalised);
+  };
+  for (int i = 0; i < 40; ++i) step(0.03);    // 1.2 m into the room
+  for (int i = 0; i < 300; ++i) step(-0.03);  // backs out, 7.8 m along the corridor
+  corrector.finish();
+  corrector.process(map.view(), stamp, finalised);
+  return distance(corrector.correction("r1").compose(belief).position(), truth.position());
+}
+
+TEST(PoseCorrector, OdometryTurnedRoundCarriesABackingRobotAlongACorridor) {
+  const double with = backing_into_corridor_error(CorrectorOptions{});
+  CorrectorOptions without;
+  without.odometry_direction = false;
+  const double error_without = backing_into_corridor_error(without);
+  RecordProperty("error_mm", static_cast<int>(with * 1000));
+  RecordProperty("error_without_mm", static_cast<int>(error_without * 1000));
+  EXPECT_LT(with, 0.3);
+  EXPECT_GT(error_without, 2.0);
+}
+
 TEST(PoseCorrector, ARobotWhoseOdometryStartsFarAwayStartsAtTheOrigin) {
   PoseCorrector corrector;
   const std::vector<Vec2> hits{{601.0, -200.0}};
