@@ -5,7 +5,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <numbers>
 #include <utility>
 #include <vector>
 
@@ -15,7 +14,7 @@
 namespace slam::correction {
 namespace {
 
-using testing_scene::cast;
+using testing_scene::laser_hits;
 using testing_scene::room;
 using testing_scene::Wall;
 using testkit::centred_geometry;
@@ -38,16 +37,7 @@ Placed switch_on_anywhere(const std::vector<Wall>& walls, const TrueMap& map, co
   PoseCorrector corrector(options);
   std::vector<KeyframeCorrection> finalised;
   int64_t stamp = 0;
-  const auto scan = [&](const Pose& truth, const Pose& belief) {
-    std::vector<Vec2> hits;
-    for (int i = 0; i < 180; ++i) {
-      const double a = truth.theta + 2.0 * std::numbers::pi * i / 180.0;
-      const Vec2 dir{std::cos(a), std::sin(a)};
-      if (auto t = cast(walls, truth.position(), dir, 8.0))
-        hits.push_back(belief.compose(truth.inverse()).transform(truth.position() + dir * *t));
-    }
-    return hits;
-  };
+  const auto scan = [&](const Pose& truth, const Pose& belief) { return laser_hits(walls, truth, belief); };
   for (int i = 0; i < lead_messages; ++i) {  // the first robot, along the room where it truly is
     const Pose truth{1.5 + 0.03 * i, 1.0, 0.0};
     stamp += 100'000'000;

@@ -16,8 +16,8 @@ namespace {
 using testing_scene::cast;
 using testing_scene::Wall;
 
-// A ring corridor 2 m wide around an 8 x 4 m block, with a short stub at the start's corner so the
-// corner where the loop closes is unlike the other three.
+// A ring corridor 2 m wide around an 8 x 4 m block. A short stub at the start's corner makes the
+// corner where the loop closes unlike the other three.
 std::vector<Wall> ring() {
   return {{{0, 0}, {12, 0}}, {{12, 0}, {12, 8}}, {{12, 8}, {0, 8}},
           {{0, 8}, {0, 0}},  {{2, 2}, {10, 2}},  {{10, 2}, {10, 6}},

@@ -5,6 +5,7 @@
 // on the centre of its cell: walls on cell edges would shift the map).
 #include <cmath>
 #include <cstdint>
+#include <numbers>
 #include <optional>
 #include <vector>
 
@@ -35,6 +36,21 @@ inline std::optional<double> cast(const std::vector<Wall>& walls, Vec2 origin, V
     if (t > 0 && t <= range && u >= 0 && u <= 1 && (!best || t < *best)) best = t;
   }
   return best;
+}
+
+// A laser's hits (`beams` over 360 degrees, `range` m) seen from `truth`, in the odometry frame of a
+// robot that believes it is at `belief`.
+inline std::vector<Vec2> laser_hits(const std::vector<Wall>& walls, const Pose& truth, const Pose& belief,
+                                    int beams = 180, double range = 8.0) {
+  std::vector<Vec2> hits;
+  const Pose belief_from_truth = belief.compose(truth.inverse());
+  for (int i = 0; i < beams; ++i) {
+    const double a = truth.theta + 2.0 * std::numbers::pi * i / beams;
+    const Vec2 dir{std::cos(a), std::sin(a)};
+    if (auto t = cast(walls, truth.position(), dir, range))
+      hits.push_back(belief_from_truth.transform(truth.position() + dir * *t));
+  }
+  return hits;
 }
 
 // The walls drawn into class octets; by default over the room and a margin.
