@@ -5,6 +5,8 @@
 
 #include <cmath>
 
+#include "protocol/text_check.hpp"
+
 namespace slam::protocol::json_fields {
 
 std::string FieldName::str() const {
@@ -91,6 +93,58 @@ CodecStatus point_pair(const Json& value, const FieldName& name, const CodecLimi
   const FieldName y{name.base, name.index, "y"};
   if (auto status = number(value[0], x, limits.max_abs_coordinate_m, out.x); !status) return status;
   return number(value[1], y, limits.max_abs_coordinate_m, out.y);
+}
+
+CodecStatus member_text(const Json& object, std::string_view key, const FieldName& name,
+                        std::size_t max_bytes, std::string& out) {
+  const Json* value = nullptr;
+  if (auto s = require(object, key, name, value); !s) return s;
+  if (!value->is_string())
+    return {RejectReason::JsonType,
+            fmt::format("{} is {}, expected a string", name.str(), value->type_name())};
+  const auto& text = value->get_ref<const std::string&>();
+  if (text.size() > max_bytes)
+    return {RejectReason::BadText,
+            fmt::format("{} is {} bytes, limit {}", name.str(), text.size(), max_bytes)};
+  if (const auto problem = find_text_problem(text))
+    return {RejectReason::BadText,
+            fmt::format("{} has {} at byte {}", name.str(), problem->what, problem->offset)};
+  out = text;
+  return CodecStatus::ok();
+}
+
+CodecStatus member_bool(const Json& object, std::string_view key, const FieldName& name, bool& out) {
+  const Json* value = nullptr;
+  if (auto s = require(object, key, name, value); !s) return s;
+  if (!value->is_boolean())
+    return {RejectReason::JsonType,
+            fmt::format("{} is {}, expected a boolean", name.str(), value->type_name())};
+  out = value->get<bool>();
+  return CodecStatus::ok();
+}
+
+CodecStatus member_uint32(const Json& object, std::string_view key, const FieldName& name,
+                          std::uint32_t& out) {
+  const Json* value = nullptr;
+  if (auto s = require(object, key, name, value); !s) return s;
+  if (!value->is_number_unsigned() && !(value->is_number_integer() && value->get<std::int64_t>() >= 0))
+    return {RejectReason::JsonType,
+            fmt::format("{} is {}, expected an unsigned integer", name.str(), value->type_name())};
+  const std::uint64_t v = value->get<std::uint64_t>();
+  if (v > 0xFFFFFFFFu)
+    return {RejectReason::OutOfRange, fmt::format("{} is {}, limit 4294967295", name.str(), v)};
+  out = static_cast<std::uint32_t>(v);
+  return CodecStatus::ok();
+}
+
+CodecStatus member_array(const Json& object, std::string_view key, const FieldName& name,
+                         const CodecLimits& limits, const Json*& out) {
+  if (auto s = require(object, key, name, out); !s) return s;
+  if (auto s = expect_array(*out, name); !s) return s;
+  if (out->size() > limits.max_points)
+    return {RejectReason::TooManyPoints,
+            fmt::format("{} has {} entries, limit {}", name.str(), out->size(), limits.max_points)};
+  return CodecStatus::ok();
 }
 
 }  // namespace slam::protocol::json_fields

@@ -1,5 +1,5 @@
 #pragma once
-// Typed, bounded reads from a parsed v2 JSON document. Each read names the field in its error
+// Typed, bounded reads from a parsed JSON document (v2, VDA 5050). Each read names the field in its error
 // ("pose.x is a string, expected a number"), and builds that name only when it fails, so the
 // accepting path allocates nothing beyond the JSON document itself. Internal to robot_protocol.
 #include <cstddef>
@@ -47,6 +47,16 @@ CodecStatus number(const Json& value, const FieldName& name, double bound, doubl
 // Required numeric member `key` of `object`.
 CodecStatus member_number(const Json& object, std::string_view key, const FieldName& name, double bound,
                           double& out);
+// Required string member: clean UTF-8 without control characters (BadText), at most max_bytes.
+CodecStatus member_text(const Json& object, std::string_view key, const FieldName& name,
+                        std::size_t max_bytes, std::string& out);
+CodecStatus member_bool(const Json& object, std::string_view key, const FieldName& name, bool& out);
+// Required unsigned integer member of at most 2^32 - 1 (OutOfRange).
+CodecStatus member_uint32(const Json& object, std::string_view key, const FieldName& name,
+                          std::uint32_t& out);
+// Required array member of at most limits.max_points entries (TooManyPoints).
+CodecStatus member_array(const Json& object, std::string_view key, const FieldName& name,
+                         const CodecLimits& limits, const Json*& out);
 // An [x, y] array of two coordinates within limits.max_abs_coordinate_m.
 CodecStatus point_pair(const Json& value, const FieldName& name, const CodecLimits& limits, Point& out);
 

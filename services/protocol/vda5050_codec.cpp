@@ -1,5 +1,6 @@
-// VDA 5050 topics, the robot messages' decoding (bounded, every failure naming its field) and the
-// fleet control's order and instantActions encoding.
+// VDA 5050 topics, and the fleet control's side: the robot messages' decoding (bounded, every failure
+// naming its field) and the order and instantActions encoding. The robot's side (what the simulator's
+// VDA robots speak) is in vda5050_robot_codec.cpp.
 #include "protocol/vda5050_codec.hpp"
 
 #include <fmt/format.h>
@@ -11,16 +12,13 @@
 #include "protocol/json_fields.hpp"
 #include "protocol/text_check.hpp"
 #include "protocol/topic.hpp"
+#include "protocol/vda5050_fields.hpp"
 
 namespace slam::protocol {
 namespace {
 
 using json_fields::FieldName;
 using json_fields::Json;
-
-// Ids and names the robot sends (orderId, mapId, nodeId, ...): bounded so a robot cannot grow the
-// gateway's memory through them. Free-text descriptions are cut to it instead of rejected.
-constexpr std::size_t kMaxVdaTextBytes = 256;
 
 constexpr std::array<VdaTopic, 4> kRobotTopics = {VdaTopic::Connection, VdaTopic::State,
                                                   VdaTopic::Visualization, VdaTopic::Factsheet};
@@ -37,74 +35,28 @@ CodecStatus check_level(std::string_view level, std::string_view what) {
   return CodecStatus::ok();
 }
 
-// A required string member, clean UTF-8 without control characters, at most max_bytes.
-CodecStatus read_text(const Json& object, std::string_view key, const FieldName& name, std::size_t max_bytes,
-                      std::string& out) {
-  const Json* value = nullptr;
-  if (auto s = json_fields::require(object, key, name, value); !s) return s;
-  if (!value->is_string())
-    return {RejectReason::JsonType,
-            fmt::format("{} is {}, expected a string", name.str(), value->type_name())};
-  const auto& text = value->get_ref<const std::string&>();
-  if (text.size() > max_bytes)
-    return {RejectReason::BadText,
-            fmt::format("{} is {} bytes, limit {}", name.str(), text.size(), max_bytes)};
-  if (const auto problem = find_text_problem(text))
-    return {RejectReason::BadText,
-            fmt::format("{} has {} at byte {}", name.str(), problem->what, problem->offset)};
-  out = text;
-  return CodecStatus::ok();
-}
-
-CodecStatus read_bool(const Json& object, std::string_view key, const FieldName& name, bool& out) {
-  const Json* value = nullptr;
-  if (auto s = json_fields::require(object, key, name, value); !s) return s;
-  if (!value->is_boolean())
-    return {RejectReason::JsonType,
-            fmt::format("{} is {}, expected a boolean", name.str(), value->type_name())};
-  out = value->get<bool>();
-  return CodecStatus::ok();
-}
-
-CodecStatus read_uint32(const Json& object, std::string_view key, const FieldName& name, std::uint32_t& out) {
-  const Json* value = nullptr;
-  if (auto s = json_fields::require(object, key, name, value); !s) return s;
-  if (!value->is_number_unsigned() && !(value->is_number_integer() && value->get<std::int64_t>() >= 0))
-    return {RejectReason::JsonType,
-            fmt::format("{} is {}, expected an unsigned integer", name.str(), value->type_name())};
-  const std::uint64_t v = value->get<std::uint64_t>();
-  if (v > 0xFFFFFFFFu)
-    return {RejectReason::OutOfRange, fmt::format("{} is {}, limit 4294967295", name.str(), v)};
-  out = static_cast<std::uint32_t>(v);
-  return CodecStatus::ok();
-}
-
-CodecStatus read_array(const Json& object, std::string_view key, const FieldName& name,
-                       const CodecLimits& limits, const Json*& out) {
-  if (auto s = json_fields::require(object, key, name, out); !s) return s;
-  if (auto s = json_fields::expect_array(*out, name); !s) return s;
-  if (out->size() > limits.max_points)
-    return {RejectReason::TooManyPoints,
-            fmt::format("{} has {} entries, limit {}", name.str(), out->size(), limits.max_points)};
-  return CodecStatus::ok();
-}
-
 // headerId, version (of the configured major version), manufacturer and serialNumber as in the topic.
 CodecStatus read_header(const Json& doc, const VdaAddress& address, const VdaTree& tree, VdaMessage& out) {
-  if (auto s = read_uint32(doc, "headerId", {"headerId"}, out.header_id); !s) return s;
+  if (auto s = json_fields::member_uint32(doc, "headerId", {"headerId"}, out.header_id); !s) return s;
   std::string text;
-  if (auto s = read_text(doc, "version", {"version"}, 32, text); !s) return s;
+  if (auto s = json_fields::member_text(doc, "version", {"version"}, 32, text); !s) return s;
   // "v2" accepts "2.0.0", "2.1.0", ...: minor versions add optional members only.
   const std::string_view major = std::string_view(tree.major_version).substr(1);
   if (!text.starts_with(major) || text.size() <= major.size() || text[major.size()] != '.')
     return {RejectReason::BadVersion,
             fmt::format("version is '{}', this fleet control speaks {}.x", escape_for_log(text), major)};
-  if (auto s = read_text(doc, "manufacturer", {"manufacturer"}, kMaxVdaTextBytes, text); !s) return s;
+  if (auto s = json_fields::member_text(doc, "manufacturer", {"manufacturer"}, vda5050_fields::kMaxTextBytes,
+                                        text);
+      !s)
+    return s;
   if (text != address.manufacturer)
     return {RejectReason::BadRobotId,
             fmt::format("manufacturer '{}' differs from the topic's '{}'", escape_for_log(text),
                         escape_for_log(address.manufacturer))};
-  if (auto s = read_text(doc, "serialNumber", {"serialNumber"}, kMaxVdaTextBytes, text); !s) return s;
+  if (auto s = json_fields::member_text(doc, "serialNumber", {"serialNumber"}, vda5050_fields::kMaxTextBytes,
+                                        text);
+      !s)
+    return s;
   if (text != address.serial_number)
     return {RejectReason::BadRobotId,
             fmt::format("serialNumber '{}' differs from the topic's '{}'", escape_for_log(text),
@@ -114,7 +66,7 @@ CodecStatus read_header(const Json& doc, const VdaAddress& address, const VdaTre
 
 CodecStatus read_connection(const Json& doc, VdaMessage& out) {
   std::string state;
-  if (auto s = read_text(doc, "connectionState", {"connectionState"}, 32, state); !s) return s;
+  if (auto s = json_fields::member_text(doc, "connectionState", {"connectionState"}, 32, state); !s) return s;
   if (state == "ONLINE") {
     out.connection = VdaConnection::Online;
   } else if (state == "OFFLINE") {
@@ -147,13 +99,13 @@ CodecStatus read_position(const Json& doc, const CodecLimits& limits, VdaMessage
                                           limits.max_abs_angle_rad, out.theta);
       !s)
     return s;
-  if (auto s = read_text(*position, "mapId", {"agvPosition", FieldName::kNoIndex, "mapId"}, kMaxVdaTextBytes,
-                         out.map_id);
+  if (auto s = json_fields::member_text(*position, "mapId", {"agvPosition", FieldName::kNoIndex, "mapId"},
+                                        vda5050_fields::kMaxTextBytes, out.map_id);
       !s)
     return s;
-  if (auto s =
-          read_bool(*position, "positionInitialized",
-                    {"agvPosition", FieldName::kNoIndex, "positionInitialized"}, out.position_initialized);
+  if (auto s = json_fields::member_bool(*position, "positionInitialized",
+                                        {"agvPosition", FieldName::kNoIndex, "positionInitialized"},
+                                        out.position_initialized);
       !s)
     return s;
   out.has_position = true;
@@ -165,20 +117,23 @@ CodecStatus read_position(const Json& doc, const CodecLimits& limits, VdaMessage
 std::string description_of(const Json& error) {
   const Json* d = json_fields::find_optional(error, "errorDescription");
   if (d == nullptr || !d->is_string()) return {};
-  return escape_for_log(d->get_ref<const std::string&>(), kMaxVdaTextBytes);
+  return escape_for_log(d->get_ref<const std::string&>(), vda5050_fields::kMaxTextBytes);
 }
 
 CodecStatus read_errors(const Json& doc, const CodecLimits& limits, VdaMessage& out) {
   const Json* errors = nullptr;
-  if (auto s = read_array(doc, "errors", {"errors"}, limits, errors); !s) return s;
+  if (auto s = json_fields::member_array(doc, "errors", {"errors"}, limits, errors); !s) return s;
   out.errors.resize(errors->size());
   for (std::size_t i = 0; i < errors->size(); ++i) {
     const Json& e = (*errors)[i];
     VdaError& error = out.errors[i];
     if (auto s = json_fields::expect_object(e, {"errors", i}); !s) return s;
-    if (auto s = read_text(e, "errorType", {"errors", i, "errorType"}, kMaxVdaTextBytes, error.type); !s)
+    if (auto s = json_fields::member_text(e, "errorType", {"errors", i, "errorType"},
+                                          vda5050_fields::kMaxTextBytes, error.type);
+        !s)
       return s;
-    if (auto s = read_text(e, "errorLevel", {"errors", i, "errorLevel"}, 32, error.level); !s) return s;
+    if (auto s = json_fields::member_text(e, "errorLevel", {"errors", i, "errorLevel"}, 32, error.level); !s)
+      return s;
     error.description = description_of(e);
     error.order_id.clear();
     error.order_update_id.clear();
@@ -191,7 +146,7 @@ CodecStatus read_errors(const Json& doc, const CodecLimits& limits, VdaMessage& 
       const Json* value = json_fields::find(r, "referenceValue");
       if (key == nullptr || value == nullptr || !key->is_string() || !value->is_string()) continue;
       const auto& v = value->get_ref<const std::string&>();
-      if (v.size() > kMaxVdaTextBytes) continue;
+      if (v.size() > vda5050_fields::kMaxTextBytes) continue;
       if (*key == "orderId") error.order_id = v;
       if (*key == "orderUpdateId") error.order_update_id = v;
     }
@@ -201,16 +156,19 @@ CodecStatus read_errors(const Json& doc, const CodecLimits& limits, VdaMessage& 
 
 CodecStatus read_action_states(const Json& doc, const CodecLimits& limits, VdaMessage& out) {
   const Json* states = nullptr;
-  if (auto s = read_array(doc, "actionStates", {"actionStates"}, limits, states); !s) return s;
+  if (auto s = json_fields::member_array(doc, "actionStates", {"actionStates"}, limits, states); !s) return s;
   out.action_states.resize(states->size());
   for (std::size_t i = 0; i < states->size(); ++i) {
     const Json& a = (*states)[i];
     VdaActionState& state = out.action_states[i];
     if (auto s = json_fields::expect_object(a, {"actionStates", i}); !s) return s;
-    if (auto s = read_text(a, "actionId", {"actionStates", i, "actionId"}, kMaxVdaTextBytes, state.action_id);
+    if (auto s = json_fields::member_text(a, "actionId", {"actionStates", i, "actionId"},
+                                          vda5050_fields::kMaxTextBytes, state.action_id);
         !s)
       return s;
-    if (auto s = read_text(a, "actionStatus", {"actionStates", i, "actionStatus"}, 32, state.status); !s)
+    if (auto s = json_fields::member_text(a, "actionStatus", {"actionStates", i, "actionStatus"}, 32,
+                                          state.status);
+        !s)
       return s;
   }
   return CodecStatus::ok();
@@ -218,21 +176,32 @@ CodecStatus read_action_states(const Json& doc, const CodecLimits& limits, VdaMe
 
 CodecStatus read_state(const Json& doc, const CodecLimits& limits, VdaMessage& out) {
   if (auto s = read_position(doc, limits, out); !s) return s;
-  if (auto s = read_text(doc, "orderId", {"orderId"}, kMaxVdaTextBytes, out.order_id); !s) return s;
-  if (auto s = read_uint32(doc, "orderUpdateId", {"orderUpdateId"}, out.order_update_id); !s) return s;
-  if (auto s = read_text(doc, "lastNodeId", {"lastNodeId"}, kMaxVdaTextBytes, out.last_node_id); !s) return s;
-  if (auto s = read_uint32(doc, "lastNodeSequenceId", {"lastNodeSequenceId"}, out.last_node_sequence_id); !s)
+  if (auto s =
+          json_fields::member_text(doc, "orderId", {"orderId"}, vda5050_fields::kMaxTextBytes, out.order_id);
+      !s)
+    return s;
+  if (auto s = json_fields::member_uint32(doc, "orderUpdateId", {"orderUpdateId"}, out.order_update_id); !s)
+    return s;
+  if (auto s = json_fields::member_text(doc, "lastNodeId", {"lastNodeId"}, vda5050_fields::kMaxTextBytes,
+                                        out.last_node_id);
+      !s)
+    return s;
+  if (auto s = json_fields::member_uint32(doc, "lastNodeSequenceId", {"lastNodeSequenceId"},
+                                          out.last_node_sequence_id);
+      !s)
     return s;
   const Json* states = nullptr;
-  if (auto s = read_array(doc, "nodeStates", {"nodeStates"}, limits, states); !s) return s;
+  if (auto s = json_fields::member_array(doc, "nodeStates", {"nodeStates"}, limits, states); !s) return s;
   out.node_states = states->size();
-  if (auto s = read_array(doc, "edgeStates", {"edgeStates"}, limits, states); !s) return s;
+  if (auto s = json_fields::member_array(doc, "edgeStates", {"edgeStates"}, limits, states); !s) return s;
   out.edge_states = states->size();
-  if (auto s = read_bool(doc, "driving", {"driving"}, out.driving); !s) return s;
+  if (auto s = json_fields::member_bool(doc, "driving", {"driving"}, out.driving); !s) return s;
   if (json_fields::find_optional(doc, "paused") != nullptr)
-    if (auto s = read_bool(doc, "paused", {"paused"}, out.paused); !s) return s;
+    if (auto s = json_fields::member_bool(doc, "paused", {"paused"}, out.paused); !s) return s;
   // 32 bytes: it travels as the robot's status text (RobotState.status, string<32>).
-  if (auto s = read_text(doc, "operatingMode", {"operatingMode"}, kMaxStateBytes, out.operating_mode); !s)
+  if (auto s = json_fields::member_text(doc, "operatingMode", {"operatingMode"}, kMaxStateBytes,
+                                        out.operating_mode);
+      !s)
     return s;
   if (out.operating_mode.empty()) return {RejectReason::BadText, "operatingMode is empty"};
   const Json* battery = nullptr;
@@ -250,15 +219,15 @@ CodecStatus read_state(const Json& doc, const CodecLimits& limits, VdaMessage& o
   return read_errors(doc, limits, out);
 }
 
-void append_header(Json& doc, const VdaHeader& header) {
+}  // namespace
+
+void vda5050_fields::append_header(Json& doc, const VdaHeader& header) {
   doc["headerId"] = header.header_id;
   doc["timestamp"] = vda_timestamp(header.wall_ns);
   doc["version"] = kVdaVersion;
   doc["manufacturer"] = header.manufacturer;
   doc["serialNumber"] = header.serial_number;
 }
-
-}  // namespace
 
 std::string_view vda_topic_name(VdaTopic topic) {
   switch (topic) {
@@ -397,7 +366,7 @@ CodecStatus encode_vda_order(const VdaHeader& header, const VdaOrder& order, con
     return {RejectReason::TooManyPoints,
             fmt::format("order has {} nodes, limit {}", order.nodes.size(), limits.max_points)};
   Json doc = Json::object();
-  append_header(doc, header);
+  vda5050_fields::append_header(doc, header);
   doc["orderId"] = order.order_id;
   doc["orderUpdateId"] = order.order_update_id;
   Json nodes = Json::array();
@@ -433,7 +402,7 @@ CodecStatus encode_vda_order(const VdaHeader& header, const VdaOrder& order, con
 void encode_vda_instant_actions(const VdaHeader& header, std::span<const VdaInstantAction> actions,
                                 std::string& out) {
   Json doc = Json::object();
-  append_header(doc, header);
+  vda5050_fields::append_header(doc, header);
   Json list = Json::array();
   // HARD: nothing else runs while the robot stops for them (the standard's choice for cancelOrder).
   for (const VdaInstantAction& a : actions)
@@ -441,30 +410,6 @@ void encode_vda_instant_actions(const VdaHeader& header, std::span<const VdaInst
   doc["instantActions"] = std::move(list);
   out = doc.dump();
 }
-
-namespace {
-
-Json position_json(const VdaRobotReport& r) {
-  return {{"x", r.x}, {"y", r.y}, {"theta", r.theta}, {"mapId", r.map_id}, {"positionInitialized", true}};
-}
-
-CodecStatus read_node(const Json& node, std::size_t i, const CodecLimits& limits, VdaNode& out) {
-  if (auto s = json_fields::expect_object(node, {"nodes", i}); !s) return s;
-  if (auto s = read_text(node, "nodeId", {"nodes", i, "nodeId"}, kMaxVdaTextBytes, out.node_id); !s) return s;
-  if (auto s = read_uint32(node, "sequenceId", {"nodes", i, "sequenceId"}, out.sequence_id); !s) return s;
-  if (auto s = read_bool(node, "released", {"nodes", i, "released"}, out.released); !s) return s;
-  const Json* position = nullptr;
-  if (auto s = json_fields::require(node, "nodePosition", {"nodes", i, "nodePosition"}, position); !s)
-    return s;
-  if (auto s = json_fields::expect_object(*position, {"nodes", i, "nodePosition"}); !s) return s;
-  const double c = limits.max_abs_coordinate_m;
-  if (auto s = json_fields::member_number(*position, "x", {"nodes", i, "nodePosition.x"}, c, out.position.x);
-      !s)
-    return s;
-  return json_fields::member_number(*position, "y", {"nodes", i, "nodePosition.y"}, c, out.position.y);
-}
-
-}  // namespace
 
 CodecStatus parse_vda_command_topic(std::string_view topic, const VdaTree& tree, VdaAddress& out) {
   const std::string prefix = tree.interface_name + "/" + tree.major_version + "/";
@@ -491,90 +436,6 @@ CodecStatus parse_vda_command_topic(std::string_view topic, const VdaTree& tree,
 std::string vda_command_filter(const VdaTree& tree, std::string_view manufacturer, VdaTopic topic) {
   return fmt::format("{}/{}/{}/+/{}", tree.interface_name, tree.major_version, manufacturer,
                      vda_topic_name(topic));
-}
-
-CodecStatus decode_vda_order(std::span<const std::uint8_t> payload, const CodecLimits& limits,
-                             VdaOrder& out) {
-  Json doc;
-  if (auto s = json_fields::parse_object(payload, limits, doc); !s) return s;
-  if (auto s = read_text(doc, "orderId", {"orderId"}, kMaxVdaTextBytes, out.order_id); !s) return s;
-  if (auto s = read_uint32(doc, "orderUpdateId", {"orderUpdateId"}, out.order_update_id); !s) return s;
-  const Json* nodes = nullptr;
-  if (auto s = read_array(doc, "nodes", {"nodes"}, limits, nodes); !s) return s;
-  out.nodes.resize(nodes->size());
-  for (std::size_t i = 0; i < nodes->size(); ++i)
-    if (auto s = read_node((*nodes)[i], i, limits, out.nodes[i]); !s) return s;
-  if (!out.nodes.empty()) {
-    const Json& first = (*nodes)[0]["nodePosition"];
-    if (auto s = read_text(first, "mapId", {"nodes", 0, "nodePosition.mapId"}, kMaxVdaTextBytes, out.map_id);
-        !s)
-      return s;
-  }
-  return CodecStatus::ok();
-}
-
-CodecStatus decode_vda_instant_actions(std::span<const std::uint8_t> payload, const CodecLimits& limits,
-                                       std::vector<VdaInstantAction>& out) {
-  Json doc;
-  if (auto s = json_fields::parse_object(payload, limits, doc); !s) return s;
-  const Json* actions = nullptr;
-  if (auto s = read_array(doc, "instantActions", {"instantActions"}, limits, actions); !s) return s;
-  out.resize(actions->size());
-  for (std::size_t i = 0; i < actions->size(); ++i) {
-    const Json& a = (*actions)[i];
-    if (auto s = json_fields::expect_object(a, {"instantActions", i}); !s) return s;
-    if (auto s =
-            read_text(a, "actionId", {"instantActions", i, "actionId"}, kMaxVdaTextBytes, out[i].action_id);
-        !s)
-      return s;
-    if (auto s = read_text(a, "actionType", {"instantActions", i, "actionType"}, kMaxVdaTextBytes,
-                           out[i].action_type);
-        !s)
-      return s;
-  }
-  return CodecStatus::ok();
-}
-
-void encode_vda_state(const VdaHeader& header, const VdaRobotReport& report, std::string& out) {
-  Json doc = Json::object();
-  append_header(doc, header);
-  doc["orderId"] = report.order_id;
-  doc["orderUpdateId"] = report.order_update_id;
-  doc["lastNodeId"] = report.last_node_id;
-  doc["lastNodeSequenceId"] = report.last_node_sequence_id;
-  Json nodes = Json::array();
-  for (const VdaNode& n : report.nodes_left)
-    nodes.push_back({{"nodeId", n.node_id}, {"sequenceId", n.sequence_id}, {"released", n.released}});
-  doc["nodeStates"] = std::move(nodes);
-  doc["edgeStates"] = Json::array();
-  doc["driving"] = report.driving;
-  doc["paused"] = report.paused;
-  Json actions = Json::array();
-  for (const VdaActionState& a : report.action_states)
-    actions.push_back({{"actionId", a.action_id}, {"actionStatus", a.status}});
-  doc["actionStates"] = std::move(actions);
-  doc["batteryState"] = {{"batteryCharge", report.battery * 100.0}, {"charging", false}};
-  doc["operatingMode"] = "AUTOMATIC";
-  doc["errors"] = Json::array();
-  doc["safetyState"] = {{"eStop", "NONE"}, {"fieldViolation", false}};
-  doc["agvPosition"] = position_json(report);
-  out = doc.dump();
-}
-
-void encode_vda_visualization(const VdaHeader& header, const VdaRobotReport& report, std::string& out) {
-  Json doc = Json::object();
-  append_header(doc, header);
-  doc["agvPosition"] = position_json(report);
-  out = doc.dump();
-}
-
-void encode_vda_connection(const VdaHeader& header, VdaConnection connection, std::string& out) {
-  Json doc = Json::object();
-  append_header(doc, header);
-  doc["connectionState"] = connection == VdaConnection::Online    ? "ONLINE"
-                           : connection == VdaConnection::Offline ? "OFFLINE"
-                                                                  : "CONNECTIONBROKEN";
-  out = doc.dump();
 }
 
 }  // namespace slam::protocol
