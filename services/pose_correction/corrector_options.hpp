@@ -72,12 +72,12 @@ struct CorrectorOptions {
   double window_margin_m = 0.3;  // beyond a keyframe's farthest point: the matcher's field blur
   double tied_sigma_m = 0.05;    // chain uncertainty above which a tie searches the wide window
   // After a long loop a sparse robot can be metres off, beyond closure_window, where one keyframe's
-  // few dozen points fit many places. While its pose's sigma in the map
-  // exceeds relocalise_sigma_m, the points of its last placement_trail_m of keyframes are searched by branch
-  // and bound within 3 sigma (at most relocalise_max_m, relocalise_max_rad) among the old keyframes there,
-  // and a match as distinct as a placement's is taken as a loop closure once relocalise_confirmations
-  // keyframes in a row agree on it (as global localisation confirms a placement). The pose's sigma, not
-  // the chain's since its last tie: a robot just switched on at a trusted start is untied but not lost,
+  // few dozen points fit many places. While its pose's sigma in the map exceeds relocalise_sigma_m,
+  // the points of its last placement_trail_m of keyframes are searched by branch and bound within
+  // 3 sigma (at most relocalise_max_m, relocalise_max_rad) among the old keyframes there, and a match
+  // as distinct as a placement's is taken as a loop closure once relocalise_confirmations keyframes
+  // in a row agree on it (as global localisation confirms a placement). The pose's sigma, not the
+  // chain's since its last tie: a robot just switched on at a trusted start is untied but not lost,
   // and in the simulator's two-room world a search for it took the other room.
   bool relocalise = true;
   double relocalise_sigma_m = 0.5;
