@@ -16,9 +16,15 @@ Json position_json(const VdaRobotReport& r) {
 
 CodecStatus read_node(const Json& node, std::size_t i, const CodecLimits& limits, VdaNode& out) {
   if (auto s = json_fields::expect_object(node, {"nodes", i}); !s) return s;
-  if (auto s = json_fields::member_text(node, "nodeId", {"nodes", i, "nodeId"}, vda5050_fields::kMaxTextBytes, out.node_id); !s) return s;
-  if (auto s = json_fields::member_uint32(node, "sequenceId", {"nodes", i, "sequenceId"}, out.sequence_id); !s) return s;
-  if (auto s = json_fields::member_bool(node, "released", {"nodes", i, "released"}, out.released); !s) return s;
+  if (auto s = json_fields::member_text(node, "nodeId", {"nodes", i, "nodeId"}, vda5050_fields::kMaxTextBytes,
+                                        out.node_id);
+      !s)
+    return s;
+  if (auto s = json_fields::member_uint32(node, "sequenceId", {"nodes", i, "sequenceId"}, out.sequence_id);
+      !s)
+    return s;
+  if (auto s = json_fields::member_bool(node, "released", {"nodes", i, "released"}, out.released); !s)
+    return s;
   const Json* position = nullptr;
   if (auto s = json_fields::require(node, "nodePosition", {"nodes", i, "nodePosition"}, position); !s)
     return s;
@@ -36,8 +42,12 @@ CodecStatus decode_vda_order(std::span<const std::uint8_t> payload, const CodecL
                              VdaOrder& out) {
   Json doc;
   if (auto s = json_fields::parse_object(payload, limits, doc); !s) return s;
-  if (auto s = json_fields::member_text(doc, "orderId", {"orderId"}, vda5050_fields::kMaxTextBytes, out.order_id); !s) return s;
-  if (auto s = json_fields::member_uint32(doc, "orderUpdateId", {"orderUpdateId"}, out.order_update_id); !s) return s;
+  if (auto s =
+          json_fields::member_text(doc, "orderId", {"orderId"}, vda5050_fields::kMaxTextBytes, out.order_id);
+      !s)
+    return s;
+  if (auto s = json_fields::member_uint32(doc, "orderUpdateId", {"orderUpdateId"}, out.order_update_id); !s)
+    return s;
   const Json* nodes = nullptr;
   if (auto s = json_fields::member_array(doc, "nodes", {"nodes"}, limits, nodes); !s) return s;
   out.nodes.resize(nodes->size());
@@ -45,7 +55,8 @@ CodecStatus decode_vda_order(std::span<const std::uint8_t> payload, const CodecL
     if (auto s = read_node((*nodes)[i], i, limits, out.nodes[i]); !s) return s;
   if (!out.nodes.empty()) {
     const Json& first = (*nodes)[0]["nodePosition"];
-    if (auto s = json_fields::member_text(first, "mapId", {"nodes", 0, "nodePosition.mapId"}, vda5050_fields::kMaxTextBytes, out.map_id);
+    if (auto s = json_fields::member_text(first, "mapId", {"nodes", 0, "nodePosition.mapId"},
+                                          vda5050_fields::kMaxTextBytes, out.map_id);
         !s)
       return s;
   }
@@ -57,17 +68,18 @@ CodecStatus decode_vda_instant_actions(std::span<const std::uint8_t> payload, co
   Json doc;
   if (auto s = json_fields::parse_object(payload, limits, doc); !s) return s;
   const Json* actions = nullptr;
-  if (auto s = json_fields::member_array(doc, "instantActions", {"instantActions"}, limits, actions); !s) return s;
+  if (auto s = json_fields::member_array(doc, "instantActions", {"instantActions"}, limits, actions); !s)
+    return s;
   out.resize(actions->size());
   for (std::size_t i = 0; i < actions->size(); ++i) {
     const Json& a = (*actions)[i];
     if (auto s = json_fields::expect_object(a, {"instantActions", i}); !s) return s;
-    if (auto s =
-            json_fields::member_text(a, "actionId", {"instantActions", i, "actionId"}, vda5050_fields::kMaxTextBytes, out[i].action_id);
+    if (auto s = json_fields::member_text(a, "actionId", {"instantActions", i, "actionId"},
+                                          vda5050_fields::kMaxTextBytes, out[i].action_id);
         !s)
       return s;
-    if (auto s = json_fields::member_text(a, "actionType", {"instantActions", i, "actionType"}, vda5050_fields::kMaxTextBytes,
-                           out[i].action_type);
+    if (auto s = json_fields::member_text(a, "actionType", {"instantActions", i, "actionType"},
+                                          vda5050_fields::kMaxTextBytes, out[i].action_type);
         !s)
       return s;
   }
