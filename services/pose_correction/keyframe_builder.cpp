@@ -21,6 +21,10 @@ KeyframeBuilder::Step KeyframeBuilder::add(uint64_t id, uint32_t robot, int64_t 
   if (jumped_) {
     jumped_ = false;
     ++segment_;
+  } else if (open_ && keyframe_.scans && static_cast<int>(hits.size()) >= options_.scan_points &&
+             (distance(pose.position(), keyframe_.odom.position()) >= options_.scan_travel_m ||
+              std::abs(wrap_angle(pose.theta - keyframe_.odom.theta)) >= options_.scan_turn_rad)) {
+    return Step::StartsNext;
   }
   has_last_ = true;
   last_pose_ = pose;
@@ -49,11 +53,9 @@ KeyframeBuilder::Step KeyframeBuilder::add(uint64_t id, uint32_t robot, int64_t 
   const double turn = std::abs(wrap_angle(pose.theta - keyframe_.odom.theta));
   keyframe_.travel_m = std::max(keyframe_.travel_m, travel);
   keyframe_.turn_rad = std::max(keyframe_.turn_rad, turn);
-  const bool scan_moved = keyframe_.scans && (keyframe_.travel_m >= options_.scan_travel_m ||
-                                              keyframe_.turn_rad >= options_.scan_turn_rad);
   // A robot clock set back by more than a span leaves the keyframe's span unknown: it closes too.
   const int64_t span_ns = measured_ns - keyframe_.first_robot_stamp_ns;
-  const bool complete = scan_moved || travel >= options_.travel_m || turn >= options_.turn_rad ||
+  const bool complete = travel >= options_.travel_m || turn >= options_.turn_rad ||
                         keyframe_.messages >= options_.max_messages || span_ns >= options_.max_span_ns ||
                         span_ns <= -options_.max_span_ns;
   return complete ? Step::AddedAndClosed : Step::Added;

@@ -24,10 +24,11 @@ struct KeyframeOptions {
   int64_t max_span_ns = 4'000'000'000;  // ...or when its messages span this long (either way)
   double jump_m = 1.0;                  // an odometry step longer than this between two messages is a jump
   // A message with at least scan_points points is a laser scanner's scan, matchable alone. A keyframe
-  // of scans closes as soon as the robot has moved scan_travel_m or turned scan_turn_rad since it
-  // opened (a motion filter: a robot standing still keeps adding scans to one keyframe until one of
-  // the limits above). Its odometry then spans centimetres, not the half metre a sparse robot's
-  // keyframe needs, which matters on real robots whose odometry turns degrees off per metre.
+  // of scans holds the scans taken within scan_travel_m and scan_turn_rad of its first; the first
+  // scan beyond opens the next keyframe (a motion filter: a robot standing still keeps adding scans
+  // to one keyframe until one of the limits above). Within a keyframe odometry carries each scan, so
+  // it spans centimetres and a few degrees: the half metre a sparse robot's keyframe needs, or even
+  // one scan's step of a turn, is where a real robot's odometry goes degrees off.
   int scan_points = 60;
   double scan_travel_m = 0.1;
   double scan_turn_rad = 0.05;
@@ -58,6 +59,8 @@ class KeyframeBuilder {
   enum class Step : uint8_t {
     Added,           // the observation joined the open keyframe
     AddedAndClosed,  // ...and completed it: take() it
+    StartsNext,      // the observation belongs to the next keyframe: take() the open one, then call
+                     // add() again
     Jump             // the odometry jumped: the open keyframe (if any) must be taken first, then
                      // the observation starts a new segment (call add() again)
   };

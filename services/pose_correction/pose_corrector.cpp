@@ -66,9 +66,9 @@ Result<uint64_t> PoseCorrector::add(std::string_view robot, int64_t stamp_ns, co
                  rb.name, norm(odom_pose.position()));
   }
   auto step = rb.builder.add(next_id_, r, stamp_ns, odom_pose, has_heading, hits, robot_stamp_ns);
-  if (step == KeyframeBuilder::Step::Jump) {
+  if (step == KeyframeBuilder::Step::Jump || step == KeyframeBuilder::Step::StartsNext) {
     if (rb.builder.open()) closed_.push_back(rb.builder.take());
-    ++stats_.segments;
+    if (step == KeyframeBuilder::Step::Jump) ++stats_.segments;
     step = rb.builder.add(next_id_, r, stamp_ns, odom_pose, has_heading, hits, robot_stamp_ns);
   }
   const uint64_t id = rb.builder.open_id();

@@ -35,26 +35,60 @@ TEST(KeyframeBuilder, ClosesAfterTheConfiguredTravelWithPointsInItsOwnFrame) {
   EXPECT_NEAR(k.points[0].y, -1.0, 1e-12);
 }
 
-TEST(KeyframeBuilder, AKeyframeOfLaserScansClosesAfterAShortMove) {
+TEST(KeyframeBuilder, AKeyframeOfLaserScansHoldsTheScansOfAShortMove) {
   KeyframeOptions options;  // scan_points 60, scan_travel_m 0.1
   KeyframeBuilder scans(options);
   KeyframeBuilder sparse(options);
   const std::vector<Vec2> scan(options.scan_points, Vec2{2.0, 1.0});
   const std::vector<Vec2> few(options.scan_points - 1, Vec2{2.0, 1.0});
   int scan_messages = 0, sparse_messages = 0;
-  for (auto step = KeyframeBuilder::Step::Added; step == KeyframeBuilder::Step::Added; ++scan_messages)
+  auto step = KeyframeBuilder::Step::Added;
+  for (; step == KeyframeBuilder::Step::Added; ++scan_messages)
     step = scans.add(1, 0, scan_messages * kStep, Pose{0.04 * scan_messages, 0.0, 0.0}, true, scan);
-  for (auto step = KeyframeBuilder::Step::Added; step == KeyframeBuilder::Step::Added; ++sparse_messages)
-    step = sparse.add(1, 0, sparse_messages * kStep, Pose{0.04 * sparse_messages, 0.0, 0.0}, true, few);
-  EXPECT_EQ(scan_messages, 4);     // 0.12 m after the third step
-  EXPECT_EQ(sparse_messages, 11);  // the sparse limit: 0.40 m
-  EXPECT_TRUE(scans.take().scans);
+  // The scan at 0.12 m is beyond the keyframe: it starts the next one, not carried into this one.
+  EXPECT_EQ(step, KeyframeBuilder::Step::StartsNext);
+  EXPECT_EQ(scan_messages, 4);
+  const Keyframe first = scans.take();
+  EXPECT_TRUE(first.scans);
+  EXPECT_EQ(first.messages, 3);
+  EXPECT_NEAR(first.travel_m, 0.08, 1e-9);
+  EXPECT_EQ(scans.add(2, 0, 3 * kStep, Pose{0.12, 0.0, 0.0}, true, scan), KeyframeBuilder::Step::Added);
+  EXPECT_NEAR(scans.take().odom.x, 0.12, 1e-12);
+
+  for (auto sparse_step = KeyframeBuilder::Step::Added; sparse_step == KeyframeBuilder::Step::Added;
+       ++sparse_messages)
+    sparse_step =
+        sparse.add(1, 0, sparse_messages * kStep, Pose{0.04 * sparse_messages, 0.0, 0.0}, true, few);
+  EXPECT_EQ(sparse_messages, 11);  // the sparse limit: 0.40 m, that message included
   EXPECT_FALSE(sparse.take().scans);
+
   // Standing still, scans keep joining one keyframe until the message limit.
   int standing = 0;
-  for (auto step = KeyframeBuilder::Step::Added; step == KeyframeBuilder::Step::Added; ++standing)
-    step = scans.add(2, 0, standing * kStep / 100, Pose{}, true, scan);
+  for (step = KeyframeBuilder::Step::Added; step == KeyframeBuilder::Step::Added; ++standing)
+    step = scans.add(3, 0, standing * kStep / 100, Pose{}, true, scan);
+  EXPECT_EQ(step, KeyframeBuilder::Step::AddedAndClosed);
   EXPECT_EQ(standing, options.max_messages);
+}
+
+TEST(KeyframeBuilder, TurningEveryScanBeyondTheTurnLimitIsAKeyframeOfItsOwn) {
+  KeyframeOptions options;  // scan_turn_rad 0.05
+  KeyframeBuilder builder(options);
+  const std::vector<Vec2> scan(options.scan_points, Vec2{2.0, 1.0});
+  // Turning on the spot at 6 deg per scan, as a 5 Hz scanner sees a robot turn at 30 deg/s: odometry
+  // never has to carry one scan to another inside a keyframe.
+  int keyframes = 0;
+  for (int i = 0; i < 10; ++i) {
+    const Pose pose{0.0, 0.0, 0.1 * i};
+    auto step = builder.add(static_cast<uint64_t>(i), 0, i * kStep, pose, true, scan);
+    if (step == KeyframeBuilder::Step::StartsNext) {
+      const Keyframe k = builder.take();
+      EXPECT_EQ(k.messages, 1);
+      ++keyframes;
+      step = builder.add(static_cast<uint64_t>(i), 0, i * kStep, pose, true, scan);
+    }
+    EXPECT_EQ(step, KeyframeBuilder::Step::Added);
+  }
+  EXPECT_EQ(keyframes, 9);
 }
 
 TEST(KeyframeBuilder, TheRobotsOwnStampsMeasureTheSpan) {
