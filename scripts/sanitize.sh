@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Builds every program and test with AddressSanitizer + UndefinedBehaviorSanitizer (build-asan/) and
-# runs the unit and integration tests under them. Takes about 90 minutes on an idle 2-core machine (build ~45, tests ~45), so it is
-# not part of scripts/test.sh; run it before a release and after touching memory-heavy code.
+# runs the unit and integration tests under them. On an idle 2-core machine a full build takes about
+# 45 minutes and the tests about 10, so it is not part of scripts/test.sh; run it before a release
+# and after touching memory-heavy code.
 # Extra arguments go to ctest, e.g. scripts/sanitize.sh -L unit   or   scripts/sanitize.sh -R Mapper
 set -euo pipefail
 cd "$(dirname "$0")/.."
