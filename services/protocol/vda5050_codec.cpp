@@ -176,12 +176,7 @@ CodecStatus read_action_states(const Json& doc, const CodecLimits& limits, VdaMe
 
 CodecStatus read_state(const Json& doc, const CodecLimits& limits, VdaMessage& out) {
   if (auto s = read_position(doc, limits, out); !s) return s;
-  if (auto s =
-          json_fields::member_text(doc, "orderId", {"orderId"}, vda5050_fields::kMaxTextBytes, out.order_id);
-      !s)
-    return s;
-  if (auto s = json_fields::member_uint32(doc, "orderUpdateId", {"orderUpdateId"}, out.order_update_id); !s)
-    return s;
+  if (auto s = vda5050_fields::read_order_identity(doc, out.order_id, out.order_update_id); !s) return s;
   if (auto s = json_fields::member_text(doc, "lastNodeId", {"lastNodeId"}, vda5050_fields::kMaxTextBytes,
                                         out.last_node_id);
       !s)
@@ -220,6 +215,12 @@ CodecStatus read_state(const Json& doc, const CodecLimits& limits, VdaMessage& o
 }
 
 }  // namespace
+
+CodecStatus vda5050_fields::read_order_identity(const Json& doc, std::string& order_id,
+                                                std::uint32_t& order_update_id) {
+  if (auto s = json_fields::member_text(doc, "orderId", {"orderId"}, kMaxTextBytes, order_id); !s) return s;
+  return json_fields::member_uint32(doc, "orderUpdateId", {"orderUpdateId"}, order_update_id);
+}
 
 void vda5050_fields::append_header(Json& doc, const VdaHeader& header) {
   doc["headerId"] = header.header_id;

@@ -42,12 +42,7 @@ CodecStatus decode_vda_order(std::span<const std::uint8_t> payload, const CodecL
                              VdaOrder& out) {
   Json doc;
   if (auto s = json_fields::parse_object(payload, limits, doc); !s) return s;
-  if (auto s =
-          json_fields::member_text(doc, "orderId", {"orderId"}, vda5050_fields::kMaxTextBytes, out.order_id);
-      !s)
-    return s;
-  if (auto s = json_fields::member_uint32(doc, "orderUpdateId", {"orderUpdateId"}, out.order_update_id); !s)
-    return s;
+  if (auto s = vda5050_fields::read_order_identity(doc, out.order_id, out.order_update_id); !s) return s;
   const Json* nodes = nullptr;
   if (auto s = json_fields::member_array(doc, "nodes", {"nodes"}, limits, nodes); !s) return s;
   out.nodes.resize(nodes->size());
