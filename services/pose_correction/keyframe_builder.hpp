@@ -31,7 +31,7 @@ struct KeyframeOptions {
   // one scan's step of a turn, is where a real robot's odometry goes degrees off.
   int scan_points = 60;
   double scan_travel_m = 0.1;
-  double scan_turn_rad = 0.05;
+  double scan_turn_rad = 0.0125;
 };
 
 struct Keyframe {

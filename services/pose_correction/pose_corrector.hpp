@@ -217,7 +217,10 @@ class PoseCorrector {
     OdometryCalibration odometry_calibration;  // its odometry's systematic heading error
     OdometryDirection odometry_direction;      // its odometry counting backward driving as forward
     std::optional<uint32_t> last_node;         // slot of its previous keyframe
-    std::vector<uint32_t> recent_nodes;        // slots of its latest keyframes, oldest first (its trail)
+    // Odometry pose of its last keyframe not taken standing: a keyframe is standing only within
+    // the standing limits of it, so a slow turn in keyframes of one scan each is not one.
+    std::optional<Pose> last_moving_odom;
+    std::vector<uint32_t> recent_nodes;  // slots of its latest keyframes, oldest first (its trail)
     // While its chain is loose: where its odometry frame lies by the trail's search, and how many
     // keyframes in a row agreed.
     std::optional<Pose> relocalise_hypothesis;

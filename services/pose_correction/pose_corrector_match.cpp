@@ -196,10 +196,12 @@ void PoseCorrector::prepare(Keyframe&& keyframe, const GridView& grid, bool matc
         options_.odometry_direction ? rb.odometry_direction.applied(job.odom_motion) : job.odom_motion;
     job.odom_relative = options_.odometry_calibration ? rb.odometry_calibration.corrected(driven) : driven;
     job.predicted = rb.state.map_from_odom.compose(previous_odom).compose(job.odom_relative);
+    const Pose since_moving =
+        rb.last_moving_odom ? rb.last_moving_odom->inverse().compose(keyframe.odom) : job.odom_motion;
     job.standing = keyframe.travel_m < options_.standing_travel_m &&
                    keyframe.turn_rad < options_.standing_turn_rad &&
-                   norm(job.odom_relative.position()) < options_.standing_travel_m &&
-                   std::abs(job.odom_relative.theta) < options_.standing_turn_rad;
+                   norm(since_moving.position()) < options_.standing_travel_m &&
+                   std::abs(since_moving.theta) < options_.standing_turn_rad;
     job.odom_cov = rb.odometry_trust.scaled(odometry_covariance(job.odom_relative));
     const double d = norm(job.odom_relative.position());
     grow_by_motion(rb.chain_cov, job.odom_cov, d);
@@ -208,6 +210,7 @@ void PoseCorrector::prepare(Keyframe&& keyframe, const GridView& grid, bool matc
     rb.chain_cov = job.odom_cov;
     rb.pose_cov = rb.last_node ? job.odom_cov : diagonal(kStartSigma_m, kStartSigma_m, kStartSigma_rad);
   }
+  if (!job.standing) rb.last_moving_odom = keyframe.odom;
   if (job.previous) {
     job.heading_variance = rb.heading_variance;  // the matching adds the motion's
   } else {

@@ -71,7 +71,7 @@ TEST(KeyframeBuilder, AKeyframeOfLaserScansHoldsTheScansOfAShortMove) {
 }
 
 TEST(KeyframeBuilder, TurningEveryScanBeyondTheTurnLimitIsAKeyframeOfItsOwn) {
-  KeyframeOptions options;  // scan_turn_rad 0.05
+  KeyframeOptions options;  // scan_turn_rad 0.0125
   KeyframeBuilder builder(options);
   const std::vector<Vec2> scan(options.scan_points, Vec2{2.0, 1.0});
   // Turning on the spot at 6 deg per scan, as a 5 Hz scanner sees a robot turn at 30 deg/s: odometry

@@ -196,6 +196,25 @@ TEST(PoseCorrector, ARobotStandingStillIsNeitherMatchedNorMoved) {
   EXPECT_GT(corrector.stats().matched, matched_before);  // matched again once it moves
 }
 
+TEST(PoseCorrector, ASlowTurnInKeyframesOfAScanEachIsNotStanding) {
+  // A laser robot turns on the spot at 0.7 deg per scan: each scan is a keyframe of its own
+  // (scan_turn_rad), each within the standing limits of the one before. Standing is judged
+  // against the last keyframe matched, so the turn is matched, not left to odometry.
+  const TrueMap map(room());
+  PoseCorrector corrector;
+  std::vector<KeyframeCorrection> finalised;
+  const auto walls = room();
+  int64_t stamp = 0;
+  for (int i = 0; i < 60; ++i) {
+    const Pose pose{3.0, 1.0, 0.012 * i};
+    stamp += 100'000'000;
+    ASSERT_TRUE(corrector.add("r1", stamp, pose, true, testing_scene::laser_hits(walls, pose, pose)));
+    corrector.process(map.view(), stamp, finalised);
+  }
+  EXPECT_GE(corrector.stats().matched, 25);  // judged against the previous keyframe: 1
+  EXPECT_LE(corrector.stats().standing, corrector.stats().matched);
+}
+
 TEST(PoseCorrector, ARobotWhoseOdometryStartsFarAwayStartsAtTheOrigin) {
   PoseCorrector corrector;
   const std::vector<Vec2> hits{{601.0, -200.0}};
