@@ -128,10 +128,10 @@ void PoseCorrector::process(const GridView& grid, int64_t now_ns, std::vector<Ke
     start(std::move(keyframe), grid, match, out);
   }
   closed_.resize(kept);
-  for (uint32_t robot : searching_) search_placement(robots_[robot], grid, now_ns);
+  for (uint32_t robot : searching_) search_placement(robots_[robot], grid, now_ns, out);
   // A robot that fell silent while it was searched for is not left waiting: its observations are held.
   for (Robot& rb : robots_)
-    if (rb.state.placement != Placement::Placed) give_up_placement(rb, now_ns);
+    if (rb.state.placement != Placement::Placed) give_up_placement(rb, now_ns, out);
   stats_.backlog = static_cast<int64_t>(closed_.size() + in_flight_);
   const bool due = closure_since_optimise_ || tied_since_optimise_ >= options_.optimise_every;
   if ((finish_requested_ && closed_.empty() && in_flight_ == 0 && !optimising_) ||

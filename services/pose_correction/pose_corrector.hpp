@@ -63,12 +63,16 @@ struct KeyframeCorrection {
   uint32_t segment = 0;
   Pose odom;        // keyframe origin in the robot's odometry frame
   Pose correction;  // map_from_odom for every observation of the keyframe
+  // A lost robot's keyframe given up while it was searched for: where it was is unknown, so its
+  // observations are dropped, not drawn.
+  bool discarded = false;
 };
 
 // Whether the robot's place in the map is known: searched for (Unplaced: no hypothesis yet; Placing:
-// a hypothesis, being confirmed) or Placed (by its start on an empty map, by the search, by an
+// a hypothesis, being confirmed; Lost: it was placed, then its keyframes stopped fitting the map
+// where it was thought to be) or Placed (by its start on an empty map, by the search, by an
 // operator, or by its odometry after the search gave up).
-enum class Placement : uint8_t { Placed, Placing, Unplaced };
+enum class Placement : uint8_t { Placed, Placing, Unplaced, Lost };
 
 struct RobotCorrection {
   std::string robot;
@@ -112,6 +116,8 @@ struct CorrectorStats {
   int64_t robots_placed = 0;           // found on the map
   int64_t placements_given_up = 0;     // not found: placed by their odometry
   int64_t placement_contradicted = 0;  // a hypothesis a later keyframe disagreed with
+  int64_t robots_lost = 0;             // placed robots whose keyframes stopped fitting the map
+  int64_t lost_keyframes_dropped = 0;  // keyframes of lost robots given up while searched for
   // A loose sparse robot searched for by its trail (CorrectorOptions::relocalise).
   int64_t trail_searches = 0;
 };
@@ -237,7 +243,11 @@ class PoseCorrector {
     std::vector<Keyframe> held;
     std::optional<Pose> hypothesis;
     int confirmations = 0;
-    std::optional<Vec2> searched_at;  // odometry position of the keyframe last searched for
+    std::optional<Vec2> searched_at;   // odometry position of the keyframe last searched for
+    int unmatched_in_row = 0;          // its latest keyframes whose tracking match failed
+    std::vector<double> track_scores;  // its latest tracking matches' scores (a ring, lost_window long)
+    size_t track_score_next = 0;       // ...where the next one goes
+    bool lost = false;                 // searched for since it was lost (not given up: placed by odometry)
   };
   // One pose-graph node per finalised keyframe.
   struct Node {
@@ -274,9 +284,14 @@ class PoseCorrector {
   uint32_t robot_index(std::string_view robot);
   // Global localisation (pose_corrector_placement.cpp): a robot's newest held keyframe searched for
   // on `grid`; placed once enough agree, or by its odometry once it has waited too long.
-  void search_placement(Robot& rb, const GridView& grid, int64_t now_ns);
+  void search_placement(Robot& rb, const GridView& grid, int64_t now_ns,
+                        std::vector<KeyframeCorrection>& out);
+  // A placed robot whose latest keyframes do not fit the map where it is thought to be: its chain
+  // ends there and it is searched for on the whole map, drawing nothing meanwhile.
+  void mark_lost(Robot& rb, const std::string& why);
+  void watch_tracking(const MatchJob& job, Robot& rb);
   // Places the robot by its odometry when it has waited too long (keyframes or time); whether it did.
-  bool give_up_placement(Robot& rb, int64_t now_ns);
+  bool give_up_placement(Robot& rb, int64_t now_ns, std::vector<KeyframeCorrection>& out);
   void prepare_placement_map(const GridView& grid);
   void place(Robot& rb, std::optional<Pose> map_from_odom, double score);
   // `t_ns` on `clock` with its steps back taken out; a step is counted and logged as `what`'s.

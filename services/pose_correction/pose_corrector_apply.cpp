@@ -69,6 +69,7 @@ void PoseCorrector::apply(MatchJob& job, std::vector<KeyframeCorrection>& out) {
                                         tie.anchor.has_value(), tie.closure, rb.chain_cov});
   }
   publish_keyframe(job, rb, estimate, source, tie, out);
+  watch_tracking(job, rb);
 }
 
 void PoseCorrector::carry_into_correction(MatchJob& job, const Pose& correction) const {

@@ -1,11 +1,13 @@
 // Global localisation for PoseCorrector: a robot joining a map others have built is searched for on
 // the whole map before anything of it is drawn (CorrectorOptions::global_localisation).
+#include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "common/core/cell_class.hpp"
@@ -90,8 +92,20 @@ void PoseCorrector::prepare_placement_map(const GridView& grid) {
   placement_map_ready_ = static_cast<bool>(placement_search_.set_map(GridView{coarse, placement_cells_}));
 }
 
-bool PoseCorrector::give_up_placement(Robot& rb, int64_t now_ns) {
+bool PoseCorrector::give_up_placement(Robot& rb, int64_t now_ns, std::vector<KeyframeCorrection>& out) {
   if (rb.held.empty()) return false;
+  if (rb.lost) {
+    // Its odometry is what failed: a lost robot is searched for as long as it takes, and only its
+    // latest keyframes wait.
+    const size_t keep = static_cast<size_t>(std::max(1, options_.placement_max_keyframes));
+    if (rb.held.size() <= keep) return false;
+    const auto drop = static_cast<std::ptrdiff_t>(rb.held.size() - keep);
+    for (auto it = rb.held.begin(); it != rb.held.begin() + drop; ++it)
+      out.push_back(KeyframeCorrection{it->id, rb.name, it->segment, it->odom, rb.state.map_from_odom, true});
+    rb.held.erase(rb.held.begin(), rb.held.begin() + drop);
+    stats_.lost_keyframes_dropped += drop;
+    return false;
+  }
   const double waited_s = static_cast<double>(now_ns - rb.held.front().first_stamp_ns) * 1e-9;
   if (static_cast<int>(rb.held.size()) < options_.placement_max_keyframes &&
       waited_s <= options_.placement_max_wait_s)
@@ -105,8 +119,9 @@ bool PoseCorrector::give_up_placement(Robot& rb, int64_t now_ns) {
   return true;
 }
 
-void PoseCorrector::search_placement(Robot& rb, const GridView& grid, int64_t now_ns) {
-  if (rb.held.empty() || give_up_placement(rb, now_ns)) return;
+void PoseCorrector::search_placement(Robot& rb, const GridView& grid, int64_t now_ns,
+                                     std::vector<KeyframeCorrection>& out) {
+  if (rb.held.empty() || give_up_placement(rb, now_ns, out)) return;
   const Keyframe& keyframe = rb.held.back();
   if (!rb.hypothesis && rb.searched_at &&
       distance(*rb.searched_at, keyframe.odom.position()) < options_.placement_search_travel_m)
@@ -154,7 +169,9 @@ void PoseCorrector::search_placement(Robot& rb, const GridView& grid, int64_t no
     rb.hypothesis.reset();
     rb.confirmations = 0;
   }
-  const Placement state = rb.hypothesis ? Placement::Placing : Placement::Unplaced;
+  const Placement state = rb.hypothesis ? Placement::Placing
+                          : rb.lost     ? Placement::Lost
+                                        : Placement::Unplaced;
   if (state != rb.state.placement) {
     rb.state.placement = state;
     mark_changed(rb, rb.state.source);
@@ -169,10 +186,12 @@ void PoseCorrector::place(Robot& rb, std::optional<Pose> map_from_odom, double s
   if (map_from_odom) {
     rb.state.map_from_odom = *map_from_odom;
     spdlog::info(
-        "pose correction: robot {} found on the map (score {:.2f}): its odometry origin is at "
+        "pose correction: robot {} found on the map{} (score {:.2f}): its odometry origin is at "
         "({:.2f}, {:.2f}, {:.1f} deg)",
-        rb.name, score, map_from_odom->x, map_from_odom->y, to_degrees(map_from_odom->theta));
+        rb.name, rb.lost ? " again" : "", score, map_from_odom->x, map_from_odom->y,
+        to_degrees(map_from_odom->theta));
   }
+  rb.lost = false;
   rb.state.placement = Placement::Placed;
   rb.state.localisation_score = score;
   rb.hypothesis.reset();
@@ -182,6 +201,54 @@ void PoseCorrector::place(Robot& rb, std::optional<Pose> map_from_odom, double s
   for (Keyframe& keyframe : rb.held) closed_.push_back(std::move(keyframe));
   rb.held.clear();
   mark_changed(rb, map_from_odom ? CorrectionSource::Match : rb.state.source);
+}
+
+void PoseCorrector::watch_tracking(const MatchJob& job, Robot& rb) {
+  if (options_.lost_after_unmatched <= 0 || rb.state.placement != Placement::Placed) return;
+  if (job.narrow) {
+    rb.unmatched_in_row = 0;
+    if (!job.keyframe.scans) return;  // a sparse keyframe's score says little (see the options)
+    const auto window = static_cast<size_t>(std::clamp(options_.lost_window, 1, 64));
+    if (rb.track_scores.size() < window) {
+      rb.track_scores.push_back(job.narrow->score);
+    } else {
+      rb.track_scores[rb.track_score_next] = job.narrow->score;
+    }
+    rb.track_score_next = (rb.track_score_next + 1) % window;
+    double sum = 0.0;
+    for (double s : rb.track_scores) sum += s;
+    if (rb.track_scores.size() == window && sum <= options_.lost_mean_score * static_cast<double>(window))
+      mark_lost(rb, fmt::format("its last {} keyframes matched at {:.2f} on average", window,
+                                sum / static_cast<double>(window)));
+  } else if (job.track && !job.standing &&
+             job.keyframe.points.size() >= static_cast<size_t>(options_.matcher.min_points) &&
+             ++rb.unmatched_in_row >= options_.lost_after_unmatched) {
+    mark_lost(rb, fmt::format("its last {} keyframes matched nowhere near", rb.unmatched_in_row));
+  }
+}
+
+void PoseCorrector::mark_lost(Robot& rb, const std::string& why) {
+  ++stats_.robots_lost;
+  spdlog::warn(
+      "pose correction: robot {} lost: {} (carried, or its odometry broke?); searching for it on the whole "
+      "map, drawing nothing meanwhile",
+      rb.name, why);
+  rb.lost = true;
+  rb.unmatched_in_row = 0;
+  rb.track_scores.clear();
+  rb.track_score_next = 0;
+  rb.state.placement = Placement::Lost;
+  rb.state.localisation_score = 0.0;
+  // Its next keyframes start a chain of their own: no odometry edge joins them to where it was lost.
+  rb.last_node.reset();
+  rb.recent_nodes.clear();
+  rb.last_tied.reset();
+  rb.relocalise_hypothesis.reset();
+  rb.relocalise_agreed = 0;
+  rb.hypothesis.reset();
+  rb.confirmations = 0;
+  rb.searched_at.reset();
+  mark_changed(rb, rb.state.source);
 }
 
 }  // namespace slam::correction

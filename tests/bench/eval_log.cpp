@@ -205,6 +205,7 @@ Result<nlohmann::json> run(const Options& o) {
   j["slam"] = {{"keyframes", st.keyframes},
                {"matched", st.matched},
                {"unmatched", st.unmatched},
+               {"robots_lost", st.robots_lost},
                {"closures_tried", st.closures_tried},
                {"closures_accepted", st.closures_accepted},
                {"closures_rejected", st.closures_rejected},

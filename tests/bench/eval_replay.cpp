@@ -71,6 +71,7 @@ Result<nlohmann::json> run(const Options& o) {
   j["slam"] = {{"keyframes", st.keyframes},
                {"matched", st.matched},
                {"unmatched", st.unmatched},
+               {"robots_lost", st.robots_lost},
                {"standing", st.standing},
                {"closures_tried", st.closures_tried},
                {"closures_accepted", st.closures_accepted},

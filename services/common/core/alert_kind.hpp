@@ -5,9 +5,9 @@
 
 namespace slam::alerts {
 
-enum class Kind : std::uint8_t { RobotOffline, ServiceSilent, BatteryLow };
+enum class Kind : std::uint8_t { RobotOffline, ServiceSilent, BatteryLow, RobotLost };
 
-// For people: "robot offline", "service silent", "battery low".
+// For people: "robot offline", "service silent", "battery low", "robot lost".
 constexpr const char* kind_name(Kind kind) {
   switch (kind) {
     case Kind::RobotOffline:
@@ -16,11 +16,13 @@ constexpr const char* kind_name(Kind kind) {
       return "service silent";
     case Kind::BatteryLow:
       return "battery low";
+    case Kind::RobotLost:
+      return "robot lost";
   }
   return "unknown alert";  // a kind from a newer peer
 }
 
-// For machine-readable output (JSON): "robot_offline", "service_silent", "battery_low".
+// For machine-readable output (JSON): "robot_offline", "service_silent", "battery_low", "robot_lost".
 constexpr const char* kind_id(Kind kind) {
   switch (kind) {
     case Kind::RobotOffline:
@@ -29,6 +31,8 @@ constexpr const char* kind_id(Kind kind) {
       return "service_silent";
     case Kind::BatteryLow:
       return "battery_low";
+    case Kind::RobotLost:
+      return "robot_lost";
   }
   return "unknown";
 }

@@ -29,7 +29,7 @@ enum class MissionStatus : uint8_t { Active, Done, Failed, Cancelled };
 enum class PlanStatus : uint8_t { Ok, StartBlocked, GoalBlocked, NoPath, Timeout, NoMap, InvalidRequest };
 // correction.idl
 enum class CorrectionSource : uint8_t { Identity, Match, Loop, Operator, Restored };
-enum class RobotPlacement : uint8_t { Placed, Placing, Unplaced };
+enum class RobotPlacement : uint8_t { Placed, Placing, Unplaced, Lost };
 // system.idl
 enum class ServiceState : uint8_t { Starting, Running, Stopping };
 using AlertKind = alerts::Kind;
@@ -52,7 +52,7 @@ inline constexpr std::array<const char*, 5> kCorrectionSourceIds{"identity", "ma
 // For people (the viewer's panels).
 inline constexpr std::array<const char*, 5> kCorrectionSourceNames{"identity", "match", "loop closure",
                                                                    "operator", "restored"};
-inline constexpr std::array<const char*, 3> kRobotPlacementNames{"placed", "placing", "unplaced"};
+inline constexpr std::array<const char*, 4> kRobotPlacementNames{"placed", "placing", "unplaced", "lost"};
 inline constexpr std::array<const char*, 3> kServiceStateNames{"starting", "running", "stopping"};
 
 // names[value], or "?" for a value outside the enumeration.

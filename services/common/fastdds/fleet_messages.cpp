@@ -19,9 +19,9 @@ static_assert(mirrors(PlanStatus::InvalidRequest, slam::PLAN_INVALID_REQUEST, kP
 static_assert(mirrors(PlanStatus::InvalidRequest, slam::PLAN_INVALID_REQUEST, kPlanStatusIds.size()));
 static_assert(mirrors(CorrectionSource::Restored, slam::CORRECTION_RESTORED, kCorrectionSourceIds.size()));
 static_assert(mirrors(CorrectionSource::Restored, slam::CORRECTION_RESTORED, kCorrectionSourceNames.size()));
-static_assert(mirrors(RobotPlacement::Unplaced, slam::PLACEMENT_UNPLACED, kRobotPlacementNames.size()));
+static_assert(mirrors(RobotPlacement::Lost, slam::PLACEMENT_LOST, kRobotPlacementNames.size()));
 static_assert(mirrors(ServiceState::Stopping, slam::SERVICE_STOPPING, kServiceStateNames.size()));
-static_assert(mirrors(AlertKind::BatteryLow, slam::ALERT_BATTERY_LOW, 3));  // named in alert_kind.hpp
+static_assert(mirrors(AlertKind::RobotLost, slam::ALERT_ROBOT_LOST, 4));  // named in alert_kind.hpp
 
 template <class To, class From>
 To cast(From value) {

@@ -49,7 +49,8 @@ void CorrectionStage::add(Mapper& mapper, const RobotScan& scan, int64_t now_mon
 
 void CorrectionStage::save(Mapper& mapper, std::span<const correction::KeyframeCorrection> keyframes) {
   keyframes_.clear();
-  for (const auto& k : keyframes) keyframes_.push_back({k.id, k.robot, k.segment, k.odom, k.correction});
+  for (const auto& k : keyframes)
+    if (!k.discarded) keyframes_.push_back({k.id, k.robot, k.segment, k.odom, k.correction});
   if (auto s = mapper.save_keyframes(keyframes_); !s)
     log_.warn("save", "pose correction: keyframes not stored: {}", s.message());
 }
@@ -64,10 +65,14 @@ void CorrectionStage::step(Mapper& mapper, int64_t now_ns, int64_t now_mono_ns) 
     for (const auto& k : finalised_) {
       const auto it = held_.find(k.id);
       if (it == held_.end()) continue;
-      for (const Held& h : it->second) {
-        mapper.integrate(
-            RobotScan{h.robot_id, h.seq, h.stamp_ns, h.view(), k.id, k.correction, h.robot_stamp_ns},
-            now_mono_ns);
+      if (k.discarded) {
+        dropped_observations_ += static_cast<int64_t>(it->second.size());  // a lost robot's: not drawn
+      } else {
+        for (const Held& h : it->second) {
+          mapper.integrate(
+              RobotScan{h.robot_id, h.seq, h.stamp_ns, h.view(), k.id, k.correction, h.robot_stamp_ns},
+              now_mono_ns);
+        }
       }
       held_observations_ -= static_cast<int64_t>(it->second.size());
       for (Held& h : it->second) {

@@ -60,6 +60,8 @@ class CorrectionStage {
   // Observations held back until their keyframe is finalised (stats().open_messages of them wait
   // for their keyframe to close; the rest for its match).
   int64_t held_observations() const { return held_observations_; }
+  // Observations of lost robots' keyframes given up while they were searched for (never drawn).
+  int64_t dropped_observations() const { return dropped_observations_; }
 
  private:
   using Held = OwnedObservation;  // an observation waiting for its keyframe
@@ -74,8 +76,9 @@ class CorrectionStage {
   std::unordered_map<uint64_t, std::vector<Held>> held_;  // keyframe id -> its observations, in order
   std::vector<Held> spare_;                               // records to reuse
   int64_t held_observations_ = 0;                         // in held_
-  bool rerender_due_ = false;                             // keyframes moved since the last re-render
-  std::optional<int64_t> rerender_started_ns_;            // the running re-render's start (monotonic)
+  int64_t dropped_observations_ = 0;
+  bool rerender_due_ = false;                   // keyframes moved since the last re-render
+  std::optional<int64_t> rerender_started_ns_;  // the running re-render's start (monotonic)
   int64_t next_rerender_ns_ = std::numeric_limits<int64_t>::min();
   std::vector<correction::KeyframeCorrection> finalised_;
   std::vector<correction::KeyframeCorrection> moved_;

@@ -86,6 +86,12 @@ void add_mapper_options(CLI::App& app, MapperOptions& o) {
                  "and heading) and drawn only once found; not found within 30 s: placed by its odometry")
       ->check(CLI::IsMember({"on", "off"}))
       ->capture_default_str();
+  app.add_option(
+         "--slam-lost-robots", o.slam_lost_robots,
+         "a placed robot whose keyframes stop fitting the map (carried, odometry broken) is marked lost "
+         "(alert), drawn no more and searched for on the whole map until found")
+      ->check(CLI::IsMember({"on", "off"}))
+      ->capture_default_str();
   app.add_option("--slam-wall-heading", o.slam_wall_heading,
                  "hold each keyframe's heading to the walls' directions once the map's walls agree on two "
                  "perpendicular ones (off: a building whose walls are square only in places)")

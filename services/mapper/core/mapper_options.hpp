@@ -34,8 +34,9 @@ struct MapperOptions {
   std::string slam = "on";
   double slam_old_age_s = 60.0;                  // own keyframes this old count as the old map (loop closure)
   std::string slam_global_localisation = "off";  // a robot joining a mapped building is searched for on it
-  std::string slam_wall_heading = "on";          // keyframe headings held to the walls' directions
-  std::string slam_point_refine = "on";          // matches refined against the keyframes' own points
+  std::string slam_lost_robots = "on";   // a robot whose scans stop fitting the map is searched for again
+  std::string slam_wall_heading = "on";  // keyframe headings held to the walls' directions
+  std::string slam_point_refine = "on";  // matches refined against the keyframes' own points
   std::string slam_odometry_calibration = "on";  // each robot's systematic odometry heading error taken out
   std::string slam_relocalise = "on";  // a loose sparse robot searched for by its trail among old keyframes
   // Offline commands (no DDS): rebuild from the store and write a ROS map, store a map as prior, or

@@ -122,6 +122,9 @@ void fill_correction(const correction::RobotCorrection& in, int64_t stamp_ns, sl
     case correction::Placement::Unplaced:
       out->placement(slam::PLACEMENT_UNPLACED);
       break;
+    case correction::Placement::Lost:
+      out->placement(slam::PLACEMENT_LOST);
+      break;
   }
   out->localisation_score(in.localisation_score);
   switch (in.source) {

@@ -66,6 +66,7 @@ Status MapperNode::configure() {
   slam_options.old_age_s = options_.slam_old_age_s;
   slam_options.wall_heading = options_.slam_wall_heading == "on";
   slam_options.global_localisation = options_.slam_global_localisation == "on";
+  if (options_.slam_lost_robots == "off") slam_options.lost_after_unmatched = 0;
   slam_options.point_refine = options_.slam_point_refine == "on";
   slam_options.odometry_calibration = options_.slam_odometry_calibration == "on";
   slam_options.relocalise = options_.slam_relocalise == "on";
@@ -284,6 +285,9 @@ void MapperNode::update_periodic_counters() {
   counters_.get("slam_placement_searches").store(st.placement_searches, std::memory_order_relaxed);
   counters_.get("slam_robots_placed").store(st.robots_placed, std::memory_order_relaxed);
   counters_.get("slam_placements_given_up").store(st.placements_given_up, std::memory_order_relaxed);
+  counters_.get("slam_robots_lost").store(st.robots_lost, std::memory_order_relaxed);
+  counters_.get("slam_lost_observations_dropped")
+      .store(corrections_->dropped_observations(), std::memory_order_relaxed);
   counters_.get("slam_trail_searches").store(st.trail_searches, std::memory_order_relaxed);
   counters_.get("slam_ties_tried").store(st.ties_tried, std::memory_order_relaxed);
   counters_.get("slam_ties_skipped").store(st.ties_skipped, std::memory_order_relaxed);

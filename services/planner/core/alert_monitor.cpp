@@ -50,6 +50,10 @@ void AlertMonitor::robot(const std::string& robot_id, bool online, float battery
   }
 }
 
+void AlertMonitor::robot_lost(const std::string& robot_id, bool lost) {
+  robots_[robot_id].lost = lost;
+}
+
 void AlertMonitor::forget_robot(const std::string& robot_id) {
   robots_.erase(robot_id);
 }
@@ -73,6 +77,12 @@ std::map<std::string, AlertMonitor::Condition> AlertMonitor::conditions(int64_t 
   for (const auto& [id, r] : robots_) {
     if (!r.online)
       out.emplace("offline/" + id, Condition{AlertKind::RobotOffline, id, "robot '" + id + "' is offline"});
+    if (r.lost) {
+      out.emplace("lost/" + id, Condition{AlertKind::RobotLost, id,
+                                          "robot '" + id +
+                                              "' is lost: its scans stopped fitting the map where it "
+                                              "was; it is searched for on the whole map"});
+    }
     if (r.battery_low) {
       out.emplace("battery/" + id, Condition{AlertKind::BatteryLow, id,
                                              "robot '" + id + "' battery " + percent(r.battery) + " (below " +

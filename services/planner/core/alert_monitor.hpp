@@ -57,6 +57,8 @@ class AlertMonitor {
   // The latest state of a robot: online or not, battery 0..1 (negative: unknown, the last known
   // level stands).
   void robot(const std::string& robot_id, bool online, float battery);
+  // Whether the mapper has lost where the robot is (its PoseCorrection's placement).
+  void robot_lost(const std::string& robot_id, bool lost);
   // A robot forgotten by the operator: its alerts clear at the next evaluate().
   void forget_robot(const std::string& robot_id);
   // A heartbeat of SERVICE/INSTANCE; a service that says it stops leaves without an alert.
@@ -79,6 +81,7 @@ class AlertMonitor {
     bool online = true;
     float battery = -1.0f;
     bool battery_low = false;  // with hysteresis: set below battery_low, reset above it + margin
+    bool lost = false;
   };
   struct ServiceFacts {
     std::string service;

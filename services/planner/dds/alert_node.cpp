@@ -42,6 +42,11 @@ void AlertNode::on_state(const slam::RobotState& state) {
   monitor_.robot(id, state.presence() == slam::PRESENCE_ONLINE, state.battery());
 }
 
+void AlertNode::on_correction(const slam::PoseCorrection& correction) {
+  std::lock_guard lock(mutex_);
+  monitor_.robot_lost(correction.robot_id().to_string(), correction.placement() == slam::PLACEMENT_LOST);
+}
+
 void AlertNode::forget_robot(const std::string& robot_id) {
   std::lock_guard lock(mutex_);
   record_stamps_.forget(robot_id);

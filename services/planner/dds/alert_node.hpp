@@ -36,6 +36,8 @@ class AlertNode {
   // A record older than one already taken is ignored: a gateway that stopped hearing the robot
   // (its MQTT link lost) reports it offline while another gateway still hears it.
   void on_state(const slam::RobotState& state);
+  // A PoseCorrection from the planner's reader: whether the mapper lost the robot.
+  void on_correction(const slam::PoseCorrection& correction);
 
  private:
   AlertNode(const AlertConfig& config, std::string self, Counters& counters);

@@ -147,9 +147,11 @@ Status PlannerNode::configure() {
                        [this](const slam::FleetDigest& d, const auto&) { intake_.push_digest(d); });
   if (!digests) return digests.error();
   digest_reader_ = std::move(*digests);
-  auto corrections =
-      dds::make_reader(*participant_, dds::kPoseCorrection,
-                       [this](const slam::PoseCorrection& c, const auto&) { intake_.push_correction(c); });
+  auto corrections = dds::make_reader(*participant_, dds::kPoseCorrection,
+                                      [this](const slam::PoseCorrection& c, const auto&) {
+                                        intake_.push_correction(c);
+                                        alerts_->on_correction(c);
+                                      });
   if (!corrections) return corrections.error();
   correction_reader_ = std::move(*corrections);
   auto goals = dds::make_reader(*participant_, dds::kNavGoal,

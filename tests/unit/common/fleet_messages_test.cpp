@@ -45,6 +45,7 @@ TEST(FleetMessagesFromIdl, EnumerationsKeepTheirValues) {
   EXPECT_EQ(from_idl(slam::SERVICE_RUNNING), ServiceState::Running);
   EXPECT_EQ(from_idl(slam::ALERT_SERVICE_SILENT), AlertKind::ServiceSilent);
   EXPECT_EQ(to_idl(AlertKind::BatteryLow), slam::ALERT_BATTERY_LOW);
+  EXPECT_EQ(to_idl(AlertKind::RobotLost), slam::ALERT_ROBOT_LOST);
   EXPECT_EQ(from_idl(slam::SQUARE_CENTRED), SquareAnchor::Centred);
 }
 

@@ -42,6 +42,22 @@ TEST(AlertMonitor, OfflineRobotRaisesOnceAndClearsWhenBackOnline) {
   EXPECT_TRUE(m.active().empty());
 }
 
+TEST(AlertMonitor, ALostRobotRaisesUntilItIsFoundAgain) {
+  AlertMonitor m;
+  m.robot_lost("r1", false);
+  EXPECT_TRUE(run(m, 1).empty());
+  m.robot_lost("r1", true);
+  const auto raised = run(m, 2);
+  ASSERT_EQ(raised.size(), 1u);
+  EXPECT_EQ(raised[0].alert_id, "lost/r1");
+  EXPECT_EQ(raised[0].kind, AlertKind::RobotLost);
+  EXPECT_FALSE(raised[0].send_home);  // it cannot be sent anywhere: where it is is unknown
+  m.robot_lost("r1", false);
+  const auto cleared = run(m, 3);
+  ASSERT_EQ(cleared.size(), 1u);
+  EXPECT_EQ(cleared[0].change, AlertChange::Kind::Cleared);
+}
+
 TEST(AlertMonitor, LowBatterySendsHomeOnceWithHysteresis) {
   AlertConfig c;
   c.battery_low = 0.2;

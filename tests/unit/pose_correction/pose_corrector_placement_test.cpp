@@ -113,5 +113,98 @@ TEST(PoseCorrector, ARobotInOneOfTwoIdenticalRoomsIsNotPlacedInEither) {
   EXPECT_TRUE(p.placed_after_wait);
 }
 
+struct Carried {
+  double error_m = 0.0;    // its corrected pose against the truth at the end
+  int drawn_wrong = 0;     // finalised keyframes drawn more than 0.2 m from where they were made
+  int discarded = 0;       // keyframes given up while it was searched for
+  bool seen_lost = false;  // its correction was published as lost
+  Placement placement = Placement::Lost;
+  CorrectorStats stats;
+};
+
+// A laser robot maps along the first room of `walls`, is carried to `to` (its odometry goes on as
+// if nothing happened) and drives a slow arc there for `messages` messages.
+Carried carry(const CorrectorOptions& options, const std::vector<Wall>& walls, const TrueMap& map,
+              const Pose& to, int messages = 60) {
+  PoseCorrector corrector(options);
+  std::vector<KeyframeCorrection> finalised;
+  std::vector<RobotCorrection> changed;
+  std::vector<std::pair<uint64_t, Pose>> truth_at;  // keyframe id -> map_from_odom's truth
+  Carried out;
+  int64_t stamp = 0;
+  Pose truth{1.5, 1.0, 0.0}, odometry = truth;
+  auto send = [&](const Pose& step) {
+    truth = truth.compose(step);
+    odometry = odometry.compose(step);
+    stamp += 100'000'000;
+    const auto id = corrector.add("r1", stamp, odometry, true, laser_hits(walls, truth, odometry));
+    ASSERT_TRUE(id);
+    truth_at.emplace_back(*id, truth.compose(odometry.inverse()));
+    corrector.process(map.view(), stamp, finalised);
+    corrector.take_changed(changed);
+    for (const RobotCorrection& c : changed) {
+      out.seen_lost = out.seen_lost || c.placement == Placement::Lost;
+      out.placement = c.placement;
+    }
+    changed.clear();
+  };
+  for (int i = 0; i < 30; ++i) send({0.03, 0.0, 0.0});
+  truth = to;
+  for (int i = 0; i < messages; ++i) send({0.03, 0.0, 0.01});
+  for (const KeyframeCorrection& k : finalised) {
+    if (k.discarded) {
+      ++out.discarded;
+      continue;
+    }
+    for (const auto& [id, frame] : truth_at)
+      if (id == k.id &&
+          distance(k.correction.compose(k.odom).position(), frame.compose(k.odom).position()) > 0.2)
+        ++out.drawn_wrong;
+  }
+  out.error_m = distance(corrector.correction("r1").compose(odometry).position(), truth.position());
+  out.stats = corrector.stats();
+  return out;
+}
+
+TEST(PoseCorrector, ACarriedRobotIsLostThenFoundAgainWithoutDrawingWhereItIsNot) {
+  const TrueMap map(room(), centred_geometry({-0.5, -0.5}, {6.5, 5.5}));
+  CorrectorOptions never_lost;
+  never_lost.lost_after_unmatched = 0;
+  for (const Pose to : {Pose{4.6, 3.0, 2.0}, Pose{1.0, 3.2, -1.2}}) {
+    SCOPED_TRACE(testing::Message() << "carried to " << to.x << ", " << to.y << ", " << to.theta);
+    const Carried c = carry(CorrectorOptions{}, room(), map, to);
+    EXPECT_EQ(c.stats.robots_lost, 1);
+    EXPECT_TRUE(c.seen_lost);
+    EXPECT_EQ(c.stats.robots_placed, 1);
+    EXPECT_EQ(c.placement, Placement::Placed);
+    EXPECT_LT(c.error_m, 0.05);
+    EXPECT_EQ(c.discarded, 0);
+    // Unaware, it draws every keyframe after the carry where it is not (60 messages, about 50
+    // keyframes); aware, only those until its scores told (in this small room a wrong place
+    // still scores 0.6-0.75, so that takes a while).
+    const Carried unaware = carry(never_lost, room(), map, to);
+    EXPECT_EQ(unaware.stats.robots_lost, 0);
+    EXPECT_GT(unaware.error_m, 0.5);
+    EXPECT_LT(c.drawn_wrong, unaware.drawn_wrong / 2);
+  }
+}
+
+TEST(PoseCorrector, ALostRobotThatFindsNothingKeepsOnlyItsLatestKeyframes) {
+  // Carried into the second of two identical rooms: it is never placed, never given up on (placed
+  // by its odometry), and its older keyframes are dropped.
+  std::vector<Wall> twins = room();
+  for (const Wall& w : room()) twins.push_back({w.a + Vec2{8.0, 0.0}, w.b + Vec2{8.0, 0.0}});
+  const TrueMap map(twins, centred_geometry({-0.5, -0.5}, {14.5, 5.5}));
+  CorrectorOptions options;
+  options.placement_max_keyframes = 5;
+  const Carried c = carry(options, twins, map, {12.6, 3.0, 2.0}, 120);
+  EXPECT_EQ(c.stats.robots_lost, 1);
+  EXPECT_EQ(c.stats.robots_placed, 0);
+  EXPECT_EQ(c.placement, Placement::Lost);
+  EXPECT_EQ(c.stats.placements_given_up, 0);
+  EXPECT_GT(c.discarded, 0);
+  EXPECT_EQ(c.stats.lost_keyframes_dropped, c.discarded);
+}
+
 }  // namespace
 }  // namespace slam::correction
