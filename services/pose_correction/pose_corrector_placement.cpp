@@ -1,5 +1,6 @@
 // Global localisation for PoseCorrector: a robot joining a map others have built is searched for on
-// the whole map before anything of it is drawn (CorrectorOptions::global_localisation).
+// the whole map before anything of it is drawn (CorrectorOptions::global_localisation), and so is a
+// placed robot found lost (CorrectorOptions::lost_after_unmatched).
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 

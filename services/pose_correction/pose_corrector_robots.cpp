@@ -92,6 +92,10 @@ size_t PoseCorrector::reset_robot(std::string_view robot) {
   rb.relocalise_agreed = 0;
   rb.last_tied.reset();
   rb.operator_pose.reset();
+  rb.last_moving_odom.reset();
+  rb.unmatched_in_row = 0;  // its tracking is watched afresh (watch_tracking)
+  rb.track_scores.clear();
+  rb.track_score_next = 0;
   rb.chain_cov = Eigen::Matrix3d::Zero();
   rb.pose_cov = Eigen::Matrix3d::Zero();
   rb.heading_variance = 0.0;
