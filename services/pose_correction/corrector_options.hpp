@@ -144,6 +144,12 @@ struct CorrectorOptions {
   int lost_after_unmatched = 4;
   int lost_window = 6;  // at most 64
   double lost_mean_score = 0.64;
+  // Localisation only, on a map given and kept fixed (a building mapped once, loaded): every robot
+  // is searched for on it (as global_localisation, even the first, and never placed by its odometry
+  // instead), then tracked against it. A match against a fixed map is as good as a tie to old
+  // keyframes, so there are no ties, closures or optimisations, and a robot keeps one pose-graph
+  // node (its latest keyframe, without points): memory follows the fleet, not the hours driven.
+  bool localise_only = false;
   int optimise_every = 40;         // keyframes tied to the old map between optimisations
   double rerender_shift_m = 0.02;  // keyframe moves smaller than this are not re-rendered
   ScheduleOptions schedule;

@@ -34,9 +34,11 @@ uint32_t PoseCorrector::robot_index(std::string_view robot) {
   const auto index = static_cast<uint32_t>(robots_.size());
   Robot robot_state(key, options_.keyframe);
   robot_state.state.robot = key;
-  // Another robot maps already (or a restored map is there): where this one is must be found before
-  // it draws anything. Only the first robot of an empty map starts it where its odometry says.
-  if (options_.global_localisation && (graph_keyframes() > 0 || !robots_.empty())) {
+  // Another robot maps already (or a restored or loaded map is there): where this one is must be
+  // found before it draws anything. Only the first robot of an empty map starts it where its
+  // odometry says.
+  const bool map_exists = graph_keyframes() > 0 || !robots_.empty() || map_given_;
+  if (options_.localise_only || (options_.global_localisation && map_exists)) {
     robot_state.state.placement = Placement::Unplaced;
     robot_state.state.localisation_score = 0.0;
   }
@@ -134,6 +136,7 @@ void PoseCorrector::process(const GridView& grid, int64_t now_ns, std::vector<Ke
     if (rb.state.placement != Placement::Placed) give_up_placement(rb, now_ns, out);
   stats_.backlog = static_cast<int64_t>(closed_.size() + in_flight_);
   const bool due = closure_since_optimise_ || tied_since_optimise_ >= options_.optimise_every;
+  if (options_.localise_only) return;  // a fixed map: nothing to optimise
   if ((finish_requested_ && closed_.empty() && in_flight_ == 0 && !optimising_) ||
       (due && schedule_.allow_optimisation(now_ns))) {
     finish_requested_ = false;

@@ -117,7 +117,7 @@ struct CorrectorStats {
   int64_t placements_given_up = 0;     // not found: placed by their odometry
   int64_t placement_contradicted = 0;  // a hypothesis a later keyframe disagreed with
   int64_t robots_lost = 0;             // placed robots whose keyframes stopped fitting the map
-  int64_t lost_keyframes_dropped = 0;  // keyframes of lost robots given up while searched for
+  int64_t lost_keyframes_dropped = 0;  // of lost (localising only: unplaced) robots, given up waiting
   // A loose sparse robot searched for by its trail (CorrectorOptions::relocalise).
   int64_t trail_searches = 0;
 };
@@ -182,6 +182,9 @@ class PoseCorrector {
   // correction stays (the robot still is where it was believed to be); its next keyframe starts a
   // new chain. Returns how many finalised keyframes were removed; an unknown robot: 0.
   size_t reset_robot(std::string_view robot);
+  // The map holds walls no robot drew here (a map loaded, or a restored store the graph does not
+  // hold): with global localisation, a robot joining it is searched for, the first one too.
+  void set_map_given(bool given) { map_given_ = given; }
   // Keyframes in the pose graph (removed ones not counted).
   size_t graph_keyframes() const { return nodes_.size() - removed_nodes_; }
 
@@ -335,6 +338,9 @@ class PoseCorrector {
   // heading, prior. Returns its slot.
   uint32_t add_node_and_edges(MatchJob& job, const Robot& rb, const Pose& estimate,
                               const Pose& tracked_motion, const TieDecision& tie, bool operator_set);
+  // Localising only: the keyframe replaces its robot's latest node (no points, no edges, not indexed:
+  // nothing is tied to it or optimised); its slot.
+  uint32_t keep_latest_node(const MatchJob& job, const Robot& rb, const Pose& estimate);
   // The keyframe's walls into the map's axes (anchoring them at the robot's first keyframes).
   void learn_wall_axes(const MatchJob& job, Robot& rb, const Pose& estimate);
   // The robot's correction and published state moved to the keyframe; the keyframe appended to `out`.
@@ -398,6 +404,7 @@ class PoseCorrector {
   BranchAndBoundSearch placement_search_;
   int64_t placement_map_ns_ = 0;
   bool placement_map_ready_ = false;
+  bool map_given_ = false;                // set_map_given()
   std::vector<uint8_t> placement_cells_;  // scratch: the grid's occupied part, maybe coarsened
   std::vector<Ray> placement_rays_;       // scratch: the searched keyframes' rays, thinned
   std::vector<Vec2> placement_points_;    // scratch: ...their ends

@@ -40,6 +40,12 @@ void PoseCorrector::apply(MatchJob& job, std::vector<KeyframeCorrection>& out) {
   const Pose tracked_motion =
       job.previous ? nodes_[*job.previous].estimate.inverse().compose(job.tracked) : Pose{};
   CorrectionSource source = learn_from_tracking(job, rb);
+  if (options_.localise_only && job.narrow) {
+    // A match against the fixed map holds the robot to it as a tie to old keyframes would.
+    const Eigen::Matrix3d cov = with_floor(job.narrow->covariance, 0.02, 0.01);
+    rb.chain_cov = fused_covariance(rb.chain_cov, cov);
+    rb.pose_cov = fused_covariance(rb.pose_cov, cov);
+  }
   const bool operator_set = rb.operator_pose.has_value();
   TieDecision tie = decide_tie(job, rb, operator_set);
   if (!operator_set && !tie.closure) confirm_relocalisation(job, rb, tie);
@@ -56,8 +62,10 @@ void PoseCorrector::apply(MatchJob& job, std::vector<KeyframeCorrection>& out) {
   learn_wall_axes(job, rb, estimate);
   rb.operator_pose.reset();
   rb.last_node = slot;
-  if (rb.recent_nodes.size() == kRecentNodes) rb.recent_nodes.erase(rb.recent_nodes.begin());
-  rb.recent_nodes.push_back(slot);
+  if (!options_.localise_only) {  // its trail is searched among old keyframes, which it has none of
+    if (rb.recent_nodes.size() == kRecentNodes) rb.recent_nodes.erase(rb.recent_nodes.begin());
+    rb.recent_nodes.push_back(slot);
+  }
   if (tie.anchor || operator_set || !job.previous) rb.last_tied = slot;
   if (keyframe_observer_) {
     const Node& node = nodes_[slot];
@@ -217,6 +225,7 @@ uint32_t PoseCorrector::add_node_and_edges(MatchJob& job, const Robot& rb, const
   // waiting for minutes would fill the nearest keyframes that matches and ties read with copies of
   // one view (its observations still go into the map as any others).
   if (job.standing) keyframe.points = {};
+  if (options_.localise_only) return keep_latest_node(job, rb, estimate);
   const auto slot = static_cast<uint32_t>(nodes_.size());
   nodes_.push_back(Node{keyframe.id, keyframe.robot, keyframe.segment, keyframe.first_stamp_ns, keyframe.odom,
                         estimate, std::move(keyframe.points), false});
@@ -260,6 +269,18 @@ uint32_t PoseCorrector::add_node_and_edges(MatchJob& job, const Robot& rb, const
     edges_.push_back(prior);
   }
   return slot;
+}
+
+uint32_t PoseCorrector::keep_latest_node(const MatchJob& job, const Robot& rb, const Pose& estimate) {
+  const Keyframe& keyframe = job.keyframe;
+  Node node{keyframe.id, keyframe.robot, keyframe.segment, keyframe.first_stamp_ns, keyframe.odom, estimate,
+            {},          false};
+  if (rb.last_node && !nodes_[*rb.last_node].removed) {
+    nodes_[*rb.last_node] = std::move(node);
+    return *rb.last_node;
+  }
+  nodes_.push_back(std::move(node));
+  return static_cast<uint32_t>(nodes_.size() - 1);
 }
 
 void PoseCorrector::add_edge(EdgeKind kind, uint32_t from, uint32_t to, const Pose& measurement,

@@ -274,7 +274,7 @@ void PoseCorrector::prepare(Keyframe&& keyframe, const GridView& grid, bool matc
     // The pose's own uncertainty in the map, not the chain's since its last tie: a robot just switched
     // on at a trusted start has an untied chain but a known pose.
     const double pose_sigma = std::sqrt(std::max(rb.pose_cov(0, 0), rb.pose_cov(1, 1)));
-    if (options_.relocalise && !keyframe.scans && !rb.operator_pose &&
+    if (options_.relocalise && !options_.localise_only && !keyframe.scans && !rb.operator_pose &&
         pose_sigma > options_.relocalise_sigma_m && schedule_.load() == Load::Normal)
       prepare_relocalisation(rb, keyframe, job);
   }

@@ -95,9 +95,9 @@ void PoseCorrector::prepare_placement_map(const GridView& grid) {
 
 bool PoseCorrector::give_up_placement(Robot& rb, int64_t now_ns, std::vector<KeyframeCorrection>& out) {
   if (rb.held.empty()) return false;
-  if (rb.lost) {
-    // Its odometry is what failed: a lost robot is searched for as long as it takes, and only its
-    // latest keyframes wait.
+  if (rb.lost || options_.localise_only) {
+    // Its odometry is what failed (or, on a fixed map, its odometry's frame is no place at all): it
+    // is searched for as long as it takes, and only its latest keyframes wait.
     const size_t keep = static_cast<size_t>(std::max(1, options_.placement_max_keyframes));
     if (rb.held.size() <= keep) return false;
     const auto drop = static_cast<std::ptrdiff_t>(rb.held.size() - keep);

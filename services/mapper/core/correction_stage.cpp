@@ -13,10 +13,17 @@ constexpr int64_t kRerenderDutyFactor = 4;  // idle time after a re-render, in m
 }  // namespace
 
 CorrectionStage::CorrectionStage(bool enabled, const correction::CorrectorOptions& options)
-    : enabled_(enabled), rerender_shift_m_(options.rerender_shift_m), corrector_(options) {}
+    : enabled_(enabled),
+      localise_only_(options.localise_only),
+      rerender_shift_m_(options.rerender_shift_m),
+      corrector_(options) {}
 
 Status CorrectionStage::restore(Mapper& mapper) {
   if (!enabled_) return Status::ok();
+  if (localise_only_) {
+    spdlog::info("pose correction: localising only on the map: every robot is searched for on it");
+    return Status::ok();  // the store's keyframes are the mapping run's, not where the robots are now
+  }
   auto stored = mapper.load_keyframes();
   if (!stored) return stored.error();
   std::vector<correction::KeyframeCorrection> keyframes;
@@ -58,15 +65,18 @@ void CorrectionStage::save(Mapper& mapper, std::span<const correction::KeyframeC
 void CorrectionStage::step(Mapper& mapper, int64_t now_ns, int64_t now_mono_ns) {
   if (!enabled_) return;
   const OccupancyGrid& grid = mapper.grid();
+  corrector_.set_map_given(mapper.has_prior());
   finalised_.clear();
   corrector_.process(correction::GridView{grid.geometry(), grid.classes()}, now_ns, finalised_);
   if (!finalised_.empty()) {
-    save(mapper, finalised_);  // before the observations that reference them
+    if (!localise_only_) save(mapper, finalised_);  // before the observations that reference them
     for (const auto& k : finalised_) {
       const auto it = held_.find(k.id);
       if (it == held_.end()) continue;
       if (k.discarded) {
         dropped_observations_ += static_cast<int64_t>(it->second.size());  // a lost robot's: not drawn
+      } else if (localise_only_) {
+        localised_observations_ += static_cast<int64_t>(it->second.size());
       } else {
         for (const Held& h : it->second) {
           mapper.integrate(

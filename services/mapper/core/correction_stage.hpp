@@ -6,6 +6,8 @@
 // already holds its own points would only confirm its predicted pose.
 // After a pose-graph optimisation the moved keyframes are stored and the grid is re-rendered.
 // With SLAM off, observations pass straight through with the identity (today's behaviour).
+// Localising only (CorrectorOptions::localise_only) the map stays as loaded: observations only
+// place and track their robots; none is drawn or stored, and neither are the keyframes.
 // Plain C++; the mapper's loop thread calls everything (the corrector may match on its own worker:
 // a keyframe's observations then reach the grid at a later step()).
 #include <cstdint>
@@ -62,6 +64,8 @@ class CorrectionStage {
   int64_t held_observations() const { return held_observations_; }
   // Observations of lost robots' keyframes given up while they were searched for (never drawn).
   int64_t dropped_observations() const { return dropped_observations_; }
+  // Localising only: observations that placed and tracked their robots (none is drawn).
+  int64_t localised_observations() const { return localised_observations_; }
 
  private:
   using Held = OwnedObservation;  // an observation waiting for its keyframe
@@ -71,12 +75,14 @@ class CorrectionStage {
   void rerender_when_due(Mapper& mapper, int64_t now_mono_ns);
 
   bool enabled_;
+  bool localise_only_;
   double rerender_shift_m_;
   correction::PoseCorrector corrector_;
   std::unordered_map<uint64_t, std::vector<Held>> held_;  // keyframe id -> its observations, in order
   std::vector<Held> spare_;                               // records to reuse
   int64_t held_observations_ = 0;                         // in held_
   int64_t dropped_observations_ = 0;
+  int64_t localised_observations_ = 0;
   bool rerender_due_ = false;                   // keyframes moved since the last re-render
   std::optional<int64_t> rerender_started_ns_;  // the running re-render's start (monotonic)
   int64_t next_rerender_ns_ = std::numeric_limits<int64_t>::min();

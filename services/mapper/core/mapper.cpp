@@ -8,6 +8,7 @@
 #include <type_traits>
 #include <utility>
 
+#include "common/core/cell_class.hpp"
 #include "mapper/core/map_error.hpp"
 #include "mapper/core/map_files.hpp"
 #include "mapper/core/rebuild.hpp"
@@ -131,12 +132,19 @@ Status Mapper::open() {
     spdlog::warn("store: {} observations rejected: {}", stats.rejected, stats.first_error);
   for (const FootprintGroup& g : index_.groups())
     newest_stamp_ns_ = std::max(newest_stamp_ns_, g.first_stamp_ns);
+  auto prior = store_->load_prior();
+  if (!prior) return prior.error();
+  has_prior_ = prior->has_value();
   auto count = store_->count();
   if (!count) return count.error();
   metrics_.store_observations.store(*count);
   seen_layout_ = grid_->layout_version();
   grid_->clear_dirty();
   return Status::ok();
+}
+
+bool Mapper::has_walls() const {
+  return std::ranges::any_of(grid_->classes(), [](uint8_t c) { return is_wall(c); });
 }
 
 void Mapper::reject(std::string_view robot_id, uint64_t seq, const std::string& reason) {
@@ -384,6 +392,7 @@ void Mapper::handle_file(const FileRequest& request) {
     bump(metrics_.store_errors);
     return reply(id, RequestResult::IoError, saved.message());
   }
+  has_prior_ = true;
   start_rebuild(RebuildTicket{RebuildCause::Import, id, grid_->config(), in.message + "; now the map's prior",
                               std::move(*previous)});
 }
@@ -413,6 +422,7 @@ void Mapper::finish_rebuild(RebuildOutcome outcome) {
     if (ticket.cause == RebuildCause::Import) {  // put the old prior back: the store matches the map again
       Status restored =
           ticket.previous_prior ? store_->save_prior(*ticket.previous_prior) : store_->clear_prior();
+      has_prior_ = ticket.previous_prior.has_value();
       if (!restored) spdlog::error("{}", restored.message());
     }
     store_deferred_as_drawn();

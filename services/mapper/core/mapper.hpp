@@ -194,6 +194,10 @@ class Mapper {
   bool take_swapped();
 
   const OccupancyGrid& grid() const { return *grid_; }
+  // Whether the grid holds a loaded map (a prior imported into the store).
+  bool has_prior() const { return has_prior_; }
+  // Whether the grid holds any wall (observed occupied or obstructed): a map to localise on.
+  bool has_walls() const;
   const MapperOptions& options() const { return options_; }
 
  private:
@@ -279,6 +283,7 @@ class Mapper {
   FootprintIndex index_;
   int64_t newest_stamp_ns_ = 0;      // the newest stored gateway stamp: the clock compaction ages by
   int64_t last_full_redraw_ns_ = 0;  // newest_stamp_ns_ when a full re-render last moved everything
+  bool has_prior_ = false;           // the store holds a prior
   int64_t loop_now_ns_ = 0;          // the last integrate()'s monotonic time
   int64_t next_compaction_check_ns_ = 0;
   bool rerender_waiting_ = false;       // a re-render requested while a rebuild ran

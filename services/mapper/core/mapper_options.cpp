@@ -117,6 +117,10 @@ void add_mapper_options(CLI::App& app, MapperOptions& o) {
       ->check(CLI::IsMember({"on", "off"}))
       ->capture_default_str();
 
+  app.add_flag("--localise-only", o.localise_only,
+               "keep the map as loaded (the store's, or one imported with --import): every robot is searched "
+               "for on it and tracked against it, nothing they see is drawn or stored");
+
   auto* export_flag = app.add_option("--export", o.export_yaml,
                                      "offline: write the stored map to FILE.yaml (+ .pgm) and exit");
   auto* import_flag =
@@ -145,6 +149,8 @@ Status validate(const MapperOptions& o) {
   if (!std::isfinite(o.snapshot_period_s) || o.snapshot_period_s < 0.1 || o.snapshot_period_s > 3600.0)
     return Error{"snapshot_period: must be between 0.1 and 3600 s"};
   if (o.slam != "on" && o.slam != "off") return Error{"slam: must be on or off"};
+  if (o.localise_only && o.slam != "on")
+    return Error{"localise_only: needs --slam on (the pose correction places and tracks the robots)"};
   if (!std::isfinite(o.slam_old_age_s) || o.slam_old_age_s < 1.0 || o.slam_old_age_s > 86400.0)
     return Error{"slam_old_age_s: must be between 1 and 86400 s"};
   if (o.max_queued_observations < 1) return Error{"max_queued_observations: must be at least 1"};

@@ -39,6 +39,9 @@ struct MapperOptions {
   std::string slam_point_refine = "on";  // matches refined against the keyframes' own points
   std::string slam_odometry_calibration = "on";  // each robot's systematic odometry heading error taken out
   std::string slam_relocalise = "on";  // a loose sparse robot searched for by its trail among old keyframes
+  // The map stays as loaded (a building mapped once): robots are searched for on it and tracked
+  // against it; nothing they see is drawn or stored.
+  bool localise_only = false;
   // Offline commands (no DDS): rebuild from the store and write a ROS map, store a map as prior, or
   // write one robot's trajectory (to trajectory_out, as tum or carmen).
   std::string export_yaml;

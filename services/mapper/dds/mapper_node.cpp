@@ -62,6 +62,12 @@ Status MapperNode::configure() {
                                [this] { intake_.notify(); });
   if (!mapper) return mapper.error();
   mapper_ = std::move(*mapper);
+  if (options_.localise_only && !mapper_->has_walls()) {
+    return Error{fmt::format(
+        "--localise-only: the store {} holds no map to localise on; map the building first, or import a "
+        "map: slam-mapper --store {} --import map.yaml",
+        options_.store, options_.store)};
+  }
   correction::CorrectorOptions slam_options;
   slam_options.old_age_s = options_.slam_old_age_s;
   slam_options.wall_heading = options_.slam_wall_heading == "on";
@@ -70,6 +76,7 @@ Status MapperNode::configure() {
   slam_options.point_refine = options_.slam_point_refine == "on";
   slam_options.odometry_calibration = options_.slam_odometry_calibration == "on";
   slam_options.relocalise = options_.slam_relocalise == "on";
+  slam_options.localise_only = options_.localise_only;
   slam_options.match_threads = 1;  // the map loop keeps integrating while keyframes are matched
   corrections_ = std::make_unique<CorrectionStage>(options_.slam_enabled(), slam_options);
   SLAM_TRY(corrections_->restore(*mapper_));
@@ -288,6 +295,8 @@ void MapperNode::update_periodic_counters() {
   counters_.get("slam_robots_lost").store(st.robots_lost, std::memory_order_relaxed);
   counters_.get("slam_lost_observations_dropped")
       .store(corrections_->dropped_observations(), std::memory_order_relaxed);
+  counters_.get("slam_localised_observations")
+      .store(corrections_->localised_observations(), std::memory_order_relaxed);
   counters_.get("slam_trail_searches").store(st.trail_searches, std::memory_order_relaxed);
   counters_.get("slam_ties_tried").store(st.ties_tried, std::memory_order_relaxed);
   counters_.get("slam_ties_skipped").store(st.ties_skipped, std::memory_order_relaxed);

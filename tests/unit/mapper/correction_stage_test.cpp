@@ -9,12 +9,14 @@
 #include <limits>
 #include <map>
 #include <memory>
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
 
 #include "mapper/core/map_error.hpp"
 #include "mapper_test_data.hpp"
+#include "room_scene.hpp"
 #include "temp_dir.hpp"
 
 namespace slam::mapper {
@@ -271,6 +273,62 @@ TEST_F(CorrectionStageTest, ARobotResetDropsItsWaitingObservationsAndItsKeyframe
   step(stage, *mapper, 12 + 60);  // long after: the dropped keyframe would have gone stale
   EXPECT_FALSE(touched(*mapper, open_wall)) << "an observation held before the reset reached the grid";
   EXPECT_EQ(stage.stats().robots_reset, 1);
+}
+
+TEST_F(CorrectionStageTest, LocalisingOnlyTheLoadedMapStaysAsItWasAndTheRobotIsFoundOnIt) {
+  // A room mapped earlier, loaded as the store's prior; a laser robot switched on in it with its
+  // odometry at (0, 0, 0) drives a slow circle.
+  const std::vector<correction::testing_scene::Wall> walls = correction::testing_scene::room();
+  const correction::testing_scene::WallMap room(walls, testkit::centred_geometry({-0.5, -0.5}, {6.5, 5.5}));
+  MapImage prior{static_cast<uint32_t>(room.geometry.width),
+                 static_cast<uint32_t>(room.geometry.height),
+                 room.geometry.resolution,
+                 room.geometry.origin.x,
+                 room.geometry.origin.y,
+                 0.0,
+                 {}};
+  for (uint8_t c : room.cells) prior.cells.push_back(c == kCellOccupied ? kMapOccupied : kMapFree);
+  {
+    auto store = ObservationStore::open(options_.store);
+    ASSERT_TRUE(store.is_ok()) << store.message();
+    ASSERT_TRUE(store->save_prior(prior));
+  }
+  options_.grid.resolution = room.geometry.resolution;
+  auto mapper = make_mapper();
+  ASSERT_TRUE(mapper);
+  ASSERT_TRUE(mapper->has_prior());
+  ASSERT_TRUE(mapper->has_walls());
+  const std::vector<uint8_t> classes_before(mapper->grid().classes().begin(), mapper->grid().classes().end());
+  corrector_.localise_only = true;
+  CorrectionStage stage(true, corrector_);
+  ASSERT_TRUE(stage.restore(*mapper));
+
+  Pose truth{4.6, 3.0, 2.0}, odometry;
+  std::optional<correction::RobotCorrection> last;
+  for (int i = 0; i < 150; ++i) {
+    const Pose motion{0.02, 0.0, 0.02};
+    truth = truth.compose(motion);
+    odometry = odometry.compose(motion);
+    const std::vector<Vec2> hits = correction::testing_scene::laser_hits(walls, truth, odometry);
+    const int64_t stamp = i * kStepNs;
+    stage.add(
+        *mapper,
+        RobotScan{"r1", static_cast<uint64_t>(i), stamp,
+                  ObservationView{odometry.x, odometry.y, odometry.theta, true, hits, {}}, 0, Pose{}, 0},
+        stamp);
+    step(stage, *mapper, i);
+    for (const auto& c : changed(stage)) last = c;
+  }
+  ASSERT_TRUE(last);
+  EXPECT_EQ(last->placement, correction::Placement::Placed);
+  EXPECT_LT(distance(last->map_from_odom.compose(odometry).position(), truth.position()), 0.05);
+  EXPECT_GT(stage.localised_observations(), 100);
+  const std::vector<uint8_t> classes_after(mapper->grid().classes().begin(), mapper->grid().classes().end());
+  EXPECT_EQ(classes_after, classes_before) << "the loaded map changed";
+  mapper->commit();
+  mapper.reset();
+  EXPECT_TRUE(stored_keyframe_ids().empty()) << "an observation was stored";
+  EXPECT_TRUE(stored_keyframes().empty()) << "a keyframe was stored";
 }
 
 TEST_F(CorrectionStageTest, TheRobotStampWaitsWithItsObservationAndIsStoredWithIt) {

@@ -72,6 +72,12 @@ TEST(MapperOptions, ValidationNamesTheBadKey) {
                                   "--trajectory-format", "kitti"}));
   EXPECT_NE(error([](MapperOptions& o) { o.trajectory_format = "kitti"; }).find("trajectory_format"),
             std::string::npos);
+  MapperOptions localising;
+  ASSERT_TRUE(parse(localising, {"--localise-only"}));
+  EXPECT_TRUE(localising.localise_only);
+  MapperOptions without_slam;
+  const Status needs_slam = parse(without_slam, {"--localise-only", "--slam", "off"});
+  EXPECT_NE(needs_slam.message().find("localise_only"), std::string::npos) << needs_slam.message();
 }
 
 TEST(MapperOptions, TrajectoryExportIsAnOfflineCommand) {
