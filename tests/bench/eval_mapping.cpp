@@ -69,7 +69,13 @@ struct EvalOptions {
   double false_closure_increase_m = 0.10;  // a loop correction adding more error than this is false
   int pixels_per_cell = 2;
   bool patrol = false;  // after exploration, looped missions through random places (scored apart)
+  // A map (ROS YAML) imported into the mapper's store before it starts: the building mapped
+  // earlier, for a run that localises on it (--mapper-arg=--localise-only).
+  std::string prior_yaml;
 };
+
+// A robot placed farther than this from where it truly was is placed wrongly.
+constexpr double kWrongPlacement_m = 0.5;
 
 std::string default_name(const EvalOptions& o) {
   std::string name = fmt::format("{}-{}-drift{}", o.world, o.protocol, o.drift);
@@ -106,7 +112,7 @@ class Evaluation {
       if (!world) return Error{"--patrol: " + world.message()};
       patrol_world_ = std::move(*world);
     }
-    start_processes();
+    SLAM_TRY(start_processes());
     auto tap = SystemTap::create(lease_.id(), recorder_);
     if (!tap) return tap.error();
     tap_ = std::move(*tap);
@@ -161,7 +167,13 @@ class Evaluation {
   std::string name() const { return o_.name.empty() ? default_name(o_) : o_.name; }
 
  private:
-  void start_processes() {
+  Status start_processes() {
+    const std::string mapper = o_.mapper_bin.empty() ? testkit::bin_path("slam-mapper") : o_.mapper_bin;
+    if (!o_.prior_yaml.empty()) {
+      group_.start("import", {mapper, "--store", group_.dir() + "/map.db", "--import", o_.prior_yaml});
+      if (group_.wait_exit("import", 60s) != 0)
+        return Error{"importing " + o_.prior_yaml + " failed:\n" + group_.log("import")};
+    }
     const std::string domain = std::to_string(lease_.id());
     const std::string broker = "tcp://127.0.0.1:" + std::to_string(group_.start_mosquitto());
     const auto with = [](std::vector<std::string> argv, const std::vector<std::string>& extra) {
@@ -173,7 +185,6 @@ class Evaluation {
     group_.start("gateway", {testkit::bin_path("slam-gateway"), "--domain", domain, "--broker", broker,
                              "--digest-period-s", fmt::format("{}", std::max(0.01, 0.1 / o_.speed)),
                              "--log-level", "warn"});
-    const std::string mapper = o_.mapper_bin.empty() ? testkit::bin_path("slam-mapper") : o_.mapper_bin;
     group_.start("mapper", with({mapper, "--domain", domain, "--store", group_.dir() + "/map.db",
                                  "--log-level", o_.mapper_log_level},
                                 o_.mapper_args));
@@ -191,6 +202,7 @@ class Evaluation {
         "--log-level", "warn"};
     if (!o_.odom_frame.empty()) sim.insert(sim.end(), {"--odom-frame", o_.odom_frame});
     group_.start("simulator", with(sim, o_.sim_args));
+    return Status::ok();
   }
 
   // Each robot gets a looped mission from where it is now; from here on its samples are the patrol's.
@@ -315,10 +327,30 @@ class Evaluation {
     j["goal_reported"] = to_json(summarise(goal_reported));
     j["after_exploration"] = o_.patrol ? "patrol" : "idle";
     j["patrol"] = patrol_json(goal_true);
+    j["placement"] = placement_json();
     j["slam_counters"] = tap_->counters("mapper", "slam_");
     j["image"] = std::filesystem::path(png).filename().string();
     j["map_yaml"] = std::filesystem::path(yaml).filename().string();
     return j;
+  }
+
+  // When each robot was first placed on the map, how far off, and the trajectory error from then on.
+  nlohmann::json placement_json() const {
+    std::vector<double> after_s, error_m;
+    int wrong = 0;
+    for (const RobotPlacement& p : recorder_.placements()) {
+      after_s.push_back(p.after_s);
+      error_m.push_back(p.error_m);
+      wrong += p.error_m > kWrongPlacement_m ? 1 : 0;
+    }
+    const std::vector<TrajectorySample> placed = recorder_.placed_samples();
+    return {{"robots", o_.robots},
+            {"placed", after_s.size()},
+            {"wrong", wrong},
+            {"wrong_beyond_m", kWrongPlacement_m},
+            {"after_s", after_s},
+            {"error_m", to_json(summarise(error_m))},
+            {"ate_after_placement", to_json(trajectory_errors(placed, false).corrected)}};
   }
 
   // The part of the run after exploration (null without --patrol, or when exploration did not end).
@@ -374,6 +406,9 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--robots", o.robots, "simulated robots")->check(CLI::Range(1, 100))->capture_default_str();
   app.add_option("--seed", o.seed, "simulator random seed")->capture_default_str();
+  app.add_option("--prior", o.prior_yaml,
+                 "a map (ROS YAML) imported into the mapper's store before it starts (a building mapped "
+                 "earlier: add --mapper-arg=--localise-only to localise on it)");
   app.add_flag("--align", o.align,
                "fit the map frame to the world (rigid 2-D) before scoring; for --odom-frame start");
   app.add_option("--odom-frame", o.odom_frame, "passed to the simulator (world or start)");

@@ -94,7 +94,7 @@ Status SystemTap::connect(int domain) {
   }));
   SLAM_TRY(open(p, corrections_, dds::kPoseCorrection, [this](const PoseCorrection& c) {
     recorder_.on_correction(c.robot_id().to_string(), to_pose(c.map_from_odom()), c.version(),
-                            c.source() == CORRECTION_LOOP);
+                            c.source() == CORRECTION_LOOP, c.placement() == PLACEMENT_PLACED);
   }));
   SLAM_TRY(open(p, paths_, dds::kRobotPath, [this](const RobotPath& path) {
     PathView view{path.goal_id(), {}, path.current()};

@@ -168,7 +168,8 @@ Result<ReplayOutcome> replay(std::span<const mapper::OwnedObservation> observati
     loop.step(tick, mono, changed);
     for (const auto& c : changed) {
       recorder.on_correction(c.robot, c.map_from_odom, c.version,
-                             c.source == correction::CorrectionSource::Loop);
+                             c.source == correction::CorrectionSource::Loop,
+                             c.placement == correction::Placement::Placed);
       corrections[c.robot] = c.map_from_odom;
     }
     while (next_truth < truth.size() && truth[next_truth].stamp_ns <= tick) {

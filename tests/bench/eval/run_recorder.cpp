@@ -24,7 +24,10 @@ void RunRecorder::on_truth(int64_t stamp_ns, const std::vector<RobotTruth>& robo
   for (const RobotTruth& t : robots) {
     Robot& r = robots_[t.robot_id];
     const Vec2 truth = t.true_pose.position();
-    if (!r.truth) starts_.push_back(truth);
+    if (!r.truth) {
+      starts_.push_back(truth);
+      r.first_truth_stamp_ns = stamp_ns;
+    }
     r.truth = t;
     r.truth_stamp_ns = stamp_ns;
     for (GoalArrival& a : r.pending) {
@@ -36,6 +39,7 @@ void RunRecorder::on_truth(int64_t stamp_ns, const std::vector<RobotTruth>& robo
     r.track.push_back(truth);
     const Vec2 corrected = r.correction.compose(t.reported_pose).position();
     samples_.push_back({t.robot_id, truth, t.reported_pose.position(), corrected});
+    if (r.placed) placed_samples_.push_back(samples_.back());
     truth_samples_.push_back({stamp_ns, t});
     if (r.state) published_.emplace_back(*r.state, truth);
   }
@@ -47,9 +51,15 @@ void RunRecorder::on_published_pose(const std::string& robot_id, Vec2 map_positi
 }
 
 void RunRecorder::on_correction(const std::string& robot_id, const Pose& map_from_odom, uint64_t version,
-                                bool loop) {
+                                bool loop, bool placed) {
   std::lock_guard lock(mutex_);
   Robot& r = robots_[robot_id];
+  if (placed && !r.placed && r.truth) {
+    r.placed = true;
+    placements_.push_back(
+        {robot_id, static_cast<double>(r.truth_stamp_ns - r.first_truth_stamp_ns) * 1e-9,
+         distance(map_from_odom.compose(r.truth->reported_pose).position(), r.truth->true_pose.position())});
+  }
   // Version 0 is "never corrected", the identity: the first change (version 1) replaces it.
   const bool previous_known = version > r.correction_version && (r.correction_version > 0 || version == 1);
   if (previous_known && r.truth)
@@ -125,6 +135,16 @@ size_t RunRecorder::robots_published() const {
   size_t n = 0;
   for (const auto& [id, r] : robots_) n += r.state ? 1 : 0;
   return n;
+}
+
+std::vector<RobotPlacement> RunRecorder::placements() const {
+  std::lock_guard lock(mutex_);
+  return placements_;
+}
+
+std::vector<TrajectorySample> RunRecorder::placed_samples() const {
+  std::lock_guard lock(mutex_);
+  return placed_samples_;
 }
 
 size_t RunRecorder::corrected_robots() const {

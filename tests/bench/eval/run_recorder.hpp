@@ -40,6 +40,13 @@ struct GoalArrival {
   double reported_distance_m = 0.0;
 };
 
+// A robot's first placement on the map (a correction published as placed), with its truth then.
+struct RobotPlacement {
+  std::string robot_id;
+  double after_s = 0.0;  // since its first truth sample, on the observations' clock
+  double error_m = 0.0;  // the placed correction applied to its odometry, against where it truly was
+};
+
 class RunRecorder {
  public:
   // `sample_period_ns`: wall time between trajectory samples (one simulated second at the run's
@@ -52,8 +59,10 @@ class RunRecorder {
 
   void on_truth(int64_t stamp_ns, const std::vector<RobotTruth>& robots);
   void on_published_pose(const std::string& robot_id, Vec2 map_position);
-  // `loop`: the change comes from a loop closure (CORRECTION_LOOP).
-  void on_correction(const std::string& robot_id, const Pose& map_from_odom, uint64_t version, bool loop);
+  // `loop`: the change comes from a loop closure (CORRECTION_LOOP); `placed`: the robot's place on
+  // the map is known (PLACEMENT_PLACED), not searched for.
+  void on_correction(const std::string& robot_id, const Pose& map_from_odom, uint64_t version, bool loop,
+                     bool placed = true);
   void on_path(const std::string& robot_id, const PathView& path);
 
   std::vector<TrajectorySample> samples() const;
@@ -72,12 +81,18 @@ class RunRecorder {
   // the robot's first truth sample, or when the first version heard is not 1 (what it replaced is
   // unknown), or when the version did not grow (a repeat, or a sequence that started again).
   std::vector<CorrectionChange> correction_changes() const;
+  // Each robot's first placement, in the order they happened; robots never placed are missing.
+  std::vector<RobotPlacement> placements() const;
+  // The samples of robots already placed (what a robot searched for publishes is no estimate).
+  std::vector<TrajectorySample> placed_samples() const;
   size_t unscored_corrections() const;
 
  private:
   struct Robot {
     std::optional<RobotTruth> truth;
     int64_t truth_stamp_ns = 0;
+    int64_t first_truth_stamp_ns = 0;
+    bool placed = false;
     std::optional<Vec2> state;
     Pose correction;
     uint64_t correction_version = 0;
@@ -93,6 +108,8 @@ class RunRecorder {
   std::map<std::string, Robot> robots_;
   std::vector<Vec2> starts_;
   std::vector<TrajectorySample> samples_;
+  std::vector<TrajectorySample> placed_samples_;
+  std::vector<RobotPlacement> placements_;
   std::vector<TruthSample> truth_samples_;
   std::vector<std::pair<Vec2, Vec2>> published_;
   std::vector<GoalArrival> arrivals_;

@@ -37,6 +37,34 @@ TEST(RunRecorder, SamplesOncePerPeriodWhileStartedAndAppliesTheCorrection) {
   EXPECT_NEAR(truth.back().truth.reported_pose.x, 2.2, 1e-12);
 }
 
+TEST(RunRecorder, APlacementIsTimedFromTheRobotsFirstTruthAndScoredAgainstIt) {
+  RunRecorder recorder(kSecond, 0.2);
+  // r1's odometry starts at (0, 0) where it truly stands at (3, 1): map <- odom is a shift by (3, 1).
+  const auto truth_at = [&](int64_t t, double x) {
+    recorder.on_truth(t, {{"r1", Pose{3.0 + x, 1.0, 0.0}, Pose{x, 0.0, 0.0}}});
+  };
+  recorder.start();
+  truth_at(2 * kSecond, 0.0);
+  recorder.on_correction("r1", Pose{}, 1, false, false);  // searched for: no placement
+  for (int i = 1; i <= 12; ++i) truth_at(2 * kSecond + i * kSecond / 2, 0.1 * i);
+  recorder.on_correction("r1", Pose{3.02, 1.0, 0.0}, 2, false, true);  // placed, 2 cm off, 6 s in
+  truth_at(9 * kSecond, 1.4);
+  recorder.on_correction("r1", Pose{3.0, 1.0, 0.0}, 3, false, true);  // still placed: not a second one
+  truth_at(10 * kSecond, 1.5);
+  recorder.stop();
+
+  const auto placements = recorder.placements();
+  ASSERT_EQ(placements.size(), 1u);
+  EXPECT_EQ(placements[0].robot_id, "r1");
+  EXPECT_NEAR(placements[0].after_s, 6.0, 1e-9);
+  EXPECT_NEAR(placements[0].error_m, 0.02, 1e-9);
+  // Only the samples from the placement on are the placed robot's.
+  const auto placed = recorder.placed_samples();
+  ASSERT_FALSE(placed.empty());
+  EXPECT_LT(placed.size(), recorder.samples().size());
+  for (const TrajectorySample& s : placed) EXPECT_NEAR(s.corrected.x, s.truth.x, 0.021);
+}
+
 TEST(RunRecorder, AnArrivalTakesTheNextTruthSample) {
   RunRecorder recorder(kSecond, 0.2);
   recorder.start();

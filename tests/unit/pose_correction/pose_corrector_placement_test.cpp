@@ -189,6 +189,21 @@ TEST(PoseCorrector, ACarriedRobotIsLostThenFoundAgainWithoutDrawingWhereItIsNot)
   }
 }
 
+TEST(PoseCorrector, LocalisingOnlyACarriedRobotIsLostThenFoundAgain) {
+  // On a fixed map nothing it sees is drawn, so after the carry nothing of its own fits its
+  // prediction either: it is found lost and placed again, its carried keyframes never published
+  // where it is not.
+  const TrueMap map(room(), centred_geometry({-0.5, -0.5}, {6.5, 5.5}));
+  CorrectorOptions options;
+  options.localise_only = true;
+  const Carried c = carry(options, room(), map, {4.6, 3.0, 2.0});
+  EXPECT_EQ(c.stats.robots_lost, 1);
+  EXPECT_TRUE(c.seen_lost);
+  EXPECT_EQ(c.stats.robots_placed, 2);  // switched on, then after the carry
+  EXPECT_EQ(c.placement, Placement::Placed);
+  EXPECT_LT(c.error_m, 0.05);
+}
+
 TEST(PoseCorrector, ALostRobotThatFindsNothingKeepsOnlyItsLatestKeyframes) {
   // Carried into the second of two identical rooms: it is never placed, never given up on (placed
   // by its odometry), and its older keyframes are dropped.
