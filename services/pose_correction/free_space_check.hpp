@@ -17,6 +17,10 @@ struct Ray {
   Vec2 end;     // what it hit
 };
 
+// A ray's last stretch may pass a wall seen a little off without counting as a crossing: a search's
+// lattice (a cell, a heading step) and walls a cell or two thick.
+inline constexpr double kWallCrossingMargin_m = 0.3;
+
 // Keeps every stride-th ray, the stride chosen so that at most `max_rays` are left (0: all): a
 // search's cost follows its points, and a few hundred spread over a trail pin a place.
 void thin_evenly(std::vector<Ray>& rays, size_t max_rays);

@@ -7,22 +7,19 @@
 // thread before submit(). The worker reads and writes only the job until it hands it back, so
 // neither the mapper's grid (which the loop keeps writing) nor the pose graph is ever shared: copies
 // rather than a lock, because a window is small (a 10 x 10 m box at 5 cm: 40 kB, microseconds to
-// copy) while a lock on the grid would stall integration for a whole match. The queues are locked
-// only to move job pointers.
+// copy) while a lock on the grid would stall integration for a whole match (job_thread.hpp).
 #include <Eigen/Core>
-#include <condition_variable>
 #include <cstdint>
-#include <deque>
 #include <functional>
 #include <memory>
-#include <mutex>
 #include <optional>
-#include <thread>
+#include <utility>
 #include <vector>
 
 #include "common/core/geometry.hpp"
 #include "pose_correction/branch_and_bound_search.hpp"
 #include "pose_correction/free_space_check.hpp"
+#include "pose_correction/job_thread.hpp"
 #include "pose_correction/keyframe_builder.hpp"
 #include "pose_correction/point_refiner.hpp"
 #include "pose_correction/scan_matcher.hpp"
@@ -92,26 +89,17 @@ struct MatchJob {
 class MatchWorker {
  public:
   using Work = std::function<void(ScanMatcher&, MatchJob&)>;
-  MatchWorker(const MatcherOptions& options, Work work);
-  ~MatchWorker();  // finishes the running job, drops the waiting ones
-  MatchWorker(const MatchWorker&) = delete;
-  MatchWorker& operator=(const MatchWorker&) = delete;
+  MatchWorker(const MatcherOptions& options, Work work)
+      : matcher_(options), work_(std::move(work)), thread_([this](MatchJob& job) { work_(matcher_, job); }) {}
 
-  void submit(std::unique_ptr<MatchJob> job);
+  void submit(std::unique_ptr<MatchJob> job) { thread_.submit(std::move(job)); }
   // Appends the finished jobs, in submission order.
-  void take_done(std::vector<std::unique_ptr<MatchJob>>& out);
+  void take_done(std::vector<std::unique_ptr<MatchJob>>& out) { thread_.take_done(out); }
 
  private:
-  void run();
-
   ScanMatcher matcher_;
   Work work_;
-  std::mutex mutex_;
-  std::condition_variable wake_;
-  std::deque<std::unique_ptr<MatchJob>> waiting_;
-  std::vector<std::unique_ptr<MatchJob>> done_;
-  bool stop_ = false;
-  std::thread thread_;  // last: starts once everything it uses exists
+  JobThread<MatchJob> thread_;  // last: its thread uses the matcher
 };
 
 }  // namespace slam::correction

@@ -19,10 +19,13 @@ PoseCorrector::PoseCorrector(const CorrectorOptions& options)
     : options_(options),
       matcher_(options.matcher),
       optimizer_(std::make_unique<GraphOptimizer>()),
+      placement_searcher_(options),
       schedule_(options.schedule) {
   if (options.match_threads > 0) {
     worker_ = std::make_unique<MatchWorker>(
         options.matcher, [this](ScanMatcher& matcher, MatchJob& job) { match_keyframe(matcher, job); });
+    placement_thread_ = std::make_unique<JobThread<PlacementJob>>(
+        [this](PlacementJob& job) { placement_searcher_.run(job); });
   }
 }
 
@@ -94,6 +97,7 @@ void PoseCorrector::process(const GridView& grid, int64_t now_ns, std::vector<Ke
   now_ns = take_out_clock_steps(process_clock_, now_ns, "the time of process()");
   last_process_ns_ = now_ns;
   land(out);
+  land_placement();
   int64_t open_messages = 0;
   for (Robot& rb : robots_) {
     if (rb.builder.stale(now_ns)) closed_.push_back(rb.builder.take());
@@ -107,11 +111,9 @@ void PoseCorrector::process(const GridView& grid, int64_t now_ns, std::vector<Ke
   // In order; a keyframe whose robot has one in matching waits (its prediction needs that result),
   // and so does everything after the budget. The oldest ones past the backlog cap go by odometry.
   size_t kept = 0;
-  searching_.clear();
   for (size_t i = 0; i < closed_.size(); ++i) {
     Keyframe& keyframe = closed_[i];
     if (Robot& owner = robots_[keyframe.robot]; owner.state.placement != Placement::Placed) {
-      if (searching_.empty() || searching_.back() != keyframe.robot) searching_.push_back(keyframe.robot);
       owner.held.push_back(std::move(keyframe));
       continue;
     }
@@ -130,7 +132,7 @@ void PoseCorrector::process(const GridView& grid, int64_t now_ns, std::vector<Ke
     start(std::move(keyframe), grid, match, out);
   }
   closed_.resize(kept);
-  for (uint32_t robot : searching_) search_placement(robots_[robot], grid, now_ns, out);
+  search_placements(grid, now_ns, out);
   // A robot that fell silent while it was searched for is not left waiting: its observations are held.
   for (Robot& rb : robots_)
     if (rb.state.placement != Placement::Placed) give_up_placement(rb, now_ns, out);

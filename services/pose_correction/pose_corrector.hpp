@@ -40,12 +40,14 @@
 #include "pose_correction/corrector_options.hpp"
 #include "pose_correction/free_space_check.hpp"
 #include "pose_correction/grid_view.hpp"
+#include "pose_correction/job_thread.hpp"
 #include "pose_correction/keyframe_builder.hpp"
 #include "pose_correction/keyframe_index.hpp"
 #include "pose_correction/match_worker.hpp"
 #include "pose_correction/odometry_calibration.hpp"
 #include "pose_correction/odometry_direction.hpp"
 #include "pose_correction/odometry_trust.hpp"
+#include "pose_correction/placement_search.hpp"
 #include "pose_correction/pose_graph.hpp"
 #include "pose_correction/scan_matcher.hpp"
 #include "pose_correction/wall_axes.hpp"
@@ -247,6 +249,7 @@ class PoseCorrector {
     std::optional<Pose> hypothesis;
     int confirmations = 0;
     std::optional<Vec2> searched_at;   // odometry position of the keyframe last searched for
+    uint64_t looked_at = 0;            // id of the newest held keyframe its search last looked at
     int unmatched_in_row = 0;          // its latest keyframes whose tracking match failed
     std::vector<double> track_scores;  // its latest tracking matches' scores (a ring, lost_window long)
     size_t track_score_next = 0;       // ...where the next one goes
@@ -273,9 +276,6 @@ class PoseCorrector {
   // A robot's latest keyframes kept for its trail: 4 m at a sparse robot's 0.4 m keyframes, with
   // room for turns on the spot.
   static constexpr size_t kRecentNodes = 32;
-  // A ray's last stretch may pass a wall seen a little off without counting as a crossing: the
-  // search's lattice (a cell, a heading step) and walls a cell or two thick.
-  static constexpr double kWallCrossingMargin_m = 0.3;
   // The old keyframes' grid a loose robot is searched on: coarser than the map, since it spans metres
   // of uncertainty and only has to find the place for the tracking matcher to refine.
   static constexpr double kRelocaliseResolution_m = 0.1;
@@ -285,17 +285,24 @@ class PoseCorrector {
   static constexpr int64_t kPlacementMapAge_ns = 10'000'000'000;
 
   uint32_t robot_index(std::string_view robot);
-  // Global localisation (pose_corrector_placement.cpp): a robot's newest held keyframe searched for
-  // on `grid`; placed once enough agree, or by its odometry once it has waited too long.
-  void search_placement(Robot& rb, const GridView& grid, int64_t now_ns,
+  // Global localisation (pose_corrector_placement.cpp): each robot searched for whose newest held
+  // keyframe has not been looked at, in turns (inline all of them; on the placement thread one at a
+  // time, the next pass starting with the robot that waited).
+  void search_placements(const GridView& grid, int64_t now_ns, std::vector<KeyframeCorrection>& out);
+  // A robot's newest held keyframe searched for on `grid`; placed once enough agree, or by its
+  // odometry once it has waited too long.
+  void search_placement(uint32_t robot, const GridView& grid, int64_t now_ns,
                         std::vector<KeyframeCorrection>& out);
+  // Applies the placement search the thread finished, if any.
+  void land_placement();
+  // A search's outcome for its robot: a hypothesis made, confirmed or dropped; placed once enough agree.
+  void apply_placement(const PlacementJob& job);
   // A placed robot whose latest keyframes do not fit the map where it is thought to be: its chain
   // ends there and it is searched for on the whole map, drawing nothing meanwhile.
   void mark_lost(Robot& rb, const std::string& why);
   void watch_tracking(const MatchJob& job, Robot& rb);
   // Places the robot by its odometry when it has waited too long (keyframes or time); whether it did.
   bool give_up_placement(Robot& rb, int64_t now_ns, std::vector<KeyframeCorrection>& out);
-  void prepare_placement_map(const GridView& grid);
   void place(Robot& rb, std::optional<Pose> map_from_odom, double score);
   // `t_ns` on `clock` with its steps back taken out; a step is counted and logged as `what`'s.
   int64_t take_out_clock_steps(ClockSteps& clock, int64_t t_ns, std::string_view what);
@@ -399,18 +406,20 @@ class PoseCorrector {
   double pending_shift_ = 0.0;
   std::unique_ptr<GraphOptimizer> optimizer_;
   std::vector<Pose> submitted_estimates_;  // node estimates when the running optimisation started
-  // The map global localisation searches: built from the live grid when a search needs it and
-  // the last build is older than kPlacementMapAge_ns.
-  BranchAndBoundSearch placement_search_;
+  // Global localisation's search and the map it searches, rebuilt from a copy of the live grid when
+  // a search needs it and the last one is older than kPlacementMapAge_ns. With match_threads, the
+  // searcher belongs to the placement thread (one search at a time, off the loop).
+  PlacementSearcher placement_searcher_;
+  std::unique_ptr<JobThread<PlacementJob>> placement_thread_;  // null: inline searches
+  bool placement_in_flight_ = false;
+  std::unique_ptr<PlacementJob> placement_job_;  // reused: its buffers keep their capacity
+  std::vector<std::unique_ptr<PlacementJob>> landed_placements_;
   int64_t placement_map_ns_ = 0;
   bool placement_map_ready_ = false;
-  bool map_given_ = false;                // set_map_given()
-  std::vector<uint8_t> placement_cells_;  // scratch: the grid's occupied part, maybe coarsened
-  std::vector<Ray> placement_rays_;       // scratch: the searched keyframes' rays, thinned
-  std::vector<Vec2> placement_points_;    // scratch: ...their ends
-  std::vector<uint32_t> searching_;       // scratch: robots with a keyframe held in this pass
-  int64_t last_process_ns_ = 0;           // now_ns of the latest process()
-  int64_t submitted_ns_ = 0;              // ...when the running optimisation started
+  bool map_given_ = false;       // set_map_given()
+  uint32_t placement_turn_ = 0;  // the robot whose search waits for the thread
+  int64_t last_process_ns_ = 0;  // now_ns of the latest process()
+  int64_t submitted_ns_ = 0;     // ...when the running optimisation started
   size_t submitted_nodes_ = 0;
   // add()'s stamps and process()'s now_ns, their steps back taken out.
   ClockSteps stamp_clock_{kClockStepBack_ns};

@@ -6,40 +6,16 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
+#include <memory>
 #include <span>
 #include <string>
 #include <vector>
 
-#include "common/core/cell_class.hpp"
 #include "pose_correction/free_space_check.hpp"
 #include "pose_correction/pose_corrector.hpp"
 
 namespace slam::correction {
 namespace {
-
-// The occupied part of `grid` (cells of a wall or an obstruction), with a margin: what a keyframe
-// can be placed against. Empty when nothing is occupied.
-CellBox occupied_box(const GridView& grid, int32_t margin) {
-  const GridGeometry& g = grid.geometry;
-  int32_t x0 = g.width, y0 = g.height, x1 = -1, y1 = -1;
-  for (int32_t y = 0; y < g.height; ++y) {
-    const uint8_t* row = grid.classes.data() + static_cast<size_t>(y) * static_cast<size_t>(g.width);
-    for (int32_t x = 0; x < g.width; ++x) {
-      if (!is_wall(row[x])) continue;
-      x0 = std::min(x0, x);
-      x1 = std::max(x1, x);
-      y0 = std::min(y0, y);
-      y1 = std::max(y1, y);
-    }
-  }
-  if (x1 < 0) return {};
-  x0 = std::max(0, x0 - margin);
-  y0 = std::max(0, y0 - margin);
-  x1 = std::min(g.width - 1, x1 + margin);
-  y1 = std::min(g.height - 1, y1 + margin);
-  return {x0, y0, x1 - x0 + 1, y1 - y0 + 1};
-}
 
 // The rays of the newest keyframe of `held` and of those before it in its segment within
 // `trail_m` of travel, in the newest one's frame (by odometry, which holds over a few metres),
@@ -63,35 +39,13 @@ void gather_trail(std::span<const Keyframe> held, double trail_m, size_t max_ray
   thin_evenly(trail, max_rays);
 }
 
-// Map a correction found for `keyframe` (its origin at `pose`) gives its robot's odometry frame.
-Pose frame_of(const Pose& pose, const Keyframe& keyframe) {
-  return pose.compose(keyframe.odom.inverse());
+// Map a correction found for a keyframe (its origin at `pose`, at `odom` in its odometry) gives its
+// robot's odometry frame.
+Pose frame_of(const Pose& pose, const Pose& odom) {
+  return pose.compose(odom.inverse());
 }
 
 }  // namespace
-
-void PoseCorrector::prepare_placement_map(const GridView& grid) {
-  placement_map_ready_ = false;
-  const GridGeometry& g = grid.geometry;
-  if (g.cells() == 0 || grid.classes.size() != g.cells()) return;
-  const CellBox box = occupied_box(grid, 4);
-  if (box.empty()) return;
-  // Coarser cells (each the occupancy of a square of grid cells) until the map fits the budget.
-  int32_t factor = 1;
-  while (box.cells() / static_cast<size_t>(factor * factor) > options_.placement_max_map_cells) factor *= 2;
-  GridGeometry coarse;
-  coarse.resolution = g.resolution * factor;
-  coarse.origin = g.corner({box.x0, box.y0});
-  coarse.width = (box.width + factor - 1) / factor;
-  coarse.height = (box.height + factor - 1) / factor;
-  placement_cells_.assign(coarse.cells(), kCellFree);
-  for (int32_t y = 0; y < box.height; ++y) {
-    const uint8_t* row = grid.classes.data() + g.index({box.x0, box.y0 + y});
-    for (int32_t x = 0; x < box.width; ++x)
-      if (is_wall(row[x])) placement_cells_[coarse.index({x / factor, y / factor})] = kCellOccupied;
-  }
-  placement_map_ready_ = static_cast<bool>(placement_search_.set_map(GridView{coarse, placement_cells_}));
-}
 
 bool PoseCorrector::give_up_placement(Robot& rb, int64_t now_ns, std::vector<KeyframeCorrection>& out) {
   if (rb.held.empty()) return false;
@@ -120,53 +74,90 @@ bool PoseCorrector::give_up_placement(Robot& rb, int64_t now_ns, std::vector<Key
   return true;
 }
 
-void PoseCorrector::search_placement(Robot& rb, const GridView& grid, int64_t now_ns,
+void PoseCorrector::search_placements(const GridView& grid, int64_t now_ns,
+                                      std::vector<KeyframeCorrection>& out) {
+  const auto robots = static_cast<uint32_t>(robots_.size());
+  for (uint32_t k = 0; k < robots; ++k) {
+    const uint32_t r = (placement_turn_ + k) % robots;
+    const Robot& rb = robots_[r];
+    if (rb.state.placement == Placement::Placed || rb.held.empty() || rb.held.back().id == rb.looked_at)
+      continue;
+    if (placement_in_flight_) {
+      placement_turn_ = r;
+      return;
+    }
+    search_placement(r, grid, now_ns, out);
+  }
+}
+
+void PoseCorrector::search_placement(uint32_t robot, const GridView& grid, int64_t now_ns,
                                      std::vector<KeyframeCorrection>& out) {
-  if (rb.held.empty() || give_up_placement(rb, now_ns, out)) return;
+  Robot& rb = robots_[robot];
+  if (give_up_placement(rb, now_ns, out)) return;
   const Keyframe& keyframe = rb.held.back();
+  rb.looked_at = keyframe.id;
   if (!rb.hypothesis && rb.searched_at &&
       distance(*rb.searched_at, keyframe.odom.position()) < options_.placement_search_travel_m)
     return;
-  if (!placement_map_ready_ || now_ns - placement_map_ns_ > kPlacementMapAge_ns) {
-    prepare_placement_map(grid);
+  std::unique_ptr<PlacementJob> job =
+      placement_job_ ? std::move(placement_job_) : std::make_unique<PlacementJob>();
+  job->robot = robot;
+  job->generation = rb.generation;
+  job->keyframe_odom = keyframe.odom;
+  job->hypothesis = rb.hypothesis;
+  gather_trail(rb.held, options_.placement_trail_m, options_.placement_max_points, job->rays);
+  // The searched map is rebuilt from a copy of the grid every so often (and while it holds no wall).
+  job->new_map = !placement_map_ready_ || now_ns - placement_map_ns_ > kPlacementMapAge_ns;
+  if (job->new_map) {
+    job->grid_geometry = grid.geometry;
+    job->grid_cells.assign(grid.classes.begin(), grid.classes.end());
     placement_map_ns_ = now_ns;
   }
-  if (!placement_map_ready_) return;  // nothing on the map yet: it waits for the others' (or the wait's end)
-  gather_trail(rb.held, options_.placement_trail_m, options_.placement_max_points, placement_rays_);
-  placement_points_.clear();
-  for (const Ray& r : placement_rays_) placement_points_.push_back(r.end);
-
-  // No hypothesis: the whole map at every heading. A hypothesis: around where it puts this keyframe.
-  const GridGeometry& map = placement_search_.geometry();
-  SearchRegion region;
-  if (rb.hypothesis) {
-    region = {rb.hypothesis->compose(keyframe.odom), options_.placement_agree_m,
-              options_.placement_agree_rad};
-  } else {
-    const double half_width = 0.5 * map.width * map.resolution,
-                 half_height = 0.5 * map.height * map.resolution;
-    region = {{map.origin.x + half_width, map.origin.y + half_height, 0.0},
-              std::max(half_width, half_height),
-              2.0 * std::numbers::pi};
-  }
-  ++stats_.placement_searches;
   rb.searched_at = keyframe.odom.position();
-  const auto found = placement_search_.search(placement_points_, region);
-  // The walls are traced only for a match that passes the cheaper tests.
-  const bool good = found && found->score >= options_.placement_min_score &&
-                    (rb.hypothesis || found->ambiguity() <= options_.placement_max_ambiguity) &&
-                    crossed_wall_share(GridView{map, placement_cells_}, found->pose, placement_rays_,
-                                       kWallCrossingMargin_m) <= options_.placement_max_crossed_walls;
+  if (placement_thread_) {
+    placement_in_flight_ = true;
+    placement_thread_->submit(std::move(job));
+    return;
+  }
+  placement_searcher_.run(*job);
+  apply_placement(*job);
+  placement_job_ = std::move(job);
+}
+
+void PoseCorrector::land_placement() {
+  if (!placement_thread_) return;
+  landed_placements_.clear();
+  placement_thread_->take_done(landed_placements_);
+  for (auto& job : landed_placements_) {
+    placement_in_flight_ = false;
+    apply_placement(*job);
+    placement_job_ = std::move(job);
+  }
+  landed_placements_.clear();
+}
+
+void PoseCorrector::apply_placement(const PlacementJob& job) {
+  placement_map_ready_ = job.map_ready;
+  Robot& rb = robots_[job.robot];
+  if (!job.map_ready) {  // nothing on the map yet: it waits for the others' (or the wait's end)
+    rb.searched_at.reset();
+    return;
+  }
+  // Reset, placed (an operator, the wait's end) or its hypothesis dropped while it was searched for.
+  if (job.generation != rb.generation || rb.state.placement == Placement::Placed ||
+      job.hypothesis.has_value() != rb.hypothesis.has_value())
+    return;
+  ++stats_.placement_searches;
+  const auto& found = job.found;
   rb.state.localisation_score = found ? found->score * (1.0 - found->ambiguity()) : 0.0;
-  if (good) {
-    const Pose frame = frame_of(found->pose, keyframe);
-    rb.hypothesis = frame;
+  if (job.passes) {
+    rb.hypothesis = frame_of(found->pose, job.keyframe_odom);
     ++rb.confirmations;
   } else if (rb.hypothesis) {
     ++stats_.placement_contradicted;
     spdlog::info(
-        "pose correction: robot {}: keyframe {} disagrees with where it was thought to be; searching again",
-        rb.name, keyframe.id);
+        "pose correction: robot {}: a keyframe disagrees with where it was thought to be; searching again",
+        rb.name);
     rb.hypothesis.reset();
     rb.confirmations = 0;
   }
