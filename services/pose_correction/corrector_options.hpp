@@ -114,6 +114,7 @@ struct CorrectorOptions {
   double placement_agree_m = 0.3;  // a later keyframe's match this close to the hypothesis agrees
   double placement_agree_rad = 0.1;
   int placement_max_keyframes = 40;
+  size_t placement_max_rejected = 16;  // an operator's rejected places kept per robot (the latest)
   double placement_max_wait_s = 30.0;
   // What is searched: the newest keyframe and the ones before it within this much travel, by
   // odometry (a sparse robot's single keyframe fits many places), evenly thinned to max_points.

@@ -18,7 +18,9 @@ template <typename Job>
 class JobThread {
  public:
   using Work = std::function<void(Job&)>;
-  explicit JobThread(Work work) : work_(std::move(work)), thread_([this] { run(); }) {}
+  // `on_done` (may be empty) runs on this thread after each job is done: to wake the loop.
+  explicit JobThread(Work work, std::function<void()> on_done = {})
+      : work_(std::move(work)), on_done_(std::move(on_done)), thread_([this] { run(); }) {}
   ~JobThread() {  // finishes the running job, drops the waiting ones
     {
       const std::lock_guard lock(mutex_);
@@ -56,10 +58,16 @@ class JobThread {
       work_(*job);
       lock.lock();
       done_.push_back(std::move(job));
+      if (on_done_) {
+        lock.unlock();
+        on_done_();
+        lock.lock();
+      }
     }
   }
 
   Work work_;
+  std::function<void()> on_done_;
   std::mutex mutex_;
   std::condition_variable wake_;
   std::deque<std::unique_ptr<Job>> waiting_;

@@ -89,8 +89,10 @@ struct MatchJob {
 class MatchWorker {
  public:
   using Work = std::function<void(ScanMatcher&, MatchJob&)>;
-  MatchWorker(const MatcherOptions& options, Work work)
-      : matcher_(options), work_(std::move(work)), thread_([this](MatchJob& job) { work_(matcher_, job); }) {}
+  MatchWorker(const MatcherOptions& options, Work work, std::function<void()> on_done = {})
+      : matcher_(options),
+        work_(std::move(work)),
+        thread_([this](MatchJob& job) { work_(matcher_, job); }, std::move(on_done)) {}
 
   void submit(std::unique_ptr<MatchJob> job) { thread_.submit(std::move(job)); }
   // Appends the finished jobs, in submission order.

@@ -22,10 +22,15 @@ PoseCorrector::PoseCorrector(const CorrectorOptions& options)
       placement_searcher_(options),
       schedule_(options.schedule) {
   if (options.match_threads > 0) {
+    // A finished job wakes the loop (set_wake): a robot's next keyframe waits for its last one's
+    // match, so a loop passing only at its tick would finalise at most one keyframe per robot a tick.
+    const auto wake = [this] {
+      if (wake_) wake_();
+    };
     worker_ = std::make_unique<MatchWorker>(
-        options.matcher, [this](ScanMatcher& matcher, MatchJob& job) { match_keyframe(matcher, job); });
+        options.matcher, [this](ScanMatcher& matcher, MatchJob& job) { match_keyframe(matcher, job); }, wake);
     placement_thread_ = std::make_unique<JobThread<PlacementJob>>(
-        [this](PlacementJob& job) { placement_searcher_.run(job); });
+        [this](PlacementJob& job) { placement_searcher_.run(job); }, wake);
   }
 }
 

@@ -118,6 +118,7 @@ struct CorrectorStats {
   int64_t robots_placed = 0;           // found on the map
   int64_t placements_given_up = 0;     // not found: placed by their odometry
   int64_t placement_contradicted = 0;  // a hypothesis a later keyframe disagreed with
+  int64_t placements_refused = 0;      // matches at a place an operator rejected
   int64_t robots_lost = 0;             // placed robots whose keyframes stopped fitting the map
   int64_t lost_keyframes_dropped = 0;  // of lost (localising only: unplaced) robots, given up waiting
   // A loose sparse robot searched for by its trail (CorrectorOptions::relocalise).
@@ -176,6 +177,13 @@ class PoseCorrector {
   // map_pose.theta is the rotation of its odometry frame). Errors: unknown robot, non-finite.
   Status set_initial_pose(std::string_view robot, const Pose& map_pose);
 
+  // An operator's answer to where the robot is being placed. Accept: a robot being confirmed
+  // (Placing) is placed where its hypothesis puts it. Reject: that place is refused for the robot
+  // from now on (until an operator's pose or a reset), and it is searched for elsewhere; a placed
+  // robot is searched for again as a lost one is. Errors (nothing changed, counted): unknown robot,
+  // nothing to accept (no hypothesis yet) or to reject (not placed or being placed).
+  Status answer_placement(std::string_view robot, bool accept);
+
   // After a restart: keyframes as stored (their corrections become each robot's current one).
   void restore(std::span<const KeyframeCorrection> keyframes);
 
@@ -184,6 +192,9 @@ class PoseCorrector {
   // correction stays (the robot still is where it was believed to be); its next keyframe starts a
   // new chain. Returns how many finalised keyframes were removed; an unknown robot: 0.
   size_t reset_robot(std::string_view robot);
+  // Called on a worker thread when a match or placement search is done, so the caller's loop runs
+  // process() again at once (match_threads > 0). Set it before the first process().
+  void set_wake(std::function<void()> wake) { wake_ = std::move(wake); }
   // The map holds walls no robot drew here (a map loaded, or a restored store the graph does not
   // hold): with global localisation, a robot joining it is searched for, the first one too.
   void set_map_given(bool given) { map_given_ = given; }
@@ -254,6 +265,7 @@ class PoseCorrector {
     std::vector<double> track_scores;  // its latest tracking matches' scores (a ring, lost_window long)
     size_t track_score_next = 0;       // ...where the next one goes
     bool lost = false;                 // searched for since it was lost (not given up: placed by odometry)
+    std::vector<Pose> rejected;        // odometry frames an operator said it is not in (answer_placement)
   };
   // One pose-graph node per finalised keyframe.
   struct Node {
@@ -297,6 +309,8 @@ class PoseCorrector {
   void land_placement();
   // A search's outcome for its robot: a hypothesis made, confirmed or dropped; placed once enough agree.
   void apply_placement(const PlacementJob& job);
+  // Whether an operator rejected a frame that puts the keyframe at `odom` where `frame` does.
+  bool rejected(const Robot& rb, const Pose& frame, const Pose& odom) const;
   // A placed robot whose latest keyframes do not fit the map where it is thought to be: its chain
   // ends there and it is searched for on the whole map, drawing nothing meanwhile.
   void mark_lost(Robot& rb, const std::string& why);
@@ -409,6 +423,7 @@ class PoseCorrector {
   // Global localisation's search and the map it searches, rebuilt from a copy of the live grid when
   // a search needs it and the last one is older than kPlacementMapAge_ns. With match_threads, the
   // searcher belongs to the placement thread (one search at a time, off the loop).
+  std::function<void()> wake_;  // set_wake(); before the threads that call it (they end first)
   PlacementSearcher placement_searcher_;
   std::unique_ptr<JobThread<PlacementJob>> placement_thread_;  // null: inline searches
   bool placement_in_flight_ = false;

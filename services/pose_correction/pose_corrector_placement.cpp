@@ -150,7 +150,10 @@ void PoseCorrector::apply_placement(const PlacementJob& job) {
   ++stats_.placement_searches;
   const auto& found = job.found;
   rb.state.localisation_score = found ? found->score * (1.0 - found->ambiguity()) : 0.0;
-  if (job.passes) {
+  const bool refused =
+      job.passes && rejected(rb, frame_of(found->pose, job.keyframe_odom), job.keyframe_odom);
+  if (refused) ++stats_.placements_refused;
+  if (job.passes && !refused) {
     rb.hypothesis = frame_of(found->pose, job.keyframe_odom);
     ++rb.confirmations;
   } else if (rb.hypothesis) {
@@ -172,6 +175,55 @@ void PoseCorrector::apply_placement(const PlacementJob& job) {
     ++stats_.robots_placed;
     place(rb, rb.hypothesis, rb.state.localisation_score);
   }
+}
+
+bool PoseCorrector::rejected(const Robot& rb, const Pose& frame, const Pose& odom) const {
+  const Pose at = frame.compose(odom);
+  return std::ranges::any_of(rb.rejected, [&](const Pose& r) {
+    const Pose there = r.compose(odom);
+    return distance(there.position(), at.position()) <= options_.placement_agree_m &&
+           std::abs(wrap_angle(there.theta - at.theta)) <= options_.placement_agree_rad;
+  });
+}
+
+Status PoseCorrector::answer_placement(std::string_view robot, bool accept) {
+  const auto it = robot_ids_.find(std::string(robot));
+  if (it == robot_ids_.end()) {
+    ++stats_.rejected_inputs;
+    return Error{"unknown robot '" + std::string(robot) + "': no observation from it yet"};
+  }
+  Robot& rb = robots_[it->second];
+  if (accept) {
+    if (!rb.hypothesis) {
+      ++stats_.rejected_inputs;
+      return Error{fmt::format("robot {} is {}: nothing to accept (give it a pose: slamctl pose)", rb.name,
+                               rb.state.placement == Placement::Placed ? "placed already" : "not found yet")};
+    }
+    spdlog::info("pose correction: robot {}: an operator accepted where it was found", rb.name);
+    ++stats_.robots_placed;
+    place(rb, rb.hypothesis, rb.state.localisation_score);
+    return Status::ok();
+  }
+  std::optional<Pose> wrong = rb.hypothesis;
+  if (!wrong && rb.state.placement == Placement::Placed) wrong = rb.state.map_from_odom;
+  if (!wrong) {
+    ++stats_.rejected_inputs;
+    return Error{fmt::format("robot {} is not placed nor being placed: nothing to reject", rb.name)};
+  }
+  if (rb.rejected.size() >= options_.placement_max_rejected) rb.rejected.erase(rb.rejected.begin());
+  rb.rejected.push_back(*wrong);
+  if (rb.hypothesis) {
+    spdlog::info("pose correction: robot {}: an operator rejected where it was being placed; searching on",
+                 rb.name);
+    rb.hypothesis.reset();
+    rb.confirmations = 0;
+    rb.searched_at.reset();
+    rb.state.placement = rb.lost ? Placement::Lost : Placement::Unplaced;
+    mark_changed(rb, rb.state.source);
+  } else {
+    mark_lost(rb, "an operator rejected where it was placed");
+  }
+  return Status::ok();
 }
 
 void PoseCorrector::place(Robot& rb, std::optional<Pose> map_from_odom, double score) {

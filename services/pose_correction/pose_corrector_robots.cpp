@@ -35,6 +35,7 @@ Status PoseCorrector::set_initial_pose(std::string_view robot, const Pose& map_p
     correction = Pose{map_pose.x - rotated.x, map_pose.y - rotated.y, wrap_angle(map_pose.theta)};
   }
   if (rb.state.placement != Placement::Placed) place(rb, correction, 1.0);  // the operator knows
+  rb.rejected.clear();
   rb.operator_pose = correction;
   rb.state.map_from_odom = correction;
   ++epoch_;
@@ -79,6 +80,7 @@ size_t PoseCorrector::reset_robot(std::string_view robot) {
   std::erase_if(edges_, [&](const GraphEdge& e) { return ids.contains(e.from) || ids.contains(e.to); });
   std::erase_if(closed_, [&](const Keyframe& k) { return k.robot == r; });
   rb.held.clear();
+  rb.rejected.clear();
   rb.hypothesis.reset();
   rb.confirmations = 0;
   rb.searched_at.reset();

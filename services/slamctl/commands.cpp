@@ -165,6 +165,8 @@ const std::vector<Subcommand>& subcommands() {
       {"reset", "delete every observation of a robot and rebuild the map", add_reset},
       {"store", "what the mapper's store keeps: store stats [--store FILE] (reads the file)", add_store},
       {"pose", "set a robot's pose in the map (initial pose): pose ROBOT X Y THETA_DEG", add_pose},
+      {"placement", "accept or reject where the server placed a robot: placement accept|reject ROBOT",
+       add_placement},
       {"sim", "control the simulator", add_sim},
       {"echo", "print samples of a topic (see docs/topics.md) until Ctrl-C", add_echo},
       {"record", "record every topic (or --topics) to an MCAP file Foxglove opens", add_record},

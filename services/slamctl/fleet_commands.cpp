@@ -352,4 +352,32 @@ Handler add_pose(CLI::App& cli) {
   return [a](Session& s) { return cmd_pose(s, *a); };
 }
 
+namespace {
+
+struct PlacementArgs {
+  std::string verdict;
+  std::string robot;
+};
+
+int cmd_placement(Session& s, const PlacementArgs& a) {
+  PlacementAnswer req;
+  req.robot_id(a.robot);
+  req.verdict(a.verdict == "accept" ? PLACEMENT_ACCEPT : PLACEMENT_REJECT);
+  return map_request(s, dds::kPlacementAnswer, req,
+                     "placement of " + a.robot + (a.verdict == "accept" ? " accepted" : " rejected"));
+}
+
+}  // namespace
+
+Handler add_placement(CLI::App& cli) {
+  auto a = std::make_shared<PlacementArgs>();
+  cli.add_option("verdict", a->verdict,
+                 "accept: place a robot being placed where it was found; reject: it is not there, search on "
+                 "(a placed robot is searched for again)")
+      ->required()
+      ->check(CLI::IsMember({"accept", "reject"}));
+  cli.add_option("robot", a->robot, "robot id")->required();
+  return [a](Session& s) { return cmd_placement(s, *a); };
+}
+
 }  // namespace slam::ctl

@@ -14,5 +14,6 @@ Handler add_mission(CLI::App& cli);
 Handler add_missions(CLI::App& cli);
 Handler add_path(CLI::App& cli);
 Handler add_pose(CLI::App& cli);
+Handler add_placement(CLI::App& cli);
 
 }  // namespace slam::ctl

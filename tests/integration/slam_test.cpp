@@ -289,7 +289,7 @@ struct CtlRun {
   size_t lines() const { return static_cast<size_t>(std::count(output.begin(), output.end(), '\n')); }
 };
 
-TEST_F(SlamMapperTest, SlamctlPoseSetsTheCorrection) {
+TEST_F(SlamMapperTest, SlamctlPoseSetsTheCorrectionAndPlacementAnswersReachTheMapper) {
   ASSERT_NO_FATAL_FAILURE(start_mapper());
   ASSERT_NO_FATAL_FAILURE(drive("r1", 0, 60));
   // Every keyframe finalised: from here on only the operator changes the correction.
@@ -300,7 +300,7 @@ TEST_F(SlamMapperTest, SlamctlPoseSetsTheCorrection) {
   const auto ctl = [&](std::vector<std::string> args) {
     const std::string name = "slamctl" + std::to_string(++runs);
     std::vector<std::string> argv{bin_path("slamctl"), "--domain", std::to_string(domain_.id()),
-                                  "--timeout",         "10",       "pose"};
+                                  "--timeout",         "10"};
     argv.insert(argv.end(), args.begin(), args.end());
     group_.start(name, argv);
     CtlRun r;
@@ -309,7 +309,7 @@ TEST_F(SlamMapperTest, SlamctlPoseSetsTheCorrection) {
     return r;
   };
 
-  const CtlRun ok = ctl({"r1", "1.25", "-0.75", "30"});
+  const CtlRun ok = ctl({"pose", "r1", "1.25", "-0.75", "30"});
   EXPECT_EQ(ok.code, 0) << ok.output;
   EXPECT_FALSE(ok.output.empty()) << "the reply was not printed";
   std::printf("slam_test: slamctl pose printed: %s", ok.output.c_str());
@@ -323,16 +323,31 @@ TEST_F(SlamMapperTest, SlamctlPoseSetsTheCorrection) {
   EXPECT_NEAR(std::remainder(placed.theta - 30.0 * kPi / 180.0, 2 * kPi), 0.0, 1e-6);
 
   const size_t corrections_seen = corrections_.size();
-  const CtlRun unknown = ctl({"nobody", "1", "1", "0"});
+  const CtlRun unknown = ctl({"pose", "nobody", "1", "1", "0"});
   EXPECT_EQ(unknown.code, 1) << unknown.output;
   EXPECT_EQ(unknown.lines(), 1u) << unknown.output;
   EXPECT_NE(unknown.output.find("unknown robot"), std::string::npos) << unknown.output;
 
-  const CtlRun outside = ctl({"r1", "40", "1", "0"});
+  const CtlRun outside = ctl({"pose", "r1", "40", "1", "0"});
   EXPECT_EQ(outside.code, 1) << outside.output;
   EXPECT_EQ(outside.lines(), 1u) << outside.output;
   EXPECT_NE(outside.output.find("outside the map"), std::string::npos) << outside.output;
   EXPECT_EQ(corrections_.size(), corrections_seen) << "a refused pose changed a correction";
+
+  // An operator's answers to a placement: r1 is placed (by the operator), so there is nothing to
+  // accept; rejecting it has it searched for again, as a lost robot.
+  const CtlRun nothing = ctl({"placement", "accept", "r1"});
+  EXPECT_EQ(nothing.code, 1) << nothing.output;
+  EXPECT_NE(nothing.output.find("nothing to accept"), std::string::npos) << nothing.output;
+  const CtlRun stranger = ctl({"placement", "reject", "nobody"});
+  EXPECT_EQ(stranger.code, 1) << stranger.output;
+  EXPECT_NE(stranger.output.find("unknown robot"), std::string::npos) << stranger.output;
+  EXPECT_EQ(corrections_.size(), corrections_seen) << "a refused answer changed a correction";
+  const CtlRun rejected = ctl({"placement", "reject", "r1"});
+  EXPECT_EQ(rejected.code, 0) << rejected.output;
+  EXPECT_TRUE(corrections_.wait_for(
+      [](const PoseCorrection& c) { return c.robot_id() == "r1" && c.placement() == PLACEMENT_LOST; }, 30s))
+      << "the rejected robot was not published as searched for";
 }
 
 }  // namespace

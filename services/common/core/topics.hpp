@@ -53,6 +53,7 @@ inline constexpr TopicInfo kRobotState{"slam/robot/state", kStateQos};
 inline constexpr TopicInfo kRobotOdometry{"slam/robot/odometry", kStateQos};
 inline constexpr TopicInfo kPoseCorrection{"slam/robot/correction", kStateQos};
 inline constexpr TopicInfo kInitialPose{"slam/robot/initial_pose", kCommandQos};
+inline constexpr TopicInfo kPlacementAnswer{"slam/robot/placement_answer", kCommandQos};
 inline constexpr TopicInfo kGridSnapshot{"slam/map/snapshot", kStateQos};
 inline constexpr TopicInfo kGridTiles{"slam/map/patch", kStreamQos};
 inline constexpr TopicInfo kGridConfig{"slam/map/config", kStateQos};

@@ -19,6 +19,7 @@ inline const Topic<RobotState, RobotStatePubSubType> kRobotState{topics::kRobotS
 inline const Topic<RobotOdometry, RobotOdometryPubSubType> kRobotOdometry{topics::kRobotOdometry};
 inline const Topic<PoseCorrection, PoseCorrectionPubSubType> kPoseCorrection{topics::kPoseCorrection};
 inline const Topic<InitialPose, InitialPosePubSubType> kInitialPose{topics::kInitialPose};
+inline const Topic<PlacementAnswer, PlacementAnswerPubSubType> kPlacementAnswer{topics::kPlacementAnswer};
 inline const Topic<GridSnapshot, GridSnapshotPubSubType> kGridSnapshot{topics::kGridSnapshot};
 inline const Topic<GridTiles, GridTilesPubSubType> kGridTiles{topics::kGridTiles};
 inline const Topic<GridConfig, GridConfigPubSubType> kGridConfig{topics::kGridConfig};

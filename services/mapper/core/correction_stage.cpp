@@ -140,6 +140,14 @@ Status CorrectionStage::set_initial_pose(const Mapper& mapper, std::string_view 
   return Error{placed.message(), corrector_.knows(robot) ? MapError::InvalidRequest : MapError::UnknownRobot};
 }
 
+Status CorrectionStage::answer_placement(std::string_view robot, bool accept) {
+  if (!enabled_) return Error{"pose correction is off (slam-mapper --slam off)", MapError::InvalidRequest};
+  Status answered = corrector_.answer_placement(robot, accept);
+  if (answered) return answered;
+  return Error{answered.message(),
+               corrector_.knows(robot) ? MapError::InvalidRequest : MapError::UnknownRobot};
+}
+
 size_t CorrectionStage::reset_robot(std::string_view robot) {
   if (!enabled_) return 0;
   for (auto it = held_.begin(); it != held_.end();) {

@@ -42,6 +42,10 @@ class CorrectionStage {
   // An operator's initial pose. Errors (MapError): UnknownRobot for a robot not heard from yet,
   // else InvalidRequest (not finite, outside the map, SLAM off).
   Status set_initial_pose(const Mapper& mapper, std::string_view robot, const Pose& map_pose);
+  // An operator's answer to where a robot is being placed (PoseCorrector::answer_placement). Errors
+  // (MapError): UnknownRobot for a robot not heard from yet, else InvalidRequest (nothing to accept
+  // or reject, SLAM off).
+  Status answer_placement(std::string_view robot, bool accept);
   // An operator's robot reset: its keyframes leave the pose graph and index, and its observations
   // still waiting for a keyframe are dropped (the store forgets the robot's older ones). Returns
   // how many keyframes left the graph.
@@ -56,6 +60,9 @@ class CorrectionStage {
   bool optimising() const { return corrector_.optimising(); }
   void wait_for_optimisation() const { corrector_.wait_for_optimisation(); }
   const correction::CorrectorStats& stats() const { return corrector_.stats(); }
+  // Runs on a worker thread when a keyframe's match (or a placement search) is done: wakes the loop
+  // to step() again. Set it before the first step().
+  void set_wake(std::function<void()> wake) { corrector_.set_wake(std::move(wake)); }
   void set_keyframe_observer(std::function<void(const correction::KeyframeDecision&)> observer) {
     corrector_.set_keyframe_observer(std::move(observer));
   }

@@ -9,6 +9,7 @@ void MapperBatch::clear() {
   observations.clear();
   commands.clear();
   initial_poses.clear();
+  placement_answers.clear();
   dropped = 0;
 }
 
@@ -36,6 +37,15 @@ void MapperIntake::push(const slam::InitialPose& request) {
   {
     std::lock_guard lock(mutex_);
     pending_.initial_poses.push_back(request);
+    urgent_ = true;
+  }
+  wake_.notify_one();
+}
+
+void MapperIntake::push(const slam::PlacementAnswer& request) {
+  {
+    std::lock_guard lock(mutex_);
+    pending_.placement_answers.push_back(request);
     urgent_ = true;
   }
   wake_.notify_one();

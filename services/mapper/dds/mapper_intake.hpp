@@ -17,10 +17,11 @@
 namespace slam::mapper {
 
 struct MapperBatch {
-  std::vector<slam::RobotObservation> observations;  // in arrival order
-  std::vector<MapCommand> commands;                  // in arrival order
-  std::vector<slam::InitialPose> initial_poses;      // in arrival order
-  uint64_t dropped = 0;                              // observations dropped since the last drain
+  std::vector<slam::RobotObservation> observations;      // in arrival order
+  std::vector<MapCommand> commands;                      // in arrival order
+  std::vector<slam::InitialPose> initial_poses;          // in arrival order
+  std::vector<slam::PlacementAnswer> placement_answers;  // in arrival order
+  uint64_t dropped = 0;                                  // observations dropped since the last drain
 
   void clear();
 };
@@ -32,7 +33,8 @@ class MapperIntake {
   void push(const slam::RobotObservationBatch& batch);  // each observation, in order
   void push(MapCommand command);
   void push(const slam::InitialPose& request);
-  // Wakes the loop now (a rebuild finished).
+  void push(const slam::PlacementAnswer& request);
+  // Wakes the loop now (a rebuild finished, a keyframe's match landed).
   void notify();
 
   // Sleeps until `deadline`, a request or notify() (requests deserve an answer now; observations wait

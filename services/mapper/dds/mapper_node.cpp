@@ -44,6 +44,7 @@ MapperNode::~MapperNode() {
   edit_reader_.reset();
   file_reader_.reset();
   initial_pose_reader_.reset();
+  placement_answer_reader_.reset();
   if (mapper_ && snapshot_writer_) {
     mapper_->wait_for_rebuild();
     publish_outcomes();
@@ -79,6 +80,7 @@ Status MapperNode::configure() {
   slam_options.localise_only = options_.localise_only;
   slam_options.match_threads = 1;  // the map loop keeps integrating while keyframes are matched
   corrections_ = std::make_unique<CorrectionStage>(options_.slam_enabled(), slam_options);
+  corrections_->set_wake([this] { intake_.notify(); });
   SLAM_TRY(corrections_->restore(*mapper_));
   update_periodic_counters();
 
@@ -125,6 +127,10 @@ Status MapperNode::configure() {
                                 [this](const slam::InitialPose& r, const auto&) { intake_.push(r); });
   if (!poses) return poses.error();
   initial_pose_reader_ = std::move(*poses);
+  auto answers = dds::make_reader(*participant_, dds::kPlacementAnswer,
+                                  [this](const slam::PlacementAnswer& r, const auto&) { intake_.push(r); });
+  if (!answers) return answers.error();
+  placement_answer_reader_ = std::move(*answers);
 
   next_tick_ = std::chrono::steady_clock::now() + patch_period_;
   spdlog::info("mapper ready on domain {} (patches at {} Hz, snapshots every {} s)", options_.service.domain,
@@ -152,6 +158,8 @@ void MapperNode::run_once() {
   }
   for (const slam::InitialPose& p : batch_.initial_poses)
     if (admit(p.request_id())) handle_initial_pose(p);
+  for (const slam::PlacementAnswer& a : batch_.placement_answers)
+    if (admit(a.request_id())) handle_placement_answer(a);
   publish_outcomes();
   publish_corrections();
 
@@ -185,6 +193,22 @@ void MapperNode::handle_initial_pose(const slam::InitialPose& request) {
     reply.result = failure_result(s.code());
     reply.message = s.message();
     bump(counters_.get("initial_poses_rejected"));
+  }
+  send_reply(reply);
+}
+
+void MapperNode::handle_placement_answer(const slam::PlacementAnswer& request) {
+  const std::string robot = request.robot_id().to_string();
+  const bool accept = request.verdict() == slam::PLACEMENT_ACCEPT;
+  const Status s = corrections_->answer_placement(robot, accept);
+  RequestReply reply{request.request_id(), RequestResult::Ok, ""};
+  if (s) {
+    reply.message = fmt::format("placement of {} {}", robot, accept ? "accepted" : "rejected");
+    spdlog::info("{}", reply.message);
+  } else {
+    reply.result = failure_result(s.code());
+    reply.message = s.message();
+    bump(counters_.get("placement_answers_refused"));
   }
   send_reply(reply);
 }
@@ -293,6 +317,7 @@ void MapperNode::update_periodic_counters() {
   counters_.get("slam_robots_placed").store(st.robots_placed, std::memory_order_relaxed);
   counters_.get("slam_placements_given_up").store(st.placements_given_up, std::memory_order_relaxed);
   counters_.get("slam_robots_lost").store(st.robots_lost, std::memory_order_relaxed);
+  counters_.get("slam_placements_refused").store(st.placements_refused, std::memory_order_relaxed);
   counters_.get("slam_lost_observations_dropped")
       .store(corrections_->dropped_observations(), std::memory_order_relaxed);
   counters_.get("slam_localised_observations")

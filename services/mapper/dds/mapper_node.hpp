@@ -55,6 +55,7 @@ class MapperNode {
 
   void integrate(const slam::RobotObservation& sample);
   void handle_initial_pose(const slam::InitialPose& request);
+  void handle_placement_answer(const slam::PlacementAnswer& request);
   // Whether request `id` is new and must run; a repeat (a requester's retry) is answered from the
   // reply cache, or dropped while the first copy still runs (its reply is on the way).
   bool admit(uint64_t id);
@@ -105,6 +106,7 @@ class MapperNode {
   std::unique_ptr<dds::Reader<slam::MapEdit>> edit_reader_;
   std::unique_ptr<dds::Reader<slam::MapFileRequest>> file_reader_;
   std::unique_ptr<dds::Reader<slam::InitialPose>> initial_pose_reader_;
+  std::unique_ptr<dds::Reader<slam::PlacementAnswer>> placement_answer_reader_;
 };
 
 }  // namespace slam::mapper

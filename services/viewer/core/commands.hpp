@@ -77,6 +77,12 @@ struct InitialPoseCommand {
   Pose pose;
 };
 
+// An operator's answer to where the mapper is placing `robot_id` (PlacementAnswer).
+struct PlacementAnswerCommand {
+  std::string robot_id;
+  bool accept = false;  // else rejected: searched for elsewhere
+};
+
 // Every gateway, planner and viewer drops the robot (ForgetRobot); its map data stays.
 struct ForgetCommand {
   std::string robot_id;
@@ -106,6 +112,7 @@ class CommandSink {
   virtual uint64_t send(const SimCommand& c) = 0;
   virtual uint64_t send(const MapFileCommand& c) = 0;
   virtual uint64_t send(const InitialPoseCommand& c) = 0;
+  virtual uint64_t send(const PlacementAnswerCommand& c) = 0;
   virtual uint64_t send(const ForgetCommand& c) = 0;
   virtual uint64_t send(const PathPreviewCommand& c) = 0;
   virtual uint64_t send(const MissionCommand& c) = 0;

@@ -22,6 +22,11 @@ void RobotsTab::reset_robot(ViewerState& state, CommandSink& sink, RobotView& r)
     r.points.reset();
 }
 
+void RobotsTab::answer_placement(ViewerState& state, CommandSink& sink, const RobotView& r, bool accept) {
+  state.note_sent(sink.send(PlacementAnswerCommand{r.id, accept}),
+                  std::string(accept ? "accept placement of " : "reject placement of ") + r.id, error);
+}
+
 void RobotsTab::forget_robot(ViewerState& state, CommandSink& sink, const RobotView& r) {
   state.note_sent(sink.send(ForgetCommand{r.id}), "forget " + r.id, error);
 }

@@ -19,6 +19,8 @@ struct RobotsTab {
   // A goal in the robot's own mode, to its current target (else its position).
   void send_robot_mode(ViewerState& state, CommandSink& sink, const RobotView& r);
   void reset_robot(ViewerState& state, CommandSink& sink, RobotView& r);
+  // An operator's answer to where the mapper is placing the robot (or placed it: reject only).
+  void answer_placement(ViewerState& state, CommandSink& sink, const RobotView& r, bool accept);
   // Gateways, planners and viewers (this one too, when its own command comes back) drop the robot.
   void forget_robot(ViewerState& state, CommandSink& sink, const RobotView& r);
   static void select(ViewerState& state, const std::string& robot_id) { state.selected_robot = robot_id; }

@@ -151,6 +151,14 @@ slam::InitialPose to_idl(const InitialPoseCommand& c, uint64_t request_id) {
   return p;
 }
 
+slam::PlacementAnswer to_idl(const PlacementAnswerCommand& c, uint64_t request_id) {
+  slam::PlacementAnswer a;
+  a.request_id(request_id);
+  a.robot_id(c.robot_id);
+  a.verdict(c.accept ? slam::PLACEMENT_ACCEPT : slam::PLACEMENT_REJECT);
+  return a;
+}
+
 slam::ForgetRobot to_idl(const ForgetCommand& c, uint64_t request_id) {
   slam::ForgetRobot f;
   f.request_id(request_id);

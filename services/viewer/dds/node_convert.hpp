@@ -28,6 +28,7 @@ slam::MqttRequest to_idl(const MqttRequestCommand& c, uint64_t request_id);
 slam::SimControl to_idl(const SimCommand& c, uint64_t command_id);
 slam::MapFileRequest to_idl(const MapFileCommand& c, uint64_t request_id);
 slam::InitialPose to_idl(const InitialPoseCommand& c, uint64_t request_id);
+slam::PlacementAnswer to_idl(const PlacementAnswerCommand& c, uint64_t request_id);
 slam::ForgetRobot to_idl(const ForgetCommand& c, uint64_t request_id);
 slam::PathRequest to_idl(const PathPreviewCommand& c, uint64_t request_id);
 slam::NavMission to_idl(const MissionCommand& c, uint64_t mission_id);

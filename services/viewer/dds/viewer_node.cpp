@@ -87,6 +87,7 @@ Status ViewerNode::create_writers() {
         make_writer_into(p, dds::kSimControl, sim_writer_),
         make_writer_into(p, dds::kMapFileRequest, file_writer_),
         make_writer_into(p, dds::kInitialPose, initial_pose_writer_),
+        make_writer_into(p, dds::kPlacementAnswer, placement_answer_writer_),
         make_writer_into(p, dds::kForgetRobot, forget_writer_),
         make_writer_into(p, dds::kPathRequest, path_request_writer_),
         make_writer_into(p, dds::kNavMission, mission_writer_),
@@ -167,6 +168,10 @@ uint64_t ViewerNode::send(const MapFileCommand& c) {
 }
 uint64_t ViewerNode::send(const InitialPoseCommand& c) {
   return request(*map_requester_, *initial_pose_writer_, to_idl(c, 0));
+}
+
+uint64_t ViewerNode::send(const PlacementAnswerCommand& c) {
+  return request(*map_requester_, *placement_answer_writer_, to_idl(c, 0));
 }
 
 uint64_t ViewerNode::send(const ForgetCommand& c) {

@@ -31,6 +31,7 @@ class ViewerNode final : public CommandSink {
   uint64_t send(const SimCommand& c) override;
   uint64_t send(const MapFileCommand& c) override;
   uint64_t send(const InitialPoseCommand& c) override;
+  uint64_t send(const PlacementAnswerCommand& c) override;
   uint64_t send(const ForgetCommand& c) override;
   uint64_t send(const PathPreviewCommand& c) override;
   uint64_t send(const MissionCommand& c) override;
@@ -59,6 +60,7 @@ class ViewerNode final : public CommandSink {
   std::unique_ptr<dds::Writer<SimControl>> sim_writer_;
   std::unique_ptr<dds::Writer<MapFileRequest>> file_writer_;
   std::unique_ptr<dds::Writer<InitialPose>> initial_pose_writer_;
+  std::unique_ptr<dds::Writer<PlacementAnswer>> placement_answer_writer_;
   std::unique_ptr<dds::Writer<ForgetRobot>> forget_writer_;
   std::unique_ptr<dds::Writer<PathRequest>> path_request_writer_;
   std::unique_ptr<dds::Writer<NavMission>> mission_writer_;

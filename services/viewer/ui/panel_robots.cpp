@@ -61,6 +61,14 @@ void robot_details(RobotsTab& tab, ViewerState& state, CommandSink& sink, RobotV
     if (c.placement != msg::RobotPlacement::Placed)
       ImGui::Text("  %s on the map (score %.2f): not drawn yet", msg::robot_placement_name(c.placement),
                   c.localisation_score);
+    // The operator's say on where it was found (slamctl placement accept|reject).
+    if (c.placement == msg::RobotPlacement::Placing) {
+      if (ImGui::SmallButton("accept placement")) tab.answer_placement(state, sink, r, true);
+      ImGui::SameLine();
+    }
+    if (c.placement == msg::RobotPlacement::Placing || c.placement == msg::RobotPlacement::Placed) {
+      if (ImGui::SmallButton("reject placement")) tab.answer_placement(state, sink, r, false);
+    }
   } else {
     ImGui::TextDisabled("correction: none yet (identity)");
   }

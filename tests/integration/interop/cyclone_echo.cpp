@@ -32,6 +32,7 @@ const EchoTopic kTopics[] = {
     {&slam_RobotOdometry_desc, slam::topics::kRobotOdometry},
     {&slam_PoseCorrection_desc, slam::topics::kPoseCorrection},
     {&slam_InitialPose_desc, slam::topics::kInitialPose},
+    {&slam_PlacementAnswer_desc, slam::topics::kPlacementAnswer},
     {&slam_GridSnapshot_desc, slam::topics::kGridSnapshot},
     {&slam_GridTiles_desc, slam::topics::kGridTiles},
     {&slam_GridConfig_desc, slam::topics::kGridConfig},

@@ -84,6 +84,7 @@ const std::vector<Case>& cases() {
       make_case("RobotOdometry", dds::kRobotOdometry, &sample_robot_odometry),
       make_case("PoseCorrection", dds::kPoseCorrection, &sample_pose_correction),
       make_case("InitialPose", dds::kInitialPose, &sample_initial_pose),
+      make_case("PlacementAnswer", dds::kPlacementAnswer, &sample_placement_answer),
       make_case("GridSnapshot", dds::kGridSnapshot, &sample_grid_snapshot),
       make_case("GridTiles", dds::kGridTiles, &sample_grid_tiles),
       make_case("GridConfig", dds::kGridConfig, &sample_grid_config),

@@ -109,6 +109,14 @@ InitialPose sample_initial_pose() {
   return s;
 }
 
+PlacementAnswer sample_placement_answer() {
+  PlacementAnswer s;
+  s.request_id(0x0123456789abcdefULL);
+  s.robot_id("lidar-02");
+  s.verdict(PLACEMENT_REJECT);
+  return s;
+}
+
 GridSnapshot sample_grid_snapshot() {
   GridSnapshot s;
   s.layout_id(7);

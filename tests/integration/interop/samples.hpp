@@ -10,6 +10,7 @@ RobotState sample_robot_state();
 RobotOdometry sample_robot_odometry();
 PoseCorrection sample_pose_correction();
 InitialPose sample_initial_pose();
+PlacementAnswer sample_placement_answer();
 GridSnapshot sample_grid_snapshot();
 GridTiles sample_grid_tiles();
 GridConfig sample_grid_config();

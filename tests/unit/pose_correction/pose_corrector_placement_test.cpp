@@ -223,3 +223,107 @@ TEST(PoseCorrector, ALostRobotThatFindsNothingKeepsOnlyItsLatestKeyframes) {
 
 }  // namespace
 }  // namespace slam::correction
+
+namespace slam::correction {
+namespace {
+
+// A laser robot switched on at `start` with its odometry at (0, 0, 0), driving a slow arc in `walls`
+// while the corrector searches for it on `map`: what an operator's answers are tried on.
+class SwitchedOn {
+ public:
+  SwitchedOn(const CorrectorOptions& options, std::vector<Wall> walls, const TrueMap& map, const Pose& start)
+      : corrector(options), walls_(std::move(walls)), map_(map), truth_(start) {}
+
+  void drive(int messages) {
+    for (int i = 0; i < messages; ++i) {
+      const Pose step{0.03, 0.0, 0.01};
+      truth_ = truth_.compose(step);
+      odometry_ = odometry_.compose(step);
+      stamp_ += 100'000'000;
+      EXPECT_TRUE(corrector.add("r1", stamp_, odometry_, true, laser_hits(walls_, truth_, odometry_)));
+      corrector.process(map_.view(), stamp_, finalised_);
+    }
+  }
+  // The latest published placement state.
+  Placement placement() {
+    corrector.take_changed(changed_);
+    if (!changed_.empty()) placement_ = changed_.back().placement;
+    changed_.clear();
+    return placement_;
+  }
+  double error_m() const {
+    return distance(corrector.correction("r1").compose(odometry_).position(), truth_.position());
+  }
+
+  PoseCorrector corrector;
+
+ private:
+  std::vector<Wall> walls_;
+  const TrueMap& map_;
+  Pose truth_, odometry_;
+  int64_t stamp_ = 0;
+  std::vector<KeyframeCorrection> finalised_;
+  std::vector<RobotCorrection> changed_;
+  Placement placement_ = Placement::Unplaced;
+};
+
+CorrectorOptions searching(int confirmations) {
+  CorrectorOptions o;
+  o.localise_only = true;
+  o.placement_confirmations = confirmations;
+  return o;
+}
+
+TEST(PoseCorrector, AnOperatorAcceptsAPlacementBeingConfirmed) {
+  const TrueMap map(room(), centred_geometry({-0.5, -0.5}, {6.5, 5.5}));
+  SwitchedOn robot(searching(1000), room(), map, {4.6, 3.0, 2.0});  // never confirmed by itself
+  EXPECT_FALSE(robot.corrector.answer_placement("r1", true)) << "unknown robot";
+  robot.drive(20);
+  ASSERT_EQ(robot.placement(), Placement::Placing);
+  ASSERT_TRUE(robot.corrector.answer_placement("r1", true));
+  EXPECT_EQ(robot.placement(), Placement::Placed);
+  robot.drive(10);
+  EXPECT_LT(robot.error_m(), 0.05);
+  const Status again = robot.corrector.answer_placement("r1", true);
+  EXPECT_FALSE(again);
+  EXPECT_NE(again.message().find("placed already"), std::string::npos) << again.message();
+}
+
+TEST(PoseCorrector, APlaceAnOperatorRejectedIsNeverTakenAgain) {
+  // The map holds one room; the robot is truly in its twin, 8 m off the map: the search finds the
+  // mapped room, an operator says no, and the robot stays searched for, never placed there.
+  std::vector<Wall> twin;
+  for (const Wall& w : room()) twin.push_back({w.a + Vec2{8.0, 0.0}, w.b + Vec2{8.0, 0.0}});
+  const TrueMap map(room(), centred_geometry({-0.5, -0.5}, {6.5, 5.5}));
+  SwitchedOn robot(searching(3), twin, map, {12.6, 3.0, 2.0});
+  robot.drive(1);
+  EXPECT_FALSE(robot.corrector.answer_placement("r1", false)) << "nothing found yet: nothing to reject";
+  for (int i = 0; i < 40 && robot.placement() != Placement::Placing; ++i) robot.drive(1);
+  ASSERT_EQ(robot.placement(), Placement::Placing);
+  ASSERT_TRUE(robot.corrector.answer_placement("r1", false));
+  EXPECT_EQ(robot.placement(), Placement::Unplaced);
+  robot.drive(60);
+  EXPECT_NE(robot.placement(), Placement::Placed);
+  EXPECT_EQ(robot.corrector.stats().robots_placed, 0);
+  EXPECT_GT(robot.corrector.stats().placements_refused, 0);
+}
+
+TEST(PoseCorrector, AnOperatorRejectingAPlacedRobotHasItSearchedForAgain) {
+  std::vector<Wall> twin;
+  for (const Wall& w : room()) twin.push_back({w.a + Vec2{8.0, 0.0}, w.b + Vec2{8.0, 0.0}});
+  const TrueMap map(room(), centred_geometry({-0.5, -0.5}, {6.5, 5.5}));
+  SwitchedOn robot(searching(3), twin, map, {12.6, 3.0, 2.0});
+  robot.drive(30);
+  ASSERT_EQ(robot.placement(), Placement::Placed);  // wrongly, in the mapped room
+  ASSERT_TRUE(robot.corrector.answer_placement("r1", false));
+  EXPECT_EQ(robot.placement(), Placement::Lost);
+  robot.drive(60);
+  EXPECT_EQ(robot.placement(), Placement::Lost);  // the same room is found, and refused
+  EXPECT_EQ(robot.corrector.stats().robots_placed, 1);
+  // An operator's pose ends it: the robot is where the operator says.
+  ASSERT_TRUE(robot.corrector.set_initial_pose("r1", Pose{1.0, 1.0, 0.0}));
+  EXPECT_EQ(robot.placement(), Placement::Placed);
+}
+
+}  // namespace
+}  // namespace slam::correction

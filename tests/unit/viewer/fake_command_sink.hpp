@@ -17,13 +17,15 @@ class FakeCommandSink final : public CommandSink {
   uint64_t send(const SimCommand& c) override { return record(sim, c); }
   uint64_t send(const MapFileCommand& c) override { return record(map_files, c); }
   uint64_t send(const InitialPoseCommand& c) override { return record(initial_poses, c); }
+  uint64_t send(const PlacementAnswerCommand& c) override { return record(placement_answers, c); }
   uint64_t send(const ForgetCommand& c) override { return record(forgets, c); }
   uint64_t send(const PathPreviewCommand& c) override { return record(path_previews, c); }
   uint64_t send(const MissionCommand& c) override { return record(missions, c); }
 
   size_t total() const {
     return goals.size() + edits.size() + grid_configs.size() + mqtt.size() + sim.size() + map_files.size() +
-           initial_poses.size() + forgets.size() + path_previews.size() + missions.size();
+           initial_poses.size() + placement_answers.size() + forgets.size() + path_previews.size() +
+           missions.size();
   }
 
   std::vector<GoalCommand> goals;
@@ -33,6 +35,7 @@ class FakeCommandSink final : public CommandSink {
   std::vector<SimCommand> sim;
   std::vector<MapFileCommand> map_files;
   std::vector<InitialPoseCommand> initial_poses;
+  std::vector<PlacementAnswerCommand> placement_answers;
   std::vector<ForgetCommand> forgets;
   std::vector<PathPreviewCommand> path_previews;
   std::vector<MissionCommand> missions;

@@ -79,6 +79,19 @@ TEST_F(RobotsTabTest, RefusedResetKeepsThePointsAndShowsAnError) {
   EXPECT_NE(tab.error.find("NOT sent"), std::string::npos);
 }
 
+TEST_F(RobotsTabTest, AnswersToAPlacementGoToTheMapper) {
+  const RobotView& r = add_robot("r1", 0.0, 0.0);
+  tab.answer_placement(state, sink, r, true);
+  tab.answer_placement(state, sink, r, false);
+  ASSERT_EQ(sink.placement_answers.size(), 2u);
+  EXPECT_EQ(sink.placement_answers[0].robot_id, "r1");
+  EXPECT_TRUE(sink.placement_answers[0].accept);
+  EXPECT_FALSE(sink.placement_answers[1].accept);
+  sink.refuse = true;
+  tab.answer_placement(state, sink, r, true);
+  EXPECT_NE(tab.error.find("NOT sent"), std::string::npos);
+}
+
 TEST_F(RobotsTabTest, SelectChoosesWhereGoalsGo) {
   RobotsTab::select(state, "r2");
   EXPECT_EQ(state.selected_robot, "r2");
