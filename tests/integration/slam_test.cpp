@@ -299,8 +299,8 @@ TEST_F(SlamMapperTest, SlamctlPoseSetsTheCorrectionAndPlacementAnswersReachTheMa
   int runs = 0;
   const auto ctl = [&](std::vector<std::string> args) {
     const std::string name = "slamctl" + std::to_string(++runs);
-    std::vector<std::string> argv{bin_path("slamctl"), "--domain", std::to_string(domain_.id()),
-                                  "--timeout",         "10"};
+    std::vector<std::string> argv{bin_path("slamctl"), "--domain", std::to_string(domain_.id()), "--timeout",
+                                  "10"};
     argv.insert(argv.end(), args.begin(), args.end());
     group_.start(name, argv);
     CtlRun r;

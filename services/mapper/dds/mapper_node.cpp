@@ -183,32 +183,29 @@ void MapperNode::integrate(const slam::RobotObservation& sample) {
 void MapperNode::handle_initial_pose(const slam::InitialPose& request) {
   const std::string robot = request.robot_id().to_string();
   const Pose pose{request.pose().x(), request.pose().y(), request.pose().theta()};
-  const Status s = corrections_->set_initial_pose(*mapper_, robot, pose);
-  RequestReply reply{request.request_id(), RequestResult::Ok, ""};
-  if (s) {
-    reply.message = fmt::format("initial pose of {} set to ({:.3f}, {:.3f}, {:.1f} deg)", robot, pose.x,
-                                pose.y, pose.theta * 180.0 / 3.141592653589793);
-    spdlog::info("{}", reply.message);
-  } else {
-    reply.result = failure_result(s.code());
-    reply.message = s.message();
-    bump(counters_.get("initial_poses_rejected"));
-  }
-  send_reply(reply);
+  answer_operator(request.request_id(), corrections_->set_initial_pose(*mapper_, robot, pose),
+                  fmt::format("initial pose of {} set to ({:.3f}, {:.3f}, {:.1f} deg)", robot, pose.x, pose.y,
+                              pose.theta * 180.0 / 3.141592653589793),
+                  "initial_poses_rejected");
 }
 
 void MapperNode::handle_placement_answer(const slam::PlacementAnswer& request) {
   const std::string robot = request.robot_id().to_string();
   const bool accept = request.verdict() == slam::PLACEMENT_ACCEPT;
-  const Status s = corrections_->answer_placement(robot, accept);
-  RequestReply reply{request.request_id(), RequestResult::Ok, ""};
-  if (s) {
-    reply.message = fmt::format("placement of {} {}", robot, accept ? "accepted" : "rejected");
+  answer_operator(request.request_id(), corrections_->answer_placement(robot, accept),
+                  fmt::format("placement of {} {}", robot, accept ? "accepted" : "rejected"),
+                  "placement_answers_refused");
+}
+
+void MapperNode::answer_operator(uint64_t request_id, const Status& outcome, std::string done,
+                                 const char* refused_counter) {
+  RequestReply reply{request_id, RequestResult::Ok, std::move(done)};
+  if (outcome) {
     spdlog::info("{}", reply.message);
   } else {
-    reply.result = failure_result(s.code());
-    reply.message = s.message();
-    bump(counters_.get("placement_answers_refused"));
+    reply.result = failure_result(outcome.code());
+    reply.message = outcome.message();
+    bump(counters_.get(refused_counter));
   }
   send_reply(reply);
 }

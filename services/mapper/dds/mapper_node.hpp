@@ -56,6 +56,10 @@ class MapperNode {
   void integrate(const slam::RobotObservation& sample);
   void handle_initial_pose(const slam::InitialPose& request);
   void handle_placement_answer(const slam::PlacementAnswer& request);
+  // Replies to an operator's request to the pose correction: `done` when it was carried out, else
+  // the error (counted as `refused_counter`).
+  void answer_operator(uint64_t request_id, const Status& outcome, std::string done,
+                       const char* refused_counter);
   // Whether request `id` is new and must run; a repeat (a requester's retry) is answered from the
   // reply cache, or dropped while the first copy still runs (its reply is on the way).
   bool admit(uint64_t id);
