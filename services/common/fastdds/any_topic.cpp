@@ -58,17 +58,46 @@ AnyTopic any(const Topic<T, PubSubT>& topic) {
 }  // namespace
 
 const std::vector<AnyTopic>& all_topics() {
+  // One topic a line (clang-format would pack them in columns: every new topic would move them all).
+  // clang-format off
   static const std::vector<AnyTopic> table{
-      any(kRobotObservations), any(kRobotState),      any(kRobotOdometry),   any(kPoseCorrection),
-      any(kInitialPose),       any(kPlacementAnswer), any(kGridSnapshot),    any(kGridTiles),
-      any(kGridConfig),        any(kMapEdit),         any(kMapFileRequest),  any(kMapReply),
-      any(kNavGoal),           any(kRobotPath),       any(kWaypointCommand), any(kPathRequest),
-      any(kPathReply),         any(kMqttTraffic),     any(kMqttRequest),     any(kMqttReply),
-      any(kMqttSubscriptions), any(kSimControl),      any(kSimReply),        any(kSimWorld),
-      any(kSimGroundTruth),    any(kHeartbeat),       any(kAlert),           any(kForgetRobot),
-      any(kNavMission),        any(kRosMap),          any(kRosTf),           any(kRosGoalPose),
-      any(kRosInitialPose),    any(kFleetDigest),     any(kFleetPoints),
+      any(kRobotObservations),
+      any(kRobotState),
+      any(kRobotOdometry),
+      any(kPoseCorrection),
+      any(kInitialPose),
+      any(kPlacementAnswer),
+      any(kGridSnapshot),
+      any(kGridTiles),
+      any(kGridConfig),
+      any(kMapEdit),
+      any(kMapFileRequest),
+      any(kMapReply),
+      any(kNavGoal),
+      any(kRobotPath),
+      any(kWaypointCommand),
+      any(kPathRequest),
+      any(kPathReply),
+      any(kMqttTraffic),
+      any(kMqttRequest),
+      any(kMqttReply),
+      any(kMqttSubscriptions),
+      any(kSimControl),
+      any(kSimReply),
+      any(kSimWorld),
+      any(kSimGroundTruth),
+      any(kHeartbeat),
+      any(kAlert),
+      any(kForgetRobot),
+      any(kNavMission),
+      any(kRosMap),
+      any(kRosTf),
+      any(kRosGoalPose),
+      any(kRosInitialPose),
+      any(kFleetDigest),
+      any(kFleetPoints),
   };
+  // clang-format on
   return table;
 }
 

@@ -25,30 +25,15 @@ void MapperIntake::push(const slam::RobotObservationBatch& batch) {
 }
 
 void MapperIntake::push(MapCommand command) {
-  {
-    std::lock_guard lock(mutex_);
-    pending_.commands.push_back(std::move(command));
-    urgent_ = true;
-  }
-  wake_.notify_one();
+  push_urgent(pending_.commands, std::move(command));
 }
 
 void MapperIntake::push(const slam::InitialPose& request) {
-  {
-    std::lock_guard lock(mutex_);
-    pending_.initial_poses.push_back(request);
-    urgent_ = true;
-  }
-  wake_.notify_one();
+  push_urgent(pending_.initial_poses, request);
 }
 
 void MapperIntake::push(const slam::PlacementAnswer& request) {
-  {
-    std::lock_guard lock(mutex_);
-    pending_.placement_answers.push_back(request);
-    urgent_ = true;
-  }
-  wake_.notify_one();
+  push_urgent(pending_.placement_answers, request);
 }
 
 void MapperIntake::notify() {

@@ -10,6 +10,7 @@
 #include <condition_variable>
 #include <cstdint>
 #include <mutex>
+#include <utility>
 #include <vector>
 
 #include "mapper/core/mapper.hpp"
@@ -44,6 +45,17 @@ class MapperIntake {
   void drain(MapperBatch& out);
 
  private:
+  // Queues a request and wakes the loop: it deserves an answer now.
+  template <typename Request>
+  void push_urgent(std::vector<Request>& queue, Request request) {
+    {
+      std::lock_guard lock(mutex_);
+      queue.push_back(std::move(request));
+      urgent_ = true;
+    }
+    wake_.notify_one();
+  }
+
   const size_t max_observations_;
   std::mutex mutex_;
   std::condition_variable wake_;
