@@ -59,7 +59,11 @@ void PoseCorrector::restore(std::span<const KeyframeCorrection> keyframes) {
     next_id_ = std::max(next_id_, k.id + 1);
   }
   for (Robot& rb : robots_) {
-    if (rb.state.keyframes > 0) mark_changed(rb, CorrectionSource::Restored);
+    if (rb.state.keyframes == 0) continue;
+    // Its keyframes were stored once it was placed: where it is was known, and it still is.
+    rb.state.placement = Placement::Placed;
+    rb.state.localisation_score = 1.0;
+    mark_changed(rb, CorrectionSource::Restored);
   }
   rebuild_index();
 }

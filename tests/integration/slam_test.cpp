@@ -2,6 +2,8 @@
 //  - slam-mapper fed raw RobotObservation samples of a robot with drifting odometry in a synthetic
 //    room: its corrections and its map survive kill -9 (the restarted mapper publishes the same
 //    corrections, CORRECTION_RESTORED, and the same grid cell for cell);
+//  - with global localisation, a laser robot switched on away from the map's origin (odometry at
+//    (0, 0, 0)) is found where it truly is, and is still placed there after a kill -9;
 //  - `slamctl pose` sets a robot's correction through the mapper, and refuses unknown robots and
 //    poses outside the map.
 // Generous timeouts: CI machines are loaded. No timings are asserted.
@@ -100,14 +102,21 @@ Pose world_from_odom(int k) {
   return Pose{0.0006 * k, -0.0004 * k, 0.0003 * k};
 }
 
-// The k-th raw observation: pose and hits in the drifting odometry frame.
-RobotObservation drifting_observation(const std::string& robot, int k) {
-  const Pose truth = true_pose(k);
-  const Pose odom_from_world = world_from_odom(k).inverse();
+// A range sensor: the drifting robot's sparse one, or a laser.
+struct Sensor {
+  int beams = kBeams;
+  double max_range_m = kMaxRange;
+};
+constexpr Sensor kLaser{180, 8.0};
+
+// A raw observation at `truth` (world frame): pose and hits in the robot's odometry frame.
+RobotObservation observation(const std::string& robot, uint64_t seq, const Pose& truth,
+                             const Pose& world_from_odom, const Sensor& sensor) {
+  const Pose odom_from_world = world_from_odom.inverse();
   const Pose reported = odom_from_world.compose(truth);
   RobotObservation o;
   o.robot_id(robot);
-  o.seq(static_cast<uint64_t>(k) + 1);
+  o.seq(seq);
   o.stamp_ns(wall_now_ns());
   o.protocol(PROTOCOL_V2);
   o.pose().x(reported.x);
@@ -115,16 +124,21 @@ RobotObservation drifting_observation(const std::string& robot, int k) {
   o.pose().theta(reported.theta);
   o.has_heading(true);
   std::vector<Point2> hits;
-  for (int b = 0; b < kBeams; ++b) {
-    const double angle = truth.theta + 2 * kPi * b / kBeams;
+  for (int b = 0; b < sensor.beams; ++b) {
+    const double angle = truth.theta + 2 * kPi * b / sensor.beams;
     const double range = cast(truth.position(), angle);
-    if (range > kMaxRange) continue;
+    if (range > sensor.max_range_m) continue;
     const Vec2 world{truth.x + range * std::cos(angle), truth.y + range * std::sin(angle)};
     const Vec2 odom = odom_from_world.transform(world);
     hits.push_back(point(odom.x, odom.y));
   }
   o.hits(hits);
   return o;
+}
+
+// The k-th observation of the robot driving the loop with drifting odometry.
+RobotObservation drifting_observation(const std::string& robot, int k) {
+  return observation(robot, static_cast<uint64_t>(k) + 1, true_pose(k), world_from_odom(k), {});
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -166,28 +180,30 @@ class SlamMapperTest : public ::testing::Test {
     if (HasFailure()) std::cerr << "--- slam-mapper log ---\n" << group_.log("mapper");
   }
 
-  void start_mapper() {
-    group_.start("mapper", {bin_path("slam-mapper"),
-                            "--domain",
-                            std::to_string(domain_.id()),
-                            "--store",
-                            group_.dir() + "/map.db",
-                            "--grid-resolution",
-                            "0.05",
-                            "--grid-origin-x",
-                            "-5",
-                            "--grid-origin-y",
-                            "-5",
-                            "--grid-width-m",
-                            "10",
-                            "--grid-height-m",
-                            "10",
-                            "--patch-rate",
-                            "10",
-                            "--snapshot-period",
-                            "600",
-                            "--slam",
-                            "on"});
+  void start_mapper(const std::vector<std::string>& extra = {}) {
+    std::vector<std::string> argv{bin_path("slam-mapper"),
+                                  "--domain",
+                                  std::to_string(domain_.id()),
+                                  "--store",
+                                  group_.dir() + "/map.db",
+                                  "--grid-resolution",
+                                  "0.05",
+                                  "--grid-origin-x",
+                                  "-5",
+                                  "--grid-origin-y",
+                                  "-5",
+                                  "--grid-width-m",
+                                  "10",
+                                  "--grid-height-m",
+                                  "10",
+                                  "--patch-rate",
+                                  "10",
+                                  "--snapshot-period",
+                                  "600",
+                                  "--slam",
+                                  "on"};
+    argv.insert(argv.end(), extra.begin(), extra.end());
+    group_.start("mapper", argv);
     ASSERT_TRUE(wait_until(
         [&] {
           return observations_->matched_readers() > 0 && correction_reader_->matched_writers() > 0 &&
@@ -203,6 +219,17 @@ class SlamMapperTest : public ::testing::Test {
   void drive(const std::string& robot, int first, int last) {
     for (int k = first; k < last; ++k) {
       ASSERT_TRUE(observations_->write(batch_of(drifting_observation(robot, k))));
+      std::this_thread::sleep_for(20ms);
+    }
+  }
+
+  // A laser robot switched on at the loop's message `start`, its odometry at (0, 0, 0) there (its
+  // frame is its start pose in the world), drives `messages` steps of the loop at 50 Hz.
+  void drive_switched_on(const std::string& robot, int start, int messages) {
+    const Pose world_from_odom = true_pose(start);
+    for (int j = 0; j < messages; ++j) {
+      ASSERT_TRUE(observations_->write(batch_of(
+          observation(robot, static_cast<uint64_t>(j) + 1, true_pose(start + j), world_from_odom, kLaser))));
       std::this_thread::sleep_for(20ms);
     }
   }
@@ -278,6 +305,42 @@ TEST_F(SlamMapperTest, KillNineKeepsTheCorrectionsAndTheMap) {
   size_t differing = 0;
   for (size_t i = 0; i < map_before->size(); ++i) differing += after.cells()[i] != (*map_before)[i];
   EXPECT_EQ(differing, 0u) << "the restarted mapper's map differs from the one before kill -9";
+}
+
+TEST_F(SlamMapperTest, ARobotSwitchedOnAwayFromTheOriginIsPlacedAndKillNineKeepsItPlaced) {
+  // Global localisation: r1 maps the room from the origin; r2 is switched on elsewhere, facing the
+  // other way, with its odometry at (0, 0, 0). It must be found where it truly is, and stay placed
+  // there across a kill -9.
+  ASSERT_NO_FATAL_FAILURE(start_mapper({"--slam-global-localisation", "on"}));
+  ASSERT_NO_FATAL_FAILURE(drive("r1", 0, kLoopMessages + 50));
+  constexpr int kSwitchedOnAt = 250;  // (0.5, 0.5), heading pi
+  const Pose truth = true_pose(kSwitchedOnAt);
+  ASSERT_NO_FATAL_FAILURE(drive_switched_on("r2", kSwitchedOnAt, 300));
+  const auto placed = corrections_.wait_for(
+      [](const PoseCorrection& c) { return c.robot_id() == "r2" && c.placement() == PLACEMENT_PLACED; }, 60s);
+  ASSERT_TRUE(placed) << "r2 was never placed";
+  ASSERT_TRUE(wait_corrections_settle(6s, 60s)) << "the corrections never settled";
+  std::this_thread::sleep_for(1500ms);  // the store commits every patch period
+  const auto before = last_correction("r2");
+  ASSERT_TRUE(before);
+  const Pose2& c = before->map_from_odom();
+  std::printf("slam_test: r2 placed at (%.3f, %.3f, %.3f), truly at (%.3f, %.3f, %.3f), score %.2f\n", c.x(),
+              c.y(), c.theta(), truth.x, truth.y, truth.theta, before->localisation_score());
+  EXPECT_EQ(before->placement(), PLACEMENT_PLACED);
+  EXPECT_NEAR(c.x(), truth.x, 0.15);
+  EXPECT_NEAR(c.y(), truth.y, 0.15);
+  EXPECT_NEAR(std::remainder(c.theta() - truth.theta, 2 * kPi), 0.0, 0.1);
+
+  group_.stop("mapper", SIGKILL);
+  corrections_.clear();
+  ASSERT_NO_FATAL_FAILURE(start_mapper({"--slam-global-localisation", "on"}));
+  const auto restored = corrections_.wait_for(
+      [](const PoseCorrection& r) { return r.robot_id() == "r2" && r.source() == CORRECTION_RESTORED; }, 60s);
+  ASSERT_TRUE(restored) << "no restored correction for r2 after the restart";
+  EXPECT_EQ(restored->placement(), PLACEMENT_PLACED) << "the restart forgot where r2 was placed";
+  EXPECT_NEAR(restored->map_from_odom().x(), c.x(), 1e-9);
+  EXPECT_NEAR(restored->map_from_odom().y(), c.y(), 1e-9);
+  EXPECT_NEAR(restored->map_from_odom().theta(), c.theta(), 1e-9);
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -325,5 +325,32 @@ TEST(PoseCorrector, AnOperatorRejectingAPlacedRobotHasItSearchedForAgain) {
   EXPECT_EQ(robot.placement(), Placement::Placed);
 }
 
+TEST(PoseCorrector, RobotsRestoredFromTheStoreStayPlaced) {
+  // Keyframes are stored only once a robot is placed: after a restart each robot is where the
+  // store says, not searched for again (the second one restored would otherwise join a map that
+  // exists and count as unplaced).
+  CorrectorOptions options;
+  options.global_localisation = true;
+  PoseCorrector corrector(options);
+  const std::vector<KeyframeCorrection> stored{{1, "a", 0, {0, 0, 0}, {0.1, 0, 0}},
+                                               {2, "b", 0, {0, 0, 0}, {3.0, -1.0, 1.2}}};
+  corrector.restore(stored);
+  std::vector<RobotCorrection> changed;
+  corrector.take_changed(changed);
+  ASSERT_EQ(changed.size(), 2u);
+  for (const RobotCorrection& c : changed) {
+    EXPECT_EQ(c.placement, Placement::Placed) << c.robot;
+    EXPECT_EQ(c.source, CorrectionSource::Restored) << c.robot;
+  }
+  EXPECT_EQ(corrector.correction("b"), (Pose{3.0, -1.0, 1.2}));
+  // A robot the store does not know joins a map that exists: its keyframe waits to be placed.
+  ASSERT_TRUE(corrector.add("c", 0, {0, 0, 0}, true, {}));
+  const TrueMap map(room());
+  std::vector<KeyframeCorrection> finalised;
+  corrector.process(map.view(), 10'000'000'000LL, finalised);  // its keyframe closes (silent)
+  EXPECT_TRUE(finalised.empty());
+  EXPECT_EQ(corrector.stats().robots_placed, 0);
+}
+
 }  // namespace
 }  // namespace slam::correction
