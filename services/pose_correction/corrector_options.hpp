@@ -129,7 +129,14 @@ struct CorrectorOptions {
   // robots cross 10-18 % (a few metres of real odometry smear the trail; 30 m rays pass doorways
   // and glass), look-alikes in the simulator's office about 40 %.
   double placement_max_crossed_walls = 0.3;
-  size_t placement_max_map_cells = 1 << 20;  // a larger map is searched at a coarser resolution
+  // The searched maps: the grid's occupied part, coarsened (2, 4, ... cells to one) until it fits.
+  // The whole map, every heading, is searched on the coarser one (a search costs about its cells
+  // times its headings: 9 s over 100 x 100 m at 10 cm, 2 s at 20 cm; docs/performance.md); a
+  // hypothesis is confirmed around where it puts the robot on the finer one. The benchmark logs'
+  // buildings (up to about 70 m) are searched whole at 10 cm or finer: at 20 cm one piece of ACES
+  // was not found.
+  size_t placement_max_map_cells = 1 << 20;
+  size_t placement_whole_map_cells = 1 << 19;
   // A placed robot is lost (carried, or its odometry broke) when its tracking match fails
   // lost_after_unmatched keyframes in a row (each with points enough to match), or, for a laser
   // robot, when its last lost_window scans matched at lost_mean_score or less on average: a wrong

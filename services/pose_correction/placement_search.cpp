@@ -33,39 +33,51 @@ CellBox occupied_box(const GridView& grid, int32_t margin) {
 
 }  // namespace
 
-void PlacementSearcher::set_map(const GridView& grid) {
-  ready_ = false;
+// A look-alike matters only when it scores within placement_max_ambiguity of the best: the search for
+// the runner-up stops there instead of ranking every weaker place (on a large map most of its cost).
+PlacementSearcher::PlacementSearcher(const CorrectorOptions& options)
+    : options_(options),
+      whole_(BranchAndBoundOptions{.runner_up_floor = options.placement_max_ambiguity}),
+      around_(BranchAndBoundOptions{.runner_up_floor = options.placement_max_ambiguity}) {}
+
+void PlacementSearcher::set_map(const GridView& grid, size_t max_cells, SearchedMap& map) {
+  map.ready = false;
   const GridGeometry& g = grid.geometry;
   if (g.cells() == 0 || grid.classes.size() != g.cells()) return;
   const CellBox box = occupied_box(grid, 4);
   if (box.empty()) return;
   // Coarser cells (each the occupancy of a square of grid cells) until the map fits the budget.
   int32_t factor = 1;
-  while (box.cells() / static_cast<size_t>(factor * factor) > options_.placement_max_map_cells) factor *= 2;
+  while (box.cells() / static_cast<size_t>(factor * factor) > max_cells) factor *= 2;
   GridGeometry coarse;
   coarse.resolution = g.resolution * factor;
   coarse.origin = g.corner({box.x0, box.y0});
   coarse.width = (box.width + factor - 1) / factor;
   coarse.height = (box.height + factor - 1) / factor;
-  cells_.assign(coarse.cells(), kCellFree);
+  map.cells.assign(coarse.cells(), kCellFree);
   for (int32_t y = 0; y < box.height; ++y) {
     const uint8_t* row = grid.classes.data() + g.index({box.x0, box.y0 + y});
     for (int32_t x = 0; x < box.width; ++x)
-      if (is_wall(row[x])) cells_[coarse.index({x / factor, y / factor})] = kCellOccupied;
+      if (is_wall(row[x])) map.cells[coarse.index({x / factor, y / factor})] = kCellOccupied;
   }
-  ready_ = static_cast<bool>(search_.set_map(GridView{coarse, cells_}));
+  map.ready = static_cast<bool>(map.search.set_map(GridView{coarse, map.cells}));
 }
 
 void PlacementSearcher::run(PlacementJob& job) {
-  if (job.new_map) set_map(GridView{job.grid_geometry, job.grid_cells});
-  job.map_ready = ready_;
+  if (job.new_map) {
+    const GridView grid{job.grid_geometry, job.grid_cells};
+    set_map(grid, options_.placement_whole_map_cells, whole_);
+    set_map(grid, options_.placement_max_map_cells, around_);
+  }
+  job.map_ready = whole_.ready && around_.ready;
   job.found.reset();
   job.passes = false;
-  if (!ready_) return;
+  if (!job.map_ready) return;
   points_.clear();
   for (const Ray& r : job.rays) points_.push_back(r.end);
   // No hypothesis: the whole map at every heading. A hypothesis: around where it puts this keyframe.
-  const GridGeometry& map = search_.geometry();
+  SearchedMap& searched = job.hypothesis ? around_ : whole_;
+  const GridGeometry& map = searched.search.geometry();
   SearchRegion region;
   if (job.hypothesis) {
     region = {job.hypothesis->compose(job.keyframe_odom), options_.placement_agree_m,
@@ -77,14 +89,14 @@ void PlacementSearcher::run(PlacementJob& job) {
               std::max(half_width, half_height),
               2.0 * std::numbers::pi};
   }
-  auto found = search_.search(points_, region);
+  auto found = searched.search.search(points_, region);
   if (!found) return;
   job.found = *found;
   // The walls are traced only for a match that passes the cheaper tests.
   job.passes = found->score >= options_.placement_min_score &&
                (job.hypothesis || found->ambiguity() <= options_.placement_max_ambiguity) &&
-               crossed_wall_share(GridView{map, cells_}, found->pose, job.rays, kWallCrossingMargin_m) <=
-                   options_.placement_max_crossed_walls;
+               crossed_wall_share(GridView{map, searched.cells}, found->pose, job.rays,
+                                  kWallCrossingMargin_m) <= options_.placement_max_crossed_walls;
 }
 
 }  // namespace slam::correction

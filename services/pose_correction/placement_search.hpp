@@ -42,17 +42,22 @@ struct PlacementJob {
 
 class PlacementSearcher {
  public:
-  explicit PlacementSearcher(const CorrectorOptions& options) : options_(options) {}
+  explicit PlacementSearcher(const CorrectorOptions& options);
   void run(PlacementJob& job);
 
  private:
-  // The grid's occupied part with a margin, coarsened until it fits placement_max_map_cells.
-  void set_map(const GridView& grid);
+  // One searched map: the grid's occupied part with a margin, coarsened until it fits a budget.
+  struct SearchedMap {
+    explicit SearchedMap(const BranchAndBoundOptions& options) : search(options) {}
+    BranchAndBoundSearch search;
+    std::vector<uint8_t> cells;
+    bool ready = false;
+  };
+  static void set_map(const GridView& grid, size_t max_cells, SearchedMap& map);
 
   CorrectorOptions options_;
-  BranchAndBoundSearch search_;
-  std::vector<uint8_t> cells_;  // the searched map
-  bool ready_ = false;
+  SearchedMap whole_;         // placement_whole_map_cells: the whole map at every heading
+  SearchedMap around_;        // placement_max_map_cells: around a hypothesis
   std::vector<Vec2> points_;  // scratch: the rays' ends
 };
 

@@ -265,6 +265,8 @@ void add_slam_options(CLI::App& app, correction::CorrectorOptions& s) {
       "travel (m) of keyframes searched together for an unplaced robot");
   add("--placement-max-crossed-walls", s.placement_max_crossed_walls,
       "share of a placement's rays that may cross walls");
+  add("--placement-whole-map-cells", s.placement_whole_map_cells,
+      "cells of the map searched whole at every heading (coarsened to fit)");
   add("--global-localisation", s.global_localisation,
       "search for each robot joining the map on it before drawing it (true/false)");
 }

@@ -1,7 +1,8 @@
 # bench_slam: speed of the SLAM core (services/pose_correction): keyframe matching against an
 # office-sized grid, and optimising a fleet-sized pose graph (10 000 nodes) from a drifted start
 # (include() from tests/bench/CMakeLists.txt). Run: build/bin/bench_slam --benchmark_format=json
-add_executable(bench_slam ${CMAKE_CURRENT_LIST_DIR}/bench_slam.cpp ${CMAKE_CURRENT_LIST_DIR}/bench_slam_graph.cpp)
+add_executable(bench_slam ${CMAKE_CURRENT_LIST_DIR}/bench_slam.cpp ${CMAKE_CURRENT_LIST_DIR}/bench_slam_graph.cpp
+                          ${CMAKE_CURRENT_LIST_DIR}/bench_slam_placement.cpp)
 target_link_libraries(bench_slam PRIVATE slam_pose_correction slam_testkit benchmark::benchmark)
 slam_warnings(bench_slam)
 
