@@ -103,10 +103,11 @@ struct CorrectorOptions {
   // keyframes wait, unmatched and unfinalised, so nothing of it is drawn into the shared map; it is
   // placed when placement_confirmations keyframes in a row agree on where its odometry frame lies,
   // each match distinct (runner-up at most placement_max_ambiguity of the best) and scoring at least
-  // placement_min_score. A robot not found within placement_max_keyframes or placement_max_wait_s
-  // is placed where its odometry says, as a robot on an empty map is. Off by default (the mapper's
-  // --slam-global-localisation): until an unplaced robot maps into a submap of its own, waiting
-  // delays a robot's share of the map by its first few metres.
+  // placement_min_score. It is never drawn where its odometry says instead (robots switched on
+  // elsewhere would be pasted onto the first one's map): it is searched for as long as it takes, and
+  // only its latest placement_max_keyframes keyframes wait (older ones are dropped with their
+  // observations). Off by default (the mapper's --slam-global-localisation): until an unplaced robot
+  // maps into a submap of its own, what it sees before it is found is lost to the map.
   bool global_localisation = false;
   int placement_confirmations = 3;
   double placement_min_score = 0.6;
@@ -115,7 +116,6 @@ struct CorrectorOptions {
   double placement_agree_rad = 0.1;
   int placement_max_keyframes = 40;
   size_t placement_max_rejected = 16;  // an operator's rejected places kept per robot (the latest)
-  double placement_max_wait_s = 30.0;
   // What is searched: the newest keyframe and the ones before it within this much travel, by
   // odometry (a sparse robot's single keyframe fits many places), evenly thinned to max_points.
   double placement_trail_m = 4.0;

@@ -137,10 +137,9 @@ void PoseCorrector::process(const GridView& grid, int64_t now_ns, std::vector<Ke
     start(std::move(keyframe), grid, match, out);
   }
   closed_.resize(kept);
-  search_placements(grid, now_ns, out);
-  // A robot that fell silent while it was searched for is not left waiting: its observations are held.
+  search_placements(grid, now_ns);
   for (Robot& rb : robots_)
-    if (rb.state.placement != Placement::Placed) give_up_placement(rb, now_ns, out);
+    if (rb.state.placement != Placement::Placed) trim_held(rb, out);
   stats_.backlog = static_cast<int64_t>(closed_.size() + in_flight_);
   const bool due = closure_since_optimise_ || tied_since_optimise_ >= options_.optimise_every;
   if (options_.localise_only) return;  // a fixed map: nothing to optimise

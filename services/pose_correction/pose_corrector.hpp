@@ -65,8 +65,8 @@ struct KeyframeCorrection {
   uint32_t segment = 0;
   Pose odom;        // keyframe origin in the robot's odometry frame
   Pose correction;  // map_from_odom for every observation of the keyframe
-  // A lost robot's keyframe given up while it was searched for: where it was is unknown, so its
-  // observations are dropped, not drawn.
+  // An unplaced or lost robot's keyframe dropped while it was searched for: where it was is unknown,
+  // so its observations are dropped, not drawn.
   bool discarded = false;
 };
 
@@ -115,12 +115,11 @@ struct CorrectorStats {
   int64_t robots_reset = 0;
   // Global localisation (CorrectorOptions::global_localisation).
   int64_t placement_searches = 0;
-  int64_t robots_placed = 0;           // found on the map
-  int64_t placements_given_up = 0;     // not found: placed by their odometry
-  int64_t placement_contradicted = 0;  // a hypothesis a later keyframe disagreed with
-  int64_t placements_refused = 0;      // matches at a place an operator rejected
-  int64_t robots_lost = 0;             // placed robots whose keyframes stopped fitting the map
-  int64_t lost_keyframes_dropped = 0;  // of lost (localising only: unplaced) robots, given up waiting
+  int64_t robots_placed = 0;               // found on the map
+  int64_t placement_contradicted = 0;      // a hypothesis a later keyframe disagreed with
+  int64_t placements_refused = 0;          // matches at a place an operator rejected
+  int64_t robots_lost = 0;                 // placed robots whose keyframes stopped fitting the map
+  int64_t unplaced_keyframes_dropped = 0;  // of unplaced and lost robots: older than the latest waiting
   // A loose sparse robot searched for by its trail (CorrectorOptions::relocalise).
   int64_t trail_searches = 0;
 };
@@ -264,7 +263,7 @@ class PoseCorrector {
     int unmatched_in_row = 0;          // its latest keyframes whose tracking match failed
     std::vector<double> track_scores;  // its latest tracking matches' scores (a ring, lost_window long)
     size_t track_score_next = 0;       // ...where the next one goes
-    bool lost = false;                 // searched for since it was lost (not given up: placed by odometry)
+    bool lost = false;                 // searched for since it was lost
     std::vector<Pose> rejected;        // odometry frames an operator said it is not in (answer_placement)
   };
   // One pose-graph node per finalised keyframe.
@@ -300,11 +299,9 @@ class PoseCorrector {
   // Global localisation (pose_corrector_placement.cpp): each robot searched for whose newest held
   // keyframe has not been looked at, in turns (inline all of them; on the placement thread one at a
   // time, the next pass starting with the robot that waited).
-  void search_placements(const GridView& grid, int64_t now_ns, std::vector<KeyframeCorrection>& out);
-  // A robot's newest held keyframe searched for on `grid`; placed once enough agree, or by its
-  // odometry once it has waited too long.
-  void search_placement(uint32_t robot, const GridView& grid, int64_t now_ns,
-                        std::vector<KeyframeCorrection>& out);
+  void search_placements(const GridView& grid, int64_t now_ns);
+  // A robot's newest held keyframe searched for on `grid`; placed once enough agree.
+  void search_placement(uint32_t robot, const GridView& grid, int64_t now_ns);
   // Applies the placement search the thread finished, if any.
   void land_placement();
   // A search's outcome for its robot: a hypothesis made, confirmed or dropped; placed once enough agree.
@@ -316,7 +313,8 @@ class PoseCorrector {
   void mark_lost(Robot& rb, const std::string& why);
   void watch_tracking(const MatchJob& job, Robot& rb);
   // Places the robot by its odometry when it has waited too long (keyframes or time); whether it did.
-  bool give_up_placement(Robot& rb, int64_t now_ns, std::vector<KeyframeCorrection>& out);
+  // An unplaced robot keeps only its latest placement_max_keyframes waiting (the others: `out`, discarded).
+  void trim_held(Robot& rb, std::vector<KeyframeCorrection>& out);
   void place(Robot& rb, std::optional<Pose> map_from_odom, double score);
   // `t_ns` on `clock` with its steps back taken out; a step is counted and logged as `what`'s.
   int64_t take_out_clock_steps(ClockSteps& clock, int64_t t_ns, std::string_view what);

@@ -47,35 +47,20 @@ Pose frame_of(const Pose& pose, const Pose& odom) {
 
 }  // namespace
 
-bool PoseCorrector::give_up_placement(Robot& rb, int64_t now_ns, std::vector<KeyframeCorrection>& out) {
-  if (rb.held.empty()) return false;
-  if (rb.lost || options_.localise_only) {
-    // Its odometry is what failed (or, on a fixed map, its odometry's frame is no place at all): it
-    // is searched for as long as it takes, and only its latest keyframes wait.
-    const size_t keep = static_cast<size_t>(std::max(1, options_.placement_max_keyframes));
-    if (rb.held.size() <= keep) return false;
-    const auto drop = static_cast<std::ptrdiff_t>(rb.held.size() - keep);
-    for (auto it = rb.held.begin(); it != rb.held.begin() + drop; ++it)
-      out.push_back(KeyframeCorrection{it->id, rb.name, it->segment, it->odom, rb.state.map_from_odom, true});
-    rb.held.erase(rb.held.begin(), rb.held.begin() + drop);
-    stats_.lost_keyframes_dropped += drop;
-    return false;
-  }
-  const double waited_s = static_cast<double>(now_ns - rb.held.front().first_stamp_ns) * 1e-9;
-  if (static_cast<int>(rb.held.size()) < options_.placement_max_keyframes &&
-      waited_s <= options_.placement_max_wait_s)
-    return false;
-  ++stats_.placements_given_up;
-  spdlog::warn(
-      "pose correction: robot {} not found on the map in {} keyframes, {:.0f} s: placed where its "
-      "odometry says",
-      rb.name, rb.held.size(), waited_s);
-  place(rb, std::nullopt, 0.0);
-  return true;
+void PoseCorrector::trim_held(Robot& rb, std::vector<KeyframeCorrection>& out) {
+  // Where the robot is, is unknown: its keyframes are never drawn where its odometry says (that is
+  // what pasted robots switched on elsewhere onto the first one's map). It is searched for as long
+  // as it takes, and only its latest keyframes wait; older ones go with their observations.
+  const size_t keep = static_cast<size_t>(std::max(1, options_.placement_max_keyframes));
+  if (rb.held.size() <= keep) return;
+  const auto drop = static_cast<std::ptrdiff_t>(rb.held.size() - keep);
+  for (auto it = rb.held.begin(); it != rb.held.begin() + drop; ++it)
+    out.push_back(KeyframeCorrection{it->id, rb.name, it->segment, it->odom, rb.state.map_from_odom, true});
+  rb.held.erase(rb.held.begin(), rb.held.begin() + drop);
+  stats_.unplaced_keyframes_dropped += drop;
 }
 
-void PoseCorrector::search_placements(const GridView& grid, int64_t now_ns,
-                                      std::vector<KeyframeCorrection>& out) {
+void PoseCorrector::search_placements(const GridView& grid, int64_t now_ns) {
   const auto robots = static_cast<uint32_t>(robots_.size());
   for (uint32_t k = 0; k < robots; ++k) {
     const uint32_t r = (placement_turn_ + k) % robots;
@@ -86,14 +71,12 @@ void PoseCorrector::search_placements(const GridView& grid, int64_t now_ns,
       placement_turn_ = r;
       return;
     }
-    search_placement(r, grid, now_ns, out);
+    search_placement(r, grid, now_ns);
   }
 }
 
-void PoseCorrector::search_placement(uint32_t robot, const GridView& grid, int64_t now_ns,
-                                     std::vector<KeyframeCorrection>& out) {
+void PoseCorrector::search_placement(uint32_t robot, const GridView& grid, int64_t now_ns) {
   Robot& rb = robots_[robot];
-  if (give_up_placement(rb, now_ns, out)) return;
   const Keyframe& keyframe = rb.held.back();
   rb.looked_at = keyframe.id;
   if (!rb.hypothesis && rb.searched_at &&

@@ -212,7 +212,7 @@ Result<nlohmann::json> run(const Options& o) {
                {"optimisations", st.optimisations},
                {"segments", st.segments},
                {"robots_placed", st.robots_placed},
-               {"placements_given_up", st.placements_given_up}};
+               {"unplaced_keyframes_dropped", st.unplaced_keyframes_dropped}};
   j["pieces"] = o.pieces;
   j["image"] = std::filesystem::path(base + ".png").filename().string();
   return j;

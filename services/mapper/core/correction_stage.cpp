@@ -74,7 +74,7 @@ void CorrectionStage::step(Mapper& mapper, int64_t now_ns, int64_t now_mono_ns) 
       const auto it = held_.find(k.id);
       if (it == held_.end()) continue;
       if (k.discarded) {
-        dropped_observations_ += static_cast<int64_t>(it->second.size());  // a lost robot's: not drawn
+        dropped_observations_ += static_cast<int64_t>(it->second.size());  // an unplaced robot's: not drawn
       } else if (localise_only_) {
         localised_observations_ += static_cast<int64_t>(it->second.size());
       } else {

@@ -69,7 +69,7 @@ class CorrectionStage {
   // Observations held back until their keyframe is finalised (stats().open_messages of them wait
   // for their keyframe to close; the rest for its match).
   int64_t held_observations() const { return held_observations_; }
-  // Observations of lost robots' keyframes given up while they were searched for (never drawn).
+  // Observations of unplaced and lost robots' keyframes dropped while they were searched for (never drawn).
   int64_t dropped_observations() const { return dropped_observations_; }
   // Localising only: observations that placed and tracked their robots (none is drawn).
   int64_t localised_observations() const { return localised_observations_; }

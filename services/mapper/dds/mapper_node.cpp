@@ -312,10 +312,9 @@ void MapperNode::update_periodic_counters() {
   counters_.get("slam_clock_steps").store(st.clock_steps, std::memory_order_relaxed);
   counters_.get("slam_placement_searches").store(st.placement_searches, std::memory_order_relaxed);
   counters_.get("slam_robots_placed").store(st.robots_placed, std::memory_order_relaxed);
-  counters_.get("slam_placements_given_up").store(st.placements_given_up, std::memory_order_relaxed);
   counters_.get("slam_robots_lost").store(st.robots_lost, std::memory_order_relaxed);
   counters_.get("slam_placements_refused").store(st.placements_refused, std::memory_order_relaxed);
-  counters_.get("slam_lost_observations_dropped")
+  counters_.get("slam_unplaced_observations_dropped")
       .store(corrections_->dropped_observations(), std::memory_order_relaxed);
   counters_.get("slam_localised_observations")
       .store(corrections_->localised_observations(), std::memory_order_relaxed);
