@@ -259,6 +259,7 @@ class PoseCorrector {
     std::optional<Pose> hypothesis;
     int confirmations = 0;
     std::optional<Vec2> searched_at;   // odometry position of the keyframe last searched for
+    int64_t searched_ns = 0;           // process()'s time of that search
     uint64_t looked_at = 0;            // id of the newest held keyframe its search last looked at
     int unmatched_in_row = 0;          // its latest keyframes whose tracking match failed
     std::vector<double> track_scores;  // its latest tracking matches' scores (a ring, lost_window long)
@@ -294,6 +295,11 @@ class PoseCorrector {
   // step is taken out (ClockSteps).
   static constexpr int64_t kClockStepBack_ns = 10'000'000'000;
   static constexpr int64_t kPlacementMapAge_ns = 10'000'000'000;
+  // A robot not found is searched for again once the map it was searched on is this old, moved or
+  // not: the others map on, and one standing where they have not been yet is found when they come.
+  bool search_again(const Robot& rb, int64_t now_ns) const {
+    return !rb.hypothesis && rb.searched_at && now_ns - rb.searched_ns > kPlacementMapAge_ns;
+  }
 
   uint32_t robot_index(std::string_view robot);
   // Global localisation (pose_corrector_placement.cpp): each robot searched for whose newest held

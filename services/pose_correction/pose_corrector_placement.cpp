@@ -65,7 +65,8 @@ void PoseCorrector::search_placements(const GridView& grid, int64_t now_ns) {
   for (uint32_t k = 0; k < robots; ++k) {
     const uint32_t r = (placement_turn_ + k) % robots;
     const Robot& rb = robots_[r];
-    if (rb.state.placement == Placement::Placed || rb.held.empty() || rb.held.back().id == rb.looked_at)
+    if (rb.state.placement == Placement::Placed || rb.held.empty() ||
+        (rb.held.back().id == rb.looked_at && !search_again(rb, now_ns)))
       continue;
     if (placement_in_flight_) {
       placement_turn_ = r;
@@ -80,7 +81,8 @@ void PoseCorrector::search_placement(uint32_t robot, const GridView& grid, int64
   const Keyframe& keyframe = rb.held.back();
   rb.looked_at = keyframe.id;
   if (!rb.hypothesis && rb.searched_at &&
-      distance(*rb.searched_at, keyframe.odom.position()) < options_.placement_search_travel_m)
+      distance(*rb.searched_at, keyframe.odom.position()) < options_.placement_search_travel_m &&
+      !search_again(rb, now_ns))
     return;
   std::unique_ptr<PlacementJob> job =
       placement_job_ ? std::move(placement_job_) : std::make_unique<PlacementJob>();
@@ -97,6 +99,7 @@ void PoseCorrector::search_placement(uint32_t robot, const GridView& grid, int64
     placement_map_ns_ = now_ns;
   }
   rb.searched_at = keyframe.odom.position();
+  rb.searched_ns = now_ns;
   if (placement_thread_) {
     placement_in_flight_ = true;
     placement_thread_->submit(std::move(job));

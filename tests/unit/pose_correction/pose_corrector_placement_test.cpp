@@ -325,6 +325,31 @@ TEST(PoseCorrector, AnOperatorRejectingAPlacedRobotHasItSearchedForAgain) {
   EXPECT_EQ(robot.placement(), Placement::Placed);
 }
 
+TEST(PoseCorrector, ARobotStandingWhereNothingIsMappedYetIsFoundOnceTheMapReachesIt) {
+  // Switched on where the map does not reach yet, it stands still. The others map on; once the map
+  // holds its room it is found where it stands, without having to move.
+  CorrectorOptions options;
+  options.global_localisation = true;
+  PoseCorrector corrector(options);
+  corrector.set_map_given(true);
+  const GridGeometry geometry = centred_geometry({-0.5, -0.5}, {20.5, 5.5});
+  const TrueMap elsewhere({{{10.0, 0.0}, {20.0, 0.0}}, {{10.0, 1.2}, {20.0, 1.2}}}, geometry);
+  const TrueMap mapped(room(), geometry);
+  const Pose truth{3.0, 1.0, 3.0};
+  std::vector<KeyframeCorrection> finalised;
+  int64_t stamp = 0;
+  for (int i = 0; i < 300; ++i) {  // 30 s at 10 Hz, the map reaching it after 12 s
+    stamp += 100'000'000;
+    ASSERT_TRUE(corrector.add("standing", stamp, Pose{}, true, laser_hits(room(), truth, Pose{})));
+    corrector.process(i < 120 ? elsewhere.view() : mapped.view(), stamp, finalised);
+    if (i == 119) {
+      EXPECT_EQ(corrector.stats().robots_placed, 0);
+    }
+  }
+  EXPECT_EQ(corrector.stats().robots_placed, 1);
+  EXPECT_LT(distance(corrector.correction("standing").position(), truth.position()), 0.05);
+}
+
 TEST(PoseCorrector, RobotsRestoredFromTheStoreStayPlaced) {
   // Keyframes are stored only once a robot is placed: after a restart each robot is where the
   // store says, not searched for again (the second one restored would otherwise join a map that
