@@ -100,16 +100,23 @@ PlacementJob whole_map_job(const Building& b, size_t k, bool new_map) {
   return job;
 }
 
-// Whole-map searches for robots whose place is unknown (odometry frame = keyframe frame), one per
-// keyframe of the scene in each iteration: the time per search is the iteration's over their count.
-void BM_PlacementSearch100m(benchmark::State& state) {
-  const Building& b = scene();
-  PlacementSearcher searcher{slam::correction::CorrectorOptions{}};
+// The searcher with the building's maps prepared, and a job per keyframe of the scene.
+std::vector<PlacementJob> prepared_jobs(const Building& b, PlacementSearcher& searcher,
+                                        benchmark::State& state) {
   PlacementJob prepare = whole_map_job(b, 0, true);
   searcher.run(prepare);
   if (!prepare.map_ready) state.SkipWithError("map refused");
   std::vector<PlacementJob> jobs;
   for (size_t k = 0; k < b.truths.size(); ++k) jobs.push_back(whole_map_job(b, k, false));
+  return jobs;
+}
+
+// Whole-map searches for robots whose place is unknown (odometry frame = keyframe frame), one per
+// keyframe of the scene in each iteration: the time per search is the iteration's over their count.
+void BM_PlacementSearch100m(benchmark::State& state) {
+  const Building& b = scene();
+  PlacementSearcher searcher{slam::correction::CorrectorOptions{}};
+  std::vector<PlacementJob> jobs = prepared_jobs(b, searcher, state);
   int64_t found = 0, passed = 0, wrong = 0, nodes = 0;
   for (auto _ : state) {
     for (size_t k = 0; k < jobs.size(); ++k) {
@@ -139,14 +146,8 @@ BENCHMARK(BM_PlacementSearch100m)->Unit(benchmark::kMillisecond)->Iterations(1);
 void BM_PlacementConfirm100m(benchmark::State& state) {
   const Building& b = scene();
   PlacementSearcher searcher{slam::correction::CorrectorOptions{}};
-  PlacementJob prepare = whole_map_job(b, 0, true);
-  searcher.run(prepare);
-  if (!prepare.map_ready) state.SkipWithError("map refused");
-  std::vector<PlacementJob> jobs;
-  for (size_t k = 0; k < b.truths.size(); ++k) {
-    jobs.push_back(whole_map_job(b, k, false));
-    jobs.back().hypothesis = b.truths[k].compose({0.1, 0.0, 0.03});
-  }
+  std::vector<PlacementJob> jobs = prepared_jobs(b, searcher, state);
+  for (size_t k = 0; k < jobs.size(); ++k) jobs[k].hypothesis = b.truths[k].compose({0.1, 0.0, 0.03});
   size_t next = 0;
   int64_t passed = 0;
   for (auto _ : state) {
