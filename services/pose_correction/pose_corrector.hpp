@@ -21,6 +21,8 @@
 //     it lands, take_optimised() hands over every keyframe whose correction moved, so the mapper
 //     re-renders the grid from its store and persists them.
 #include <Eigen/Core>
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -260,6 +262,7 @@ class PoseCorrector {
     int confirmations = 0;
     std::optional<Vec2> searched_at;   // odometry position of the keyframe last searched for
     int64_t searched_ns = 0;           // process()'s time of that search
+    int searches_unfound = 0;          // whole-map searches in a row that found nothing distinct
     uint64_t looked_at = 0;            // id of the newest held keyframe its search last looked at
     int unmatched_in_row = 0;          // its latest keyframes whose tracking match failed
     std::vector<double> track_scores;  // its latest tracking matches' scores (a ring, lost_window long)
@@ -299,6 +302,14 @@ class PoseCorrector {
   // not: the others map on, and one standing where they have not been yet is found when they come.
   bool search_again(const Robot& rb, int64_t now_ns) const {
     return !rb.hypothesis && rb.searched_at && now_ns - rb.searched_ns > kPlacementMapAge_ns;
+  }
+  // The travel before the next whole-map search: placement_search_travel_m, doubled by each search in
+  // a row that found nothing, up to the trail searched (a robot driving where nothing is mapped, or
+  // among look-alikes, is not searched for every half metre of a long drive: each search costs a
+  // tenth of a second to seconds).
+  double search_travel_m(const Robot& rb) const {
+    return std::min(options_.placement_trail_m,
+                    std::ldexp(options_.placement_search_travel_m, std::min(rb.searches_unfound, 16)));
   }
 
   uint32_t robot_index(std::string_view robot);

@@ -81,8 +81,7 @@ void PoseCorrector::search_placement(uint32_t robot, const GridView& grid, int64
   const Keyframe& keyframe = rb.held.back();
   rb.looked_at = keyframe.id;
   if (!rb.hypothesis && rb.searched_at &&
-      distance(*rb.searched_at, keyframe.odom.position()) < options_.placement_search_travel_m &&
-      !search_again(rb, now_ns))
+      distance(*rb.searched_at, keyframe.odom.position()) < search_travel_m(rb) && !search_again(rb, now_ns))
     return;
   std::unique_ptr<PlacementJob> job =
       placement_job_ ? std::move(placement_job_) : std::make_unique<PlacementJob>();
@@ -139,6 +138,7 @@ void PoseCorrector::apply_placement(const PlacementJob& job) {
   const bool refused =
       job.passes && rejected(rb, frame_of(found->pose, job.keyframe_odom), job.keyframe_odom);
   if (refused) ++stats_.placements_refused;
+  if (!job.hypothesis) rb.searches_unfound = job.passes && !refused ? 0 : rb.searches_unfound + 1;
   if (job.passes && !refused) {
     rb.hypothesis = frame_of(found->pose, job.keyframe_odom);
     ++rb.confirmations;
@@ -222,6 +222,7 @@ void PoseCorrector::place(Robot& rb, std::optional<Pose> map_from_odom, double s
         to_degrees(map_from_odom->theta));
   }
   rb.lost = false;
+  rb.searches_unfound = 0;
   rb.state.placement = Placement::Placed;
   rb.state.localisation_score = score;
   rb.hypothesis.reset();
@@ -264,6 +265,7 @@ void PoseCorrector::mark_lost(Robot& rb, const std::string& why) {
       "map, drawing nothing meanwhile",
       rb.name, why);
   rb.lost = true;
+  rb.searches_unfound = 0;
   rb.unmatched_in_row = 0;
   rb.track_scores.clear();
   rb.track_score_next = 0;

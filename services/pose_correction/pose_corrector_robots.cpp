@@ -88,6 +88,7 @@ size_t PoseCorrector::reset_robot(std::string_view robot) {
   rb.hypothesis.reset();
   rb.confirmations = 0;
   rb.searched_at.reset();
+  rb.searches_unfound = 0;
   std::erase_if(pending_moved_, [&](const KeyframeCorrection& k) { return ids.contains(k.id); });
   if (rb.builder.open()) (void)rb.builder.take();
   rb.builder.start_segment();

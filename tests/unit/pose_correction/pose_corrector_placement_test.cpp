@@ -350,6 +350,32 @@ TEST(PoseCorrector, ARobotStandingWhereNothingIsMappedYetIsFoundOnceTheMapReache
   EXPECT_LT(distance(corrector.correction("standing").position(), truth.position()), 0.05);
 }
 
+TEST(PoseCorrector, ARobotAmongLookAlikesIsSearchedForLessOftenTheLongerItDrives) {
+  // In the second of two identical rooms every whole-map search finds two places: the travel before
+  // the next search doubles (0.5, 1, 2, 4 m), so 6 m of driving cost a handful of searches, not twelve.
+  std::vector<Wall> twins = room();
+  for (const Wall& w : room()) twins.push_back({w.a + Vec2{8.0, 0.0}, w.b + Vec2{8.0, 0.0}});
+  const TrueMap map(twins, centred_geometry({-0.5, -0.5}, {14.5, 5.5}));
+  CorrectorOptions options;
+  options.global_localisation = true;
+  PoseCorrector corrector(options);
+  corrector.set_map_given(true);
+  std::vector<KeyframeCorrection> finalised;
+  Pose truth{11.0, 2.5, 0.0}, belief;
+  int64_t stamp = 0;
+  for (int i = 0; i < 300; ++i) {  // a circle of 1 m radius, 6 m in 30 s
+    const Pose step{0.02, 0.0, 0.02};
+    truth = truth.compose(step);
+    belief = belief.compose(step);
+    stamp += 100'000'000;
+    ASSERT_TRUE(corrector.add("twin", stamp, belief, true, laser_hits(twins, truth, belief)));
+    corrector.process(map.view(), stamp, finalised);
+  }
+  EXPECT_EQ(corrector.stats().robots_placed, 0);
+  EXPECT_GE(corrector.stats().placement_searches, 3);
+  EXPECT_LE(corrector.stats().placement_searches, 6);
+}
+
 TEST(PoseCorrector, RobotsRestoredFromTheStoreStayPlaced) {
   // Keyframes are stored only once a robot is placed: after a restart each robot is where the
   // store says, not searched for again (the second one restored would otherwise join a map that
