@@ -298,10 +298,12 @@ class PoseCorrector {
   // step is taken out (ClockSteps).
   static constexpr int64_t kClockStepBack_ns = 10'000'000'000;
   static constexpr int64_t kPlacementMapAge_ns = 10'000'000'000;
-  // A robot not found is searched for again once the map it was searched on is this old, moved or
-  // not: the others map on, and one standing where they have not been yet is found when they come.
+  // A robot not found is searched for again once the map it was searched on is this old (doubled by
+  // each search in a row that found nothing, up to 8 times), moved or not: the others map on, and one
+  // standing where they have not been yet is found when they come.
   bool search_again(const Robot& rb, int64_t now_ns) const {
-    return !rb.hypothesis && rb.searched_at && now_ns - rb.searched_ns > kPlacementMapAge_ns;
+    return !rb.hypothesis && rb.searched_at &&
+           now_ns - rb.searched_ns > (kPlacementMapAge_ns << std::min(rb.searches_unfound, 3));
   }
   // The travel before the next whole-map search: placement_search_travel_m, doubled by each search in
   // a row that found nothing, up to the trail searched (a robot driving where nothing is mapped, or
